@@ -1,0 +1,95 @@
+#ifndef viscoplastic_contact_contact_law_h
+#define viscoplastic_contact_contact_law_h
+
+#include <limits>
+#include <vector>
+
+namespace ViscoContact
+{
+  namespace Parameters
+  {
+    struct Contact;
+  }
+
+  // @sect3{The normal contact law as a graph made of pieces}
+  //
+  // The contact condition at a node relates the normal displacement
+  // r = u_nu (positive = penetration into the layer) and the normal pressure
+  // p the foundation exerts. Normal compliance p in dj(r) (Clarke
+  // subdifferential of a piecewise-quadratic potential j) and the rigid limit
+  // r <= g together form one graph in the (r, p) plane, made of
+  //  - sloped pieces: p = intercept + slope * r for r in [r_lower, r_upper];
+  //  - vertical pieces: r = breakpoint, p in [p_lower, p_upper]; the rigid
+  //    foundation is the last one, [p(g-), +infinity) at r = g.
+  // The active-set method (model.md, section 5) assigns every contact node
+  // to one piece; Signorini's condition, the benchmark's nonmonotone law and
+  // laws with jumps are then one mechanism.
+  //
+  // For any c > max(0, -smallest slope) the quantity q = p + c r increases
+  // strictly along the graph, so q names a unique point of it: find_piece()
+  // is the generalisation of the primal-dual active set criterion
+  // "lambda + c (u_nu - g) > 0".
+  struct ContactLawPiece
+  {
+    bool   vertical  = false;
+    bool   rigid     = false; // the foundation below the layer (r = g)
+    double r_lower   = -std::numeric_limits<double>::infinity();
+    double r_upper   = std::numeric_limits<double>::infinity();
+    double p_lower   = 0; // vertical pieces only
+    double p_upper   = 0;
+    double slope     = 0; // sloped pieces only
+    double intercept = 0;
+  };
+
+  class ContactLaw
+  {
+  public:
+    // A law defined by breakpoints b_1 < ... < b_K, the K+1 slopes on the
+    // intervals between them, the K jumps p(b_k+) - p(b_k-) >= 0 and
+    // p(b_1-) = 0, optionally cut off by the rigid foundation at r = g.
+    ContactLaw(const std::vector<double> &breakpoints,
+               const std::vector<double> &slopes,
+               const std::vector<double> &jumps,
+               const bool                 unilateral_constraint,
+               const double               gap);
+
+    // The law the parameter file describes (subsection Contact).
+    static ContactLaw
+    from_parameters(const Parameters::Contact &contact);
+
+    unsigned int
+    n_pieces() const;
+    const ContactLawPiece &
+    piece(const unsigned int i) const;
+
+    // The piece that contains the graph point with p + c r = q.
+    unsigned int
+    find_piece(const double q, const double c) const;
+
+    // The single-valued part of the compliance law: p(r) for r below the
+    // rigid limit (the left limit at breakpoints).
+    double
+    compliance_pressure(const double r) const;
+
+    // max(0, -smallest slope): the softening the uniqueness condition and
+    // the active-set parameter c have to dominate.
+    double
+    steepest_softening() const;
+
+    // True if the law is zero everywhere and has no rigid limit: contact
+    // can then be skipped altogether.
+    bool
+    is_void() const;
+
+    bool
+    has_rigid_limit() const;
+    double
+    gap() const;
+
+  private:
+    std::vector<ContactLawPiece> pieces;
+    double                       gap_value;
+  };
+} // namespace ViscoContact
+
+#endif

@@ -1,0 +1,89 @@
+#ifndef viscoplastic_contact_material_h
+#define viscoplastic_contact_material_h
+
+#include <deal.II/base/symmetric_tensor.h>
+
+namespace ViscoContact
+{
+  using namespace dealii;
+
+  // @sect3{The Perzyna viscoplastic material}
+  //
+  // Everything that happens at one quadrature point: Hooke's law
+  // (plane stress in 2D, isotropic in 3D), the von Mises set K, the
+  // orthogonal projection onto K in the energy inner product (E tau, tau) and
+  // the Perzyna rate G(sigma) = -(1/(2 lambda)) E (sigma - P_K sigma) of
+  // model.md, section 1.
+  //
+  // In 2D the projection is the solution of one scalar monotone equation for
+  // a Lagrange multiplier, solved to machine precision; in 3D, for isotropic
+  // E, it is the radial return of the deviator.
+  template <int dim>
+  class PerzynaMaterial
+  {
+  public:
+    PerzynaMaterial(const double young_modulus,
+                    const double poisson_ratio,
+                    const double viscosity,
+                    const double yield_stress);
+
+    const SymmetricTensor<4, dim> &
+    elasticity_tensor() const;
+
+    // The von Mises equivalent stress; tau is in K iff it is <= sigma_Y.
+    double
+    equivalent_stress(const SymmetricTensor<2, dim> &tau) const;
+
+    // P_K tau in the inner product (E a, b). The optional argument returns
+    // the Lagrange multiplier of the constraint (0 inside K).
+    SymmetricTensor<2, dim>
+    project_onto_yield_set(const SymmetricTensor<2, dim> &tau,
+                           double *multiplier = nullptr) const;
+
+    // G(sigma) = -(1/(2 lambda)) E (sigma - P_K sigma).
+    SymmetricTensor<2, dim>
+    viscoplastic_rate(const SymmetricTensor<2, dim> &sigma) const;
+
+    // (E a, b), the energy inner product the projection is orthogonal in.
+    double
+    energy_product(const SymmetricTensor<2, dim> &a,
+                   const SymmetricTensor<2, dim> &b) const;
+
+    // Extreme eigenvalues of E (m_E is the smallest): they set the stability
+    // limit of the explicit history update and the uniqueness margin.
+    double
+    smallest_elastic_eigenvalue() const;
+    double
+    largest_elastic_eigenvalue() const;
+
+    double
+    viscosity() const;
+    double
+    yield_stress() const;
+
+  private:
+    const double            young_modulus;
+    const double            poisson_ratio;
+    const double            lambda_viscosity;
+    const double            sigma_yield;
+    SymmetricTensor<4, dim> stiffness;
+  };
+
+  // The dimension-specific members, defined in material.cc.
+  template <>
+  double
+  PerzynaMaterial<2>::equivalent_stress(const SymmetricTensor<2, 2> &) const;
+  template <>
+  double
+  PerzynaMaterial<3>::equivalent_stress(const SymmetricTensor<2, 3> &) const;
+  template <>
+  SymmetricTensor<2, 2>
+  PerzynaMaterial<2>::project_onto_yield_set(const SymmetricTensor<2, 2> &,
+                                             double *) const;
+  template <>
+  SymmetricTensor<2, 3>
+  PerzynaMaterial<3>::project_onto_yield_set(const SymmetricTensor<2, 3> &,
+                                             double *) const;
+} // namespace ViscoContact
+
+#endif

@@ -1,0 +1,147 @@
+#ifndef viscoplastic_contact_parameters_h
+#define viscoplastic_contact_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/types.h>
+
+#include <string>
+#include <vector>
+
+namespace ViscoContact
+{
+  using namespace dealii;
+
+  // @sect3{Run-time parameters}
+  //
+  // Every physical and numerical constant of a run comes from a parameter
+  // file. As in step-44, each subsection of the file is one struct with a
+  // static declare_parameters() and a parse_parameters() that reads the
+  // values and checks what ParameterHandler's patterns cannot express
+  // (strict positivity, consistency between entries). A violated check
+  // throws an ExcMessage that names the subsection, the entry, the value
+  // and the accepted range.
+  namespace Parameters
+  {
+    struct Geometry
+    {
+      unsigned int        dimension;
+      std::vector<double> lengths;      // L1, L2 (, L3)
+      unsigned int        subdivisions; // squares (cubes) along each edge
+      std::string         cell_type;    // "simplex" or "hypercube"
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    struct BoundaryParts
+    {
+      std::vector<types::boundary_id> clamped_ids;  // Gamma_1
+      std::vector<types::boundary_id> contact_ids;  // Gamma_3
+      std::vector<types::boundary_id> loaded_ids;   // loaded part of Gamma_2
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    struct Material
+    {
+      double young_modulus;
+      double poisson_ratio;
+      double viscosity;
+      double yield_stress;
+      bool   plasticity;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm, const unsigned int dim);
+    };
+
+    struct Loads
+    {
+      std::string body_force;       // FunctionParser expression, dim parts
+      std::string surface_traction; // FunctionParser expression, dim parts
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    struct Contact
+    {
+      bool        unilateral_constraint; // rigid foundation below the layer
+      bool        normal_compliance;     // the deformable layer
+      double      gap;                   // g, thickness of the layer
+      std::string law_type;              // "nonmonotone" or "piecewise linear"
+      double      c1, c2, u1;            // the benchmark law
+      std::vector<double> breakpoints;   // a general piecewise-linear law
+      std::vector<double> slopes;
+      std::vector<double> jumps;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    struct Time
+    {
+      double end_time;
+      double time_step;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    struct ActiveSetSolver
+    {
+      unsigned int max_iterations;
+      double       tolerance;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    struct Output
+    {
+      std::string         directory;
+      bool                write_vtu;
+      unsigned int        interval;
+      std::vector<double> profile_times;
+      bool                print_timing_summary;
+      bool                verbose;
+      std::string         parsed_parameters; // the complete parsed file
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    struct AllParameters : public Geometry,
+                           public BoundaryParts,
+                           public Material,
+                           public Loads,
+                           public Contact,
+                           public Time,
+                           public ActiveSetSolver,
+                           public Output
+    {
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+  } // namespace Parameters
+} // namespace ViscoContact
+
+#endif

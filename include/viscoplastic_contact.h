@@ -1,0 +1,209 @@
+#ifndef viscoplastic_contact_viscoplastic_contact_h
+#define viscoplastic_contact_viscoplastic_contact_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/quadrature.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/timer.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe.h>
+#include <deal.II/fe/mapping.h>
+
+#include <deal.II/grid/tria.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/lapack_full_matrix.h>
+#include <deal.II/lac/sparse_direct.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include "active_set_solver.h"
+#include "material.h"
+#include "parameters.h"
+
+#include <array>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace ViscoContact
+{
+  using namespace dealii;
+
+  // The state of the material at one stress point (a cell of a simplex mesh,
+  // a Gauss point of a hypercube mesh).
+  template <int dim>
+  struct QuadraturePointHistory
+  {
+    SymmetricTensor<2, dim> stress;  // sigma_n
+    SymmetricTensor<2, dim> history; // H_{n+1}: the history part of the
+                                     // stress of the next step
+  };
+
+  // A node of Gamma_3 that is free to move: its displacement dofs, the
+  // outward normal nu (the weighted mean of the adjacent faces' normals) and
+  // the lumped weight w = int_Gamma3 phi.
+  template <int dim>
+  struct ContactNode
+  {
+    Point<dim>                                   location;
+    Tensor<1, dim>                               normal;
+    double                                       weight;
+    std::array<types::global_dof_index, dim>     dofs;
+    types::global_dof_index                      scalar_dof;
+  };
+
+  // Lumped weights w_i = int_Gamma3 phi_i and mean outward normals of the
+  // vertices on the given boundary parts, keyed by vertex index. Exposed for
+  // the tests: the weights sum to the measure of Gamma_3.
+  template <int dim>
+  struct BoundaryVertexData
+  {
+    Point<dim>     location;
+    Tensor<1, dim> normal;
+    double         weight = 0;
+  };
+
+  template <int dim>
+  std::map<unsigned int, BoundaryVertexData<dim>>
+  lumped_boundary_weights(const Mapping<dim>                    &mapping,
+                          const DoFHandler<dim>                 &dof_handler,
+                          const Quadrature<dim - 1>             &face_quadrature,
+                          const std::vector<types::boundary_id> &boundary_ids);
+
+  // @sect3{The ViscoplasticContact class}
+  //
+  // The program in the structure of step-18 (quasistatic time loop, history
+  // at the stress points) and step-41/42 (active set on the contact nodes).
+  // run() reads as the algorithm of model.md, section 2:
+  //   setup; for n = 1..N: assemble the right-hand side,
+  //   solve the contact problem by the active-set method,
+  //   update the stresses and the history, write output.
+  template <int dim>
+  class ViscoplasticContact
+  {
+  public:
+    explicit ViscoplasticContact(const Parameters::AllParameters &parameters);
+
+    void
+    run();
+
+  private:
+    // Setup.
+    void
+    make_grid();
+    void
+    setup_system();
+    void
+    assemble_elastic_operator();
+    void
+    setup_contact();
+    void
+    setup_quadrature_point_history();
+
+    // One time step.
+    void
+    assemble_right_hand_side(const double time);
+    void
+    assemble_external_load(const double time);
+    void
+    assemble_history_load();
+    ContactActiveSetSolver::Result
+    solve_time_step(const unsigned int step, const double time);
+    void
+    update_stresses(const double next_time_step);
+
+    // Output.
+    void
+    prepare_output_directory();
+    void
+    output_results(const unsigned int step, const double time);
+    void
+    write_contact_profile(const unsigned int step, const double time) const;
+    void
+    write_time_series_row(const unsigned int                    step,
+                          const double                          time,
+                          const ContactActiveSetSolver::Result &result,
+                          const double                          wall_time);
+    void
+    print_run_summary();
+
+    // Helpers.
+    std::array<unsigned int, 3>
+    count_contact_states() const;
+    unsigned int
+    contact_status(const unsigned int node) const;
+    double
+    total_contact_force() const;
+    std::vector<double>
+    time_levels() const;
+
+    // Run control, console and timing.
+    const Parameters::AllParameters parameters;
+    ConditionalOStream              pcout;
+    TimerOutput                     computing_timer;
+
+    // Mesh, finite element, quadratures, degrees of freedom.
+    Triangulation<dim>                  triangulation;
+    ReferenceCell                       reference_cell;
+    const Mapping<dim>                 *mapping;
+    std::unique_ptr<FiniteElement<dim>> fe;
+    std::unique_ptr<FiniteElement<dim>> scalar_fe; // nodal output fields
+    DoFHandler<dim>                     dof_handler;
+    DoFHandler<dim>                     scalar_dof_handler;
+    Quadrature<dim>                     stress_quadrature;
+    Quadrature<dim>                     load_quadrature;
+    Quadrature<dim - 1>                 face_quadrature;
+    AffineConstraints<double>           constraints;
+
+    // The elastic operator: assembled and factorised once per run.
+    SparsityPattern      sparsity_pattern;
+    SparseMatrix<double> stiffness_matrix;
+    SparseDirectUMFPACK  elastic_solver;
+    unsigned int         n_operator_assemblies = 0;
+    unsigned int         n_operator_factorizations = 0;
+    unsigned int         n_elastic_solves = 0;
+    unsigned int         n_external_load_assemblies = 0;
+
+    // Vectors: the displacement u_n, the external load f_n, the history load
+    // -(H_n, eps(v)) and their sum.
+    Vector<double> solution;
+    Vector<double> external_load;
+    Vector<double> history_load;
+    Vector<double> system_rhs;
+
+    // Material, loads and the state at the stress points.
+    PerzynaMaterial<dim>                     material;
+    FunctionParser<dim>                      body_force;
+    FunctionParser<dim>                      surface_traction;
+    bool                                     body_force_is_zero;
+    bool                                     loads_depend_on_time;
+    std::vector<QuadraturePointHistory<dim>> quadrature_point_history;
+
+    // Contact: the nodes of Gamma_3 and the condensed active-set solver.
+    bool                           contact_enabled;
+    std::vector<ContactNode<dim>>  contact_nodes;
+    ContactActiveSetSolver         active_set_solver;
+    // W = K^{-1} N^T, the displacement response to unit normal forces at
+    // the contact nodes (n_dofs x m, column-major), kept when it fits in
+    // memory: then u = K^{-1} b - W z needs one solve per step, not two.
+    LAPACKFullMatrix<double>       contact_responses;
+    bool                           contact_responses_stored = false;
+    unsigned int                   total_active_set_iterations = 0;
+
+    // Output records.
+    std::vector<std::pair<double, std::string>> times_and_names;
+    std::ofstream                               time_series;
+    std::vector<unsigned int>                   profile_steps;
+    double                                      time_loop_compute_time = 0;
+    unsigned int                                n_time_steps        = 0;
+  };
+} // namespace ViscoContact
+
+#endif

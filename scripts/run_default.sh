@@ -1,0 +1,11 @@
+#!/bin/bash
+# Quick start 1: install what is missing, configure and build in Release, and
+# run the default scene (the reference benchmark, h = 1/32, k = 1/64), which
+# writes into output/default/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/install_dependencies.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build --target viscoplastic_contact -- -j"$(nproc)"
+./build/viscoplastic_contact parameters/default.prm

@@ -1,0 +1,568 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
+
+#include "parameters.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace ViscoContact
+{
+  namespace Parameters
+  {
+    namespace
+    {
+      // One place that formats the message of a rejected entry, so that every
+      // error names the subsection, the entry, the value and what is accepted.
+      void
+      require(const bool         condition,
+              const std::string &subsection,
+              const std::string &entry,
+              const std::string &value,
+              const std::string &accepted)
+      {
+        AssertThrow(condition,
+                    ExcMessage("Invalid parameter <" + entry +
+                               "> in subsection <" + subsection + ">: value <" +
+                               value + ">; accepted: " + accepted + "."));
+      }
+
+      std::string
+      to_string(const double value)
+      {
+        std::ostringstream s;
+        s << value;
+        return s.str();
+      }
+
+      std::vector<types::boundary_id>
+      get_boundary_ids(ParameterHandler &prm, const std::string &entry)
+      {
+        std::vector<types::boundary_id> ids;
+        for (const int id :
+             Utilities::string_to_int(Utilities::split_string_list(
+               prm.get(entry))))
+          ids.push_back(static_cast<types::boundary_id>(id));
+        return ids;
+      }
+    } // namespace
+
+
+
+    void
+    Geometry::declare_parameters(ParameterHandler &prm)
+    {
+      prm.declare_entry("Dimension",
+                        "2",
+                        Patterns::Integer(2, 3),
+                        "Space dimension: 2 (plane stress) or 3.");
+      prm.enter_subsection("Geometry");
+      {
+        prm.declare_entry("Lengths",
+                          "1, 1",
+                          Patterns::List(Patterns::Double(0), 2, 3),
+                          "Edge lengths L1, L2 (, L3) of the rectangular body "
+                          "(0,L1)x(0,L2)(x(0,L3)), one per dimension.");
+        prm.declare_entry("Subdivisions",
+                          "32",
+                          Patterns::Integer(1, 100000),
+                          "Number of squares (cubes) along each edge; the mesh "
+                          "size is h = L_i / Subdivisions.");
+        prm.declare_entry(
+          "Cell type",
+          "simplex",
+          Patterns::Selection("simplex|hypercube"),
+          "simplex: each square split into 2 triangles (each cube into 5 "
+          "tetrahedra), P1 displacement, piecewise-constant stress; "
+          "hypercube: quadrilaterals/hexahedra, Q1 displacement, stresses at "
+          "the 2^dim Gauss points.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    Geometry::parse_parameters(ParameterHandler &prm)
+    {
+      dimension = prm.get_integer("Dimension");
+      prm.enter_subsection("Geometry");
+      {
+        lengths = Utilities::string_to_double(
+          Utilities::split_string_list(prm.get("Lengths")));
+        require(lengths.size() == dimension,
+                "Geometry",
+                "Lengths",
+                prm.get("Lengths"),
+                "exactly one length per space dimension (" +
+                  std::to_string(dimension) + " values)");
+        for (const double l : lengths)
+          require(l > 0,
+                  "Geometry",
+                  "Lengths",
+                  prm.get("Lengths"),
+                  "strictly positive lengths");
+        subdivisions = prm.get_integer("Subdivisions");
+        cell_type    = prm.get("Cell type");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    BoundaryParts::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Boundary");
+      {
+        prm.declare_entry(
+          "Clamped boundary ids",
+          "0",
+          Patterns::List(Patterns::Integer(0, 255), 1),
+          "Boundary ids of Gamma_1 (u = 0). The generated box numbers its "
+          "faces as deal.II's colorize does: 0/1 at x = 0/L1, 2/3 at y = 0/L2, "
+          "4/5 at z = 0/L3.");
+        prm.declare_entry("Contact boundary ids",
+                          "2",
+                          Patterns::List(Patterns::Integer(0, 255)),
+                          "Boundary ids of Gamma_3 (contact with the "
+                          "foundation). Every other boundary part is Gamma_2.");
+        prm.declare_entry("Loaded boundary ids",
+                          "3",
+                          Patterns::List(Patterns::Integer(0, 255)),
+                          "Parts of Gamma_2 that carry the surface traction of "
+                          "subsection Loads; the rest of Gamma_2 is "
+                          "traction-free.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    BoundaryParts::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Boundary");
+      {
+        clamped_ids = get_boundary_ids(prm, "Clamped boundary ids");
+        contact_ids = get_boundary_ids(prm, "Contact boundary ids");
+        loaded_ids  = get_boundary_ids(prm, "Loaded boundary ids");
+        for (const auto id : contact_ids)
+          for (const auto c : clamped_ids)
+            require(id != c,
+                    "Boundary",
+                    "Contact boundary ids",
+                    prm.get("Contact boundary ids"),
+                    "ids different from the Clamped boundary ids");
+        for (const auto id : loaded_ids)
+          for (const auto c : clamped_ids)
+            require(id != c,
+                    "Boundary",
+                    "Loaded boundary ids",
+                    prm.get("Loaded boundary ids"),
+                    "ids different from the Clamped boundary ids");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    Material::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Material");
+      {
+        prm.declare_entry("Young's modulus",
+                          "1000",
+                          Patterns::Double(),
+                          "E > 0 [N/m^2].");
+        prm.declare_entry("Poisson ratio",
+                          "0.4",
+                          Patterns::Double(),
+                          "k: -1 < k < 1 in 2D (plane stress), -1 < k < 0.5 "
+                          "in 3D.");
+        prm.declare_entry("Viscosity",
+                          "50",
+                          Patterns::Double(),
+                          "lambda > 0 [N s/m^2] of the Perzyna law "
+                          "G = -(1/(2 lambda)) E (sigma - P_K sigma).");
+        prm.declare_entry("Yield stress",
+                          "2",
+                          Patterns::Double(),
+                          "sigma_Y > 0 [N/m^2] of the von Mises set K.");
+        prm.declare_entry("Plasticity",
+                          "true",
+                          Patterns::Bool(),
+                          "false: linear elasticity (G = 0); the history "
+                          "terms are then skipped altogether.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    Material::parse_parameters(ParameterHandler &prm, const unsigned int dim)
+    {
+      prm.enter_subsection("Material");
+      {
+        young_modulus = prm.get_double("Young's modulus");
+        poisson_ratio = prm.get_double("Poisson ratio");
+        viscosity     = prm.get_double("Viscosity");
+        yield_stress  = prm.get_double("Yield stress");
+        plasticity    = prm.get_bool("Plasticity");
+        require(young_modulus > 0,
+                "Material",
+                "Young's modulus",
+                to_string(young_modulus),
+                "E > 0");
+        const double k_max = (dim == 2 ? 1.0 : 0.5);
+        require(poisson_ratio > -1 && poisson_ratio < k_max,
+                "Material",
+                "Poisson ratio",
+                to_string(poisson_ratio),
+                std::string("-1 < k < ") + (dim == 2 ? "1 (2D plane stress)" :
+                                                       "0.5 (3D)"));
+        require(viscosity > 0,
+                "Material",
+                "Viscosity",
+                to_string(viscosity),
+                "lambda > 0");
+        require(yield_stress > 0,
+                "Material",
+                "Yield stress",
+                to_string(yield_stress),
+                "sigma_Y > 0");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    Loads::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Loads");
+      {
+        prm.declare_entry(
+          "Body force",
+          "0; 0",
+          Patterns::Anything(),
+          "f_0(x,t) [N/m^2 in 2D]: one muparser expression per component, "
+          "separated by ';', in the variables x, y (, z) and t and the "
+          "constants L1, L2 (, L3). A load without the variable t is "
+          "assembled once for the whole run.");
+        prm.declare_entry(
+          "Surface traction",
+          "0; -5",
+          Patterns::Anything(),
+          "f_2(x,t) [N/m in 2D] on the Loaded boundary ids, same syntax as "
+          "the body force.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    Loads::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Loads");
+      {
+        body_force       = prm.get("Body force");
+        surface_traction = prm.get("Surface traction");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    Contact::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Contact");
+      {
+        prm.declare_entry("Unilateral constraint",
+                          "true",
+                          Patterns::Bool(),
+                          "Rigid foundation under the layer: u_nu <= g.");
+        prm.declare_entry("Normal compliance",
+                          "true",
+                          Patterns::Bool(),
+                          "Deformable layer: -sigma_nu = p(u_nu).");
+        prm.declare_entry("Layer thickness",
+                          "0.01",
+                          Patterns::Double(),
+                          "g > 0 [m], the thickness of the deformable layer "
+                          "(g >= 0 is accepted without normal compliance: "
+                          "Signorini with gap g).");
+        prm.declare_entry(
+          "Law",
+          "nonmonotone",
+          Patterns::Selection("nonmonotone|piecewise linear"),
+          "nonmonotone: the benchmark law p(r) = 0 (r < 0), c1 r (0 <= r <= "
+          "u1), c1 u1 + c2 (r - u1) (r > u1); piecewise linear: any law given "
+          "by Breakpoints, Slopes and Jumps.");
+        prm.declare_entry("c1",
+                          "300",
+                          Patterns::Double(),
+                          "Stiffness of the layer up to u1 [N/m^3], c1 >= 0.");
+        prm.declare_entry("c2",
+                          "-100",
+                          Patterns::Double(),
+                          "Slope beyond u1 [N/m^3]; negative = softening.");
+        prm.declare_entry("u1",
+                          "0.006",
+                          Patterns::Double(),
+                          "Penetration where the slope changes [m], u1 >= 0.");
+        prm.declare_entry(
+          "Breakpoints",
+          "",
+          Patterns::List(Patterns::Double()),
+          "Piecewise-linear law: increasing breakpoints b_1 < ... < b_K.");
+        prm.declare_entry("Slopes",
+                          "",
+                          Patterns::List(Patterns::Double()),
+                          "Piecewise-linear law: K+1 slopes, on (-inf,b_1), "
+                          "(b_1,b_2), ..., (b_K,inf); p(b_1-) = 0.");
+        prm.declare_entry(
+          "Jumps",
+          "",
+          Patterns::List(Patterns::Double()),
+          "Piecewise-linear law: K jumps p(b_k+) - p(b_k-) >= 0 (empty: all "
+          "zero). A jump makes the Clarke subdifferential an interval.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    Contact::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Contact");
+      {
+        unilateral_constraint = prm.get_bool("Unilateral constraint");
+        normal_compliance     = prm.get_bool("Normal compliance");
+        gap                   = prm.get_double("Layer thickness");
+        law_type              = prm.get("Law");
+        c1                    = prm.get_double("c1");
+        c2                    = prm.get_double("c2");
+        u1                    = prm.get_double("u1");
+        breakpoints           = Utilities::string_to_double(
+          Utilities::split_string_list(prm.get("Breakpoints")));
+        slopes = Utilities::string_to_double(
+          Utilities::split_string_list(prm.get("Slopes")));
+        jumps = Utilities::string_to_double(
+          Utilities::split_string_list(prm.get("Jumps")));
+
+        if (normal_compliance)
+          require(gap > 0,
+                  "Contact",
+                  "Layer thickness",
+                  to_string(gap),
+                  "g > 0");
+        else
+          require(gap >= 0,
+                  "Contact",
+                  "Layer thickness",
+                  to_string(gap),
+                  "g >= 0");
+
+        if (normal_compliance && law_type == "nonmonotone")
+          {
+            require(c1 >= 0, "Contact", "c1", to_string(c1), "c1 >= 0");
+            require(u1 >= 0, "Contact", "u1", to_string(u1), "u1 >= 0");
+          }
+        if (normal_compliance && law_type == "piecewise linear")
+          {
+            require(breakpoints.size() >= 1,
+                    "Contact",
+                    "Breakpoints",
+                    prm.get("Breakpoints"),
+                    "at least one breakpoint for Law = piecewise linear");
+            for (unsigned int k = 1; k < breakpoints.size(); ++k)
+              require(breakpoints[k] > breakpoints[k - 1],
+                      "Contact",
+                      "Breakpoints",
+                      prm.get("Breakpoints"),
+                      "strictly increasing values");
+            require(slopes.size() == breakpoints.size() + 1,
+                    "Contact",
+                    "Slopes",
+                    prm.get("Slopes"),
+                    "one more slope than breakpoints (" +
+                      std::to_string(breakpoints.size() + 1) + " values)");
+            require(jumps.empty() || jumps.size() == breakpoints.size(),
+                    "Contact",
+                    "Jumps",
+                    prm.get("Jumps"),
+                    "empty or one jump per breakpoint (" +
+                      std::to_string(breakpoints.size()) + " values)");
+            for (const double jump : jumps)
+              require(jump >= 0,
+                      "Contact",
+                      "Jumps",
+                      prm.get("Jumps"),
+                      "non-negative jumps (an upward jump is a vertical piece "
+                      "of the graph; a downward one has no such piece)");
+          }
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    Time::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Time");
+      {
+        prm.declare_entry("End time", "1", Patterns::Double(), "T > 0 [s].");
+        prm.declare_entry("Time step",
+                          "0.015625",
+                          Patterns::Double(),
+                          "k with 0 < k <= T [s]; if T/k is not an integer the "
+                          "last step is shortened to end at T.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    Time::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Time");
+      {
+        end_time  = prm.get_double("End time");
+        time_step = prm.get_double("Time step");
+        require(end_time > 0, "Time", "End time", to_string(end_time), "T > 0");
+        require(time_step > 0 && time_step <= end_time,
+                "Time",
+                "Time step",
+                to_string(time_step),
+                "0 < k <= T = " + to_string(end_time));
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    ActiveSetSolver::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Active set solver");
+      {
+        prm.declare_entry("Maximum iterations",
+                          "50",
+                          Patterns::Integer(1, 10000),
+                          "Limit of the primal-dual active set (semismooth "
+                          "Newton) iterations per time step; reaching it stops "
+                          "the run with a report.");
+        prm.declare_entry(
+          "Tolerance",
+          "1e-10",
+          Patterns::Double(0),
+          "Relative residual of the condensed contact equations accepted once "
+          "the active set (the pieces of the contact law) no longer changes.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    ActiveSetSolver::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Active set solver");
+      {
+        max_iterations = prm.get_integer("Maximum iterations");
+        tolerance      = prm.get_double("Tolerance");
+        require(tolerance > 0,
+                "Active set solver",
+                "Tolerance",
+                to_string(tolerance),
+                "a positive number");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    Output::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      {
+        prm.declare_entry("Output directory",
+                          "output/default",
+                          Patterns::DirectoryName(),
+                          "Where the run writes parameters.prm, solution.pvd "
+                          "with its .vtu files, time_series.csv and the "
+                          "contact profiles. Created if missing.");
+        prm.declare_entry("Write vtu",
+                          "true",
+                          Patterns::Bool(),
+                          "Write a .vtu file per output step and the .pvd "
+                          "record.");
+        prm.declare_entry("Output interval",
+                          "1",
+                          Patterns::Integer(1),
+                          "Write a .vtu file every n-th time step (and always "
+                          "the last one).");
+        prm.declare_entry(
+          "Profile times",
+          "0.015625, 0.5, 1",
+          Patterns::List(Patterns::Double(0)),
+          "Times at which the contact profile along Gamma_3 is written to "
+          "contact_profile_NNNN.csv (the step closest to each time).");
+        prm.declare_entry("Print timing summary",
+                          "true",
+                          Patterns::Bool(),
+                          "Print the TimerOutput table and the cost ratios at "
+                          "the end of the run.");
+        prm.declare_entry("Verbose",
+                          "true",
+                          Patterns::Bool(),
+                          "Print one line per time step.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    Output::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      {
+        directory = prm.get("Output directory");
+        if (directory.empty())
+          directory = ".";
+        write_vtu     = prm.get_bool("Write vtu");
+        interval      = prm.get_integer("Output interval");
+        profile_times = Utilities::string_to_double(
+          Utilities::split_string_list(prm.get("Profile times")));
+        print_timing_summary = prm.get_bool("Print timing summary");
+        verbose              = prm.get_bool("Verbose");
+      }
+      prm.leave_subsection();
+      std::ostringstream parsed;
+      prm.print_parameters(parsed, ParameterHandler::PRM);
+      parsed_parameters = parsed.str();
+    }
+
+
+
+    void
+    AllParameters::declare_parameters(ParameterHandler &prm)
+    {
+      Geometry::declare_parameters(prm);
+      BoundaryParts::declare_parameters(prm);
+      Material::declare_parameters(prm);
+      Loads::declare_parameters(prm);
+      Contact::declare_parameters(prm);
+      Time::declare_parameters(prm);
+      ActiveSetSolver::declare_parameters(prm);
+      Output::declare_parameters(prm);
+    }
+
+    void
+    AllParameters::parse_parameters(ParameterHandler &prm)
+    {
+      Geometry::parse_parameters(prm);
+      BoundaryParts::parse_parameters(prm);
+      Material::parse_parameters(prm, dimension);
+      Loads::parse_parameters(prm);
+      Contact::parse_parameters(prm);
+      Time::parse_parameters(prm);
+      ActiveSetSolver::parse_parameters(prm);
+      Output::parse_parameters(prm);
+    }
+  } // namespace Parameters
+} // namespace ViscoContact

@@ -1,0 +1,533 @@
+// The set-up phase of ViscoplasticContact<dim>: mesh, finite element,
+// constraints, the elastic operator (assembled and factorised once), the
+// contact nodes with their condensed compliance, and the stress points.
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/grid/grid_generator.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <deal.II/numerics/vector_tools.h>
+
+#include "viscoplastic_contact.h"
+
+#include <algorithm>
+#include <regex>
+
+namespace ViscoContact
+{
+  namespace
+  {
+    // FunctionParser's variable names, plus time.
+    template <int dim>
+    std::string
+    load_variables()
+    {
+      return FunctionParser<dim>::default_variable_names() + ",t";
+    }
+
+    // A load expression is time dependent iff it mentions the variable t.
+    bool
+    mentions_time(const std::string &expression)
+    {
+      static const std::regex t_variable("(^|[^A-Za-z0-9_])t($|[^A-Za-z0-9_])");
+      return std::regex_search(expression, t_variable);
+    }
+
+    // Every component is the literal number zero.
+    bool
+    is_zero_expression(const std::string &expression)
+    {
+      for (const std::string &part :
+           Utilities::split_string_list(expression, ';'))
+        {
+          try
+            {
+              if (Utilities::string_to_double(part) != 0.)
+                return false;
+            }
+          catch (...)
+            {
+              return false;
+            }
+        }
+      return true;
+    }
+
+    // Parse a load expression with dim components; turn muparser's messages
+    // into one that names the parameter.
+    template <int dim>
+    void
+    initialize_load(FunctionParser<dim>             &function,
+                    const std::string               &entry,
+                    const std::string               &expression,
+                    const std::vector<double>       &lengths)
+    {
+      const unsigned int n_parts =
+        Utilities::split_string_list(expression, ';').size();
+      AssertThrow(n_parts == dim,
+                  ExcMessage("Invalid parameter <" + entry +
+                             "> in subsection <Loads>: value <" + expression +
+                             ">; accepted: " + std::to_string(dim) +
+                             " expressions separated by ';' (one per "
+                             "displacement component)."));
+      std::map<std::string, double> constants;
+      for (unsigned int d = 0; d < lengths.size(); ++d)
+        constants["L" + std::to_string(d + 1)] = lengths[d];
+      try
+        {
+          function.initialize(load_variables<dim>(),
+                              expression,
+                              constants,
+                              /*time_dependent=*/true);
+          // muparser reports unknown variables only when evaluating.
+          function.value(Point<dim>(), 0);
+        }
+      catch (const std::exception &exc)
+        {
+          AssertThrow(false,
+                      ExcMessage("Invalid parameter <" + entry +
+                                 "> in subsection <Loads>: value <" +
+                                 expression +
+                                 ">; accepted: muparser expressions in " +
+                                 load_variables<dim>() +
+                                 " and the constants L1, L2 (, L3). The "
+                                 "parser said: " +
+                                 exc.what()));
+        }
+    }
+  } // namespace
+
+
+
+  // @sect4{ViscoplasticContact::ViscoplasticContact}
+  //
+  // The choice between simplices and hypercubes is made here, once: the
+  // reference cell gives the mapping and the quadratures, and everything
+  // else in the program is written for either. On simplices the P1 strain
+  // is constant per cell and one stress point per cell is the piecewise-
+  // constant stress space Q^h; on hypercubes the stresses live at the
+  // 2^dim Gauss points.
+  template <int dim>
+  ViscoplasticContact<dim>::ViscoplasticContact(
+    const Parameters::AllParameters &parameters)
+    : parameters(parameters)
+    , pcout(std::cout)
+    , computing_timer(pcout, TimerOutput::never, TimerOutput::wall_times)
+    , reference_cell(parameters.cell_type == "simplex" ?
+                       ReferenceCells::get_simplex<dim>() :
+                       ReferenceCells::get_hypercube<dim>())
+    , mapping(&reference_cell.template get_default_linear_mapping<dim>())
+    , fe(reference_cell.is_simplex() ?
+           std::make_unique<FESystem<dim>>(FE_SimplexP<dim>(1), dim) :
+           std::make_unique<FESystem<dim>>(FE_Q<dim>(1), dim))
+    , scalar_fe(reference_cell.is_simplex() ?
+                  std::unique_ptr<FiniteElement<dim>>(
+                    std::make_unique<FE_SimplexP<dim>>(1)) :
+                  std::unique_ptr<FiniteElement<dim>>(
+                    std::make_unique<FE_Q<dim>>(1)))
+    , dof_handler(triangulation)
+    , scalar_dof_handler(triangulation)
+    , stress_quadrature(reference_cell.template get_gauss_type_quadrature<dim>(
+        reference_cell.is_simplex() ? 1 : 2))
+    , load_quadrature(
+        reference_cell.template get_gauss_type_quadrature<dim>(2))
+    , face_quadrature(reference_cell.face_reference_cell(0)
+                        .template get_gauss_type_quadrature<dim - 1>(2))
+    , material(parameters.young_modulus,
+               parameters.poisson_ratio,
+               parameters.viscosity,
+               parameters.yield_stress)
+    , body_force(dim)
+    , surface_traction(dim)
+    , contact_enabled(false)
+  {
+    AssertThrow(parameters.dimension == dim, ExcInternalError());
+    initialize_load(body_force,
+                    "Body force",
+                    parameters.body_force,
+                    parameters.lengths);
+    initialize_load(surface_traction,
+                    "Surface traction",
+                    parameters.surface_traction,
+                    parameters.lengths);
+    body_force_is_zero   = is_zero_expression(parameters.body_force);
+    loads_depend_on_time = mentions_time(parameters.body_force) ||
+                           mentions_time(parameters.surface_traction);
+  }
+
+
+
+  // @sect4{ViscoplasticContact::make_grid}
+  //
+  // The box (0,L1)x(0,L2)(x(0,L3)) with Subdivisions squares (cubes) along
+  // each edge; on simplex meshes each square is split into two triangles
+  // (each cube into five tetrahedra). deal.II 9.4 cannot colorize the simplex
+  // generator, so the boundary ids are set from the face centres with the
+  // numbering colorize uses for hypercubes: 2d and 2d+1 at x_d = 0 and L_d.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::make_grid()
+  {
+    TimerOutput::Scope t(computing_timer, "Setup: mesh");
+
+    Point<dim>                corner;
+    std::vector<unsigned int> repetitions(dim, parameters.subdivisions);
+    for (unsigned int d = 0; d < dim; ++d)
+      corner[d] = parameters.lengths[d];
+
+    if (reference_cell.is_simplex())
+      GridGenerator::subdivided_hyper_rectangle_with_simplices(triangulation,
+                                                               repetitions,
+                                                               Point<dim>(),
+                                                               corner);
+    else
+      GridGenerator::subdivided_hyper_rectangle(
+        triangulation, repetitions, Point<dim>(), corner, /*colorize=*/true);
+
+    if (reference_cell.is_simplex())
+      for (const auto &face : triangulation.active_face_iterators())
+        if (face->at_boundary())
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const double x         = face->center()[d];
+              const double tolerance = 1e-10 * parameters.lengths[d];
+              if (std::abs(x) < tolerance)
+                face->set_boundary_id(2 * d);
+              else if (std::abs(x - parameters.lengths[d]) < tolerance)
+                face->set_boundary_id(2 * d + 1);
+            }
+
+    // Every boundary part named in the parameter file must exist.
+    std::set<types::boundary_id> present;
+    for (const auto &face : triangulation.active_face_iterators())
+      if (face->at_boundary())
+        present.insert(face->boundary_id());
+    const auto check_ids = [&](const std::vector<types::boundary_id> &ids,
+                               const std::string                     &entry) {
+      for (const auto id : ids)
+        AssertThrow(present.count(id) == 1,
+                    ExcMessage("Invalid parameter <" + entry +
+                               "> in subsection <Boundary>: boundary id " +
+                               std::to_string(id) +
+                               " is not on the mesh; accepted: ids 0 to " +
+                               std::to_string(2 * dim - 1) +
+                               " of the generated box."));
+    };
+    check_ids(parameters.clamped_ids, "Clamped boundary ids");
+    check_ids(parameters.contact_ids, "Contact boundary ids");
+    check_ids(parameters.loaded_ids, "Loaded boundary ids");
+  }
+
+
+
+  // @sect4{ViscoplasticContact::setup_system}
+  //
+  // Degrees of freedom, the clamping of Gamma_1 as constraints, the sparsity
+  // pattern, and then the elastic operator, which the explicit scheme never
+  // changes.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::setup_system()
+  {
+    {
+      TimerOutput::Scope t(computing_timer, "Setup: dofs and constraints");
+      dof_handler.distribute_dofs(*fe);
+      scalar_dof_handler.distribute_dofs(*scalar_fe);
+
+      constraints.clear();
+      DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+      for (const auto id : parameters.clamped_ids)
+        VectorTools::interpolate_boundary_values(*mapping,
+                                                 dof_handler,
+                                                 id,
+                                                 Functions::ZeroFunction<dim>(
+                                                   dim),
+                                                 constraints);
+      constraints.close();
+
+      DynamicSparsityPattern dsp(dof_handler.n_dofs());
+      DoFTools::make_sparsity_pattern(dof_handler,
+                                      dsp,
+                                      constraints,
+                                      /*keep_constrained_dofs=*/false);
+      sparsity_pattern.copy_from(dsp);
+      stiffness_matrix.reinit(sparsity_pattern);
+
+      solution.reinit(dof_handler.n_dofs());
+      external_load.reinit(dof_handler.n_dofs());
+      history_load.reinit(dof_handler.n_dofs());
+      system_rhs.reinit(dof_handler.n_dofs());
+    }
+    assemble_elastic_operator();
+  }
+
+
+
+  // @sect4{ViscoplasticContact::assemble_elastic_operator}
+  //
+  // K_ij = (E eps(phi_j), eps(phi_i)), with the Dirichlet rows condensed,
+  // followed by the one LU factorisation of the run. Both counts are kept
+  // and printed, so that a change that re-assembles or re-factorises per
+  // step shows up in the run summary (and fails a test).
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::assemble_elastic_operator()
+  {
+    {
+      TimerOutput::Scope t(computing_timer, "Setup: assemble elastic operator");
+      FEValues<dim>      fe_values(*mapping,
+                              *fe,
+                              stress_quadrature,
+                              update_gradients | update_JxW_values);
+      const FEValuesExtractors::Vector displacement(0);
+      const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
+      FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
+      std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
+      std::vector<SymmetricTensor<2, dim>> strain(dofs_per_cell);
+      const SymmetricTensor<4, dim> &E = material.elasticity_tensor();
+
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        {
+          fe_values.reinit(cell);
+          cell_matrix = 0;
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            {
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                strain[i] = fe_values[displacement].symmetric_gradient(i, q);
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  const SymmetricTensor<2, dim> E_strain_i = E * strain[i];
+                  for (unsigned int j = 0; j <= i; ++j)
+                    cell_matrix(i, j) +=
+                      (E_strain_i * strain[j]) * fe_values.JxW(q);
+                }
+            }
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
+              cell_matrix(i, j) = cell_matrix(j, i);
+          cell->get_dof_indices(local_dof_indices);
+          constraints.distribute_local_to_global(cell_matrix,
+                                                 local_dof_indices,
+                                                 stiffness_matrix);
+        }
+      ++n_operator_assemblies;
+    }
+    {
+      TimerOutput::Scope t(computing_timer, "Setup: factorise elastic operator");
+      elastic_solver.initialize(stiffness_matrix);
+      ++n_operator_factorizations;
+    }
+  }
+
+
+
+  // @sect4{lumped_boundary_weights}
+  //
+  // w_i = int_Gamma3 phi_i and the mean outward normal
+  // int_Gamma3 phi_i nu / |int_Gamma3 phi_i nu| of every vertex on the given
+  // boundary parts. With an exact face quadrature these are the row sums of
+  // the boundary mass matrix, i.e. the lumped contact terms of model.md,
+  // section 2, on any mesh; the normal is what makes a contact boundary that
+  // is not axis-aligned work.
+  template <int dim>
+  std::map<unsigned int, BoundaryVertexData<dim>>
+  lumped_boundary_weights(const Mapping<dim>                    &mapping,
+                          const DoFHandler<dim>                 &dof_handler,
+                          const Quadrature<dim - 1>             &face_quadrature,
+                          const std::vector<types::boundary_id> &boundary_ids)
+  {
+    const FiniteElement<dim> &fe = dof_handler.get_fe();
+    FEFaceValues<dim>         fe_face_values(mapping,
+                                     fe,
+                                     face_quadrature,
+                                     update_values | update_JxW_values |
+                                       update_normal_vectors);
+    std::map<unsigned int, BoundaryVertexData<dim>> vertices;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary() &&
+            std::find(boundary_ids.begin(),
+                      boundary_ids.end(),
+                      cell->face(f)->boundary_id()) != boundary_ids.end())
+          {
+            fe_face_values.reinit(cell, f);
+            for (const unsigned int v : cell->face(f)->vertex_indices())
+              {
+                const unsigned int vertex = cell->face(f)->vertex_index(v);
+                unsigned int       cell_vertex = numbers::invalid_unsigned_int;
+                for (const unsigned int cv : cell->vertex_indices())
+                  if (cell->vertex_index(cv) == vertex)
+                    cell_vertex = cv;
+                Assert(cell_vertex != numbers::invalid_unsigned_int,
+                       ExcInternalError());
+                // The x-component shape function of this vertex (P1 and Q1
+                // number their dofs vertex by vertex).
+                const unsigned int i =
+                  fe.component_to_system_index(0, cell_vertex);
+
+                BoundaryVertexData<dim> &data = vertices[vertex];
+                data.location                 = cell->vertex(cell_vertex);
+                for (const unsigned int q :
+                     fe_face_values.quadrature_point_indices())
+                  {
+                    const double phi_JxW =
+                      fe_face_values.shape_value(i, q) * fe_face_values.JxW(q);
+                    data.weight += phi_JxW;
+                    data.normal += phi_JxW * fe_face_values.normal_vector(q);
+                  }
+              }
+          }
+    for (auto &vertex : vertices)
+      vertex.second.normal /= vertex.second.normal.norm();
+    return vertices;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::setup_contact}
+  //
+  // The contact nodes are the vertices of Gamma_3 that are not clamped (the
+  // corner shared with Gamma_1 is not one). The condensed contact compliance
+  // S_ij = nu_i . (K^{-1} N^T e_j)_i costs one solve with the factorised
+  // operator per contact node, once per run; afterwards a contact iteration
+  // never touches the bulk unknowns.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::setup_contact()
+  {
+    const ContactLaw law = ContactLaw::from_parameters(parameters);
+    contact_enabled      = !parameters.contact_ids.empty() && !law.is_void();
+    if (!contact_enabled)
+      return;
+
+    {
+      TimerOutput::Scope t(computing_timer, "Setup: contact nodes");
+      const auto         vertices = lumped_boundary_weights(
+        *mapping, dof_handler, face_quadrature, parameters.contact_ids);
+
+      // Each vertex's dofs, found through any cell that has it.
+      std::map<unsigned int, std::array<types::global_dof_index, dim>> dofs;
+      std::map<unsigned int, types::global_dof_index> scalar_dofs;
+      auto scalar_cell = scalar_dof_handler.begin_active();
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        {
+          for (const unsigned int v : cell->vertex_indices())
+            if (vertices.count(cell->vertex_index(v)) == 1)
+              {
+                for (unsigned int c = 0; c < dim; ++c)
+                  dofs[cell->vertex_index(v)][c] = cell->vertex_dof_index(v, c);
+                scalar_dofs[cell->vertex_index(v)] =
+                  scalar_cell->vertex_dof_index(v, 0);
+              }
+          ++scalar_cell;
+        }
+
+      contact_nodes.clear();
+      for (const auto &vertex : vertices)
+        {
+          const auto &node_dofs = dofs.at(vertex.first);
+          bool        clamped   = false;
+          for (const auto dof : node_dofs)
+            clamped = clamped || constraints.is_constrained(dof);
+          if (clamped)
+            continue;
+          contact_nodes.push_back({vertex.second.location,
+                                   vertex.second.normal,
+                                   vertex.second.weight,
+                                   node_dofs,
+                                   scalar_dofs.at(vertex.first)});
+        }
+      // Order the nodes along Gamma_3 (lexicographically), which is the order
+      // of the contact profiles.
+      std::sort(contact_nodes.begin(),
+                contact_nodes.end(),
+                [](const ContactNode<dim> &a, const ContactNode<dim> &b) {
+                  for (unsigned int d = 0; d < dim; ++d)
+                    if (std::abs(a.location[d] - b.location[d]) > 1e-12)
+                      return a.location[d] < b.location[d];
+                  return false;
+                });
+      AssertThrow(!contact_nodes.empty(),
+                  ExcMessage("Gamma_3 (Contact boundary ids) has no node that "
+                             "is free to move: every contact node is clamped."));
+    }
+
+    {
+      TimerOutput::Scope t(computing_timer, "Setup: contact compliance");
+      const unsigned int m = contact_nodes.size();
+      const unsigned int n = dof_handler.n_dofs();
+      // Keep W = K^{-1} N^T if it takes less than 1 GiB.
+      contact_responses_stored = (8. * n * m < 1024. * 1024. * 1024.);
+      if (contact_responses_stored)
+        contact_responses.reinit(n, m);
+
+      FullMatrix<double> compliance(m, m);
+      Vector<double>     response(n);
+      for (unsigned int j = 0; j < m; ++j)
+        {
+          response = 0;
+          for (unsigned int c = 0; c < dim; ++c)
+            response[contact_nodes[j].dofs[c]] = contact_nodes[j].normal[c];
+          elastic_solver.solve(response);
+          ++n_elastic_solves;
+          for (unsigned int i = 0; i < m; ++i)
+            for (unsigned int c = 0; c < dim; ++c)
+              compliance(i, j) +=
+                contact_nodes[i].normal[c] * response[contact_nodes[i].dofs[c]];
+          if (contact_responses_stored)
+            for (unsigned int k = 0; k < n; ++k)
+              contact_responses(k, j) = response[k];
+        }
+      // S is symmetric in exact arithmetic; make it so in floating point.
+      for (unsigned int i = 0; i < m; ++i)
+        for (unsigned int j = 0; j < i; ++j)
+          compliance(i, j) = compliance(j, i) =
+            0.5 * (compliance(i, j) + compliance(j, i));
+
+      std::vector<double> weights(m);
+      for (unsigned int i = 0; i < m; ++i)
+        weights[i] = contact_nodes[i].weight;
+      active_set_solver.reinit(law, compliance, weights);
+    }
+  }
+
+
+
+  // @sect4{ViscoplasticContact::setup_quadrature_point_history}
+  //
+  // One record per stress point, in a flat array indexed by the active cell
+  // index, as step-18 does. sigma_0 = 0 and u_0 = 0, so H_1 = 0.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::setup_quadrature_point_history()
+  {
+    quadrature_point_history.assign(triangulation.n_active_cells() *
+                                      stress_quadrature.size(),
+                                    QuadraturePointHistory<dim>());
+  }
+
+
+
+  template std::map<unsigned int, BoundaryVertexData<2>>
+  lumped_boundary_weights(const Mapping<2> &,
+                          const DoFHandler<2> &,
+                          const Quadrature<1> &,
+                          const std::vector<types::boundary_id> &);
+  template std::map<unsigned int, BoundaryVertexData<3>>
+  lumped_boundary_weights(const Mapping<3> &,
+                          const DoFHandler<3> &,
+                          const Quadrature<2> &,
+                          const std::vector<types::boundary_id> &);
+  template class ViscoplasticContact<2>;
+  template class ViscoplasticContact<3>;
+} // namespace ViscoContact

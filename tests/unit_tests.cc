@@ -1,0 +1,492 @@
+// Unit tests of the pieces where the physics lives: the E-norm projection
+// onto the von Mises set, the contact law and its pieces, the lumped contact
+// weights, and the condensed active-set solver. Each expectation states its
+// tolerance; reference values are computed by hand or by an independent
+// method written out here (bisection, exhaustive enumeration).
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/fe/fe_system.h>
+
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
+
+#include <gtest/gtest.h>
+
+#include "active_set_solver.h"
+#include "contact_law.h"
+#include "material.h"
+#include "viscoplastic_contact.h"
+
+#include <cmath>
+#include <random>
+
+using namespace dealii;
+using namespace ViscoContact;
+
+namespace
+{
+  // The benchmark material: E = 1000, k = 0.4, lambda = 50, sigma_Y = 2.
+  template <int dim>
+  PerzynaMaterial<dim>
+  benchmark_material()
+  {
+    return PerzynaMaterial<dim>(1000., 0.4, 50., 2.);
+  }
+
+  template <int dim>
+  SymmetricTensor<2, dim>
+  random_tensor(std::mt19937 &generator, const double scale)
+  {
+    std::uniform_real_distribution<double> uniform(-scale, scale);
+    SymmetricTensor<2, dim>                t;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = i; j < dim; ++j)
+        t[i][j] = uniform(generator);
+    return t;
+  }
+
+  // The variational inequality that characterises P_K in the E inner
+  // product: (E (tau - P tau), eta - P tau) <= 0 for all eta in K. Checked
+  // for random eta in K (scaled into K if needed) and eta on the boundary.
+  template <int dim>
+  void
+  check_projection_properties(const unsigned int n_samples)
+  {
+    const PerzynaMaterial<dim> material = benchmark_material<dim>();
+    const double               sigma_Y  = material.yield_stress();
+    std::mt19937               generator(42);
+    for (unsigned int s = 0; s < n_samples; ++s)
+      {
+        const SymmetricTensor<2, dim> tau =
+          random_tensor<dim>(generator, 20.);
+        const SymmetricTensor<2, dim> p = material.project_onto_yield_set(tau);
+        const double scale = tau.norm() + sigma_Y;
+
+        if (material.equivalent_stress(tau) <= sigma_Y)
+          EXPECT_LE((p - tau).norm(), 1e-15 * scale); // identity inside K
+        else // on the yield surface, to machine precision
+          EXPECT_NEAR(material.equivalent_stress(p), sigma_Y, 1e-13 * sigma_Y);
+
+        // Idempotent.
+        EXPECT_LE((material.project_onto_yield_set(p) - p).norm(),
+                  1e-13 * scale);
+
+        for (unsigned int e = 0; e < 20; ++e)
+          {
+            SymmetricTensor<2, dim> eta = random_tensor<dim>(generator, 5.);
+            const double            eq  = material.equivalent_stress(eta);
+            if (eq > sigma_Y)
+              eta *= sigma_Y / eq * (e % 2 == 0 ? 1. : 0.5);
+            EXPECT_LE(material.energy_product(tau - p, eta - p),
+                      1e-9 * scale * scale);
+          }
+      }
+  }
+} // namespace
+
+
+
+TEST(Projection2D, VariationalInequalityIdempotenceAndSurface)
+{
+  check_projection_properties<2>(2000);
+}
+
+
+
+TEST(Projection3D, VariationalInequalityIdempotenceAndSurface)
+{
+  check_projection_properties<3>(2000);
+}
+
+
+
+// Hand-computed cases. Pure shear and a pure spherical stress excite one
+// mode each, so the E-projection is the radial scaling onto the surface:
+//   tau_12 = 2: eq = sqrt(3) 2, P tau_12 = 2/sqrt(3);
+//   tau = diag(3,3): eq = 3, P tau = diag(2,2).
+TEST(Projection2D, HandComputedSingleModeCases)
+{
+  const PerzynaMaterial<2> material = benchmark_material<2>();
+  SymmetricTensor<2, 2>    shear;
+  shear[0][1]                   = 2.;
+  const SymmetricTensor<2, 2> p = material.project_onto_yield_set(shear);
+  EXPECT_NEAR(p[0][1], 2. / std::sqrt(3.), 1e-14);
+  EXPECT_NEAR(p[0][0], 0., 1e-14);
+  EXPECT_NEAR(p[1][1], 0., 1e-14);
+
+  const SymmetricTensor<2, 2> spherical = 3. * unit_symmetric_tensor<2>();
+  const SymmetricTensor<2, 2> q = material.project_onto_yield_set(spherical);
+  EXPECT_NEAR(q[0][0], 2., 1e-14);
+  EXPECT_NEAR(q[1][1], 2., 1e-14);
+  EXPECT_NEAR(q[0][1], 0., 1e-14);
+}
+
+
+
+// tau = diag(4, 0) mixes the spherical and deviatoric modes, whose E
+// eigenvalues differ (E/(1-k) vs E/(1+k)): the E-projection is NOT the
+// radial scaling. Reference: the multiplier equation
+//   1/2 (E_a y_a/(E_a + mu/2))^2 + 3/2 (E_b y_b/(E_b + 3 mu/2))^2 = sigma_Y^2
+// solved here by plain bisection, independently of the program's Newton.
+TEST(Projection2D, MixedCaseAgainstBisection)
+{
+  const PerzynaMaterial<2> material = benchmark_material<2>();
+  SymmetricTensor<2, 2>    tau;
+  tau[0][0] = 4.;
+  const double E_a = 1000. / 0.6, E_b = 1000. / 1.4, sigma_Y = 2.;
+  const double y_a = 4. / std::sqrt(2.), y_b = 4. / std::sqrt(2.);
+  const auto   f = [&](const double mu) {
+    const double xa = E_a * y_a / (E_a + 0.5 * mu);
+    const double xb = E_b * y_b / (E_b + 1.5 * mu);
+    return 0.5 * xa * xa + 1.5 * xb * xb - sigma_Y * sigma_Y;
+  };
+  double lo = 0, hi = 1e6;
+  for (unsigned int i = 0; i < 200; ++i)
+    (f(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
+  const double mu = 0.5 * (lo + hi);
+  const double xa = E_a * y_a / (E_a + 0.5 * mu);
+  const double xb = E_b * y_b / (E_b + 1.5 * mu);
+
+  double                      multiplier = 0;
+  const SymmetricTensor<2, 2> p =
+    material.project_onto_yield_set(tau, &multiplier);
+  EXPECT_NEAR(multiplier, mu, 1e-10 * mu);
+  EXPECT_NEAR(p[0][0], (xa + xb) / std::sqrt(2.), 1e-12);
+  EXPECT_NEAR(p[1][1], (xa - xb) / std::sqrt(2.), 1e-12);
+  EXPECT_NEAR(p[0][1], 0., 1e-14);
+
+  const SymmetricTensor<2, 2> radial =
+    tau * (sigma_Y / material.equivalent_stress(tau));
+  EXPECT_GT((p - radial).norm(), 1e-2); // not a radial scaling
+}
+
+
+
+// 3D: the radial return keeps the trace and scales the deviator.
+TEST(Projection3D, RadialReturnOfTheDeviator)
+{
+  const PerzynaMaterial<3> material = benchmark_material<3>();
+  std::mt19937             generator(7);
+  for (unsigned int s = 0; s < 100; ++s)
+    {
+      const SymmetricTensor<2, 3> tau = random_tensor<3>(generator, 20.);
+      const SymmetricTensor<2, 3> p   = material.project_onto_yield_set(tau);
+      EXPECT_NEAR(trace(p), trace(tau), 1e-12 * tau.norm());
+      const double eq = material.equivalent_stress(tau);
+      if (eq > 2.)
+        EXPECT_LE((deviator(p) - deviator(tau) * (2. / eq)).norm(),
+                  1e-13 * tau.norm());
+    }
+}
+
+
+
+TEST(Perzyna, RateVanishesInsideAndRelaxesOutside)
+{
+  const PerzynaMaterial<2> material = benchmark_material<2>();
+  SymmetricTensor<2, 2>    inside;
+  inside[0][1] = 0.5;
+  EXPECT_EQ(material.viscoplastic_rate(inside).norm(), 0.);
+  SymmetricTensor<2, 2> outside;
+  outside[0][1] = 5.;
+  // Pure shear: G = -(1/(2 lambda)) E (tau - P tau), E acts as E/(1+k) on it.
+  const double expected =
+    -1. / 100. * 1000. / 1.4 * (5. - 2. / std::sqrt(3.));
+  EXPECT_NEAR(material.viscoplastic_rate(outside)[0][1], expected, 1e-11);
+}
+
+
+
+// The benchmark law: pieces (-inf,0] flat, [0,u1] slope c1, [u1,g] slope c2,
+// and the rigid limit at g = 0.01 with p(g-) = c1 u1 + c2 (g - u1) = 1.4.
+TEST(ContactLaw, BenchmarkLawPieces)
+{
+  const ContactLaw law({0., 0.006}, {0., 300., -100.}, {0., 0.}, true, 0.01);
+  ASSERT_EQ(law.n_pieces(), 4u);
+  EXPECT_TRUE(law.piece(3).rigid);
+  EXPECT_NEAR(law.piece(3).p_lower, 1.4, 1e-14);
+  EXPECT_NEAR(law.compliance_pressure(-1.), 0., 1e-14);
+  EXPECT_NEAR(law.compliance_pressure(0.003), 0.9, 1e-14);
+  EXPECT_NEAR(law.compliance_pressure(0.006), 1.8, 1e-14);
+  EXPECT_NEAR(law.compliance_pressure(0.008), 1.6, 1e-14);
+  EXPECT_NEAR(law.piece(2).slope, -100., 1e-14);
+  EXPECT_EQ(law.steepest_softening(), 100.);
+
+  // q = p + c r names the piece: with c = 1000,
+  //   piece 0: q <= 0; piece 1: q in [0, 1.8 + 6 = 7.8];
+  //   piece 2: [7.8, 1.4 + 10 = 11.4]; rigid: q >= 11.4.
+  EXPECT_EQ(law.find_piece(-1., 1000.), 0u);
+  EXPECT_EQ(law.find_piece(5., 1000.), 1u);
+  EXPECT_EQ(law.find_piece(9., 1000.), 2u);
+  EXPECT_EQ(law.find_piece(11.3, 1000.), 2u);
+  EXPECT_EQ(law.find_piece(11.5, 1000.), 3u);
+}
+
+
+
+// g = u1: the softening branch is cut off, the law the body sees is
+// monotone.
+TEST(ContactLaw, MonotoneCaseGapEqualsU1)
+{
+  const ContactLaw law({0., 0.006}, {0., 300., -100.}, {0., 0.}, true, 0.006);
+  ASSERT_EQ(law.n_pieces(), 3u);
+  EXPECT_NEAR(law.piece(2).p_lower, 1.8, 1e-14);
+  EXPECT_EQ(law.steepest_softening(), 0.);
+}
+
+
+
+// The multivalued law of model.md, section 5 (a = 0.002, b = 1): a vertical
+// piece [0, b] at r = 0, then softening to zero; no rigid limit.
+TEST(ContactLaw, AdhesiveLawWithJump)
+{
+  const ContactLaw law({0., 0.002}, {0., -500., 0.}, {1., 0.}, false, 0.01);
+  ASSERT_EQ(law.n_pieces(), 4u);
+  EXPECT_TRUE(law.piece(1).vertical);
+  EXPECT_FALSE(law.piece(1).rigid);
+  EXPECT_NEAR(law.piece(1).p_upper, 1., 1e-14);
+  EXPECT_NEAR(law.compliance_pressure(0.001), 0.5, 1e-14);
+  EXPECT_NEAR(law.compliance_pressure(0.005), 0., 1e-14);
+  EXPECT_FALSE(law.has_rigid_limit());
+  // Signorini with gap 0 and no compliance is one flat piece plus the rigid
+  // limit.
+  const ContactLaw signorini({}, {0.}, {}, true, 0.);
+  EXPECT_EQ(signorini.n_pieces(), 2u);
+  EXPECT_FALSE(signorini.is_void());
+  EXPECT_TRUE(ContactLaw({}, {0.}, {}, false, 0.).is_void());
+}
+
+
+
+// The lumped weights w_i = int phi_i sum to the measure of Gamma_3 (the
+// clamped corner included), interior nodes get h, end nodes h/2, and the
+// normals are the outward ones, also on a rotated (not axis-aligned) mesh.
+template <int dim>
+void
+check_lumped_weights(const bool simplex, const double angle)
+{
+  Triangulation<dim> triangulation;
+  const unsigned int N = 8;
+  if (simplex)
+    GridGenerator::subdivided_hyper_cube_with_simplices(triangulation, N);
+  else
+    GridGenerator::subdivided_hyper_cube(triangulation, N);
+  for (const auto &face : triangulation.active_face_iterators())
+    if (face->at_boundary())
+      face->set_boundary_id(std::abs(face->center()[dim - 1]) < 1e-12 ? 7 : 0);
+  if (angle != 0)
+    GridTools::rotate(angle, triangulation);
+
+  const ReferenceCell cell = (simplex ? ReferenceCells::get_simplex<dim>() :
+                                        ReferenceCells::get_hypercube<dim>());
+  DoFHandler<dim>     dof_handler(triangulation);
+  if (simplex)
+    dof_handler.distribute_dofs(FESystem<dim>(FE_SimplexP<dim>(1), dim));
+  else
+    dof_handler.distribute_dofs(FESystem<dim>(FE_Q<dim>(1), dim));
+  const auto vertices = lumped_boundary_weights<dim>(
+    cell.template get_default_linear_mapping<dim>(),
+    dof_handler,
+    cell.face_reference_cell(0).template get_gauss_type_quadrature<dim - 1>(2),
+    {7});
+
+  EXPECT_EQ(vertices.size(), (dim == 2 ? N + 1 : (N + 1) * (N + 1)));
+  double sum = 0;
+  for (const auto &v : vertices)
+    {
+      sum += v.second.weight;
+      Tensor<1, dim> expected_normal;
+      expected_normal[dim - 1] = -1;
+      if (dim == 2 && angle != 0)
+        expected_normal = Tensor<1, dim>({std::sin(angle), -std::cos(angle)});
+      EXPECT_LE((v.second.normal - expected_normal).norm(), 1e-12);
+    }
+  EXPECT_NEAR(sum, 1., 1e-12);
+  if (dim == 2)
+    for (const auto &v : vertices)
+      {
+        const double s = v.second.location.norm();
+        const bool   end = (s < 1e-12 || std::abs(s - 1.) < 1e-12);
+        EXPECT_NEAR(v.second.weight, (end ? 0.5 : 1.) / N, 1e-13);
+      }
+}
+
+TEST(LumpedWeights, TrianglesSumToLength)
+{
+  check_lumped_weights<2>(true, 0.);
+}
+
+TEST(LumpedWeights, QuadrilateralsSumToLength)
+{
+  check_lumped_weights<2>(false, 0.);
+}
+
+TEST(LumpedWeights, RotatedTrianglesHaveRotatedNormals)
+{
+  check_lumped_weights<2>(true, 0.3);
+}
+
+TEST(LumpedWeights, TetrahedraSumToArea)
+{
+  check_lumped_weights<3>(true, 0.);
+}
+
+
+
+namespace
+{
+  const ContactLaw benchmark_law({0., 0.006},
+                                 {0., 300., -100.},
+                                 {0., 0.},
+                                 true,
+                                 0.01);
+
+  // The solution of r = d - s z, z = w p(r) for one decoupled node (spring
+  // compliance s) with the benchmark law, by hand, piece by piece.
+  double
+  decoupled_force(const double d, const double s, const double w)
+  {
+    const double c1 = 300, c2 = -100, u1 = 0.006, g = 0.01;
+    if (d <= 0)
+      return 0; // no contact
+    double r = d / (1 + s * w * c1); // on [0, u1]
+    if (r <= u1)
+      return w * c1 * r;
+    r = (d - s * w * (c1 * u1 - c2 * u1)) / (1 + s * w * c2); // on [u1, g]
+    if (r <= g)
+      return w * (c1 * u1 + c2 * (r - u1));
+    return (d - g) / s; // at the rigid limit
+  }
+} // namespace
+
+
+
+// A diagonal compliance decouples the nodes: every node has a closed-form
+// answer. Five nodes cover the four pieces.
+TEST(ActiveSetSolver, DecoupledNodesMatchClosedForm)
+{
+  const std::vector<double> d = {-0.001, 0.002, 0.0075, 0.009, 0.03};
+  const unsigned int        m = d.size();
+  FullMatrix<double>        S(m, m);
+  std::vector<double>       w(m, 0.03125);
+  for (unsigned int i = 0; i < m; ++i)
+    S(i, i) = 0.01 * (1 + 0.1 * i);
+
+  ContactActiveSetSolver solver;
+  solver.reinit(benchmark_law, S, w);
+  Vector<double> d_vector(d.begin(), d.end());
+  const auto     result = solver.solve(d_vector, 50, 1e-12);
+  ASSERT_TRUE(result.converged);
+  for (unsigned int i = 0; i < m; ++i)
+    EXPECT_NEAR(solver.normal_forces()[i],
+                decoupled_force(d[i], S(i, i), w[i]),
+                1e-13);
+  EXPECT_NEAR(solver.normal_displacements()[4], 0.01, 1e-15);
+
+  // Warm start: the same data again is solved in one iteration.
+  EXPECT_EQ(solver.solve(d_vector, 50, 1e-12).iterations(), 1u);
+}
+
+
+
+// Coupled nodes: a dense SPD compliance. Reference: try every combination of
+// pieces (4^4 = 256), solve its linear system, and keep the combinations
+// whose solution lies on its pieces. The problem is strongly convex here
+// (the softening w |c2| is small against 1/S), so exactly one survives.
+TEST(ActiveSetSolver, CoupledNodesMatchExhaustiveEnumeration)
+{
+  const unsigned int  m = 4;
+  FullMatrix<double>  S(m, m);
+  std::vector<double> w(m, 0.03125);
+  for (unsigned int i = 0; i < m; ++i)
+    for (unsigned int j = 0; j < m; ++j)
+      S(i, j) = 0.004 * std::exp(-std::abs(double(i) - double(j)));
+  const std::vector<double> d = {0.001, 0.007, 0.012, 0.02};
+  Vector<double>            d_vector(d.begin(), d.end());
+
+  std::vector<Vector<double>> solutions;
+  for (unsigned int code = 0; code < 256; ++code)
+    {
+      std::vector<unsigned int> pieces(m);
+      for (unsigned int i = 0, c = code; i < m; ++i, c /= 4)
+        pieces[i] = c % 4;
+      // Unknown z: rows z_i - w s_i (d - S z)_i = w o_i (sloped) or
+      // (d - S z)_i = g (rigid).
+      FullMatrix<double> A(m, m);
+      Vector<double>     b(m), z(m);
+      for (unsigned int i = 0; i < m; ++i)
+        {
+          const ContactLawPiece &p = benchmark_law.piece(pieces[i]);
+          for (unsigned int j = 0; j < m; ++j)
+            A(i, j) = (p.vertical ? S(i, j) : w[i] * p.slope * S(i, j));
+          if (p.vertical)
+            b[i] = d[i] - p.r_lower;
+          else
+            {
+              A(i, i) += 1;
+              b[i] = w[i] * (p.intercept + p.slope * d[i]);
+            }
+        }
+      A.gauss_jordan();
+      A.vmult(z, b);
+      Vector<double> r(m);
+      S.vmult(r, z);
+      r.sadd(-1., 1., d_vector);
+      bool consistent = true;
+      for (unsigned int i = 0; i < m; ++i)
+        {
+          const ContactLawPiece &p   = benchmark_law.piece(pieces[i]);
+          const double           tol = 1e-12;
+          if (p.vertical)
+            consistent = consistent && z[i] / w[i] >= p.p_lower - tol;
+          else
+            consistent = consistent && r[i] >= p.r_lower - tol &&
+                         r[i] <= p.r_upper + tol;
+        }
+      if (consistent)
+        solutions.push_back(z);
+    }
+  ASSERT_EQ(solutions.size(), 1u);
+
+  ContactActiveSetSolver solver;
+  solver.reinit(benchmark_law, S, w);
+  const auto result = solver.solve(d_vector, 50, 1e-12);
+  ASSERT_TRUE(result.converged);
+  for (unsigned int i = 0; i < m; ++i)
+    EXPECT_NEAR(solver.normal_forces()[i], solutions[0][i], 1e-12);
+}
+
+
+
+// The iteration limit is honoured and reported.
+TEST(ActiveSetSolver, ReportsIterationLimit)
+{
+  FullMatrix<double> S(2, 2);
+  S(0, 0) = S(1, 1) = 0.01;
+  S(0, 1) = S(1, 0) = 0.005;
+  ContactActiveSetSolver solver;
+  solver.reinit(benchmark_law, S, {0.03, 0.03});
+  Vector<double> d(2);
+  d[0] = d[1] = 0.05;
+  const auto result = solver.solve(d, 1, 1e-12);
+  EXPECT_FALSE(result.converged);
+  EXPECT_EQ(result.iterations(), 1u);
+  EXPECT_NE(result.describe().find("iteration 1"), std::string::npos);
+}
+
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

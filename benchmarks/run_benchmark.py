@@ -10,7 +10,8 @@ file output switched off at h = k = 1/N for a list of N (default 32, 64, 128,
   its user/system CPU time and its peak resident memory (os.wait4 rusage of
   that very child, so the numbers of different sizes do not mix),
 * the program's own "Cost measurement" block (time loop, average time step,
-  history-load assembly + one elastic solve, their ratio),
+  the reference costs (a) history update and load + one elastic solve and
+  (b) history load assembly + one elastic solve, and their ratios),
 * the active-set iterations (total and per step),
 * every section of the deal.II TimerOutput table (wall time and calls).
 
@@ -176,14 +177,21 @@ def parse_stdout(text):
     unit = r"\s*(ms|us|µs|ns|s|min|h)\b"
     for key, label in [
             ("avg_step_s", r"average time step \(without output\):"),
-            ("assembly_solve_s", r"history-load assembly \+ one elastic solve:"),
+            ("update_solve_s", r"\(a\) history update and load \+ one elastic solve:"),
+            ("assembly_solve_s", r"\(b\) history load assembly \+ one elastic solve:"),
             ("time_loop_s", r"time loop \(without output\):")]:
         m = re.search(label + r"\s*(" + FLOAT + ")" + unit, text)
         if m:
             res[key] = _seconds(m.group(1), m.group(2))
-    v = grab(r"ratio step / \(assembly \+ solve\):\s*(" + FLOAT + ")")
+    v = grab(r"ratio step / \(a\):\s*(" + FLOAT + ")")
+    if v is not None:
+        res["ratio_step_to_update_solve"] = v
+    v = grab(r"ratio step / \(b\):\s*(" + FLOAT + ")")
     if v is not None:
         res["ratio_step_to_assembly_solve"] = v
+    m = re.search(r"average time step \(without output\):\s*" + FLOAT + r"\s*ms, of which contact\s*(" + FLOAT + r")\s*ms", text)
+    if m:
+        res["contact_ms"] = float(m.group(1))
 
     m = re.search(r"Total wallclock time elapsed since start\s*\|\s*(" + FLOAT
                   + r")\s*(ms|us|s|min|h)?", text)
@@ -303,8 +311,11 @@ SUMMARY_COLUMNS = [
     ("process_wall_s", "process wall [s]", lambda v: f"{v:.3g}"),
     ("time_loop_s", "time loop [s]", lambda v: f"{v:.3g}"),
     ("time_per_step_ms", "per step [ms]", lambda v: f"{v:.3g}"),
-    ("assembly_solve_ms", "assembly + 1 solve [ms]", lambda v: f"{v:.3g}"),
-    ("ratio_step_to_assembly_solve", "step / (assembly + solve)", lambda v: f"{v:.3g}"),
+    ("contact_ms", "contact part of a step [ms]", lambda v: f"{v:.3g}"),
+    ("update_solve_ms", "(a) history update + load + 1 solve [ms]", lambda v: f"{v:.3g}"),
+    ("ratio_step_to_update_solve", "step / (a)", lambda v: f"{v:.3g}"),
+    ("assembly_solve_ms", "(b) load assembly + 1 solve [ms]", lambda v: f"{v:.3g}"),
+    ("ratio_step_to_assembly_solve", "step / (b)", lambda v: f"{v:.3g}"),
     ("active_set_iterations_per_step", "active-set it. / step", lambda v: f"{v:.3g}"),
     ("peak_rss_mb", "peak RSS [MB]", lambda v: f"{v:.0f}"),
     ("cpu_user_s", "user CPU [s]", lambda v: f"{v:.3g}"),
@@ -333,6 +344,10 @@ def summarise(n, rc, wall, usage, parsed, ts):
         "assembly_solve_ms": (parsed["assembly_solve_s"] * 1e3
                               if "assembly_solve_s" in parsed else None),
         "ratio_step_to_assembly_solve": parsed.get("ratio_step_to_assembly_solve"),
+        "update_solve_ms": (parsed["update_solve_s"] * 1e3
+                            if "update_solve_s" in parsed else None),
+        "ratio_step_to_update_solve": parsed.get("ratio_step_to_update_solve"),
+        "contact_ms": parsed.get("contact_ms"),
         "active_set_iterations": parsed.get("active_set_iterations"),
         "elastic_solves": parsed.get("elastic_solves"),
         "timer_total_s": parsed.get("timer_total_s"),
@@ -454,6 +469,9 @@ def main(argv=None):
         "h = k = 1/N, VTU output, profiles and per-step printing off.",
         "All numbers come from one invocation of benchmarks/run_benchmark.py "
         "(one run per size, run sequentially).",
+        "Load average (1, 5, 15 min) when the script started: "
+        + ", ".join(f"{x:.2f}" for x in os.getloadavg())
+        + " (other processes on the machine disturb the timings).",
     ]
 
     rows = []

@@ -47,7 +47,16 @@ import tempfile
 import xml.etree.ElementTree as ET
 from fractions import Fraction
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:
+    # "python3" on PATH may be another interpreter than the Debian one that
+    # has python3-matplotlib etc.; retry with /usr/bin/python3 if it exists.
+    if os.path.exists("/usr/bin/python3") and \
+            os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3"):
+        os.execv("/usr/bin/python3", ["/usr/bin/python3"] + sys.argv)
+    sys.exit("error: matplotlib, numpy and meshio are needed "
+             "(Debian: apt-get install python3-matplotlib python3-numpy python3-meshio)")
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -325,19 +334,19 @@ def plot_deformed(ax, snap, magnification, norm, cmap):
     xy = mesh.points[:, :2] + magnification * mesh.point_data["displacement"][:, :2]
     triang = mtri.Triangulation(xy[:, 0], xy[:, 1], tri)
     pc = ax.tripcolor(triang, facecolors=cell_values(mesh, "von_mises_stress"),
-                      cmap=cmap, norm=norm, edgecolors="none")
-    ax.triplot(triang, color="k", lw=0.15, alpha=0.35)
+                      cmap=cmap, norm=norm, edgecolors="none", zorder=2)
+    ax.triplot(triang, color="k", lw=0.15, alpha=0.35, zorder=3)
     x0, y0 = mesh.points[:, 0].min(), mesh.points[:, 1].min()
     x1, y1 = mesh.points[:, 0].max(), mesh.points[:, 1].max()
     ax.plot([x0, x1, x1, x0, x0], [y0, y0, y1, y1, y0], "k--", lw=1.0,
-            label="undeformed")
+            label="undeformed", zorder=4)
     # The foundation: layer of thickness g (magnified) over the rigid body.
     yg = y0 - magnification * snap.g
-    ax.fill_between([x0 - 0.1, x1 + 0.3], yg, y0, color="tan", alpha=0.35, lw=0,
-                    label=f"layer, g = {snap.g:g} (x{magnification:g})")
+    ax.fill_between([x0 - 0.1, x1 + 0.3], yg, y0, color="tan", alpha=0.45, lw=0,
+                    label=f"layer, g = {snap.g:g} (x{magnification:g})", zorder=0)
     ax.fill_between([x0 - 0.1, x1 + 0.3], yg - 0.06, yg, color="0.55", lw=0,
-                    hatch="///", label="rigid foundation")
-    ax.plot([x0 - 0.1, x1 + 0.3], [yg, yg], color="0.3", lw=1.0)
+                    label="rigid foundation", zorder=0)
+    ax.plot([x0 - 0.1, x1 + 0.3], [yg, yg], color="0.3", lw=1.0, zorder=1)
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
@@ -376,7 +385,10 @@ def make_figure(path, suptitle, snaps, magnification):
     fig, axes = plt.subplots(2, ncols, figsize=(4.6 * ncols + 1.0, 8.6),
                              squeeze=False, layout="constrained",
                              gridspec_kw={"height_ratios": [1.25, 1.0]})
-    vmax = max(float(np.max(s.mesh.point_data["von_mises_stress"])) for s in snaps)
+    # Common colour scale, clipped at the 99th percentile of the cell values
+    # so that the stress singularities at the corners do not wash it out.
+    vm_all = np.concatenate([cell_values(s.mesh, "von_mises_stress") for s in snaps])
+    vmax = float(np.percentile(vm_all, 99.0))
     norm = matplotlib.colors.Normalize(vmin=0.0, vmax=vmax)
     cmap = plt.get_cmap("viridis")
     pc = None
@@ -393,8 +405,9 @@ def make_figure(path, suptitle, snaps, magnification):
     for ax in axes[1]:
         ax.set_xlim(0.0, 1.0)
         ax.set_ylim(-0.05 * pmax, 1.08 * pmax)
-    fig.colorbar(pc, ax=list(axes[0]), label="von Mises stress [N/m$^2$]",
-                 shrink=0.85)
+    fig.colorbar(pc, ax=list(axes[0]), extend="max", shrink=0.85,
+                 label="von Mises stress [N/m$^2$]\n(scale clipped at the 99th "
+                       f"percentile; max {float(np.max(vm_all)):.3g})")
     axes[0, 0].legend(loc="upper right", fontsize=7, framealpha=0.85)
     handles = [Line2D([], [], color="tab:blue", lw=1.2, label="normal compliance p(u_nu)"),
                Line2D([], [], color="tab:orange", lw=1.2, label="rigid foundation"),

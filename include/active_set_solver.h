@@ -93,7 +93,7 @@ namespace ViscoContact
     std::optional<ContactLaw> contact_law;
     FullMatrix<double>        S;
     std::vector<double>       w;
-    std::vector<double>       c; // active-set parameter per node (pressure/length)
+    std::vector<double> c; // active-set parameter per node (pressure/length)
     std::vector<unsigned int> node_pieces;
     Vector<double>            r, z;
 

@@ -34,15 +34,19 @@ namespace ViscoContact
     double
     equivalent_stress(const SymmetricTensor<2, dim> &tau) const;
 
-    // P_K tau in the inner product (E a, b). The optional argument returns
-    // the Lagrange multiplier of the constraint (0 inside K).
+    // P_K tau in the inner product (E a, b). If given, *multiplier is on
+    // input a guess of the Lagrange multiplier of the constraint (e.g. the
+    // one of the previous time step at this point, which saves iterations
+    // in 2D) and on output the multiplier itself (0 inside K).
     SymmetricTensor<2, dim>
     project_onto_yield_set(const SymmetricTensor<2, dim> &tau,
                            double *multiplier = nullptr) const;
 
-    // G(sigma) = -(1/(2 lambda)) E (sigma - P_K sigma).
+    // G(sigma) = -(1/(2 lambda)) E (sigma - P_K sigma); multiplier as for
+    // project_onto_yield_set().
     SymmetricTensor<2, dim>
-    viscoplastic_rate(const SymmetricTensor<2, dim> &sigma) const;
+    viscoplastic_rate(const SymmetricTensor<2, dim> &sigma,
+                      double *multiplier = nullptr) const;
 
     // (E a, b), the energy inner product the projection is orthogonal in.
     double

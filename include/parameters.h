@@ -37,9 +37,9 @@ namespace ViscoContact
 
     struct BoundaryParts
     {
-      std::vector<types::boundary_id> clamped_ids;  // Gamma_1
-      std::vector<types::boundary_id> contact_ids;  // Gamma_3
-      std::vector<types::boundary_id> loaded_ids;   // loaded part of Gamma_2
+      std::vector<types::boundary_id> clamped_ids; // Gamma_1
+      std::vector<types::boundary_id> contact_ids; // Gamma_3
+      std::vector<types::boundary_id> loaded_ids;  // loaded part of Gamma_2
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -111,6 +111,16 @@ namespace ViscoContact
       parse_parameters(ParameterHandler &prm);
     };
 
+    struct LinearSolver
+    {
+      std::string direct_solver; // "cholmod" or "umfpack"
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
     struct Output
     {
       std::string         directory;
@@ -134,6 +144,7 @@ namespace ViscoContact
                            public Contact,
                            public Time,
                            public ActiveSetSolver,
+                           public LinearSolver,
                            public Output
     {
       static void

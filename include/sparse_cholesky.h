@@ -36,7 +36,8 @@ namespace ViscoContact
     ~SparseCholesky();
     SparseCholesky(const SparseCholesky &) = delete;
     SparseCholesky &
-    operator=(const SparseCholesky &) = delete;
+    operator=(const SparseCholesky &)
+      = delete;
 
     // Analyse (fill-reducing ordering chosen by CHOLMOD) and factorise
     // A = L L^T, replacing any previous factorisation. A must be square with

@@ -24,6 +24,7 @@
 #include "active_set_solver.h"
 #include "material.h"
 #include "parameters.h"
+#include "sparse_cholesky.h"
 
 #include <array>
 #include <fstream>
@@ -44,6 +45,8 @@ namespace ViscoContact
     SymmetricTensor<2, dim> stress;  // sigma_n
     SymmetricTensor<2, dim> history; // H_{n+1}: the history part of the
                                      // stress of the next step
+    double plastic_multiplier = 0;   // of the last projection onto K, the
+                                     // next projection's starting guess
   };
 
   // A node of Gamma_3 that is free to move: its displacement dofs, the
@@ -52,11 +55,11 @@ namespace ViscoContact
   template <int dim>
   struct ContactNode
   {
-    Point<dim>                                   location;
-    Tensor<1, dim>                               normal;
-    double                                       weight;
-    std::array<types::global_dof_index, dim>     dofs;
-    types::global_dof_index                      scalar_dof;
+    Point<dim>                               location;
+    Tensor<1, dim>                           normal;
+    double                                   weight;
+    std::array<types::global_dof_index, dim> dofs;
+    types::global_dof_index                  scalar_dof;
   };
 
   // Lumped weights w_i = int_Gamma3 phi_i and mean outward normals of the
@@ -72,9 +75,9 @@ namespace ViscoContact
 
   template <int dim>
   std::map<unsigned int, BoundaryVertexData<dim>>
-  lumped_boundary_weights(const Mapping<dim>                    &mapping,
-                          const DoFHandler<dim>                 &dof_handler,
-                          const Quadrature<dim - 1>             &face_quadrature,
+  lumped_boundary_weights(const Mapping<dim>        &mapping,
+                          const DoFHandler<dim>     &dof_handler,
+                          const Quadrature<dim - 1> &face_quadrature,
                           const std::vector<types::boundary_id> &boundary_ids);
 
   // @sect3{The ViscoplasticContact class}
@@ -134,6 +137,13 @@ namespace ViscoContact
     void
     print_run_summary();
 
+    // Solves with the factorised elastic operator, one or n_columns
+    // right-hand sides (column-major) at once.
+    void
+    solve_elastic(Vector<double> &rhs_and_solution);
+    void
+    solve_elastic(std::vector<double> &columns, const unsigned int n_columns);
+
     // Helpers.
     std::array<unsigned int, 3>
     count_contact_states() const;
@@ -165,10 +175,11 @@ namespace ViscoContact
     // The elastic operator: assembled and factorised once per run.
     SparsityPattern      sparsity_pattern;
     SparseMatrix<double> stiffness_matrix;
-    SparseDirectUMFPACK  elastic_solver;
-    unsigned int         n_operator_assemblies = 0;
-    unsigned int         n_operator_factorizations = 0;
-    unsigned int         n_elastic_solves = 0;
+    SparseCholesky       cholesky_factorization;
+    SparseDirectUMFPACK  lu_factorization;
+    unsigned int         n_operator_assemblies      = 0;
+    unsigned int         n_operator_factorizations  = 0;
+    unsigned int         n_elastic_solves           = 0;
     unsigned int         n_external_load_assemblies = 0;
 
     // Vectors: the displacement u_n, the external load f_n, the history load
@@ -177,6 +188,8 @@ namespace ViscoContact
     Vector<double> external_load;
     Vector<double> history_load;
     Vector<double> system_rhs;
+    Vector<double>
+      contact_response; // -(displacement due to the contact forces)
 
     // Material, loads and the state at the stress points.
     PerzynaMaterial<dim>                     material;
@@ -185,24 +198,35 @@ namespace ViscoContact
     bool                                     body_force_is_zero;
     bool                                     loads_depend_on_time;
     std::vector<QuadraturePointHistory<dim>> quadrature_point_history;
+    double                                   max_von_mises = 0;
+
+    // The geometry of the stress points, computed once (the mesh does not
+    // move), so that the cell loops of the time loop need no FEValues: per
+    // cell its dofs in the order (vertex a, component c), and per stress
+    // point JxW and the gradients of the scalar shape functions N_a; the
+    // strain is sym(sum_a u_a (x) grad N_a).
+    unsigned int                         n_cell_vertices = 0;
+    std::vector<types::global_dof_index> cell_dof_indices;
+    std::vector<Tensor<1, dim>>          stress_point_gradients;
+    std::vector<double>                  stress_point_JxW;
 
     // Contact: the nodes of Gamma_3 and the condensed active-set solver.
-    bool                           contact_enabled;
-    std::vector<ContactNode<dim>>  contact_nodes;
-    ContactActiveSetSolver         active_set_solver;
+    bool                          contact_enabled;
+    std::vector<ContactNode<dim>> contact_nodes;
+    ContactActiveSetSolver        active_set_solver;
     // W = K^{-1} N^T, the displacement response to unit normal forces at
     // the contact nodes (n_dofs x m, column-major), kept when it fits in
     // memory: then u = K^{-1} b - W z needs one solve per step, not two.
-    LAPACKFullMatrix<double>       contact_responses;
-    bool                           contact_responses_stored = false;
-    unsigned int                   total_active_set_iterations = 0;
+    LAPACKFullMatrix<double> contact_responses;
+    bool                     contact_responses_stored    = false;
+    unsigned int             total_active_set_iterations = 0;
 
     // Output records.
     std::vector<std::pair<double, std::string>> times_and_names;
     std::ofstream                               time_series;
     std::vector<unsigned int>                   profile_steps;
     double                                      time_loop_compute_time = 0;
-    unsigned int                                n_time_steps        = 0;
+    unsigned int                                n_time_steps           = 0;
   };
 } // namespace ViscoContact
 

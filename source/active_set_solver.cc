@@ -84,8 +84,8 @@ namespace ViscoContact
   double
   ContactActiveSetSolver::update_forces(const Vector<double> &d)
   {
-    const unsigned int m = n_nodes();
-    const auto is_unknown = [&](const unsigned int i) {
+    const unsigned int m          = n_nodes();
+    const auto         is_unknown = [&](const unsigned int i) {
       const ContactLawPiece &piece = contact_law->piece(node_pieces[i]);
       return piece.vertical || piece.slope != 0;
     };
@@ -102,8 +102,8 @@ namespace ViscoContact
           {
             for (unsigned int b = 0; b < n; ++b)
               system_matrix(a, b) = S(unknown_nodes[a], unknown_nodes[b]);
-            const ContactLawPiece &piece =
-              contact_law->piece(node_pieces[unknown_nodes[a]]);
+            const ContactLawPiece &piece
+              = contact_law->piece(node_pieces[unknown_nodes[a]]);
             if (!piece.vertical)
               system_matrix(a, a) += 1. / (w[unknown_nodes[a]] * piece.slope);
           }
@@ -129,8 +129,8 @@ namespace ViscoContact
         double                 value = d[i];
         for (unsigned int j = 0; j < m; ++j)
           value -= S(i, j) * z[j];
-        value += (piece.vertical ? -piece.r_lower :
-                                   piece.intercept / piece.slope);
+        value
+          += (piece.vertical ? -piece.r_lower : piece.intercept / piece.slope);
         rhs[a] = value;
       }
     if (rhs.size() > 0)
@@ -149,9 +149,10 @@ namespace ViscoContact
     for (const unsigned int i : unknown_nodes)
       {
         const ContactLawPiece &piece = contact_law->piece(node_pieces[i]);
-        const double           defect =
-          (piece.vertical ? r[i] - piece.r_lower :
-                            r[i] - (z[i] / w[i] - piece.intercept) / piece.slope);
+        const double           defect
+          = (piece.vertical
+               ? r[i] - piece.r_lower
+               : r[i] - (z[i] / w[i] - piece.intercept) / piece.slope);
         residual = std::max(residual, std::abs(defect) / scale);
       }
     return residual;
@@ -186,11 +187,11 @@ namespace ViscoContact
         unsigned int changed = 0, rigid = 0;
         for (unsigned int i = 0; i < n_nodes(); ++i)
           {
-            const double q       = z[i] / w[i] + c[i] * r[i];
-            const auto   current = q_range(contact_law->piece(node_pieces[i]),
-                                         c[i]);
-            const double slack =
-              1e-12 * (std::abs(q) + c[i] * contact_law->gap()) + 1e-300;
+            const double q = z[i] / w[i] + c[i] * r[i];
+            const auto   current
+              = q_range(contact_law->piece(node_pieces[i]), c[i]);
+            const double slack
+              = 1e-12 * (std::abs(q) + c[i] * contact_law->gap()) + 1e-300;
             if (q < current.first - slack || q > current.second + slack)
               {
                 node_pieces[i] = contact_law->find_piece(q, c[i]);

@@ -26,9 +26,9 @@ namespace ViscoContact
     AssertThrow(slopes.size() == breakpoints.size() + 1,
                 ExcMessage("A contact law needs one more slope than "
                            "breakpoints."));
-    const std::vector<double> jumps =
-      (jumps_in.empty() ? std::vector<double>(breakpoints.size(), 0.) :
-                          jumps_in);
+    const std::vector<double> jumps
+      = (jumps_in.empty() ? std::vector<double>(breakpoints.size(), 0.)
+                          : jumps_in);
     AssertThrow(jumps.size() == breakpoints.size(),
                 ExcMessage("A contact law needs one jump per breakpoint."));
 
@@ -42,8 +42,7 @@ namespace ViscoContact
     for (unsigned int k = 0; k <= breakpoints.size(); ++k)
       {
         const double r_lower = (k == 0 ? -infinity : breakpoints[k - 1]);
-        double       r_upper = (k == breakpoints.size() ? infinity :
-                                                          breakpoints[k]);
+        double r_upper = (k == breakpoints.size() ? infinity : breakpoints[k]);
         if (r_lower >= limit)
           break;
         r_upper = std::min(r_upper, limit);
@@ -57,8 +56,8 @@ namespace ViscoContact
 
         if (k < breakpoints.size() && breakpoints[k] < limit)
           {
-            const double value_before =
-              sloped.intercept + sloped.slope * breakpoints[k];
+            const double value_before
+              = sloped.intercept + sloped.slope * breakpoints[k];
             AssertThrow(jumps[k] >= 0,
                         ExcMessage("Jumps of a contact law must be >= 0."));
             if (jumps[k] > 0)
@@ -81,8 +80,8 @@ namespace ViscoContact
         ContactLawPiece        rigid;
         rigid.vertical = rigid.rigid = true;
         rigid.r_lower = rigid.r_upper = gap;
-        rigid.p_lower = last.intercept + last.slope * gap;
-        rigid.p_upper = infinity;
+        rigid.p_lower                 = last.intercept + last.slope * gap;
+        rigid.p_upper                 = infinity;
         pieces.push_back(rigid);
       }
   }
@@ -93,7 +92,11 @@ namespace ViscoContact
   ContactLaw::from_parameters(const Parameters::Contact &contact)
   {
     if (!contact.normal_compliance)
-      return ContactLaw({}, {0.}, {}, contact.unilateral_constraint, contact.gap);
+      return ContactLaw({},
+                        {0.},
+                        {},
+                        contact.unilateral_constraint,
+                        contact.gap);
     if (contact.law_type == "nonmonotone" && contact.u1 == 0)
       return ContactLaw({0.},
                         {0., contact.c2},
@@ -147,10 +150,10 @@ namespace ViscoContact
     for (unsigned int i = 0; i + 1 < pieces.size(); ++i)
       {
         const ContactLawPiece &piece = pieces[i];
-        const double           q_upper =
-          (piece.vertical ?
-             piece.p_upper + c * piece.r_upper :
-             piece.intercept + (piece.slope + c) * piece.r_upper);
+        const double           q_upper
+          = (piece.vertical
+               ? piece.p_upper + c * piece.r_upper
+               : piece.intercept + (piece.slope + c) * piece.r_upper);
         if (q <= q_upper)
           return i;
       }
@@ -189,8 +192,8 @@ namespace ViscoContact
   bool
   ContactLaw::is_void() const
   {
-    return pieces.size() == 1 && pieces[0].slope == 0 &&
-           pieces[0].intercept == 0;
+    return pieces.size() == 1 && pieces[0].slope == 0
+           && pieces[0].intercept == 0;
   }
 
 

@@ -15,16 +15,15 @@ namespace
   void
   print_usage(std::ostream &out)
   {
-    out
-      << "Usage: viscoplastic_contact FILE.prm\n"
-      << "       viscoplastic_contact --print-parameters [FILE.prm]\n"
-      << "       viscoplastic_contact --help\n\n"
-      << "Solves the quasistatic contact problem of a viscoplastic body with "
-         "a\nnonmonotone normal compliance law (../shared/design/model.md) "
-         "for the\nscene FILE.prm describes. --print-parameters writes a "
-         "complete, documented\nparameter file with the default values (the "
-         "reference benchmark) to\nstandard output or to FILE.prm. The "
-         "default scene is parameters/default.prm.\n";
+    out << "Usage: viscoplastic_contact FILE.prm\n"
+        << "       viscoplastic_contact --print-parameters [FILE.prm]\n"
+        << "       viscoplastic_contact --help\n\n"
+        << "Solves the quasistatic contact problem of a viscoplastic body with "
+           "a\nnonmonotone normal compliance law (../shared/design/model.md) "
+           "for the\nscene FILE.prm describes. --print-parameters writes a "
+           "complete, documented\nparameter file with the default values (the "
+           "reference benchmark) to\nstandard output or to FILE.prm. The "
+           "default scene is parameters/default.prm.\n";
   }
 } // namespace
 
@@ -66,8 +65,8 @@ main(int argc, char **argv)
         }
 
       AssertThrow(std::filesystem::is_regular_file(first),
-                  ExcMessage("The parameter file <" + first +
-                             "> does not exist or is not a regular file."));
+                  ExcMessage("The parameter file <" + first
+                             + "> does not exist or is not a regular file."));
       AssertThrow(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1,
                   ExcMessage("This version of viscoplastic_contact runs on "
                              "one MPI rank; start it without mpirun."));

@@ -24,13 +24,13 @@ namespace ViscoContact
     , sigma_yield(yield_stress)
   {
     const double E = young_modulus, k = poisson_ratio;
-    const double lame_lambda =
-      (dim == 2 ? E * k / (1 - k * k) : E * k / ((1 + k) * (1 - 2 * k)));
+    const double lame_lambda
+      = (dim == 2 ? E * k / (1 - k * k) : E * k / ((1 + k) * (1 - 2 * k)));
     const double two_mu = E / (1 + k);
-    stiffness =
-      lame_lambda * outer_product(unit_symmetric_tensor<dim>(),
-                                  unit_symmetric_tensor<dim>()) +
-      two_mu * identity_tensor<dim>();
+    stiffness           = lame_lambda
+                  * outer_product(unit_symmetric_tensor<dim>(),
+                                  unit_symmetric_tensor<dim>())
+                + two_mu * identity_tensor<dim>();
   }
 
 
@@ -56,11 +56,11 @@ namespace ViscoContact
 
   template <int dim>
   SymmetricTensor<2, dim>
-  PerzynaMaterial<dim>::viscoplastic_rate(
-    const SymmetricTensor<2, dim> &sigma) const
+  PerzynaMaterial<dim>::viscoplastic_rate(const SymmetricTensor<2, dim> &sigma,
+                                          double *multiplier) const
   {
-    return (-1. / (2. * lambda_viscosity)) *
-           (stiffness * (sigma - project_onto_yield_set(sigma)));
+    return (-1. / (2. * lambda_viscosity))
+           * (stiffness * (sigma - project_onto_yield_set(sigma, multiplier)));
   }
 
 
@@ -72,8 +72,8 @@ namespace ViscoContact
     const double E = young_modulus, k = poisson_ratio;
     // 2D: E/(1-k) on the spherical part, E/(1+k) on the deviatoric part;
     // 3D: 3 kappa = E/(1-2k) and 2 mu = E/(1+k).
-    return (dim == 2 ? std::min(E / (1 - k), E / (1 + k)) :
-                       std::min(E / (1 - 2 * k), E / (1 + k)));
+    return (dim == 2 ? std::min(E / (1 - k), E / (1 + k))
+                     : std::min(E / (1 - 2 * k), E / (1 + k)));
   }
 
 
@@ -83,8 +83,8 @@ namespace ViscoContact
   PerzynaMaterial<dim>::largest_elastic_eigenvalue() const
   {
     const double E = young_modulus, k = poisson_ratio;
-    return (dim == 2 ? std::max(E / (1 - k), E / (1 + k)) :
-                       std::max(E / (1 - 2 * k), E / (1 + k)));
+    return (dim == 2 ? std::max(E / (1 - k), E / (1 + k))
+                     : std::max(E / (1 - 2 * k), E / (1 + k)));
   }
 
 
@@ -114,16 +114,21 @@ namespace ViscoContact
   // and the quadratic form of K are diagonal:
   //   E = diag(E/(1-k), E/(1+k), E/(1+k)),
   //   t11^2 + t22^2 - t11 t22 + 3 t12^2 = a^2/2 + 3/2 (b^2 + c^2) = x.Mx.
-  // The optimality condition E (x - y) + mu M x = 0 of the projection
-  // min |x - y|_E^2 subject to x.Mx <= sigma_Y^2 gives
-  // x_i(mu) = E_i/(E_i + mu M_i) y_i, and mu > 0 is the root of the scalar
-  // equation |x(mu)|_M = sigma_Y, whose left side decreases strictly.
-  // We apply Newton's method to phi(mu) = 1/|x(mu)|_M - 1/sigma_Y: phi is
-  // affine in mu when M_i/E_i is the same for all i, and close to affine
-  // otherwise, so Newton converges in a few steps from any distance.
-  // A bracket [lower, upper] of the root is kept and bisection takes over
-  // should an iterate ever leave it; the iteration stops at machine
-  // precision.
+  // So only two modes interact: the spherical one (a) and the deviatoric
+  // one (b, c), with the ratios t_s = M_a/E_a = (1-k)/(2E) and
+  // t_d = M_b/E_b = 3(1+k)/(2E). The optimality condition
+  // E (x - y) + mu M x = 0 of min |x - y|_E^2 subject to x.Mx <= sigma_Y^2
+  // scales each mode: x_a = y_a/(1 + mu t_s), x_{b,c} = y_{b,c}/(1 + mu t_d),
+  // and the multiplier mu > 0 is the root of
+  //   |x(mu)|_M^2 = A/(1 + mu t_s)^2 + D/(1 + mu t_d)^2 = sigma_Y^2,
+  // A = y_a^2/2, D = 3/2 (y_b^2 + y_c^2), whose left side decreases strictly.
+  // We apply Newton's method to phi(mu) = 1/|x(mu)|_M - 1/sigma_Y, which is
+  // affine if one mode is absent and close to affine otherwise, starting
+  // from a guess the caller may give (the previous step's multiplier), or
+  // from the lower bound mu_0 = (|y|_M/sigma_Y - 1)/max(t) of the root (the
+  // root itself if only the dominant mode is present). A bracket of the root
+  // is kept and bisection takes over should an iterate ever leave it; the
+  // iteration stops at machine precision, typically after 3 or 4 steps.
   namespace
   {
     struct PlaneStressCoordinates
@@ -149,15 +154,11 @@ namespace ViscoContact
       return t;
     }
 
-    constexpr double yield_form[3] = {0.5, 1.5, 1.5};
-
     double
     yield_norm(const PlaneStressCoordinates &c)
     {
-      double s = 0;
-      for (unsigned int i = 0; i < 3; ++i)
-        s += yield_form[i] * c.x[i] * c.x[i];
-      return std::sqrt(s);
+      return std::sqrt(0.5 * c.x[0] * c.x[0]
+                       + 1.5 * (c.x[1] * c.x[1] + c.x[2] * c.x[2]));
     }
   } // namespace
 
@@ -177,73 +178,58 @@ namespace ViscoContact
   PerzynaMaterial<2>::project_onto_yield_set(const SymmetricTensor<2, 2> &tau,
                                              double *multiplier) const
   {
-    const PlaneStressCoordinates y = to_coordinates(tau);
+    PlaneStressCoordinates y     = to_coordinates(tau);
+    const double           guess = (multiplier != nullptr ? *multiplier : 0.);
     if (multiplier != nullptr)
       *multiplier = 0;
-    if (yield_norm(y) <= sigma_yield)
+    const double y_norm = yield_norm(y);
+    if (y_norm <= sigma_yield)
       return tau;
 
-    const double k              = poisson_ratio;
-    const double E_diagonal[3]  = {young_modulus / (1 - k),
-                                  young_modulus / (1 + k),
-                                  young_modulus / (1 + k)};
-    const auto   x_of           = [&](const double mu) {
-      PlaneStressCoordinates x;
-      for (unsigned int i = 0; i < 3; ++i)
-        x.x[i] = E_diagonal[i] / (E_diagonal[i] + mu * yield_form[i]) * y.x[i];
-      return x;
-    };
+    const double k   = poisson_ratio;
+    const double t_s = 0.5 * (1 - k) / young_modulus;
+    const double t_d = 1.5 * (1 + k) / young_modulus;
+    const double A   = 0.5 * y.x[0] * y.x[0];
+    const double D   = 1.5 * (y.x[1] * y.x[1] + y.x[2] * y.x[2]);
 
-    // With t_i = M_i/E_i, |y|_M/(1 + mu t_max) <= |x(mu)|_M <=
-    // |y|_M/(1 + mu t_min): the root lies in [mu_lower, mu_upper] below, and
-    // the lower end, exact when the deviatoric part dominates, is the start.
-    double t_min = std::numeric_limits<double>::max(), t_max = 0;
-    for (unsigned int i = 0; i < 3; ++i)
-      if (y.x[i] != 0)
-        {
-          t_min = std::min(t_min, yield_form[i] / E_diagonal[i]);
-          t_max = std::max(t_max, yield_form[i] / E_diagonal[i]);
-        }
-    const double excess = yield_norm(y) / sigma_yield - 1;
-    double       lower  = excess / t_max;
-    double       upper  = excess / t_min;
-    double       mu     = lower;
+    // |y|_M/(1 + mu t_max) <= |x(mu)|_M <= |y|_M/(1 + mu t_min).
+    const double t_max  = (D > 0 ? std::max(t_s, t_d) : t_s);
+    const double t_min  = (A > 0 ? std::min(t_s, t_d) : t_d);
+    const double excess = y_norm / sigma_yield - 1;
+    double       lower = excess / t_max, upper = excess / t_min;
+    double       mu = (guess > lower && guess < upper ? guess : lower);
     for (unsigned int iteration = 0; iteration < 100; ++iteration)
       {
-        const PlaneStressCoordinates x    = x_of(mu);
-        const double                 norm = yield_norm(x);
-        const double                 phi  = 1. / norm - 1. / sigma_yield;
+        const double s_s     = 1. / (1 + mu * t_s);
+        const double s_d     = 1. / (1 + mu * t_d);
+        const double norm_sq = A * s_s * s_s + D * s_d * s_d;
+        const double norm    = std::sqrt(norm_sq);
+        const double phi     = 1. / norm - 1. / sigma_yield;
         if (phi < 0)
           lower = std::max(lower, mu);
         else
           upper = std::min(upper, mu);
-        if (std::abs(phi) * sigma_yield <=
-            4 * std::numeric_limits<double>::epsilon())
-          break;
-
-        // d|x|_M/dmu = -sum_i M_i^2 x_i^2 / (E_i + mu M_i) / |x|_M.
-        double d_norm = 0;
-        for (unsigned int i = 0; i < 3; ++i)
-          d_norm -= yield_form[i] * yield_form[i] * x.x[i] * x.x[i] /
-                    (E_diagonal[i] + mu * yield_form[i]);
-        d_norm /= norm;
-        const double d_phi = -d_norm / (norm * norm);
-
+        // phi' = (A t_s s_s^3 + D t_d s_d^3) / |x|^3 > 0.
+        const double d_phi
+          = (A * t_s * s_s * s_s * s_s + D * t_d * s_d * s_d * s_d)
+            / (norm_sq * norm);
         double next = mu - phi / d_phi;
-        if (!(next > lower && next < upper))
+        if (!(next >= lower && next <= upper))
           next = 0.5 * (lower + upper);
-        if (std::abs(next - mu) <=
-            2 * std::numeric_limits<double>::epsilon() * std::abs(next))
-          {
-            mu = next;
-            break;
-          }
-        mu = next;
+        // Newton converges quadratically: once a step is below 1e-8
+        // relative, the error of the next iterate is of order 1e-16.
+        const bool converged = std::abs(next - mu) <= 1e-8 * std::abs(next);
+        mu                   = next;
+        if (converged || phi == 0)
+          break;
       }
 
     if (multiplier != nullptr)
       *multiplier = mu;
-    return from_coordinates(x_of(mu));
+    y.x[0] /= (1 + mu * t_s);
+    y.x[1] /= (1 + mu * t_d);
+    y.x[2] /= (1 + mu * t_d);
+    return from_coordinates(y);
   }
 
 

@@ -67,19 +67,19 @@ namespace ViscoContact
     // into one that names the parameter.
     template <int dim>
     void
-    initialize_load(FunctionParser<dim>             &function,
-                    const std::string               &entry,
-                    const std::string               &expression,
-                    const std::vector<double>       &lengths)
+    initialize_load(FunctionParser<dim>       &function,
+                    const std::string         &entry,
+                    const std::string         &expression,
+                    const std::vector<double> &lengths)
     {
-      const unsigned int n_parts =
-        Utilities::split_string_list(expression, ';').size();
+      const unsigned int n_parts
+        = Utilities::split_string_list(expression, ';').size();
       AssertThrow(n_parts == dim,
-                  ExcMessage("Invalid parameter <" + entry +
-                             "> in subsection <Loads>: value <" + expression +
-                             ">; accepted: " + std::to_string(dim) +
-                             " expressions separated by ';' (one per "
-                             "displacement component)."));
+                  ExcMessage("Invalid parameter <" + entry
+                             + "> in subsection <Loads>: value <" + expression
+                             + ">; accepted: " + std::to_string(dim)
+                             + " expressions separated by ';' (one per "
+                               "displacement component)."));
       std::map<std::string, double> constants;
       for (unsigned int d = 0; d < lengths.size(); ++d)
         constants["L" + std::to_string(d + 1)] = lengths[d];
@@ -95,14 +95,14 @@ namespace ViscoContact
       catch (const std::exception &exc)
         {
           AssertThrow(false,
-                      ExcMessage("Invalid parameter <" + entry +
-                                 "> in subsection <Loads>: value <" +
-                                 expression +
-                                 ">; accepted: muparser expressions in " +
-                                 load_variables<dim>() +
-                                 " and the constants L1, L2 (, L3). The "
-                                 "parser said: " +
-                                 exc.what()));
+                      ExcMessage("Invalid parameter <" + entry
+                                 + "> in subsection <Loads>: value <"
+                                 + expression
+                                 + ">; accepted: muparser expressions in "
+                                 + load_variables<dim>()
+                                 + " and the constants L1, L2 (, L3). The "
+                                   "parser said: "
+                                 + exc.what()));
         }
     }
   } // namespace
@@ -123,24 +123,23 @@ namespace ViscoContact
     : parameters(parameters)
     , pcout(std::cout)
     , computing_timer(pcout, TimerOutput::never, TimerOutput::wall_times)
-    , reference_cell(parameters.cell_type == "simplex" ?
-                       ReferenceCells::get_simplex<dim>() :
-                       ReferenceCells::get_hypercube<dim>())
+    , reference_cell(parameters.cell_type == "simplex"
+                       ? ReferenceCells::get_simplex<dim>()
+                       : ReferenceCells::get_hypercube<dim>())
     , mapping(&reference_cell.template get_default_linear_mapping<dim>())
-    , fe(reference_cell.is_simplex() ?
-           std::make_unique<FESystem<dim>>(FE_SimplexP<dim>(1), dim) :
-           std::make_unique<FESystem<dim>>(FE_Q<dim>(1), dim))
-    , scalar_fe(reference_cell.is_simplex() ?
-                  std::unique_ptr<FiniteElement<dim>>(
-                    std::make_unique<FE_SimplexP<dim>>(1)) :
-                  std::unique_ptr<FiniteElement<dim>>(
-                    std::make_unique<FE_Q<dim>>(1)))
+    , fe(reference_cell.is_simplex()
+           ? std::make_unique<FESystem<dim>>(FE_SimplexP<dim>(1), dim)
+           : std::make_unique<FESystem<dim>>(FE_Q<dim>(1), dim))
+    , scalar_fe(
+        reference_cell.is_simplex()
+          ? std::unique_ptr<FiniteElement<dim>>(
+            std::make_unique<FE_SimplexP<dim>>(1))
+          : std::unique_ptr<FiniteElement<dim>>(std::make_unique<FE_Q<dim>>(1)))
     , dof_handler(triangulation)
     , scalar_dof_handler(triangulation)
     , stress_quadrature(reference_cell.template get_gauss_type_quadrature<dim>(
         reference_cell.is_simplex() ? 1 : 2))
-    , load_quadrature(
-        reference_cell.template get_gauss_type_quadrature<dim>(2))
+    , load_quadrature(reference_cell.template get_gauss_type_quadrature<dim>(2))
     , face_quadrature(reference_cell.face_reference_cell(0)
                         .template get_gauss_type_quadrature<dim - 1>(2))
     , material(parameters.young_modulus,
@@ -161,8 +160,8 @@ namespace ViscoContact
                     parameters.surface_traction,
                     parameters.lengths);
     body_force_is_zero   = is_zero_expression(parameters.body_force);
-    loads_depend_on_time = mentions_time(parameters.body_force) ||
-                           mentions_time(parameters.surface_traction);
+    loads_depend_on_time = mentions_time(parameters.body_force)
+                           || mentions_time(parameters.surface_traction);
   }
 
 
@@ -191,8 +190,11 @@ namespace ViscoContact
                                                                Point<dim>(),
                                                                corner);
     else
-      GridGenerator::subdivided_hyper_rectangle(
-        triangulation, repetitions, Point<dim>(), corner, /*colorize=*/true);
+      GridGenerator::subdivided_hyper_rectangle(triangulation,
+                                                repetitions,
+                                                Point<dim>(),
+                                                corner,
+                                                /*colorize=*/true);
 
     if (reference_cell.is_simplex())
       for (const auto &face : triangulation.active_face_iterators())
@@ -216,12 +218,12 @@ namespace ViscoContact
                                const std::string                     &entry) {
       for (const auto id : ids)
         AssertThrow(present.count(id) == 1,
-                    ExcMessage("Invalid parameter <" + entry +
-                               "> in subsection <Boundary>: boundary id " +
-                               std::to_string(id) +
-                               " is not on the mesh; accepted: ids 0 to " +
-                               std::to_string(2 * dim - 1) +
-                               " of the generated box."));
+                    ExcMessage("Invalid parameter <" + entry
+                               + "> in subsection <Boundary>: boundary id "
+                               + std::to_string(id)
+                               + " is not on the mesh; accepted: ids 0 to "
+                               + std::to_string(2 * dim - 1)
+                               + " of the generated box."));
     };
     check_ids(parameters.clamped_ids, "Clamped boundary ids");
     check_ids(parameters.contact_ids, "Contact boundary ids");
@@ -267,6 +269,7 @@ namespace ViscoContact
       external_load.reinit(dof_handler.n_dofs());
       history_load.reinit(dof_handler.n_dofs());
       system_rhs.reinit(dof_handler.n_dofs());
+      contact_response.reinit(dof_handler.n_dofs());
     }
     assemble_elastic_operator();
   }
@@ -290,11 +293,11 @@ namespace ViscoContact
                               stress_quadrature,
                               update_gradients | update_JxW_values);
       const FEValuesExtractors::Vector displacement(0);
-      const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
+      const unsigned int               dofs_per_cell = fe->n_dofs_per_cell();
       FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
       std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
       std::vector<SymmetricTensor<2, dim>> strain(dofs_per_cell);
-      const SymmetricTensor<4, dim> &E = material.elasticity_tensor();
+      const SymmetricTensor<4, dim>       &E = material.elasticity_tensor();
 
       for (const auto &cell : dof_handler.active_cell_iterators())
         {
@@ -308,8 +311,8 @@ namespace ViscoContact
                 {
                   const SymmetricTensor<2, dim> E_strain_i = E * strain[i];
                   for (unsigned int j = 0; j <= i; ++j)
-                    cell_matrix(i, j) +=
-                      (E_strain_i * strain[j]) * fe_values.JxW(q);
+                    cell_matrix(i, j)
+                      += (E_strain_i * strain[j]) * fe_values.JxW(q);
                 }
             }
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
@@ -323,10 +326,56 @@ namespace ViscoContact
       ++n_operator_assemblies;
     }
     {
-      TimerOutput::Scope t(computing_timer, "Setup: factorise elastic operator");
-      elastic_solver.initialize(stiffness_matrix);
+      TimerOutput::Scope t(computing_timer,
+                           "Setup: factorise elastic operator");
+      if (parameters.direct_solver == "cholmod")
+        cholesky_factorization.factorize(stiffness_matrix);
+      else
+        lu_factorization.initialize(stiffness_matrix);
       ++n_operator_factorizations;
     }
+  }
+
+
+
+  // @sect4{ViscoplasticContact::solve_elastic}
+  //
+  // K^{-1} applied to one or several right-hand sides with the factorisation
+  // of the run; every solve is counted.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::solve_elastic(Vector<double> &rhs_and_solution)
+  {
+    if (parameters.direct_solver == "cholmod")
+      cholesky_factorization.solve(rhs_and_solution);
+    else
+      lu_factorization.solve(rhs_and_solution);
+    ++n_elastic_solves;
+  }
+
+
+
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::solve_elastic(std::vector<double> &columns,
+                                          const unsigned int   n_columns)
+  {
+    const unsigned int n = dof_handler.n_dofs();
+    if (parameters.direct_solver == "cholmod")
+      {
+        cholesky_factorization.solve(columns, n_columns);
+        n_elastic_solves += n_columns;
+      }
+    else
+      for (unsigned int j = 0; j < n_columns; ++j)
+        {
+          Vector<double> column(columns.begin() + std::size_t(j) * n,
+                                columns.begin() + std::size_t(j + 1) * n);
+          solve_elastic(column);
+          std::copy(column.begin(),
+                    column.end(),
+                    columns.begin() + std::size_t(j) * n);
+        }
   }
 
 
@@ -341,29 +390,30 @@ namespace ViscoContact
   // is not axis-aligned work.
   template <int dim>
   std::map<unsigned int, BoundaryVertexData<dim>>
-  lumped_boundary_weights(const Mapping<dim>                    &mapping,
-                          const DoFHandler<dim>                 &dof_handler,
-                          const Quadrature<dim - 1>             &face_quadrature,
+  lumped_boundary_weights(const Mapping<dim>        &mapping,
+                          const DoFHandler<dim>     &dof_handler,
+                          const Quadrature<dim - 1> &face_quadrature,
                           const std::vector<types::boundary_id> &boundary_ids)
   {
-    const FiniteElement<dim> &fe = dof_handler.get_fe();
-    FEFaceValues<dim>         fe_face_values(mapping,
+    const FiniteElement<dim>                       &fe = dof_handler.get_fe();
+    FEFaceValues<dim>                               fe_face_values(mapping,
                                      fe,
                                      face_quadrature,
-                                     update_values | update_JxW_values |
-                                       update_normal_vectors);
+                                     update_values | update_JxW_values
+                                       | update_normal_vectors);
     std::map<unsigned int, BoundaryVertexData<dim>> vertices;
     for (const auto &cell : dof_handler.active_cell_iterators())
       for (const unsigned int f : cell->face_indices())
-        if (cell->face(f)->at_boundary() &&
-            std::find(boundary_ids.begin(),
-                      boundary_ids.end(),
-                      cell->face(f)->boundary_id()) != boundary_ids.end())
+        if (cell->face(f)->at_boundary()
+            && std::find(boundary_ids.begin(),
+                         boundary_ids.end(),
+                         cell->face(f)->boundary_id())
+                 != boundary_ids.end())
           {
             fe_face_values.reinit(cell, f);
             for (const unsigned int v : cell->face(f)->vertex_indices())
               {
-                const unsigned int vertex = cell->face(f)->vertex_index(v);
+                const unsigned int vertex      = cell->face(f)->vertex_index(v);
                 unsigned int       cell_vertex = numbers::invalid_unsigned_int;
                 for (const unsigned int cv : cell->vertex_indices())
                   if (cell->vertex_index(cv) == vertex)
@@ -372,16 +422,16 @@ namespace ViscoContact
                        ExcInternalError());
                 // The x-component shape function of this vertex (P1 and Q1
                 // number their dofs vertex by vertex).
-                const unsigned int i =
-                  fe.component_to_system_index(0, cell_vertex);
+                const unsigned int i
+                  = fe.component_to_system_index(0, cell_vertex);
 
                 BoundaryVertexData<dim> &data = vertices[vertex];
                 data.location                 = cell->vertex(cell_vertex);
                 for (const unsigned int q :
                      fe_face_values.quadrature_point_indices())
                   {
-                    const double phi_JxW =
-                      fe_face_values.shape_value(i, q) * fe_face_values.JxW(q);
+                    const double phi_JxW = fe_face_values.shape_value(i, q)
+                                           * fe_face_values.JxW(q);
                     data.weight += phi_JxW;
                     data.normal += phi_JxW * fe_face_values.normal_vector(q);
                   }
@@ -412,8 +462,10 @@ namespace ViscoContact
 
     {
       TimerOutput::Scope t(computing_timer, "Setup: contact nodes");
-      const auto         vertices = lumped_boundary_weights(
-        *mapping, dof_handler, face_quadrature, parameters.contact_ids);
+      const auto         vertices = lumped_boundary_weights(*mapping,
+                                                    dof_handler,
+                                                    face_quadrature,
+                                                    parameters.contact_ids);
 
       // Each vertex's dofs, found through any cell that has it.
       std::map<unsigned int, std::array<types::global_dof_index, dim>> dofs;
@@ -426,8 +478,8 @@ namespace ViscoContact
               {
                 for (unsigned int c = 0; c < dim; ++c)
                   dofs[cell->vertex_index(v)][c] = cell->vertex_dof_index(v, c);
-                scalar_dofs[cell->vertex_index(v)] =
-                  scalar_cell->vertex_dof_index(v, 0);
+                scalar_dofs[cell->vertex_index(v)]
+                  = scalar_cell->vertex_dof_index(v, 0);
               }
           ++scalar_cell;
         }
@@ -458,8 +510,9 @@ namespace ViscoContact
                   return false;
                 });
       AssertThrow(!contact_nodes.empty(),
-                  ExcMessage("Gamma_3 (Contact boundary ids) has no node that "
-                             "is free to move: every contact node is clamped."));
+                  ExcMessage(
+                    "Gamma_3 (Contact boundary ids) has no node that "
+                    "is free to move: every contact node is clamped."));
     }
 
     {
@@ -471,28 +524,37 @@ namespace ViscoContact
       if (contact_responses_stored)
         contact_responses.reinit(n, m);
 
-      FullMatrix<double> compliance(m, m);
-      Vector<double>     response(n);
-      for (unsigned int j = 0; j < m; ++j)
+      // Columns of W = K^{-1} N^T in blocks of up to 64 right-hand sides.
+      FullMatrix<double>  compliance(m, m);
+      const unsigned int  block = 64;
+      std::vector<double> columns;
+      for (unsigned int first = 0; first < m; first += block)
         {
-          response = 0;
-          for (unsigned int c = 0; c < dim; ++c)
-            response[contact_nodes[j].dofs[c]] = contact_nodes[j].normal[c];
-          elastic_solver.solve(response);
-          ++n_elastic_solves;
-          for (unsigned int i = 0; i < m; ++i)
+          const unsigned int n_columns = std::min(block, m - first);
+          columns.assign(std::size_t(n) * n_columns, 0.);
+          for (unsigned int j = 0; j < n_columns; ++j)
             for (unsigned int c = 0; c < dim; ++c)
-              compliance(i, j) +=
-                contact_nodes[i].normal[c] * response[contact_nodes[i].dofs[c]];
-          if (contact_responses_stored)
-            for (unsigned int k = 0; k < n; ++k)
-              contact_responses(k, j) = response[k];
+              columns[std::size_t(j) * n + contact_nodes[first + j].dofs[c]]
+                = contact_nodes[first + j].normal[c];
+          solve_elastic(columns, n_columns);
+          for (unsigned int j = 0; j < n_columns; ++j)
+            {
+              const double *response = &columns[std::size_t(j) * n];
+              for (unsigned int i = 0; i < m; ++i)
+                for (unsigned int c = 0; c < dim; ++c)
+                  compliance(i, first + j)
+                    += contact_nodes[i].normal[c]
+                       * response[contact_nodes[i].dofs[c]];
+              if (contact_responses_stored)
+                for (unsigned int k = 0; k < n; ++k)
+                  contact_responses(k, first + j) = response[k];
+            }
         }
       // S is symmetric in exact arithmetic; make it so in floating point.
       for (unsigned int i = 0; i < m; ++i)
         for (unsigned int j = 0; j < i; ++j)
-          compliance(i, j) = compliance(j, i) =
-            0.5 * (compliance(i, j) + compliance(j, i));
+          compliance(i, j) = compliance(j, i)
+            = 0.5 * (compliance(i, j) + compliance(j, i));
 
       std::vector<double> weights(m);
       for (unsigned int i = 0; i < m; ++i)
@@ -506,14 +568,49 @@ namespace ViscoContact
   // @sect4{ViscoplasticContact::setup_quadrature_point_history}
   //
   // One record per stress point, in a flat array indexed by the active cell
-  // index, as step-18 does. sigma_0 = 0 and u_0 = 0, so H_1 = 0.
+  // index, as step-18 does; sigma_0 = 0 and u_0 = 0, so H_1 = 0. Alongside,
+  // the stress-point geometry the time loop uses instead of FEValues.
   template <int dim>
   void
   ViscoplasticContact<dim>::setup_quadrature_point_history()
   {
-    quadrature_point_history.assign(triangulation.n_active_cells() *
-                                      stress_quadrature.size(),
+    TimerOutput::Scope t(computing_timer, "Setup: stress points");
+    const unsigned int n_cells = triangulation.n_active_cells();
+    const unsigned int n_q     = stress_quadrature.size();
+    quadrature_point_history.assign(n_cells * n_q,
                                     QuadraturePointHistory<dim>());
+
+    n_cell_vertices = scalar_fe->n_dofs_per_cell();
+    cell_dof_indices.resize(std::size_t(n_cells) * n_cell_vertices * dim);
+    stress_point_gradients.resize(std::size_t(n_cells) * n_q * n_cell_vertices);
+    stress_point_JxW.resize(std::size_t(n_cells) * n_q);
+
+    FEValues<dim>                        fe_values(*mapping,
+                            *fe,
+                            stress_quadrature,
+                            update_gradients | update_JxW_values);
+    std::vector<types::global_dof_index> local_dof_indices(
+      fe->n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        const std::size_t c = cell->active_cell_index();
+        fe_values.reinit(cell);
+        cell->get_dof_indices(local_dof_indices);
+        for (unsigned int a = 0; a < n_cell_vertices; ++a)
+          for (unsigned int d = 0; d < dim; ++d)
+            cell_dof_indices[(c * n_cell_vertices + a) * dim + d]
+              = local_dof_indices[fe->component_to_system_index(d, a)];
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            stress_point_JxW[c * n_q + q] = fe_values.JxW(q);
+            for (unsigned int a = 0; a < n_cell_vertices; ++a)
+              stress_point_gradients[(c * n_q + q) * n_cell_vertices + a]
+                = fe_values.shape_grad_component(
+                  fe->component_to_system_index(0, a),
+                  q,
+                  0);
+          }
+      }
   }
 
 

@@ -60,8 +60,8 @@ namespace ViscoContact
       {
         Timer step_timer;
         assemble_right_hand_side(times[n]);
-        const ContactActiveSetSolver::Result result =
-          solve_time_step(n, times[n]);
+        const ContactActiveSetSolver::Result result
+          = solve_time_step(n, times[n]);
         update_stresses(n < n_time_steps ? times[n + 1] - times[n] : 0.);
         time_loop_compute_time += step_timer.wall_time();
 
@@ -73,16 +73,16 @@ namespace ViscoContact
                   << std::setprecision(6) << times[n]
                   << "  active-set iterations " << std::setw(2)
                   << result.iterations() << "  unilateral " << std::setw(4)
-                  << states[0] << "  compliance " << std::setw(4)
-                  << states[1] << "  no contact " << std::setw(4)
-                  << states[2] << "  contact force " << std::setprecision(8)
+                  << states[0] << "  compliance " << std::setw(4) << states[1]
+                  << "  no contact " << std::setw(4) << states[2]
+                  << "  contact force " << std::setprecision(8)
                   << total_contact_force() << '\n';
           }
-        if (std::find(profile_steps.begin(), profile_steps.end(), n) !=
-            profile_steps.end())
+        if (std::find(profile_steps.begin(), profile_steps.end(), n)
+            != profile_steps.end())
           write_contact_profile(n, times[n]);
-        if (parameters.write_vtu &&
-            (n % parameters.interval == 0 || n == n_time_steps))
+        if (parameters.write_vtu
+            && (n % parameters.interval == 0 || n == n_time_steps))
           output_results(n, times[n]);
       }
 
@@ -98,9 +98,9 @@ namespace ViscoContact
   std::vector<double>
   ViscoplasticContact<dim>::time_levels() const
   {
-    const double T = parameters.end_time, k = parameters.time_step;
-    const unsigned int N =
-      static_cast<unsigned int>(std::ceil(T / k * (1 - 1e-12)));
+    const double       T = parameters.end_time, k = parameters.time_step;
+    const unsigned int N
+      = static_cast<unsigned int>(std::ceil(T / k * (1 - 1e-12)));
     std::vector<double> times(N + 1);
     for (unsigned int n = 0; n < N; ++n)
       times[n] = n * k;
@@ -136,21 +136,21 @@ namespace ViscoContact
     external_load = 0;
     body_force.set_time(time);
     surface_traction.set_time(time);
-    const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
-    Vector<double>     cell_rhs(dofs_per_cell);
+    const unsigned int                   dofs_per_cell = fe->n_dofs_per_cell();
+    Vector<double>                       cell_rhs(dofs_per_cell);
     std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
     Vector<double>                       load_value(dim);
 
     FEValues<dim>     fe_values(*mapping,
                             *fe,
                             load_quadrature,
-                            update_values | update_quadrature_points |
-                              update_JxW_values);
+                            update_values | update_quadrature_points
+                              | update_JxW_values);
     FEFaceValues<dim> fe_face_values(*mapping,
                                      *fe,
                                      face_quadrature,
-                                     update_values | update_quadrature_points |
-                                       update_JxW_values);
+                                     update_values | update_quadrature_points
+                                       | update_JxW_values);
 
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
@@ -165,34 +165,35 @@ namespace ViscoContact
                                         load_value);
                 for (unsigned int i = 0; i < dofs_per_cell; ++i)
                   {
-                    const unsigned int c =
-                      fe->system_to_component_index(i).first;
-                    cell_rhs(i) += load_value(c) * fe_values.shape_value(i, q) *
-                                   fe_values.JxW(q);
+                    const unsigned int c
+                      = fe->system_to_component_index(i).first;
+                    cell_rhs(i) += load_value(c) * fe_values.shape_value(i, q)
+                                   * fe_values.JxW(q);
                   }
               }
             has_loads = true;
           }
         for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary() &&
-              std::find(parameters.loaded_ids.begin(),
-                        parameters.loaded_ids.end(),
-                        cell->face(f)->boundary_id()) !=
-                parameters.loaded_ids.end())
+          if (cell->face(f)->at_boundary()
+              && std::find(parameters.loaded_ids.begin(),
+                           parameters.loaded_ids.end(),
+                           cell->face(f)->boundary_id())
+                   != parameters.loaded_ids.end())
             {
               fe_face_values.reinit(cell, f);
               for (const unsigned int q :
                    fe_face_values.quadrature_point_indices())
                 {
-                  surface_traction.vector_value(
-                    fe_face_values.quadrature_point(q), load_value);
+                  surface_traction.vector_value(fe_face_values.quadrature_point(
+                                                  q),
+                                                load_value);
                   for (unsigned int i = 0; i < dofs_per_cell; ++i)
                     {
-                      const unsigned int c =
-                        fe->system_to_component_index(i).first;
-                      cell_rhs(i) += load_value(c) *
-                                     fe_face_values.shape_value(i, q) *
-                                     fe_face_values.JxW(q);
+                      const unsigned int c
+                        = fe->system_to_component_index(i).first;
+                      cell_rhs(i) += load_value(c)
+                                     * fe_face_values.shape_value(i, q)
+                                     * fe_face_values.JxW(q);
                     }
                 }
               has_loads = true;
@@ -215,41 +216,37 @@ namespace ViscoContact
   // -(H, eps(v)) from the history stored at the stress points. The time loop
   // gets this vector from update_stresses(), which assembles it while it
   // computes H; this stand-alone version is the reference for the cost
-  // measurement in the run summary.
+  // measurement in the run summary. With eps(N_a e_c) = sym(e_c (x) grad N_a)
+  // and H symmetric, the entry of dof (a, c) is -JxW (H grad N_a)_c.
   template <int dim>
   void
   ViscoplasticContact<dim>::assemble_history_load()
   {
-    history_load = 0;
-    FEValues<dim> fe_values(*mapping,
-                            *fe,
-                            stress_quadrature,
-                            update_gradients | update_JxW_values);
-    const FEValuesExtractors::Vector displacement(0);
-    const unsigned int               dofs_per_cell = fe->n_dofs_per_cell();
-    const unsigned int               n_q           = stress_quadrature.size();
-    Vector<double>                   cell_rhs(dofs_per_cell);
-    std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
-
-    for (const auto &cell : dof_handler.active_cell_iterators())
+    history_load               = 0;
+    const unsigned int n_q     = stress_quadrature.size();
+    const unsigned int n_a     = n_cell_vertices;
+    const unsigned int n_cells = triangulation.n_active_cells();
+    for (unsigned int cell = 0; cell < n_cells; ++cell)
       {
-        fe_values.reinit(cell);
-        cell_rhs = 0;
+        const types::global_dof_index *dofs
+          = &cell_dof_indices[std::size_t(cell) * n_a * dim];
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            const SymmetricTensor<2, dim> &H =
-              quadrature_point_history[cell->active_cell_index() * n_q + q]
-                .history;
-            for (unsigned int i = 0; i < dofs_per_cell; ++i)
-              cell_rhs(i) -=
-                (H * fe_values[displacement].symmetric_gradient(i, q)) *
-                fe_values.JxW(q);
+            const std::size_t              point = std::size_t(cell) * n_q + q;
+            const SymmetricTensor<2, dim> &H
+              = quadrature_point_history[point].history;
+            const Tensor<1, dim> *gradients
+              = &stress_point_gradients[point * n_a];
+            const double JxW = stress_point_JxW[point];
+            for (unsigned int a = 0; a < n_a; ++a)
+              {
+                const Tensor<1, dim> force = H * gradients[a];
+                for (unsigned int c = 0; c < dim; ++c)
+                  history_load[dofs[a * dim + c]] -= JxW * force[c];
+              }
           }
-        cell->get_dof_indices(local_dof_indices);
-        constraints.distribute_local_to_global(cell_rhs,
-                                               local_dof_indices,
-                                               history_load);
       }
+    constraints.condense(history_load);
   }
 
 
@@ -272,8 +269,7 @@ namespace ViscoContact
     {
       TimerOutput::Scope t(computing_timer, "Solve: elastic solves");
       solution = system_rhs;
-      elastic_solver.solve(solution);
-      ++n_elastic_solves;
+      solve_elastic(solution);
     }
 
     if (contact_enabled)
@@ -282,8 +278,8 @@ namespace ViscoContact
         Vector<double>     free_normal_displacement(contact_nodes.size());
         for (unsigned int i = 0; i < contact_nodes.size(); ++i)
           for (unsigned int c = 0; c < dim; ++c)
-            free_normal_displacement[i] +=
-              contact_nodes[i].normal[c] * solution[contact_nodes[i].dofs[c]];
+            free_normal_displacement[i] += contact_nodes[i].normal[c]
+                                           * solution[contact_nodes[i].dofs[c]];
 
         result = active_set_solver.solve(free_normal_displacement,
                                          parameters.max_iterations,
@@ -301,8 +297,9 @@ namespace ViscoContact
                     << ", Tolerance = " << parameters.tolerance
                     << " in subsection <Active set solver>).\n"
                     << "Iteration history:\n"
-                    << result.describe() << "Contact state at the end: "
-                    << states[0] << " nodes at the rigid limit, " << states[1]
+                    << result.describe()
+                    << "Contact state at the end: " << states[0]
+                    << " nodes at the rigid limit, " << states[1]
                     << " in normal-compliance contact, " << states[2]
                     << " out of contact.\n"
                     << "If the contact law softens more than the body can "
@@ -317,7 +314,6 @@ namespace ViscoContact
     const Vector<double> &z = active_set_solver.normal_forces();
     if (contact_enabled && z.linfty_norm() > 0)
       {
-        Vector<double> contact_response(dof_handler.n_dofs());
         if (contact_responses_stored)
           {
             TimerOutput::Scope t(computing_timer, "Solve: contact response");
@@ -326,21 +322,21 @@ namespace ViscoContact
         else
           {
             TimerOutput::Scope t(computing_timer, "Solve: elastic solves");
+            contact_response = 0;
             for (unsigned int i = 0; i < contact_nodes.size(); ++i)
               for (unsigned int c = 0; c < dim; ++c)
-                contact_response[contact_nodes[i].dofs[c]] =
-                  z[i] * contact_nodes[i].normal[c];
-            elastic_solver.solve(contact_response);
-            ++n_elastic_solves;
+                contact_response[contact_nodes[i].dofs[c]]
+                  = z[i] * contact_nodes[i].normal[c];
+            solve_elastic(contact_response);
           }
         solution -= contact_response;
       }
     constraints.distribute(solution);
 
     AssertThrow(std::isfinite(solution.l2_norm()),
-                ExcMessage("The displacement of time step " +
-                           std::to_string(step) +
-                           " is not finite (NaN or Inf)."));
+                ExcMessage("The displacement of time step "
+                           + std::to_string(step)
+                           + " is not finite (NaN or Inf)."));
     return result;
   }
 
@@ -351,59 +347,65 @@ namespace ViscoContact
   // sigma_n = E eps(u_n) + H_n at every stress point, and, with plasticity,
   // the explicit history update H_{n+1} = H_n + k_{n+1} G(sigma_n) of
   // model.md, section 2. The same loop assembles -(H_{n+1}, eps(v)), the
-  // history load of the next step, so the cell data are visited once per
-  // step. P (the L2 projection onto Q^h) is the identity here: E eps(u_n) is
-  // already piecewise constant on P1 simplices, and on hypercubes the
-  // stresses are stored at the quadrature points themselves.
+  // history load of the next step (as assemble_history_load() does), so the
+  // stress points are visited once per step. P (the L2 projection onto Q^h)
+  // is the identity here: E eps(u_n) is already piecewise constant on P1
+  // simplices, and on hypercubes the stresses are stored at the quadrature
+  // points themselves.
   template <int dim>
   void
   ViscoplasticContact<dim>::update_stresses(const double next_time_step)
   {
     TimerOutput::Scope t(computing_timer, "Stress update");
-    const bool         update_history = parameters.plasticity && next_time_step > 0;
-    FEValues<dim>      fe_values(*mapping,
-                            *fe,
-                            stress_quadrature,
-                            update_gradients | update_JxW_values);
-    const FEValuesExtractors::Vector displacement(0);
-    const unsigned int               dofs_per_cell = fe->n_dofs_per_cell();
-    const unsigned int               n_q           = stress_quadrature.size();
-    const SymmetricTensor<4, dim>   &E = material.elasticity_tensor();
-    std::vector<SymmetricTensor<2, dim>> strains(n_q);
-    Vector<double>                       cell_rhs(dofs_per_cell);
-    std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
+    const bool update_history = parameters.plasticity && next_time_step > 0;
+    const SymmetricTensor<4, dim> &E       = material.elasticity_tensor();
+    const unsigned int             n_q     = stress_quadrature.size();
+    const unsigned int             n_a     = n_cell_vertices;
+    const unsigned int             n_cells = triangulation.n_active_cells();
 
     if (update_history)
       history_load = 0;
-    for (const auto &cell : dof_handler.active_cell_iterators())
+    max_von_mises = 0;
+    for (unsigned int cell = 0; cell < n_cells; ++cell)
       {
-        fe_values.reinit(cell);
-        fe_values[displacement].get_function_symmetric_gradients(solution,
-                                                                 strains);
-        cell_rhs = 0;
+        const types::global_dof_index *dofs
+          = &cell_dof_indices[std::size_t(cell) * n_a * dim];
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            QuadraturePointHistory<dim> &point =
-              quadrature_point_history[cell->active_cell_index() * n_q + q];
-            point.stress = E * strains[q] + point.history;
+            const std::size_t     point = std::size_t(cell) * n_q + q;
+            const Tensor<1, dim> *gradients
+              = &stress_point_gradients[point * n_a];
+
+            Tensor<2, dim> displacement_gradient;
+            for (unsigned int a = 0; a < n_a; ++a)
+              for (unsigned int c = 0; c < dim; ++c)
+                displacement_gradient[c]
+                  += solution[dofs[a * dim + c]] * gradients[a];
+
+            QuadraturePointHistory<dim> &state
+              = quadrature_point_history[point];
+            state.stress
+              = E * symmetrize(displacement_gradient) + state.history;
+            max_von_mises = std::max(max_von_mises,
+                                     material.equivalent_stress(state.stress));
             if (update_history)
               {
-                point.history +=
-                  next_time_step * material.viscoplastic_rate(point.stress);
-                for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                  cell_rhs(i) -= (point.history *
-                                  fe_values[displacement].symmetric_gradient(i, q)) *
-                                 fe_values.JxW(q);
+                state.history
+                  += next_time_step
+                     * material.viscoplastic_rate(state.stress,
+                                                  &state.plastic_multiplier);
+                const double JxW = stress_point_JxW[point];
+                for (unsigned int a = 0; a < n_a; ++a)
+                  {
+                    const Tensor<1, dim> force = state.history * gradients[a];
+                    for (unsigned int c = 0; c < dim; ++c)
+                      history_load[dofs[a * dim + c]] -= JxW * force[c];
+                  }
               }
           }
-        if (update_history)
-          {
-            cell->get_dof_indices(local_dof_indices);
-            constraints.distribute_local_to_global(cell_rhs,
-                                                   local_dof_indices,
-                                                   history_load);
-          }
       }
+    if (update_history)
+      constraints.condense(history_load);
   }
 
 
@@ -417,12 +419,12 @@ namespace ViscoContact
   unsigned int
   ViscoplasticContact<dim>::contact_status(const unsigned int node) const
   {
-    const ContactLawPiece &piece =
-      active_set_solver.law().piece(active_set_solver.pieces()[node]);
+    const ContactLawPiece &piece
+      = active_set_solver.law().piece(active_set_solver.pieces()[node]);
     if (piece.rigid)
       return 2;
-    if (active_set_solver.normal_displacements()[node] > 0 ||
-        active_set_solver.normal_forces()[node] > 0)
+    if (active_set_solver.normal_displacements()[node] > 0
+        || active_set_solver.normal_forces()[node] > 0)
       return 1;
     return 0;
   }

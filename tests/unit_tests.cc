@@ -64,15 +64,26 @@ namespace
     std::mt19937               generator(42);
     for (unsigned int s = 0; s < n_samples; ++s)
       {
-        const SymmetricTensor<2, dim> tau =
-          random_tensor<dim>(generator, 20.);
+        const SymmetricTensor<2, dim> tau = random_tensor<dim>(generator, 20.);
         const SymmetricTensor<2, dim> p = material.project_onto_yield_set(tau);
-        const double scale = tau.norm() + sigma_Y;
+        const double                  scale = tau.norm() + sigma_Y;
 
         if (material.equivalent_stress(tau) <= sigma_Y)
           EXPECT_LE((p - tau).norm(), 1e-15 * scale); // identity inside K
         else // on the yield surface, to machine precision
           EXPECT_NEAR(material.equivalent_stress(p), sigma_Y, 1e-13 * sigma_Y);
+
+        // A guess of the multiplier (as the time loop passes the previous
+        // step's) changes nothing but the number of iterations.
+        for (const double factor : {0.5, 0.99, 1.0, 1.7})
+          {
+            double multiplier = 0;
+            material.project_onto_yield_set(tau, &multiplier);
+            multiplier *= factor;
+            EXPECT_LE(
+              (material.project_onto_yield_set(tau, &multiplier) - p).norm(),
+              1e-13 * scale);
+          }
 
         // Idempotent.
         EXPECT_LE((material.project_onto_yield_set(p) - p).norm(),
@@ -139,7 +150,7 @@ TEST(Projection2D, MixedCaseAgainstBisection)
 {
   const PerzynaMaterial<2> material = benchmark_material<2>();
   SymmetricTensor<2, 2>    tau;
-  tau[0][0] = 4.;
+  tau[0][0]        = 4.;
   const double E_a = 1000. / 0.6, E_b = 1000. / 1.4, sigma_Y = 2.;
   const double y_a = 4. / std::sqrt(2.), y_b = 4. / std::sqrt(2.);
   const auto   f = [&](const double mu) {
@@ -155,15 +166,15 @@ TEST(Projection2D, MixedCaseAgainstBisection)
   const double xb = E_b * y_b / (E_b + 1.5 * mu);
 
   double                      multiplier = 0;
-  const SymmetricTensor<2, 2> p =
-    material.project_onto_yield_set(tau, &multiplier);
+  const SymmetricTensor<2, 2> p
+    = material.project_onto_yield_set(tau, &multiplier);
   EXPECT_NEAR(multiplier, mu, 1e-10 * mu);
   EXPECT_NEAR(p[0][0], (xa + xb) / std::sqrt(2.), 1e-12);
   EXPECT_NEAR(p[1][1], (xa - xb) / std::sqrt(2.), 1e-12);
   EXPECT_NEAR(p[0][1], 0., 1e-14);
 
-  const SymmetricTensor<2, 2> radial =
-    tau * (sigma_Y / material.equivalent_stress(tau));
+  const SymmetricTensor<2, 2> radial
+    = tau * (sigma_Y / material.equivalent_stress(tau));
   EXPECT_GT((p - radial).norm(), 1e-2); // not a radial scaling
 }
 
@@ -197,8 +208,7 @@ TEST(Perzyna, RateVanishesInsideAndRelaxesOutside)
   SymmetricTensor<2, 2> outside;
   outside[0][1] = 5.;
   // Pure shear: G = -(1/(2 lambda)) E (tau - P tau), E acts as E/(1+k) on it.
-  const double expected =
-    -1. / 100. * 1000. / 1.4 * (5. - 2. / std::sqrt(3.));
+  const double expected = -1. / 100. * 1000. / 1.4 * (5. - 2. / std::sqrt(3.));
   EXPECT_NEAR(material.viscoplastic_rate(outside)[0][1], expected, 1e-11);
 }
 
@@ -284,8 +294,8 @@ check_lumped_weights(const bool simplex, const double angle)
   if (angle != 0)
     GridTools::rotate(angle, triangulation);
 
-  const ReferenceCell cell = (simplex ? ReferenceCells::get_simplex<dim>() :
-                                        ReferenceCells::get_hypercube<dim>());
+  const ReferenceCell cell = (simplex ? ReferenceCells::get_simplex<dim>()
+                                      : ReferenceCells::get_hypercube<dim>());
   DoFHandler<dim>     dof_handler(triangulation);
   if (simplex)
     dof_handler.distribute_dofs(FESystem<dim>(FE_SimplexP<dim>(1), dim));
@@ -312,7 +322,7 @@ check_lumped_weights(const bool simplex, const double angle)
   if (dim == 2)
     for (const auto &v : vertices)
       {
-        const double s = v.second.location.norm();
+        const double s   = v.second.location.norm();
         const bool   end = (s < 1e-12 || std::abs(s - 1.) < 1e-12);
         EXPECT_NEAR(v.second.weight, (end ? 0.5 : 1.) / N, 1e-13);
       }
@@ -355,7 +365,7 @@ namespace
   {
     const double c1 = 300, c2 = -100, u1 = 0.006, g = 0.01;
     if (d <= 0)
-      return 0; // no contact
+      return 0;                      // no contact
     double r = d / (1 + s * w * c1); // on [0, u1]
     if (r <= u1)
       return w * c1 * r;
@@ -447,8 +457,8 @@ TEST(ActiveSetSolver, CoupledNodesMatchExhaustiveEnumeration)
           if (p.vertical)
             consistent = consistent && z[i] / w[i] >= p.p_lower - tol;
           else
-            consistent = consistent && r[i] >= p.r_lower - tol &&
-                         r[i] <= p.r_upper + tol;
+            consistent = consistent && r[i] >= p.r_lower - tol
+                         && r[i] <= p.r_upper + tol;
         }
       if (consistent)
         solutions.push_back(z);
@@ -474,7 +484,7 @@ TEST(ActiveSetSolver, ReportsIterationLimit)
   ContactActiveSetSolver solver;
   solver.reinit(benchmark_law, S, {0.03, 0.03});
   Vector<double> d(2);
-  d[0] = d[1] = 0.05;
+  d[0] = d[1]       = 0.05;
   const auto result = solver.solve(d, 1, 1e-12);
   EXPECT_FALSE(result.converged);
   EXPECT_EQ(result.iterations(), 1u);

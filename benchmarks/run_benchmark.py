@@ -416,10 +416,15 @@ def markdown_report(rows, header_lines):
         "–" if r.get("timer_total_s") is None else f"{r['timer_total_s']:.3g} s"
         for r in rows) + " |")
     md += ["", "Columns: *process wall* = wall time of the whole process measured "
-           "by the script (setup included); *time loop*, *assembly + 1 solve* and "
-           "their ratio come from the program's \"Cost measurement\" block; "
-           "*per step* = time loop / steps; *peak RSS* = ru_maxrss of the child "
-           "process."]
+           "by the script (setup included); *time loop* (without output), the "
+           "*contact part of a step* (active set + contact response), the "
+           "reference costs (a) and (b) and the ratios come from the program's "
+           "\"Cost measurement\" block, measured inside the same run: (a) = "
+           "the explicit history update H += k G(sigma) at every stress point "
+           "with the assembly of -(H, eps(v)) + one elastic solve, i.e. a step "
+           "without contact; (b) = only the assembly of -(H, eps(v)) from "
+           "stored H + one elastic solve; *per step* = time loop / steps; "
+           "*peak RSS* = ru_maxrss of the child process."]
     return "\n".join(md) + "\n"
 
 

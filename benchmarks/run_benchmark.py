@@ -40,8 +40,11 @@ import sys
 import tempfile
 import time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__))), "scripts"))
+from vc_scripts import resolve_executable, set_prm_entries  # noqa: E402
+
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-DEFAULT_EXECUTABLE = os.path.join("build", "viscoplastic_contact")
 BASE_PRM = os.path.join(REPO_ROOT, "parameters", "default.prm")
 
 FLOAT = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
@@ -52,54 +55,6 @@ UNIT_TO_SECONDS = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6, "ns": 1e-9,
 # --------------------------------------------------------------------------
 # Parameter files
 # --------------------------------------------------------------------------
-def set_prm_entries(text, overrides):
-    """Return a copy of a deal.II parameter file with some entries replaced.
-
-    ``overrides`` maps (subsection path, entry name) to the new value, where
-    the subsection path is a tuple such as ("Output",) (empty tuple for the
-    top level). Existing ``set ENTRY = value`` lines are rewritten (their
-    trailing comment is dropped since it may no longer be true); entries not
-    present are inserted just before the ``end`` of their subsection (the
-    subsection is appended if it does not exist). Everything else is kept.
-    """
-    remaining = dict(overrides)
-    out = []
-    stack = []
-    set_re = re.compile(r"^(\s*)set\s+(.+?)\s*=(.*)$")
-    for line in text.splitlines():
-        stripped = line.split("#", 1)[0].strip()
-        m_sub = re.match(r"^subsection\s+(.+)$", stripped)
-        if m_sub:
-            stack.append(m_sub.group(1).strip())
-            out.append(line)
-            continue
-        if stripped == "end" and stack:
-            path = tuple(stack)
-            indent = "  " * len(stack)
-            for (sub, name), value in list(remaining.items()):
-                if sub == path:
-                    out.append(f"{indent}set {name} = {value}")
-                    del remaining[(sub, name)]
-            stack.pop()
-            out.append(line)
-            continue
-        m_set = set_re.match(line.split("#", 1)[0])
-        if m_set:
-            key = (tuple(stack), m_set.group(2).strip())
-            if key in remaining:
-                out.append(f"{m_set.group(1)}set {key[1]} = {remaining.pop(key)}")
-                continue
-        out.append(line)
-    # Entries of subsections that do not exist at all (or top level ones).
-    for (sub, name), value in remaining.items():
-        for depth, s in enumerate(sub):
-            out.append("  " * depth + f"subsection {s}")
-        out.append("  " * len(sub) + f"set {name} = {value}")
-        for depth in reversed(range(len(sub))):
-            out.append("  " * depth + "end")
-    return "\n".join(out) + "\n"
-
-
 def benchmark_prm(n, output_directory):
     """Parameter file text of the benchmark scene at h = k = 1/n."""
     with open(BASE_PRM) as f:
@@ -431,17 +386,6 @@ def markdown_report(rows, header_lines):
 # --------------------------------------------------------------------------
 # Main
 # --------------------------------------------------------------------------
-def resolve_executable(arg):
-    """Path of the program: --executable, else $VC_EXECUTABLE, else the default
-    build/viscoplastic_contact relative to the repo root."""
-    if arg:
-        return os.path.abspath(arg)
-    env = os.environ.get("VC_EXECUTABLE")
-    if env:
-        return os.path.abspath(env)
-    return os.path.join(REPO_ROOT, DEFAULT_EXECUTABLE)
-
-
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--executable", default=None,

@@ -47,6 +47,10 @@ import tempfile
 import xml.etree.ElementTree as ET
 from fractions import Fraction
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__))), "scripts"))
+from vc_scripts import resolve_executable, set_prm_entries  # noqa: E402
+
 try:
     import matplotlib
 except ImportError:
@@ -67,7 +71,6 @@ from matplotlib.lines import Line2D  # noqa: E402
 
 DOC_DIR = os.path.dirname(os.path.abspath(__file__))
 REPO_ROOT = os.path.dirname(DOC_DIR)
-DEFAULT_EXECUTABLE = os.path.join("build", "viscoplastic_contact")
 BASE_PRM = os.path.join(REPO_ROOT, "parameters", "default.prm")
 OUTPUT_ROOT = os.path.join(REPO_ROOT, "output", "doc")
 FIGURE_DIR = os.path.join(DOC_DIR, "figures")
@@ -108,49 +111,6 @@ STATUS_STYLE = {  # status -> (label, marker, face colour)
 # --------------------------------------------------------------------------
 # Parameter files and runs
 # --------------------------------------------------------------------------
-def set_prm_entries(text, overrides):
-    """Return a copy of a deal.II parameter file with some entries replaced.
-
-    ``overrides`` maps (subsection path tuple, entry name) to the new value.
-    Existing ``set`` lines are rewritten (their trailing comment dropped);
-    missing entries are added before the ``end`` of their subsection, or in a
-    new subsection block at the end of the file. Everything else is kept.
-    """
-    remaining = dict(overrides)
-    out, stack = [], []
-    set_re = re.compile(r"^(\s*)set\s+(.+?)\s*=(.*)$")
-    for line in text.splitlines():
-        code = line.split("#", 1)[0]
-        m_sub = re.match(r"^\s*subsection\s+(.+?)\s*$", code)
-        if m_sub:
-            stack.append(m_sub.group(1))
-            out.append(line)
-            continue
-        if code.strip() == "end" and stack:
-            path = tuple(stack)
-            for (sub, name), value in list(remaining.items()):
-                if sub == path:
-                    out.append("  " * len(stack) + f"set {name} = {value}")
-                    del remaining[(sub, name)]
-            stack.pop()
-            out.append(line)
-            continue
-        m_set = set_re.match(code)
-        if m_set:
-            key = (tuple(stack), m_set.group(2).strip())
-            if key in remaining:
-                out.append(f"{m_set.group(1)}set {key[1]} = {remaining.pop(key)}")
-                continue
-        out.append(line)
-    for (sub, name), value in remaining.items():
-        for depth, s in enumerate(sub):
-            out.append("  " * depth + f"subsection {s}")
-        out.append("  " * len(sub) + f"set {name} = {value}")
-        for depth in reversed(range(len(sub))):
-            out.append("  " * depth + "end")
-    return "\n".join(out) + "\n"
-
-
 def case_prm(case, output_directory):
     """Parameter file text for one case (h = 1/32, k = 1/64, VTU every step)."""
     with open(BASE_PRM) as f:
@@ -456,15 +416,6 @@ def write_counts(path, snaps):
 # --------------------------------------------------------------------------
 # Main
 # --------------------------------------------------------------------------
-def resolve_executable(arg):
-    """--executable, else $VC_EXECUTABLE, else build/viscoplastic_contact in the repo."""
-    if arg:
-        return os.path.abspath(arg)
-    if os.environ.get("VC_EXECUTABLE"):
-        return os.path.abspath(os.environ["VC_EXECUTABLE"])
-    return os.path.join(REPO_ROOT, DEFAULT_EXECUTABLE)
-
-
 def write_default_timing(path):
     """Copy the run summary, TimerOutput table and cost block of the default
     case's run.log into a markdown page."""

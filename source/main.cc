@@ -82,6 +82,18 @@ main(int argc, char **argv)
       else
         ViscoplasticContact<3>(parameters).run();
     }
+  catch (ExceptionBase &exc)
+    {
+      // deal.II's exceptions: only the message, which names the parameter,
+      // its value and what is accepted; where in the code is of no use here.
+      std::cerr << "\n----------------------------------------------------\n"
+                << "Error:\n";
+      exc.print_info(std::cerr);
+      std::cerr << "Aborting.\n"
+                << "----------------------------------------------------"
+                << std::endl;
+      return 1;
+    }
   catch (std::exception &exc)
     {
       std::cerr << "\n----------------------------------------------------\n"

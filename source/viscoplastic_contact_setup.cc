@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <regex>
+#include <sstream>
 
 namespace ViscoContact
 {
@@ -83,6 +84,7 @@ namespace ViscoContact
       std::map<std::string, double> constants;
       for (unsigned int d = 0; d < lengths.size(); ++d)
         constants["L" + std::to_string(d + 1)] = lengths[d];
+      std::string parser_message;
       try
         {
           function.initialize(load_variables<dim>(),
@@ -90,20 +92,26 @@ namespace ViscoContact
                               constants,
                               /*time_dependent=*/true);
           // muparser reports unknown variables only when evaluating.
-          function.value(Point<dim>(), 0);
+          Vector<double> values(dim);
+          function.vector_value(Point<dim>(), values);
+        }
+      catch (const ExceptionBase &exc)
+        {
+          std::ostringstream info;
+          exc.print_info(info);
+          parser_message = info.str();
         }
       catch (const std::exception &exc)
         {
-          AssertThrow(false,
-                      ExcMessage("Invalid parameter <" + entry
-                                 + "> in subsection <Loads>: value <"
-                                 + expression
-                                 + ">; accepted: muparser expressions in "
-                                 + load_variables<dim>()
-                                 + " and the constants L1, L2 (, L3). The "
-                                   "parser said: "
-                                 + exc.what()));
+          parser_message = exc.what();
         }
+      AssertThrow(parser_message.empty(),
+                  ExcMessage("Invalid parameter <" + entry
+                             + "> in subsection <Loads>: value <" + expression
+                             + ">; accepted: muparser expressions in "
+                             + load_variables<dim>()
+                             + " and the constants L1, L2 (, L3). "
+                             + parser_message));
     }
   } // namespace
 

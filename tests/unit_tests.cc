@@ -8,14 +8,25 @@
 #include <deal.II/base/symmetric_tensor.h>
 
 #include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
 
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/fe_system.h>
 
+#include <deal.II/fe/fe_values.h>
+
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparse_direct.h>
+#include <deal.II/lac/sparse_matrix.h>
+
+#include <deal.II/numerics/matrix_tools.h>
+#include <deal.II/numerics/vector_tools.h>
 
 #include <gtest/gtest.h>
 
@@ -471,6 +482,189 @@ TEST(ActiveSetSolver, CoupledNodesMatchExhaustiveEnumeration)
   ASSERT_TRUE(result.converged);
   for (unsigned int i = 0; i < m; ++i)
     EXPECT_NEAR(solver.normal_forces()[i], solutions[0][i], 1e-12);
+}
+
+
+
+// The condensation on a finite element problem: the plane-stress benchmark
+// body (6 x 6 squares split into triangles, clamped at x = 0, pressed down
+// by (0, -15) on the top, the benchmark law on the bottom). Reference: with
+// the pieces the active-set method ends on, the full-space system
+// (K + sum_sloped w s nu nu^T) u = b - sum_sloped w o nu, with u . nu = g
+// imposed at the nodes at the rigid limit, solved directly. Then, from the
+// residual of the unmodified system, the KKT conditions of the contact
+// problem are checked on their own: r <= g everywhere, the foundation force
+// is >= 0 at the rigid limit, and every node lies on the law's graph.
+TEST(ActiveSetSolver, CondensationMatchesFullSpaceSolveAndKKT)
+{
+  const unsigned int dim = 2;
+  Triangulation<dim> triangulation;
+  GridGenerator::subdivided_hyper_cube_with_simplices(triangulation, 6);
+  for (const auto &face : triangulation.active_face_iterators())
+    if (face->at_boundary())
+      {
+        const Point<dim> c = face->center();
+        face->set_boundary_id(c[0] < 1e-12       ? 0
+                              : c[1] < 1e-12     ? 2
+                              : c[1] > 1 - 1e-12 ? 3
+                                                 : 1);
+      }
+  const ReferenceCell cell_type = ReferenceCells::get_simplex<dim>();
+  const Mapping<dim> &mapping   = cell_type.get_default_linear_mapping<dim>();
+  const FESystem<dim> fe(FE_SimplexP<dim>(1), dim);
+  DoFHandler<dim>     dof_handler(triangulation);
+  dof_handler.distribute_dofs(fe);
+  const unsigned int n = dof_handler.n_dofs();
+
+  AffineConstraints<double> constraints;
+  VectorTools::interpolate_boundary_values(mapping,
+                                           dof_handler,
+                                           0,
+                                           Functions::ZeroFunction<dim>(dim),
+                                           constraints);
+  constraints.close();
+  DynamicSparsityPattern dsp(n);
+  DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
+  SparsityPattern sparsity;
+  sparsity.copy_from(dsp);
+  SparseMatrix<double> K(sparsity);
+  Vector<double>       b(n);
+
+  // Stiffness and the traction load, as the program assembles them.
+  const PerzynaMaterial<dim> material = benchmark_material<dim>();
+  const auto quadrature = cell_type.get_gauss_type_quadrature<dim>(1);
+  const auto face_quadrature
+    = cell_type.face_reference_cell(0).get_gauss_type_quadrature<dim - 1>(2);
+  FEValues<dim>                        fe_values(mapping,
+                          fe,
+                          quadrature,
+                          update_gradients | update_JxW_values);
+  FEFaceValues<dim>                    fe_face_values(mapping,
+                                   fe,
+                                   face_quadrature,
+                                   update_values | update_JxW_values);
+  const FEValuesExtractors::Vector     displacement(0);
+  FullMatrix<double>                   cell_matrix(6, 6);
+  Vector<double>                       cell_rhs(6);
+  std::vector<types::global_dof_index> indices(6);
+  for (const auto &cell : dof_handler.active_cell_iterators())
+    {
+      fe_values.reinit(cell);
+      cell_matrix = 0;
+      cell_rhs    = 0;
+      for (unsigned int i = 0; i < 6; ++i)
+        for (unsigned int j = 0; j < 6; ++j)
+          cell_matrix(i, j)
+            = (material.elasticity_tensor()
+               * fe_values[displacement].symmetric_gradient(j, 0))
+              * fe_values[displacement].symmetric_gradient(i, 0)
+              * fe_values.JxW(0);
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == 3)
+          {
+            fe_face_values.reinit(cell, f);
+            for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+              for (unsigned int i = 0; i < 6; ++i)
+                if (fe.system_to_component_index(i).first == 1)
+                  cell_rhs(i) += -15. * fe_face_values.shape_value(i, q)
+                                 * fe_face_values.JxW(q);
+          }
+      cell->get_dof_indices(indices);
+      constraints.distribute_local_to_global(cell_matrix,
+                                             cell_rhs,
+                                             indices,
+                                             K,
+                                             b);
+    }
+
+  // The free contact nodes (normal (0,-1): r = -u_y) and their weights.
+  const auto vertices
+    = lumped_boundary_weights<dim>(mapping, dof_handler, face_quadrature, {2});
+  std::vector<types::global_dof_index> y_dof;
+  std::vector<double>                  w;
+  for (const auto &cell : dof_handler.active_cell_iterators())
+    for (const unsigned int v : cell->vertex_indices())
+      if (vertices.count(cell->vertex_index(v)) == 1
+          && !constraints.is_constrained(cell->vertex_dof_index(v, 1))
+          && std::find(y_dof.begin(), y_dof.end(), cell->vertex_dof_index(v, 1))
+               == y_dof.end())
+        {
+          y_dof.push_back(cell->vertex_dof_index(v, 1));
+          w.push_back(vertices.at(cell->vertex_index(v)).weight);
+        }
+  const unsigned int m = y_dof.size();
+  ASSERT_EQ(m, 6u);
+
+  // Condensed: S = N K^{-1} N^T, d = N K^{-1} b, active set, u.
+  SparseDirectUMFPACK K_inverse;
+  K_inverse.initialize(K);
+  FullMatrix<double> S(m, m);
+  for (unsigned int j = 0; j < m; ++j)
+    {
+      Vector<double> column(n);
+      column[y_dof[j]] = -1.;
+      K_inverse.solve(column);
+      for (unsigned int i = 0; i < m; ++i)
+        S(i, j) = -column[y_dof[i]];
+    }
+  Vector<double> u_free = b;
+  K_inverse.solve(u_free);
+  Vector<double> d(m);
+  for (unsigned int i = 0; i < m; ++i)
+    d[i] = -u_free[y_dof[i]];
+  ContactActiveSetSolver solver;
+  solver.reinit(benchmark_law, S, w);
+  ASSERT_TRUE(solver.solve(d, 50, 1e-12).converged);
+  Vector<double> u_condensed = b;
+  for (unsigned int i = 0; i < m; ++i)
+    u_condensed[y_dof[i]] += solver.normal_forces()[i]; // b - N^T z
+  K_inverse.solve(u_condensed);
+
+  // Full space with the final pieces.
+  SparseMatrix<double> K_full(sparsity);
+  K_full.copy_from(K);
+  Vector<double>                            b_full = b, u_full(n);
+  std::map<types::global_dof_index, double> rigid_values;
+  unsigned int                              n_rigid = 0;
+  for (unsigned int i = 0; i < m; ++i)
+    {
+      const ContactLawPiece &p = benchmark_law.piece(solver.pieces()[i]);
+      if (p.vertical)
+        {
+          rigid_values[y_dof[i]] = -p.r_lower;
+          ++n_rigid;
+        }
+      else
+        {
+          K_full.add(y_dof[i], y_dof[i], w[i] * p.slope);
+          b_full[y_dof[i]] += w[i] * p.intercept;
+        }
+    }
+  ASSERT_GT(n_rigid, 0u);
+  ASSERT_LT(n_rigid, m);
+  MatrixTools::apply_boundary_values(rigid_values, K_full, u_full, b_full);
+  SparseDirectUMFPACK K_full_inverse;
+  K_full_inverse.initialize(K_full);
+  K_full_inverse.vmult(u_full, b_full);
+
+  Vector<double> difference = u_full;
+  difference -= u_condensed;
+  EXPECT_LE(difference.linfty_norm(), 1e-10 * u_full.linfty_norm());
+
+  // KKT from the residual of the unmodified system: z = (K u - b)_y.
+  Vector<double> residual(n);
+  K.vmult(residual, u_full);
+  residual -= b;
+  for (unsigned int i = 0; i < m; ++i)
+    {
+      const double r = -u_full[y_dof[i]], z = residual[y_dof[i]];
+      EXPECT_LE(r, 0.01 + 1e-12);
+      if (std::abs(r - 0.01) < 1e-12)
+        EXPECT_GE(z / w[i] - benchmark_law.compliance_pressure(0.01), -1e-9);
+      else
+        EXPECT_NEAR(z / w[i], benchmark_law.compliance_pressure(r), 1e-9);
+      EXPECT_NEAR(z, solver.normal_forces()[i], 1e-9);
+    }
 }
 
 

@@ -109,6 +109,8 @@ namespace ViscoContact
     setup_contact();
     void
     setup_quadrature_point_history();
+    void
+    report_scheme_limits() const;
 
     // One time step.
     void
@@ -214,6 +216,10 @@ namespace ViscoContact
     bool                          contact_enabled;
     std::vector<ContactNode<dim>> contact_nodes;
     ContactActiveSetSolver        active_set_solver;
+    // The smallest generalised eigenvalue of (stiffness, lumped normal
+    // boundary mass), model.md section 4: the step problem is strongly
+    // convex iff it exceeds the steepest softening of the contact law.
+    double uniqueness_eigenvalue = 0;
     // W = K^{-1} N^T, the displacement response to unit normal forces at
     // the contact nodes (n_dofs x m, column-major), kept when it fits in
     // memory: then u = K^{-1} b - W z needs one solve per step, not two.

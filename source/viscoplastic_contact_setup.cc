@@ -568,7 +568,63 @@ namespace ViscoContact
       for (unsigned int i = 0; i < m; ++i)
         weights[i] = contact_nodes[i].weight;
       active_set_solver.reinit(law, compliance, weights);
+
+      // min_v a(v,v) / sum_i w_i (v . nu_i)^2: for given normal displacements
+      // r the smallest energy is r^T S^{-1} r (the harmonic extension), so
+      // the minimum is 1 / lambda_max(W^{1/2} S W^{1/2}), W = diag(w).
+      LAPACKFullMatrix<double> scaled(m, m);
+      for (unsigned int i = 0; i < m; ++i)
+        for (unsigned int j = 0; j < m; ++j)
+          scaled(i, j) = std::sqrt(weights[i] * weights[j]) * compliance(i, j);
+      scaled.compute_eigenvalues();
+      double largest = 0;
+      for (unsigned int i = 0; i < m; ++i)
+        largest = std::max(largest, scaled.eigenvalue(i).real());
+      uniqueness_eigenvalue = 1. / largest;
     }
+  }
+
+
+
+  // @sect4{ViscoplasticContact::report_scheme_limits}
+  //
+  // Where the method may fail, said before the run starts (model.md,
+  // sections 3 and 4): the explicit history update is forward Euler on a
+  // relaxation with rate up to lambda_max(E)/(2 lambda), stable for
+  // k < 4 lambda / lambda_max(E); and the step problem has a unique solution
+  // (its energy is strongly convex) iff the smallest generalised eigenvalue
+  // of stiffness against the lumped normal boundary mass exceeds the
+  // steepest softening of the contact law.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::report_scheme_limits() const
+  {
+    if (parameters.plasticity)
+      {
+        const double bound
+          = 4 * material.viscosity() / material.largest_elastic_eigenvalue();
+        pcout << "Explicit history update: stable for k < 4 lambda / "
+                 "lambda_max(E) = "
+              << bound << " s; k = " << parameters.time_step << " s\n";
+        if (parameters.time_step >= bound)
+          pcout << "WARNING: the time step exceeds the stability limit of the "
+                   "explicit history update (model.md, section 3): the "
+                   "stresses may oscillate or blow up.\n";
+      }
+    if (contact_enabled)
+      {
+        const double softening = active_set_solver.law().steepest_softening();
+        pcout << "Uniqueness: smallest eigenvalue of (stiffness, lumped "
+                 "normal boundary mass) = "
+              << uniqueness_eigenvalue
+              << ", steepest softening of the contact law = " << softening
+              << '\n';
+        if (uniqueness_eigenvalue <= softening)
+          pcout << "WARNING: the contact law softens more than the body can "
+                   "carry (model.md, section 4): the step problem may have "
+                   "several solutions and the active-set iteration may "
+                   "cycle.\n";
+      }
   }
 
 

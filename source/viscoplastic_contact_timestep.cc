@@ -40,6 +40,7 @@ namespace ViscoContact
           << " contact nodes, " << n_time_steps << " time steps\n"
           << "Model: " << (parameters.plasticity ? "viscoplastic" : "elastic")
           << ", contact " << (contact_enabled ? "on" : "off") << '\n';
+    report_scheme_limits();
 
     // The steps whose contact profile is written: the ones closest to the
     // requested times.

@@ -137,6 +137,20 @@ namespace ViscoContact
       parse_parameters(ParameterHandler &prm);
     };
 
+    struct ConvergenceStudy
+    {
+      bool                      study_enabled;
+      std::vector<unsigned int> study_subdivisions;
+      std::vector<double>       study_time_steps;
+      unsigned int              reference_subdivisions;
+      double                    reference_time_step;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm, const std::string &cell_type);
+    };
+
     struct AllParameters : public Geometry,
                            public BoundaryParts,
                            public Material,
@@ -145,6 +159,7 @@ namespace ViscoContact
                            public Time,
                            public ActiveSetSolver,
                            public LinearSolver,
+                           public ConvergenceStudy,
                            public Output
     {
       static void

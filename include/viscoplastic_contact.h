@@ -28,6 +28,7 @@
 
 #include <array>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -96,6 +97,27 @@ namespace ViscoContact
 
     void
     run();
+
+    // For studies that compare runs (the convergence study): a function
+    // called after every time step with the step number and time, and read
+    // access to the state it may inspect then.
+    void
+    set_step_observer(
+      const std::function<void(const unsigned int, const double)> &observer);
+    const Triangulation<dim> &
+    get_triangulation() const;
+    const DoFHandler<dim> &
+    get_dof_handler() const;
+    const Mapping<dim> &
+    get_mapping() const;
+    const Vector<double> &
+    get_displacement() const;
+    // sigma_n at the stress points of cell number active_cell_index.
+    const SymmetricTensor<2, dim> &
+    get_stress(const unsigned int active_cell_index,
+               const unsigned int stress_point) const;
+    unsigned int
+    n_stress_points_per_cell() const;
 
   private:
     // Setup.
@@ -226,6 +248,8 @@ namespace ViscoContact
     LAPACKFullMatrix<double> contact_responses;
     bool                     contact_responses_stored    = false;
     unsigned int             total_active_set_iterations = 0;
+
+    std::function<void(const unsigned int, const double)> step_observer;
 
     // Output records.
     std::vector<std::pair<double, std::string>> times_and_names;

@@ -3,6 +3,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include "convergence_study.h"
 #include "parameters.h"
 #include "viscoplastic_contact.h"
 
@@ -77,7 +78,11 @@ main(int argc, char **argv)
       Parameters::AllParameters parameters;
       parameters.parse_parameters(prm);
 
-      if (parameters.dimension == 2)
+      if (parameters.study_enabled && parameters.dimension == 2)
+        ConvergenceStudy<2>(parameters).run();
+      else if (parameters.study_enabled)
+        ConvergenceStudy<3>(parameters).run();
+      else if (parameters.dimension == 2)
         ViscoplasticContact<2>(parameters).run();
       else
         ViscoplasticContact<3>(parameters).run();

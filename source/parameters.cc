@@ -566,6 +566,101 @@ namespace ViscoContact
 
 
     void
+    ConvergenceStudy::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Convergence study");
+      {
+        prm.declare_entry(
+          "Enabled",
+          "false",
+          Patterns::Bool(),
+          "Instead of one run: run the scene for each (Subdivisions, Time "
+          "steps) pair and for the reference resolution, and tabulate "
+          "max_n (||u_n - u_n^ref||_V + ||sigma_n - sigma_n^ref||_Q) with "
+          "observed orders in convergence.csv (simplex meshes).");
+        prm.declare_entry("Subdivisions",
+                          "2, 4, 8, 16, 32",
+                          Patterns::List(Patterns::Integer(1)),
+                          "Mesh of each run: squares along each edge.");
+        prm.declare_entry("Time steps",
+                          "0.5, 0.25, 0.125, 0.0625, 0.03125",
+                          Patterns::List(Patterns::Double(0)),
+                          "Time step of each run (one per Subdivisions entry); "
+                          "each must be a multiple of the reference time "
+                          "step.");
+        prm.declare_entry("Reference subdivisions",
+                          "64",
+                          Patterns::Integer(1),
+                          "Mesh of the reference run; a multiple of every "
+                          "Subdivisions entry, so that the meshes are nested.");
+        prm.declare_entry("Reference time step",
+                          "0.015625",
+                          Patterns::Double(0),
+                          "Time step of the reference run.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    ConvergenceStudy::parse_parameters(ParameterHandler  &prm,
+                                       const std::string &cell_type)
+    {
+      prm.enter_subsection("Convergence study");
+      {
+        study_enabled = prm.get_bool("Enabled");
+        for (const int n : Utilities::string_to_int(
+               Utilities::split_string_list(prm.get("Subdivisions"))))
+          study_subdivisions.push_back(n);
+        study_time_steps = Utilities::string_to_double(
+          Utilities::split_string_list(prm.get("Time steps")));
+        reference_subdivisions = prm.get_integer("Reference subdivisions");
+        reference_time_step    = prm.get_double("Reference time step");
+        if (study_enabled)
+          {
+            require(cell_type == "simplex",
+                    "Geometry",
+                    "Cell type",
+                    cell_type,
+                    "simplex for a convergence study (piecewise-constant "
+                    "stresses are compared cell by cell)");
+            require(study_time_steps.size() == study_subdivisions.size(),
+                    "Convergence study",
+                    "Time steps",
+                    prm.get("Time steps"),
+                    "one time step per Subdivisions entry ("
+                      + std::to_string(study_subdivisions.size()) + " values)");
+            require(reference_time_step > 0,
+                    "Convergence study",
+                    "Reference time step",
+                    prm.get("Reference time step"),
+                    "a positive number");
+            for (const unsigned int n : study_subdivisions)
+              require(reference_subdivisions % n == 0,
+                      "Convergence study",
+                      "Subdivisions",
+                      prm.get("Subdivisions"),
+                      "divisors of Reference subdivisions = "
+                        + std::to_string(reference_subdivisions)
+                        + " (nested meshes)");
+            for (const double k : study_time_steps)
+              {
+                const double ratio = k / reference_time_step;
+                require(k > 0 && std::abs(ratio - std::round(ratio)) < 1e-9
+                          && std::round(ratio) >= 1,
+                        "Convergence study",
+                        "Time steps",
+                        prm.get("Time steps"),
+                        "positive multiples of Reference time step = "
+                          + prm.get("Reference time step"));
+              }
+          }
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
     AllParameters::declare_parameters(ParameterHandler &prm)
     {
       Geometry::declare_parameters(prm);
@@ -576,6 +671,7 @@ namespace ViscoContact
       Time::declare_parameters(prm);
       ActiveSetSolver::declare_parameters(prm);
       LinearSolver::declare_parameters(prm);
+      ConvergenceStudy::declare_parameters(prm);
       Output::declare_parameters(prm);
     }
 
@@ -590,6 +686,7 @@ namespace ViscoContact
       Time::parse_parameters(prm);
       ActiveSetSolver::parse_parameters(prm);
       LinearSolver::parse_parameters(prm);
+      ConvergenceStudy::parse_parameters(prm, cell_type);
       Output::parse_parameters(prm);
     }
   } // namespace Parameters

@@ -65,6 +65,8 @@ namespace ViscoContact
           = solve_time_step(n, times[n]);
         update_stresses(n < n_time_steps ? times[n + 1] - times[n] : 0.);
         time_loop_compute_time += step_timer.wall_time();
+        if (step_observer)
+          step_observer(n, times[n]);
 
         write_time_series_row(n, times[n], result, loop_timer.wall_time());
         if (parameters.verbose)
@@ -88,6 +90,74 @@ namespace ViscoContact
       }
 
     print_run_summary();
+  }
+
+
+
+  // @sect4{Access for studies}
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::set_step_observer(
+    const std::function<void(const unsigned int, const double)> &observer)
+  {
+    step_observer = observer;
+  }
+
+
+
+  template <int dim>
+  const Triangulation<dim> &
+  ViscoplasticContact<dim>::get_triangulation() const
+  {
+    return triangulation;
+  }
+
+
+
+  template <int dim>
+  const DoFHandler<dim> &
+  ViscoplasticContact<dim>::get_dof_handler() const
+  {
+    return dof_handler;
+  }
+
+
+
+  template <int dim>
+  const Mapping<dim> &
+  ViscoplasticContact<dim>::get_mapping() const
+  {
+    return *mapping;
+  }
+
+
+
+  template <int dim>
+  const Vector<double> &
+  ViscoplasticContact<dim>::get_displacement() const
+  {
+    return solution;
+  }
+
+
+
+  template <int dim>
+  const SymmetricTensor<2, dim> &
+  ViscoplasticContact<dim>::get_stress(const unsigned int active_cell_index,
+                                       const unsigned int stress_point) const
+  {
+    return quadrature_point_history[active_cell_index * stress_quadrature.size()
+                                    + stress_point]
+      .stress;
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  ViscoplasticContact<dim>::n_stress_points_per_cell() const
+  {
+    return stress_quadrature.size();
   }
 
 

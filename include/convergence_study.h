@@ -65,6 +65,11 @@ namespace ViscoContact
       double       max_error_sigma   = 0;
       double       max_error         = 0;
       unsigned int n_compared_levels = 0;
+      // A run that stopped (iteration limit, blow-up) is kept in the table
+      // with infinite error, so that a stability sweep shows where a method
+      // fails instead of aborting the study.
+      bool        failed = false;
+      std::string failure;
     };
 
     Parameters::AllParameters

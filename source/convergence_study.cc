@@ -104,7 +104,20 @@ namespace ViscoContact
             run.stresses.push_back(std::move(stress));
           });
         Timer timer;
-        problem.run();
+        try
+          {
+            problem.run();
+          }
+        catch (const ExceptionBase &exc)
+          {
+            std::ostringstream info;
+            exc.print_info(info);
+            run.failed  = true;
+            run.failure = info.str();
+            std::cout << "Convergence study: the run h = 1/" << run.subdivisions
+                      << ", k = " << run.time_step << " failed:\n"
+                      << run.failure;
+          }
         run.wall_time = timer.wall_time();
       }
 
@@ -124,6 +137,8 @@ namespace ViscoContact
         reference_steps = step;
         for (Run &run : runs)
           {
+            if (run.failed)
+              continue;
             const auto level
               = std::find_if(run.times.begin(), run.times.end(), [&](double t) {
                   return std::abs(t - time) <= 1e-10 * parameters.end_time;
@@ -296,7 +311,8 @@ namespace ViscoContact
   // @sect4{ConvergenceStudy::write_table}
   //
   // convergence.csv and the same table on the terminal. The observed order
-  // between consecutive runs is log(e_{i-1}/e_i) / log((h+k)_{i-1}/(h+k)_i).
+  // between consecutive runs is log(e_{i-1}/e_i) / log(s_{i-1}/s_i) with
+  // s = h + k, or s = k (s = h) when the mesh (the time step) is the same.
   template <int dim>
   void
   ConvergenceStudy<dim>::write_table(const unsigned int reference_dofs,
@@ -331,14 +347,30 @@ namespace ViscoContact
         const Run   &run   = runs[r];
         const double h     = parameters.lengths[0] / run.subdivisions;
         const auto   order = [&](const double Run::*member) -> double {
-          if (r == 0)
+          if (r == 0 || runs[r - 1].failed)
             return std::numeric_limits<double>::quiet_NaN();
           const Run   &previous = runs[r - 1];
           const double h_prev = parameters.lengths[0] / previous.subdivisions;
+          // The order in the quantity that varies: k on a fixed mesh, h at a
+          // fixed step, h + k when both change.
+          const double size_prev
+            = (previous.subdivisions == run.subdivisions ? 0. : h_prev)
+              + (previous.time_step == run.time_step ? 0. : previous.time_step);
+          const double size
+            = (previous.subdivisions == run.subdivisions ? 0. : h)
+              + (previous.time_step == run.time_step ? 0. : run.time_step);
           return std::log(previous.*member / run.*member)
-                 / std::log((h_prev + previous.time_step)
-                            / (h + run.time_step));
+                 / std::log(size_prev / size);
         };
+        if (run.failed)
+          {
+            csv << h << ',' << run.time_step << ',' << run.subdivisions
+                << ",,,0," << run.wall_time << ",inf,inf,inf,nan,nan,nan\n";
+            std::cout << std::setw(6) << "1/" + std::to_string(run.subdivisions)
+                      << std::setw(11) << std::setprecision(4) << run.time_step
+                      << "   failed: see above\n";
+            continue;
+          }
         const double       order_u     = order(&Run::max_error_u);
         const double       order_sigma = order(&Run::max_error_sigma);
         const double       order_total = order(&Run::max_error);

@@ -47,7 +47,9 @@ DOC_DIR = os.path.join(REPO_ROOT, "doc")
 
 def read_rows(path):
     with open(path, newline="") as f:
-        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+        # Empty fields (a run that failed has no dofs or steps) read as NaN.
+        return [{k: float(v) if v else float("nan") for k, v in row.items()}
+                for row in csv.DictReader(f)]
 
 
 def iterations_per_step(study):
@@ -170,6 +172,10 @@ def main():
                   "|---|---|---|---|---|"]
         for r in tables[f"stability_lambda_{viscosity}"]:
             order = "-" if r["order"] != r["order"] else f"{r['order']:.2f}"
+            if r["error"] == float("inf"):
+                lines.append(f"| 1/{int(round(1 / r['k']))} | stopped: stresses "
+                             f"not finite | | | |")
+                continue
             lines.append(f"| 1/{int(round(1 / r['k']))} | {r['error_u']:.3e} | "
                          f"{r['error_sigma']:.3e} | {r['error']:.3e} | {order} |")
         lines.append("")

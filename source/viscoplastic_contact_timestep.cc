@@ -477,6 +477,19 @@ namespace ViscoContact
       }
     if (update_history)
       constraints.condense(history_load);
+
+    // An unstable explicit update ends in stresses that overflow: stop
+    // rather than go on with (and write) infinite or NaN fields.
+    AssertThrow(std::isfinite(max_von_mises),
+                ExcMessage(
+                  "The stresses are no longer finite (NaN or Inf). With the "
+                  "explicit history update this means the time step is too "
+                  "large: it is stable for k < 4 lambda / lambda_max(E) = "
+                  + std::to_string(4 * material.viscosity()
+                                   / material.largest_elastic_eigenvalue())
+                  + " s (model.md, section 3); <Time step> in subsection "
+                    "<Time> is "
+                  + std::to_string(parameters.time_step) + " s."));
   }
 
 

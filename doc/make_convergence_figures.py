@@ -18,6 +18,7 @@ Usage: doc/make_convergence_figures.py [--executable PATH] [--skip-runs]
 import argparse
 import csv
 import glob
+import math
 import os
 import subprocess
 import sys
@@ -37,8 +38,9 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(
     os.path.abspath(__file__))), "scripts"))
 from vc_scripts import REPO_ROOT, resolve_executable  # noqa: E402
 
-STUDIES = [("convergence", "h = k = 1/2 ... 1/32 against 1/64"),
-           ("convergence_fine", "h = k = 1/4 ... 1/128 against 1/256")]
+STUDIES = [("convergence", "explicit scheme, h = k = 1/2 ... 1/32 against 1/64"),
+           ("convergence_fine", "explicit scheme, h = k = 1/4 ... 1/128 against 1/256"),
+           ("convergence_implicit", "implicit scheme, h = k = 1/2 ... 1/32 against 1/64")]
 # Stability sweeps: viscosity lambda -> parameter file; h = 1/16 fixed.
 VISCOSITIES = ["50", "5", "0.5"]
 LARGEST_ELASTIC_EIGENVALUE = 1000 / (1 - 0.4)  # E/(1-k), plane stress
@@ -82,6 +84,7 @@ def main():
         executable = resolve_executable(args.executable)
         names = [study for study, _ in STUDIES]
         names += [f"stability_lambda_{v}" for v in VISCOSITIES]
+        names += ["stability_lambda_0.5_implicit"]
         for study in names:
             print(f"running parameters/{study}.prm ...", flush=True)
             with open(os.path.join(REPO_ROOT, "output", f"{study}.log"), "w") as log:
@@ -94,13 +97,13 @@ def main():
               for study, _ in STUDIES}
 
     figure, (by_time, by_size) = plt.subplots(1, 2, figsize=(11, 4.5))
-    for (study, label), marker in zip(STUDIES, ["o", "s"]):
-        rows = tables[study]
+    for (study, label), marker in zip(STUDIES, ["o", "s", "^"]):
+        rows = [r for r in tables[study] if math.isfinite(r["error"])]
         error = [r["error"] for r in rows]
         by_time.loglog([r["wall_time"] for r in rows], error, marker + "-",
-                       label=f"explicit scheme, {label}")
+                       label=label)
         by_size.loglog([r["h"] + r["k"] for r in rows], error, marker + "-",
-                       label=f"explicit scheme, {label}")
+                       label=label)
     rows = tables["convergence_fine"]
     x = [r["h"] + r["k"] for r in rows]
     by_size.loglog(x, [rows[0]["error"] * xi / x[0] for xi in x], "k--",
@@ -156,6 +159,13 @@ def main():
                   "error sigma | order | error | order |",
                   "|---|---|---|---|---|---|---|---|---|---|---|"]
         for r in tables[study]:
+            if not math.isfinite(r["error"]):
+                lines.append(f"| 1/{int(round(1 / r['h']))} | "
+                             f"1/{int(round(1 / r['k']))} | failed: the "
+                             f"step's iteration did not converge | | | | | | "
+                             f"| | |")
+                continue
+
             def order(key):
                 return "-" if r[key] != r[key] else f"{r[key]:.2f}"
             lines.append(
@@ -165,7 +175,9 @@ def main():
                 f"{r['error_sigma']:.3e} | {order('order_sigma')} | "
                 f"{r['error']:.3e} | {order('order')} |")
         lines.append("")
-    for viscosity in VISCOSITIES:
+    tables["stability_lambda_0.5_implicit"] = read_rows(os.path.join(
+        REPO_ROOT, "output", "stability_lambda_0.5_implicit", "convergence.csv"))
+    for viscosity in VISCOSITIES + ["0.5_implicit"]:
         lines += [f"## parameters/stability_lambda_{viscosity}.prm: h = 1/16, "
                   f"lambda = {viscosity}, against k = 1/1024", "",
                   "| k | error u | error sigma | error | order in k |",
@@ -173,8 +185,8 @@ def main():
         for r in tables[f"stability_lambda_{viscosity}"]:
             order = "-" if r["order"] != r["order"] else f"{r['order']:.2f}"
             if r["error"] == float("inf"):
-                lines.append(f"| 1/{int(round(1 / r['k']))} | stopped: stresses "
-                             f"not finite | | | |")
+                lines.append(f"| 1/{int(round(1 / r['k']))} | stopped (see "
+                             f"doc/accuracy.md) | | | |")
                 continue
             lines.append(f"| 1/{int(round(1 / r['k']))} | {r['error_u']:.3e} | "
                          f"{r['error_sigma']:.3e} | {r['error']:.3e} | {order} |")

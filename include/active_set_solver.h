@@ -48,10 +48,13 @@ namespace ViscoContact
     {
       bool                         converged;
       std::vector<IterationRecord> history;
+      // Iterations of earlier solves in the same time step (the implicit
+      // scheme solves one contact problem per Newton iteration).
+      unsigned int earlier_iterations = 0;
       unsigned int
       iterations() const
       {
-        return history.size();
+        return earlier_iterations + history.size();
       }
       std::string
       describe() const;
@@ -63,6 +66,11 @@ namespace ViscoContact
     reinit(const ContactLaw          &law,
            const FullMatrix<double>  &compliance,
            const std::vector<double> &weights);
+
+    // A new compliance S (the implicit scheme's tangent changes per Newton
+    // iteration), keeping every node on its piece as warm start.
+    void
+    update_compliance(const FullMatrix<double> &compliance);
 
     // Solve for given free normal displacements d = N K^{-1} b.
     Result

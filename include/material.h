@@ -48,6 +48,17 @@ namespace ViscoContact
     viscoplastic_rate(const SymmetricTensor<2, dim> &sigma,
                       double *multiplier = nullptr) const;
 
+    // The backward-Euler (implicit) stress update of model.md, section 3:
+    // the sigma with sigma + a E (sigma - P_K sigma) = trial, a = k/(2 lambda),
+    // solved to machine precision. If tangent is given it receives
+    // d sigma / d trial (multiply by E for the consistent tangent
+    // d sigma / d eps); multiplier as for project_onto_yield_set().
+    SymmetricTensor<2, dim>
+    implicit_stress_update(const SymmetricTensor<2, dim> &trial,
+                           const double                   a,
+                           SymmetricTensor<4, dim>       *tangent = nullptr,
+                           double *multiplier = nullptr) const;
+
     // (E a, b), the energy inner product the projection is orthogonal in.
     double
     energy_product(const SymmetricTensor<2, dim> &a,
@@ -87,6 +98,18 @@ namespace ViscoContact
   template <>
   SymmetricTensor<2, 3>
   PerzynaMaterial<3>::project_onto_yield_set(const SymmetricTensor<2, 3> &,
+                                             double *) const;
+  template <>
+  SymmetricTensor<2, 2>
+  PerzynaMaterial<2>::implicit_stress_update(const SymmetricTensor<2, 2> &,
+                                             const double,
+                                             SymmetricTensor<4, 2> *,
+                                             double *) const;
+  template <>
+  SymmetricTensor<2, 3>
+  PerzynaMaterial<3>::implicit_stress_update(const SymmetricTensor<2, 3> &,
+                                             const double,
+                                             SymmetricTensor<4, 3> *,
                                              double *) const;
 } // namespace ViscoContact
 

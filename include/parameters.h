@@ -91,8 +91,9 @@ namespace ViscoContact
 
     struct Time
     {
-      double end_time;
-      double time_step;
+      double      end_time;
+      double      time_step;
+      std::string stress_update; // "explicit" or "implicit"
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -143,8 +143,19 @@ namespace ViscoContact
     assemble_history_load();
     ContactActiveSetSolver::Result
     solve_time_step(const unsigned int step, const double time);
+    ContactActiveSetSolver::Result
+    solve_implicit_time_step(const unsigned int step,
+                             const double       time,
+                             const double       time_step);
     void
-    update_stresses(const double next_time_step);
+    assemble_tangent_system(const Vector<double> &displacement, const double a);
+    ContactActiveSetSolver::Result
+    solve_contact_with(SparseDirectUMFPACK  &factorization,
+                       const Vector<double> &rhs,
+                       Vector<double>       &displacement);
+    void
+    update_stresses(const double current_time_step,
+                    const double next_time_step);
 
     // Output.
     void
@@ -200,6 +211,12 @@ namespace ViscoContact
     SparsityPattern      sparsity_pattern;
     SparseMatrix<double> stiffness_matrix;
     SparseCholesky       cholesky_factorization;
+    // The implicit scheme's tangent stiffness, re-assembled and factorised
+    // (LU: the consistent tangent is unsymmetric) per Newton iteration.
+    SparseMatrix<double> tangent_matrix;
+    SparseDirectUMFPACK  tangent_factorization;
+    Vector<double>       internal_force;
+    unsigned int         total_newton_iterations = 0;
     SparseDirectUMFPACK  lu_factorization;
     unsigned int         n_operator_assemblies      = 0;
     unsigned int         n_operator_factorizations  = 0;

@@ -71,6 +71,20 @@ namespace ViscoContact
 
 
 
+  void
+  ContactActiveSetSolver::update_compliance(
+    const FullMatrix<double> &compliance)
+  {
+    AssertDimension(compliance.m(), n_nodes());
+    S = compliance;
+    for (unsigned int i = 0; i < n_nodes(); ++i)
+      c[i] = std::max(1. / (w[i] * S(i, i)),
+                      2 * contact_law->steepest_softening());
+    factorized_pieces.clear();
+  }
+
+
+
   // @sect4{ContactActiveSetSolver::update_forces}
   //
   // For fixed pieces the nodal equations are linear. A node on a sloped piece

@@ -2,6 +2,7 @@
 
 #include "material.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -160,6 +161,56 @@ namespace ViscoContact
       return std::sqrt(0.5 * c.x[0] * c.x[0]
                        + 1.5 * (c.x[1] * c.x[1] + c.x[2] * c.x[2]));
     }
+
+    // The root mu > 0 of |x(mu)|_M = sigma_Y for
+    // x_a = y_a/(1 + mu t_s), x_{b,c} = y_{b,c}/(1 + mu t_d): the multiplier
+    // of the E-norm projection (t = M/E) and, with other ratios t, of the
+    // backward-Euler update. y must lie outside K (|y|_M = y_norm > sigma_Y).
+    double
+    two_mode_multiplier(const PlaneStressCoordinates &y,
+                        const double                  y_norm,
+                        const double                  t_s,
+                        const double                  t_d,
+                        const double                  sigma_yield,
+                        const double                  guess)
+    {
+      const double A = 0.5 * y.x[0] * y.x[0];
+      const double D = 1.5 * (y.x[1] * y.x[1] + y.x[2] * y.x[2]);
+
+      // |y|_M/(1 + mu t_max) <= |x(mu)|_M <= |y|_M/(1 + mu t_min).
+      const double t_max  = (D > 0 ? std::max(t_s, t_d) : t_s);
+      const double t_min  = (A > 0 ? std::min(t_s, t_d) : t_d);
+      const double excess = y_norm / sigma_yield - 1;
+      double       lower = excess / t_max, upper = excess / t_min;
+      double       mu = (guess > lower && guess < upper ? guess : lower);
+      for (unsigned int iteration = 0; iteration < 100; ++iteration)
+        {
+          const double s_s     = 1. / (1 + mu * t_s);
+          const double s_d     = 1. / (1 + mu * t_d);
+          const double norm_sq = A * s_s * s_s + D * s_d * s_d;
+          const double norm    = std::sqrt(norm_sq);
+          const double phi     = 1. / norm - 1. / sigma_yield;
+          if (phi < 0)
+            lower = std::max(lower, mu);
+          else
+            upper = std::min(upper, mu);
+          // phi' = (A t_s s_s^3 + D t_d s_d^3) / |x|^3 > 0.
+          const double d_phi
+            = (A * t_s * s_s * s_s * s_s + D * t_d * s_d * s_d * s_d)
+              / (norm_sq * norm);
+          double next = mu - phi / d_phi;
+          if (!(next >= lower && next <= upper))
+            next = 0.5 * (lower + upper);
+          // Newton converges quadratically: once a step is below 1e-8
+          // relative, the error of the next iterate is of order 1e-16.
+          const bool converged = std::abs(next - mu) <= 1e-8 * std::abs(next);
+          mu                   = next;
+          if (converged || phi == 0)
+            break;
+        }
+
+      return mu;
+    }
   } // namespace
 
 
@@ -189,40 +240,8 @@ namespace ViscoContact
     const double k   = poisson_ratio;
     const double t_s = 0.5 * (1 - k) / young_modulus;
     const double t_d = 1.5 * (1 + k) / young_modulus;
-    const double A   = 0.5 * y.x[0] * y.x[0];
-    const double D   = 1.5 * (y.x[1] * y.x[1] + y.x[2] * y.x[2]);
-
-    // |y|_M/(1 + mu t_max) <= |x(mu)|_M <= |y|_M/(1 + mu t_min).
-    const double t_max  = (D > 0 ? std::max(t_s, t_d) : t_s);
-    const double t_min  = (A > 0 ? std::min(t_s, t_d) : t_d);
-    const double excess = y_norm / sigma_yield - 1;
-    double       lower = excess / t_max, upper = excess / t_min;
-    double       mu = (guess > lower && guess < upper ? guess : lower);
-    for (unsigned int iteration = 0; iteration < 100; ++iteration)
-      {
-        const double s_s     = 1. / (1 + mu * t_s);
-        const double s_d     = 1. / (1 + mu * t_d);
-        const double norm_sq = A * s_s * s_s + D * s_d * s_d;
-        const double norm    = std::sqrt(norm_sq);
-        const double phi     = 1. / norm - 1. / sigma_yield;
-        if (phi < 0)
-          lower = std::max(lower, mu);
-        else
-          upper = std::min(upper, mu);
-        // phi' = (A t_s s_s^3 + D t_d s_d^3) / |x|^3 > 0.
-        const double d_phi
-          = (A * t_s * s_s * s_s * s_s + D * t_d * s_d * s_d * s_d)
-            / (norm_sq * norm);
-        double next = mu - phi / d_phi;
-        if (!(next >= lower && next <= upper))
-          next = 0.5 * (lower + upper);
-        // Newton converges quadratically: once a step is below 1e-8
-        // relative, the error of the next iterate is of order 1e-16.
-        const bool converged = std::abs(next - mu) <= 1e-8 * std::abs(next);
-        mu                   = next;
-        if (converged || phi == 0)
-          break;
-      }
+    const double mu
+      = two_mode_multiplier(y, y_norm, t_s, t_d, sigma_yield, guess);
 
     if (multiplier != nullptr)
       *multiplier = mu;
@@ -230,6 +249,97 @@ namespace ViscoContact
     y.x[1] /= (1 + mu * t_d);
     y.x[2] /= (1 + mu * t_d);
     return from_coordinates(y);
+  }
+
+
+
+  // @sect4{The 2D backward-Euler update and its tangent}
+  //
+  // With P_K sigma = D(mu) sigma mode by mode, the equation
+  // sigma + a E (sigma - P_K sigma) = y gives, per mode i,
+  //   sigma_i = y_i (1 + mu t_i) / (1 + mu tau_i),   tau_i = t_i (1 + a E_i),
+  //   (P_K sigma)_i = y_i / (1 + mu tau_i),
+  // so mu is the multiplier of the same two-mode equation as the projection,
+  // with the ratios tau instead of t. Differentiating sigma_i = f_i(mu) y_i,
+  // with mu(y) from |P_K sigma|_M = sigma_Y, gives in the mode coordinates
+  //   T_ij = delta_ij f_i - a M_i y_i s_i^2 M_j y_j s_j^2 / sum_l M_l y_l^2
+  //   tau_l s_l^3,
+  // s_i = 1/(1 + mu tau_i): symmetric, as d sigma / d trial must be. The
+  // consistent tangent T E is not (E_i differ between the modes), so the
+  // implicit scheme's stiffness matrix is unsymmetric.
+  template <>
+  SymmetricTensor<2, 2>
+  PerzynaMaterial<2>::implicit_stress_update(const SymmetricTensor<2, 2> &trial,
+                                             const double                 a,
+                                             SymmetricTensor<4, 2> *tangent,
+                                             double *multiplier) const
+  {
+    const PlaneStressCoordinates y = to_coordinates(trial);
+    const double guess             = (multiplier != nullptr ? *multiplier : 0.);
+    const double y_norm            = yield_norm(y);
+    if (multiplier != nullptr)
+      *multiplier = 0;
+    if (y_norm <= sigma_yield)
+      {
+        if (tangent != nullptr)
+          *tangent = identity_tensor<2>();
+        return trial;
+      }
+
+    const double k         = poisson_ratio;
+    const double E_mode[3] = {young_modulus / (1 - k),
+                              young_modulus / (1 + k),
+                              young_modulus / (1 + k)};
+    const double M_mode[3] = {0.5, 1.5, 1.5};
+    double       t_mode[3], tau_mode[3];
+    for (unsigned int i = 0; i < 3; ++i)
+      {
+        t_mode[i]   = M_mode[i] / E_mode[i];
+        tau_mode[i] = t_mode[i] * (1 + a * E_mode[i]);
+      }
+    const double mu = two_mode_multiplier(y,
+                                          y_norm,
+                                          tau_mode[0],
+                                          tau_mode[1],
+                                          sigma_yield,
+                                          guess);
+    if (multiplier != nullptr)
+      *multiplier = mu;
+
+    PlaneStressCoordinates sigma;
+    double                 s[3];
+    for (unsigned int i = 0; i < 3; ++i)
+      {
+        s[i]       = 1. / (1 + mu * tau_mode[i]);
+        sigma.x[i] = y.x[i] * (1 + mu * t_mode[i]) * s[i];
+      }
+
+    if (tangent != nullptr)
+      {
+        double denominator = 0;
+        for (unsigned int l = 0; l < 3; ++l)
+          denominator
+            += M_mode[l] * y.x[l] * y.x[l] * tau_mode[l] * s[l] * s[l] * s[l];
+        // The basis tensors of the mode coordinates.
+        std::array<SymmetricTensor<2, 2>, 3> basis;
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            PlaneStressCoordinates unit{{0., 0., 0.}};
+            unit.x[i] = 1;
+            basis[i]  = from_coordinates(unit);
+          }
+        *tangent = SymmetricTensor<4, 2>();
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            {
+              const double T_ij = (i == j ? (1 + mu * t_mode[i]) * s[i] : 0.)
+                                  - a * M_mode[i] * y.x[i] * s[i] * s[i]
+                                      * M_mode[j] * y.x[j] * s[j] * s[j]
+                                      / denominator;
+              *tangent += T_ij * outer_product(basis[i], basis[j]);
+            }
+      }
+    return from_coordinates(sigma);
   }
 
 
@@ -266,6 +376,44 @@ namespace ViscoContact
       *multiplier = young_modulus / (1 + poisson_ratio) * (1 / scaling - 1) / 3;
     const SymmetricTensor<2, 3> spherical = tau - deviator(tau);
     return spherical + scaling * deviator(tau);
+  }
+
+
+
+  // The 3D update: the trace is untouched, the deviator scaled by
+  // f = (1 + mu t)/(1 + mu tau), t = 3/(4G), tau = t (1 + 2 a G), with
+  // 1 + mu tau = q/sigma_Y, q = sqrt(3/2)|dev trial|; differentiating gives
+  // T = P_vol + f P_dev - (9 a / (4 tau q^3)) sigma_Y dev y (x) dev y.
+  template <>
+  SymmetricTensor<2, 3>
+  PerzynaMaterial<3>::implicit_stress_update(const SymmetricTensor<2, 3> &trial,
+                                             const double                 a,
+                                             SymmetricTensor<4, 3> *tangent,
+                                             double *multiplier) const
+  {
+    const double q = equivalent_stress(trial);
+    if (multiplier != nullptr)
+      *multiplier = 0;
+    if (q <= sigma_yield)
+      {
+        if (tangent != nullptr)
+          *tangent = identity_tensor<3>();
+        return trial;
+      }
+    const double two_G = young_modulus / (1 + poisson_ratio);
+    const double t     = 1.5 / two_G;
+    const double tau   = t * (1 + a * two_G);
+    const double mu    = (q / sigma_yield - 1) / tau;
+    const double f     = (1 + mu * t) / (1 + mu * tau);
+    if (multiplier != nullptr)
+      *multiplier = mu;
+    const SymmetricTensor<2, 3> s = deviator(trial);
+    if (tangent != nullptr)
+      *tangent = (identity_tensor<3>() - deviator_tensor<3>())
+                 + f * deviator_tensor<3>()
+                 - (9. * a * sigma_yield / (4. * tau * q * q * q))
+                     * outer_product(s, s);
+    return (trial - s) + f * s;
   }
 
 

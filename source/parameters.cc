@@ -413,6 +413,16 @@ namespace ViscoContact
                           Patterns::Double(),
                           "k with 0 < k <= T [s]; if T/k is not an integer the "
                           "last step is shortened to end at T.");
+        prm.declare_entry(
+          "Stress update",
+          "explicit",
+          Patterns::Selection("explicit|implicit"),
+          "explicit: the paper's scheme, H_n from the previous stresses "
+          "(model.md, section 2; stable for k < 4 lambda/lambda_max(E)); "
+          "implicit: backward Euler, sigma_n from a local equation at each "
+          "stress point and a Newton iteration with the consistent tangent "
+          "per step (model.md, section 3; unconditionally stable, a "
+          "factorisation per Newton iteration).");
       }
       prm.leave_subsection();
     }
@@ -422,8 +432,9 @@ namespace ViscoContact
     {
       prm.enter_subsection("Time");
       {
-        end_time  = prm.get_double("End time");
-        time_step = prm.get_double("Time step");
+        end_time      = prm.get_double("End time");
+        time_step     = prm.get_double("Time step");
+        stress_update = prm.get("Stress update");
         require(end_time > 0, "Time", "End time", to_string(end_time), "T > 0");
         require(time_step > 0 && time_step <= end_time,
                 "Time",

@@ -266,6 +266,10 @@ namespace ViscoContact
           << "  final contact: " << states[0] << " unilateral, " << states[1]
           << " compliance, " << states[2]
           << " no contact, total force = " << total_contact_force() << '\n'
+          << (parameters.stress_update == "implicit"
+                ? "  Newton iterations (implicit scheme): "
+                    + std::to_string(total_newton_iterations) + "\n"
+                : std::string())
           << "  active-set iterations: " << total_active_set_iterations
           << " in " << n_time_steps << " steps\n"
           << "  elastic operator: assembled " << n_operator_assemblies
@@ -274,7 +278,7 @@ namespace ViscoContact
           << "x\n"
           << "  elastic solves: " << n_elastic_solves << " ("
           << contact_nodes.size() * (contact_enabled ? 1 : 0)
-          << " for the contact compliance)\n";
+          << " for the contact compliance at set-up)\n";
 
     if (!parameters.print_timing_summary)
       return;
@@ -295,7 +299,7 @@ namespace ViscoContact
     Timer              timer;
     for (unsigned int r = 0; r < repetitions; ++r)
       {
-        update_stresses(parameters.time_step);
+        update_stresses(parameters.time_step, parameters.time_step);
         rhs_copy = system_rhs;
         solve_elastic(rhs_copy);
       }

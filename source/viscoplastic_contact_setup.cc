@@ -272,6 +272,11 @@ namespace ViscoContact
                                       /*keep_constrained_dofs=*/false);
       sparsity_pattern.copy_from(dsp);
       stiffness_matrix.reinit(sparsity_pattern);
+      if (parameters.stress_update == "implicit")
+        {
+          tangent_matrix.reinit(sparsity_pattern);
+          internal_force.reinit(dof_handler.n_dofs());
+        }
 
       solution.reinit(dof_handler.n_dofs());
       external_load.reinit(dof_handler.n_dofs());
@@ -528,7 +533,9 @@ namespace ViscoContact
       const unsigned int m = contact_nodes.size();
       const unsigned int n = dof_handler.n_dofs();
       // Keep W = K^{-1} N^T if it takes less than 1 GiB.
-      contact_responses_stored = (8. * n * m < 1024. * 1024. * 1024.);
+      // (The implicit scheme recomputes its own per Newton iteration.)
+      contact_responses_stored = parameters.stress_update == "explicit"
+                                 && (8. * n * m < 1024. * 1024. * 1024.);
       if (contact_responses_stored)
         contact_responses.reinit(n, m);
 
@@ -599,7 +606,11 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::report_scheme_limits() const
   {
-    if (parameters.plasticity)
+    if (parameters.plasticity && parameters.stress_update == "implicit")
+      pcout << "Implicit (backward-Euler) history update: no stability limit "
+               "on k (model.md, section 3); k = "
+            << parameters.time_step << " s\n";
+    else if (parameters.plasticity)
       {
         const double bound
           = 4 * material.viscosity() / material.largest_elastic_eigenvalue();

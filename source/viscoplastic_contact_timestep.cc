@@ -62,8 +62,11 @@ namespace ViscoContact
         Timer step_timer;
         assemble_right_hand_side(times[n]);
         const ContactActiveSetSolver::Result result
-          = solve_time_step(n, times[n]);
-        update_stresses(n < n_time_steps ? times[n + 1] - times[n] : 0.);
+          = (parameters.stress_update == "implicit"
+               ? solve_implicit_time_step(n, times[n], times[n] - times[n - 1])
+               : solve_time_step(n, times[n]));
+        update_stresses(times[n] - times[n - 1],
+                        n < n_time_steps ? times[n + 1] - times[n] : 0.);
         time_loop_compute_time += step_timer.wall_time();
         if (step_observer)
           step_observer(n, times[n]);
@@ -194,7 +197,8 @@ namespace ViscoContact
     if (loads_depend_on_time || n_external_load_assemblies == 0)
       assemble_external_load(time);
     system_rhs = external_load;
-    if (parameters.plasticity)
+    // The implicit scheme has the history inside its internal force.
+    if (parameters.plasticity && parameters.stress_update == "explicit")
       system_rhs += history_load;
   }
 
@@ -413,6 +417,223 @@ namespace ViscoContact
 
 
 
+  // @sect4{ViscoplasticContact::assemble_tangent_system}
+  //
+  // For the implicit scheme: at the displacement u, the stresses
+  // sigma(eps(u)) of the backward-Euler update at every stress point, the
+  // internal force (sigma, eps(v)) and the tangent stiffness
+  // (C_alg eps(w), eps(v)) with the consistent tangent
+  // C_alg = (d sigma / d trial) E. The state at the stress points is not
+  // changed (only the multiplier guesses).
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::assemble_tangent_system(
+    const Vector<double> &displacement,
+    const double          a)
+  {
+    TimerOutput::Scope t(computing_timer, "Assemble tangent system");
+    tangent_matrix                         = 0;
+    internal_force                         = 0;
+    const SymmetricTensor<4, dim> &E       = material.elasticity_tensor();
+    const unsigned int             n_q     = stress_quadrature.size();
+    const unsigned int             n_a     = n_cell_vertices;
+    const unsigned int             n_local = n_a * dim;
+    const unsigned int             n_cells = triangulation.n_active_cells();
+    FullMatrix<double>             cell_matrix(n_local, n_local);
+    Vector<double>                 cell_force(n_local);
+    std::vector<types::global_dof_index> local_dofs(n_local);
+
+    for (unsigned int cell = 0; cell < n_cells; ++cell)
+      {
+        const types::global_dof_index *dofs
+          = &cell_dof_indices[std::size_t(cell) * n_local];
+        std::copy(dofs, dofs + n_local, local_dofs.begin());
+        cell_matrix = 0;
+        cell_force  = 0;
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            const std::size_t     point = std::size_t(cell) * n_q + q;
+            const Tensor<1, dim> *gradients
+              = &stress_point_gradients[point * n_a];
+            const double   JxW = stress_point_JxW[point];
+            Tensor<2, dim> displacement_gradient;
+            for (unsigned int b = 0; b < n_a; ++b)
+              for (unsigned int c = 0; c < dim; ++c)
+                displacement_gradient[c]
+                  += displacement[dofs[b * dim + c]] * gradients[b];
+
+            QuadraturePointHistory<dim> &state
+              = quadrature_point_history[point];
+            SymmetricTensor<4, dim> trial_tangent = identity_tensor<dim>();
+            const SymmetricTensor<2, dim> stress
+              = (parameters.plasticity ? material.implicit_stress_update(
+                   E * symmetrize(displacement_gradient) + state.history,
+                   a,
+                   &trial_tangent,
+                   &state.plastic_multiplier)
+                                       : E * symmetrize(displacement_gradient));
+            const SymmetricTensor<4, dim> C = trial_tangent * E;
+
+            for (unsigned int i = 0; i < n_local; ++i)
+              {
+                const unsigned int ai = i / dim, ci = i % dim;
+                cell_force(i) += JxW * (stress * gradients[ai])[ci];
+                for (unsigned int j = 0; j < n_local; ++j)
+                  {
+                    const unsigned int bj = j / dim, cj = j % dim;
+                    double             value = 0;
+                    for (unsigned int k = 0; k < dim; ++k)
+                      for (unsigned int l = 0; l < dim; ++l)
+                        value += C[ci][k][cj][l] * gradients[ai][k]
+                                 * gradients[bj][l];
+                    cell_matrix(i, j) += JxW * value;
+                  }
+              }
+          }
+        constraints.distribute_local_to_global(cell_matrix,
+                                               cell_force,
+                                               local_dofs,
+                                               tangent_matrix,
+                                               internal_force);
+      }
+    ++n_operator_assemblies;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::solve_contact_with}
+  //
+  // The condensed contact solve of solve_time_step() for an operator that
+  // changes (the implicit scheme's tangent): the compliance S and the
+  // responses W = K^{-1} N^T are recomputed with the given factorisation
+  // (m solves), the nodes keep their pieces as warm start, and
+  // u = K^{-1} rhs - W z.
+  template <int dim>
+  ContactActiveSetSolver::Result
+  ViscoplasticContact<dim>::solve_contact_with(
+    SparseDirectUMFPACK  &factorization,
+    const Vector<double> &rhs,
+    Vector<double>       &displacement)
+  {
+    displacement = rhs;
+    factorization.solve(displacement);
+    ++n_elastic_solves;
+    if (!contact_enabled)
+      return ContactActiveSetSolver::Result{true, {}};
+
+    const unsigned int          m = contact_nodes.size();
+    FullMatrix<double>          compliance(m, m);
+    std::vector<Vector<double>> responses(m,
+                                          Vector<double>(dof_handler.n_dofs()));
+    Vector<double>              free_normal_displacement(m);
+    for (unsigned int j = 0; j < m; ++j)
+      {
+        for (unsigned int c = 0; c < dim; ++c)
+          responses[j][contact_nodes[j].dofs[c]] = contact_nodes[j].normal[c];
+        factorization.solve(responses[j]);
+        ++n_elastic_solves;
+      }
+    for (unsigned int i = 0; i < m; ++i)
+      for (unsigned int c = 0; c < dim; ++c)
+        {
+          const types::global_dof_index dof = contact_nodes[i].dofs[c];
+          free_normal_displacement[i]
+            += contact_nodes[i].normal[c] * displacement[dof];
+          for (unsigned int j = 0; j < m; ++j)
+            compliance(i, j) += contact_nodes[i].normal[c] * responses[j][dof];
+        }
+    active_set_solver.update_compliance(compliance);
+    const ContactActiveSetSolver::Result result
+      = active_set_solver.solve(free_normal_displacement,
+                                parameters.max_iterations,
+                                parameters.tolerance);
+    for (unsigned int j = 0; j < m; ++j)
+      displacement.add(-active_set_solver.normal_forces()[j], responses[j]);
+    return result;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::solve_implicit_time_step}
+  //
+  // Newton's method for the step problem of the backward-Euler scheme:
+  // linearise sigma(eps(u)) at the current iterate with the consistent
+  // tangent, solve the linearised contact problem exactly (the active set
+  // on the condensed tangent), repeat until the update is at rounding level.
+  // The relative size of each update is printed (with Verbose), which shows
+  // the quadratic convergence once the contact set has settled.
+  template <int dim>
+  ContactActiveSetSolver::Result
+  ViscoplasticContact<dim>::solve_implicit_time_step(const unsigned int step,
+                                                     const double       time,
+                                                     const double time_step)
+  {
+    const double   a       = time_step / (2 * material.viscosity());
+    Vector<double> iterate = solution, rhs(dof_handler.n_dofs());
+    ContactActiveSetSolver::Result result{true, {}};
+    unsigned int                   active_set_iterations = 0;
+    for (unsigned int newton = 1; newton <= parameters.max_iterations; ++newton)
+      {
+        assemble_tangent_system(iterate, a);
+        // K_T u_new = f - F_int(u) + K_T u - N^T z.
+        rhs = system_rhs;
+        rhs -= internal_force;
+        tangent_matrix.vmult_add(rhs, iterate);
+        {
+          TimerOutput::Scope t(computing_timer, "Solve: factorise tangent");
+          tangent_factorization.initialize(tangent_matrix);
+          ++n_operator_factorizations;
+        }
+        Vector<double> next(dof_handler.n_dofs());
+        {
+          TimerOutput::Scope t(computing_timer,
+                               "Solve: contact on the tangent");
+          result = solve_contact_with(tangent_factorization, rhs, next);
+        }
+        active_set_iterations += result.iterations();
+        AssertThrow(result.converged,
+                    ExcMessage("The active-set iteration did not converge in "
+                               "Newton iteration "
+                               + std::to_string(newton) + " of time step "
+                               + std::to_string(step) + ":\n"
+                               + result.describe()));
+        constraints.distribute(next);
+        const double change = (Vector<double>(next) -= iterate).linfty_norm()
+                              / std::max(next.linfty_norm(), 1e-300);
+        iterate = next;
+        ++total_newton_iterations;
+        if (parameters.verbose)
+          pcout << "    Newton iteration " << newton
+                << ": |du|/|u| = " << std::scientific << std::setprecision(2)
+                << change << std::defaultfloat << ", active-set iterations "
+                << result.iterations() << '\n';
+        AssertThrow(std::isfinite(change),
+                    ExcMessage("The Newton iteration of time step "
+                               + std::to_string(step)
+                               + " produced a non-finite displacement."));
+        if (change <= 1e-11)
+          {
+            solution = iterate;
+            // The step's active-set total, for the time series.
+            result.earlier_iterations
+              = active_set_iterations - result.history.size();
+            total_active_set_iterations += active_set_iterations;
+            return result;
+          }
+      }
+    AssertThrow(false,
+                ExcMessage("The Newton iteration of the implicit scheme did "
+                           "not converge in time step "
+                           + std::to_string(step)
+                           + " (t = " + std::to_string(time)
+                           + ") within Maximum iterations = "
+                           + std::to_string(parameters.max_iterations)
+                           + " (subsection <Active set solver>)."));
+    return result;
+  }
+
+
+
   // @sect4{ViscoplasticContact::update_stresses}
   //
   // sigma_n = E eps(u_n) + H_n at every stress point, and, with plasticity,
@@ -425,10 +646,15 @@ namespace ViscoContact
   // points themselves.
   template <int dim>
   void
-  ViscoplasticContact<dim>::update_stresses(const double next_time_step)
+  ViscoplasticContact<dim>::update_stresses(const double current_time_step,
+                                            const double next_time_step)
   {
     TimerOutput::Scope t(computing_timer, "Stress update");
-    const bool update_history = parameters.plasticity && next_time_step > 0;
+    const bool         implicit
+      = parameters.plasticity && parameters.stress_update == "implicit";
+    const bool update_history
+      = parameters.plasticity && !implicit && next_time_step > 0;
+    const double a = current_time_step / (2 * material.viscosity());
     const SymmetricTensor<4, dim> &E       = material.elasticity_tensor();
     const unsigned int             n_q     = stress_quadrature.size();
     const unsigned int             n_a     = n_cell_vertices;
@@ -455,8 +681,22 @@ namespace ViscoContact
 
             QuadraturePointHistory<dim> &state
               = quadrature_point_history[point];
-            state.stress
-              = E * symmetrize(displacement_gradient) + state.history;
+            const SymmetricTensor<2, dim> elastic_stress
+              = E * symmetrize(displacement_gradient);
+            if (implicit)
+              {
+                // Backward Euler: sigma_n from the local equation, and the
+                // history part of the next step is what is not elastic.
+                state.stress
+                  = material.implicit_stress_update(elastic_stress
+                                                      + state.history,
+                                                    a,
+                                                    nullptr,
+                                                    &state.plastic_multiplier);
+                state.history = state.stress - elastic_stress;
+              }
+            else
+              state.stress = elastic_stress + state.history;
             max_von_mises = std::max(max_von_mises,
                                      material.equivalent_stress(state.stress));
             if (update_history)

@@ -210,6 +210,68 @@ TEST(Projection3D, RadialReturnOfTheDeviator)
 
 
 
+// The backward-Euler update: sigma + a E (sigma - P_K sigma) = trial holds
+// to rounding, inside K the update is the identity, and the tangent
+// d sigma / d trial agrees with central finite differences (step 1e-6
+// relative, tolerance 1e-6 relative to |T|).
+template <int dim>
+void
+check_implicit_update()
+{
+  const PerzynaMaterial<dim> material = benchmark_material<dim>();
+  std::mt19937               generator(3);
+  for (const double a : {1e-4, 1e-3, 1e-1})
+    for (unsigned int sample = 0; sample < 200; ++sample)
+      {
+        const SymmetricTensor<2, dim> trial
+          = random_tensor<dim>(generator, 20.);
+        SymmetricTensor<4, dim>       tangent;
+        const SymmetricTensor<2, dim> sigma
+          = material.implicit_stress_update(trial, a, &tangent);
+        const SymmetricTensor<2, dim> residual
+          = sigma
+            + a
+                * (material.elasticity_tensor()
+                   * (sigma - material.project_onto_yield_set(sigma)))
+            - trial;
+        EXPECT_LE(residual.norm(), 1e-12 * trial.norm());
+
+        const double step = 1e-6 * trial.norm();
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = i; j < dim; ++j)
+            {
+              SymmetricTensor<2, dim> direction;
+              direction[i][j] = 1;
+              const SymmetricTensor<2, dim> difference
+                = (material.implicit_stress_update(trial + step * direction, a)
+                   - material.implicit_stress_update(trial - step * direction,
+                                                     a))
+                  / (2 * step);
+              EXPECT_LE((difference - tangent * direction).norm(),
+                        1e-6 * (tangent.norm() + 1));
+            }
+      }
+  SymmetricTensor<2, dim> inside;
+  inside[0][1] = 0.1;
+  SymmetricTensor<4, dim> tangent;
+  EXPECT_EQ(
+    (material.implicit_stress_update(inside, 0.01, &tangent) - inside).norm(),
+    0.);
+  EXPECT_EQ((tangent - identity_tensor<dim>()).norm(), 0.);
+}
+
+TEST(ImplicitUpdate2D, SolvesLocalEquationAndTangentMatchesFiniteDifferences)
+{
+  check_implicit_update<2>();
+}
+
+TEST(ImplicitUpdate3D, SolvesLocalEquationAndTangentMatchesFiniteDifferences)
+{
+  check_implicit_update<3>();
+}
+
+
+
 TEST(Perzyna, RateVanishesInsideAndRelaxesOutside)
 {
   const PerzynaMaterial<2> material = benchmark_material<2>();

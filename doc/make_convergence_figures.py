@@ -137,6 +137,13 @@ def main():
         axes.axvline(bound, color=color, linestyle=":",
                      label=f"stability limit 4 lambda/lambda_max(E) = {bound:.3g}")
         tables[f"stability_lambda_{viscosity}"] = rows
+    rows = read_rows(os.path.join(REPO_ROOT, "output",
+                                  "stability_lambda_0.5_implicit",
+                                  "convergence.csv"))
+    finite = [r for r in rows if math.isfinite(r["error"])]
+    axes.loglog([r["k"] for r in finite], [r["error"] for r in finite], "^--",
+                color="C2", label="implicit scheme, lambda = 0.5 (runs that "
+                                  "converged)")
     axes.axhline(ceiling, color="k", linewidth=0.8)
     axes.text(0.3, ceiling * 1.3, "blow-up (error >= 1e3 drawn here)", fontsize=8)
     axes.set_xlabel("time step k  (h = 1/16 fixed, reference k = 1/1024)")

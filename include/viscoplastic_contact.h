@@ -149,6 +149,10 @@ namespace ViscoContact
                              const double       time_step);
     void
     assemble_tangent_system(const Vector<double> &displacement, const double a);
+    bool
+    implicit_newton(const double                    a,
+                    Vector<double>                 &iterate,
+                    ContactActiveSetSolver::Result &result);
     ContactActiveSetSolver::Result
     solve_contact_with(SparseDirectUMFPACK  &factorization,
                        const Vector<double> &rhs,

@@ -554,24 +554,24 @@ namespace ViscoContact
 
 
 
-  // @sect4{ViscoplasticContact::solve_implicit_time_step}
+  // @sect4{ViscoplasticContact::implicit_newton}
   //
-  // Newton's method for the step problem of the backward-Euler scheme:
-  // linearise sigma(eps(u)) at the current iterate with the consistent
-  // tangent, solve the linearised contact problem exactly (the active set
-  // on the condensed tangent), repeat until the update is at rounding level.
-  // The relative size of each update is printed (with Verbose), which shows
-  // the quadratic convergence once the contact set has settled.
+  // Newton's method for the step problem of the backward-Euler scheme with
+  // the viscous parameter a = k/(2 lambda): linearise sigma(eps(u)) at the
+  // current iterate with the consistent tangent, solve the linearised
+  // contact problem exactly (the active set on the condensed tangent),
+  // repeat until the update is at rounding level. The relative size of each
+  // update is printed (with Verbose), which shows the quadratic convergence
+  // once the contact set has settled. Returns whether it converged; the
+  // iterate is updated in place.
   template <int dim>
-  ContactActiveSetSolver::Result
-  ViscoplasticContact<dim>::solve_implicit_time_step(const unsigned int step,
-                                                     const double       time,
-                                                     const double time_step)
+  bool
+  ViscoplasticContact<dim>::implicit_newton(
+    const double                    a,
+    Vector<double>                 &iterate,
+    ContactActiveSetSolver::Result &result)
   {
-    const double   a       = time_step / (2 * material.viscosity());
-    Vector<double> iterate = solution, rhs(dof_handler.n_dofs());
-    ContactActiveSetSolver::Result result{true, {}};
-    unsigned int                   active_set_iterations = 0;
+    Vector<double> rhs(dof_handler.n_dofs()), next(dof_handler.n_dofs());
     for (unsigned int newton = 1; newton <= parameters.max_iterations; ++newton)
       {
         assemble_tangent_system(iterate, a);
@@ -584,40 +584,81 @@ namespace ViscoContact
           tangent_factorization.initialize(tangent_matrix);
           ++n_operator_factorizations;
         }
-        Vector<double> next(dof_handler.n_dofs());
+        ContactActiveSetSolver::Result linearised;
         {
           TimerOutput::Scope t(computing_timer,
                                "Solve: contact on the tangent");
-          result = solve_contact_with(tangent_factorization, rhs, next);
+          linearised = solve_contact_with(tangent_factorization, rhs, next);
         }
-        active_set_iterations += result.iterations();
-        AssertThrow(result.converged,
-                    ExcMessage("The active-set iteration did not converge in "
-                               "Newton iteration "
-                               + std::to_string(newton) + " of time step "
-                               + std::to_string(step) + ":\n"
-                               + result.describe()));
+        result.earlier_iterations += result.history.size();
+        result.history   = linearised.history;
+        result.converged = linearised.converged;
+        ++total_newton_iterations;
+        if (!linearised.converged)
+          {
+            if (parameters.verbose)
+              pcout << "    Newton iteration " << newton
+                    << ": the active set on the tangent did not converge\n";
+            return false;
+          }
         constraints.distribute(next);
         const double change = (Vector<double>(next) -= iterate).linfty_norm()
                               / std::max(next.linfty_norm(), 1e-300);
         iterate = next;
-        ++total_newton_iterations;
         if (parameters.verbose)
           pcout << "    Newton iteration " << newton
                 << ": |du|/|u| = " << std::scientific << std::setprecision(2)
                 << change << std::defaultfloat << ", active-set iterations "
-                << result.iterations() << '\n';
-        AssertThrow(std::isfinite(change),
-                    ExcMessage("The Newton iteration of time step "
-                               + std::to_string(step)
-                               + " produced a non-finite displacement."));
+                << linearised.iterations() << '\n';
+        if (!std::isfinite(change))
+          return false;
         if (change <= 1e-11)
+          return true;
+        // Converging Newton iterations are near rounding level long before
+        // ten steps; still far away then, the iteration is not going to
+        // converge from here, and the caller's continuation takes over.
+        if (newton >= 10 && change > 1e-4)
+          return false;
+      }
+    return false;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::solve_implicit_time_step}
+  //
+  // Newton from the previous state converges when the plastic tangent is
+  // not much softer than the elastic one. When it does not (large
+  // k E / lambda: the step is nearly rate-independent and the first Newton
+  // steps overshoot), the same step problem is reached by continuation in
+  // the viscous parameter: solve with a/J, 2a/J, ..., a, each from the
+  // previous solution, for J = 2, 4, ..., 64. Every stage is the
+  // backward-Euler step problem with a smaller parameter, and the last one
+  // is the step itself, so the scheme is unchanged; only the path of the
+  // solver is.
+  template <int dim>
+  ContactActiveSetSolver::Result
+  ViscoplasticContact<dim>::solve_implicit_time_step(const unsigned int step,
+                                                     const double       time,
+                                                     const double time_step)
+  {
+    const double                   a = time_step / (2 * material.viscosity());
+    ContactActiveSetSolver::Result result{true, {}};
+    Vector<double>                 iterate;
+    for (unsigned int stages = 1; stages <= 64; stages *= 2)
+      {
+        if (stages > 1 && parameters.verbose)
+          pcout << "    Newton did not converge; continuation in "
+                   "a = k/(2 lambda) with "
+                << stages << " stages\n";
+        iterate        = solution;
+        bool converged = true;
+        for (unsigned int stage = 1; stage <= stages && converged; ++stage)
+          converged = implicit_newton(a * stage / stages, iterate, result);
+        if (converged)
           {
             solution = iterate;
-            // The step's active-set total, for the time series.
-            result.earlier_iterations
-              = active_set_iterations - result.history.size();
-            total_active_set_iterations += active_set_iterations;
+            total_active_set_iterations += result.iterations();
             return result;
           }
       }
@@ -626,9 +667,11 @@ namespace ViscoContact
                            "not converge in time step "
                            + std::to_string(step)
                            + " (t = " + std::to_string(time)
-                           + ") within Maximum iterations = "
+                           + "), not even with continuation in a = k/(2 "
+                             "lambda) over 64 stages (Maximum iterations = "
                            + std::to_string(parameters.max_iterations)
-                           + " (subsection <Active set solver>)."));
+                           + " per Newton iteration and per active-set "
+                             "iteration, subsection <Active set solver>)."));
     return result;
   }
 

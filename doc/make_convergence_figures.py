@@ -84,7 +84,7 @@ def main():
         executable = resolve_executable(args.executable)
         names = [study for study, _ in STUDIES]
         names += [f"stability_lambda_{v}" for v in VISCOSITIES]
-        names += ["stability_lambda_0.5_implicit"]
+        names += ["stability_lambda_0.5_implicit", "soft_layer"]
         for study in names:
             print(f"running parameters/{study}.prm ...", flush=True)
             with open(os.path.join(REPO_ROOT, "output", f"{study}.log"), "w") as log:
@@ -198,6 +198,23 @@ def main():
             lines.append(f"| 1/{int(round(1 / r['k']))} | {r['error_u']:.3e} | "
                          f"{r['error_sigma']:.3e} | {r['error']:.3e} | {order} |")
         lines.append("")
+    # The too-soft layer: what the program says and does.
+    log = open(os.path.join(REPO_ROOT, "output", "soft_layer.log")).read()
+    with open(os.path.join(REPO_ROOT, "output", "soft_layer", "time_series.csv"),
+              newline="") as f:
+        series = list(csv.DictReader(f))
+    iterations = [int(r["active_set_iterations"]) for r in series]
+    lines += ["## parameters/soft_layer.prm: a layer that softens too much", "",
+              "Start-up report and outcome of the run (h = 1/32, k = 1/64):", "",
+              "```"]
+    lines += [l for l in log.splitlines()
+              if l.startswith(("Uniqueness", "WARNING"))]
+    lines += ["```", "",
+              f"Steps completed: {len(series)}; active-set iterations: "
+              f"{sum(iterations)} in total, at most {max(iterations)} in one "
+              f"step; at t = 1: {series[-1]['unilateral_nodes']} nodes at the "
+              f"rigid limit, {series[-1]['compliance_nodes']} in normal "
+              f"compliance.", ""]
     lines += ["## Active-set iterations per time step against the mesh size", "",
               "From the runs of parameters/convergence_fine.prm (h = k), "
               "reference run included.", "",

@@ -184,6 +184,10 @@ namespace ViscoContact
     solve_elastic(std::vector<double> &columns, const unsigned int n_columns);
 
     // Helpers.
+    Tensor<2, dim>
+    displacement_gradient_at(const Vector<double> &displacement,
+                             const unsigned int    cell,
+                             const unsigned int    q) const;
     std::array<unsigned int, 3>
     count_contact_states() const;
     unsigned int

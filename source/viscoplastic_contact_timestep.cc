@@ -417,6 +417,33 @@ namespace ViscoContact
 
 
 
+  // @sect4{ViscoplasticContact::displacement_gradient_at}
+  //
+  // grad u = sum_a u_a (x) grad N_a at stress point q of a cell, from the
+  // geometry stored at set-up.
+  template <int dim>
+  inline Tensor<2, dim>
+  ViscoplasticContact<dim>::displacement_gradient_at(
+    const Vector<double> &displacement,
+    const unsigned int    cell,
+    const unsigned int    q) const
+  {
+    const unsigned int             n_a = n_cell_vertices;
+    const types::global_dof_index *dofs
+      = &cell_dof_indices[std::size_t(cell) * n_a * dim];
+    const Tensor<1, dim> *gradients
+      = &stress_point_gradients[(std::size_t(cell) * stress_quadrature.size()
+                                 + q)
+                                * n_a];
+    Tensor<2, dim> gradient;
+    for (unsigned int a = 0; a < n_a; ++a)
+      for (unsigned int c = 0; c < dim; ++c)
+        gradient[c] += displacement[dofs[a * dim + c]] * gradients[a];
+    return gradient;
+  }
+
+
+
   // @sect4{ViscoplasticContact::assemble_tangent_system}
   //
   // For the implicit scheme: at the displacement u, the stresses
@@ -455,12 +482,9 @@ namespace ViscoContact
             const std::size_t     point = std::size_t(cell) * n_q + q;
             const Tensor<1, dim> *gradients
               = &stress_point_gradients[point * n_a];
-            const double   JxW = stress_point_JxW[point];
-            Tensor<2, dim> displacement_gradient;
-            for (unsigned int b = 0; b < n_a; ++b)
-              for (unsigned int c = 0; c < dim; ++c)
-                displacement_gradient[c]
-                  += displacement[dofs[b * dim + c]] * gradients[b];
+            const double         JxW = stress_point_JxW[point];
+            const Tensor<2, dim> displacement_gradient
+              = displacement_gradient_at(displacement, cell, q);
 
             QuadraturePointHistory<dim> &state
               = quadrature_point_history[point];
@@ -716,11 +740,8 @@ namespace ViscoContact
             const Tensor<1, dim> *gradients
               = &stress_point_gradients[point * n_a];
 
-            Tensor<2, dim> displacement_gradient;
-            for (unsigned int a = 0; a < n_a; ++a)
-              for (unsigned int c = 0; c < dim; ++c)
-                displacement_gradient[c]
-                  += solution[dofs[a * dim + c]] * gradients[a];
+            const Tensor<2, dim> displacement_gradient
+              = displacement_gradient_at(solution, cell, q);
 
             QuadraturePointHistory<dim> &state
               = quadrature_point_history[point];

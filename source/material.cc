@@ -262,9 +262,9 @@ namespace ViscoContact
   // so mu is the multiplier of the same two-mode equation as the projection,
   // with the ratios tau instead of t. Differentiating sigma_i = f_i(mu) y_i,
   // with mu(y) from |P_K sigma|_M = sigma_Y, gives in the mode coordinates
-  //   T_ij = delta_ij f_i - a M_i y_i s_i^2 M_j y_j s_j^2 / sum_l M_l y_l^2
-  //   tau_l s_l^3,
-  // s_i = 1/(1 + mu tau_i): symmetric, as d sigma / d trial must be. The
+  //   T_ij = delta_ij f_i - a v_i v_j / D,  v_i = M_i y_i s_i^2,
+  //   D = sum_l M_l y_l^2 tau_l s_l^3,  s_i = 1/(1 + mu tau_i):
+  // symmetric, as d sigma / d trial must be. The
   // consistent tangent T E is not (E_i differ between the modes), so the
   // implicit scheme's stiffness matrix is unsymmetric.
   template <>

@@ -64,10 +64,8 @@ namespace ViscoContact
     energy_product(const SymmetricTensor<2, dim> &a,
                    const SymmetricTensor<2, dim> &b) const;
 
-    // Extreme eigenvalues of E (m_E is the smallest): they set the stability
-    // limit of the explicit history update and the uniqueness margin.
-    double
-    smallest_elastic_eigenvalue() const;
+    // The largest eigenvalue of E: it sets the stability limit of the
+    // explicit history update.
     double
     largest_elastic_eigenvalue() const;
 

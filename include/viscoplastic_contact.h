@@ -116,8 +116,6 @@ namespace ViscoContact
     const SymmetricTensor<2, dim> &
     get_stress(const unsigned int active_cell_index,
                const unsigned int stress_point) const;
-    unsigned int
-    n_stress_points_per_cell() const;
 
   private:
     // Setup.

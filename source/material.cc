@@ -68,22 +68,11 @@ namespace ViscoContact
 
   template <int dim>
   double
-  PerzynaMaterial<dim>::smallest_elastic_eigenvalue() const
+  PerzynaMaterial<dim>::largest_elastic_eigenvalue() const
   {
     const double E = young_modulus, k = poisson_ratio;
     // 2D: E/(1-k) on the spherical part, E/(1+k) on the deviatoric part;
     // 3D: 3 kappa = E/(1-2k) and 2 mu = E/(1+k).
-    return (dim == 2 ? std::min(E / (1 - k), E / (1 + k))
-                     : std::min(E / (1 - 2 * k), E / (1 + k)));
-  }
-
-
-
-  template <int dim>
-  double
-  PerzynaMaterial<dim>::largest_elastic_eigenvalue() const
-  {
-    const double E = young_modulus, k = poisson_ratio;
     return (dim == 2 ? std::max(E / (1 - k), E / (1 + k))
                      : std::max(E / (1 - 2 * k), E / (1 + k)));
   }

@@ -156,15 +156,6 @@ namespace ViscoContact
 
 
 
-  template <int dim>
-  unsigned int
-  ViscoplasticContact<dim>::n_stress_points_per_cell() const
-  {
-    return stress_quadrature.size();
-  }
-
-
-
   // @sect4{ViscoplasticContact::time_levels}
   //
   // t_n = n k, with the last step shortened so that the run ends at T.

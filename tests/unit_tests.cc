@@ -473,8 +473,11 @@ TEST(ActiveSetSolver, DecoupledNodesMatchClosedForm)
                 1e-13);
   EXPECT_NEAR(solver.normal_displacements()[4], 0.01, 1e-15);
 
-  // Warm start: the same data again is solved in one iteration.
+  // Warm start: the same data again is solved in one iteration, with the
+  // LU factorisation of the unchanged active set reused.
+  const unsigned int factorizations = solver.n_factorizations();
   EXPECT_EQ(solver.solve(d_vector, 50, 1e-12).iterations(), 1u);
+  EXPECT_EQ(solver.n_factorizations(), factorizations);
 }
 
 

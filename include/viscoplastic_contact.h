@@ -182,6 +182,11 @@ namespace ViscoContact
     solve_elastic(std::vector<double> &columns, const unsigned int n_columns);
 
     // Helpers.
+    void
+    subtract_stress_point_load(const SymmetricTensor<2, dim> &H,
+                               const unsigned int             cell,
+                               const unsigned int             q,
+                               Vector<double>                &target) const;
     Tensor<2, dim>
     displacement_gradient_at(const Vector<double> &displacement,
                              const unsigned int    cell,

@@ -290,28 +290,14 @@ namespace ViscoContact
   {
     history_load               = 0;
     const unsigned int n_q     = stress_quadrature.size();
-    const unsigned int n_a     = n_cell_vertices;
     const unsigned int n_cells = triangulation.n_active_cells();
     for (unsigned int cell = 0; cell < n_cells; ++cell)
-      {
-        const types::global_dof_index *dofs
-          = &cell_dof_indices[std::size_t(cell) * n_a * dim];
-        for (unsigned int q = 0; q < n_q; ++q)
-          {
-            const std::size_t              point = std::size_t(cell) * n_q + q;
-            const SymmetricTensor<2, dim> &H
-              = quadrature_point_history[point].history;
-            const Tensor<1, dim> *gradients
-              = &stress_point_gradients[point * n_a];
-            const double JxW = stress_point_JxW[point];
-            for (unsigned int a = 0; a < n_a; ++a)
-              {
-                const Tensor<1, dim> force = H * gradients[a];
-                for (unsigned int c = 0; c < dim; ++c)
-                  history_load[dofs[a * dim + c]] -= JxW * force[c];
-              }
-          }
-      }
+      for (unsigned int q = 0; q < n_q; ++q)
+        subtract_stress_point_load(
+          quadrature_point_history[std::size_t(cell) * n_q + q].history,
+          cell,
+          q,
+          history_load);
     constraints.condense(history_load);
   }
 
@@ -431,6 +417,36 @@ namespace ViscoContact
       for (unsigned int c = 0; c < dim; ++c)
         gradient[c] += displacement[dofs[a * dim + c]] * gradients[a];
     return gradient;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::subtract_stress_point_load}
+  //
+  // target -= (H, eps(v)) at stress point q of a cell: with
+  // eps(N_a e_c) = sym(e_c (x) grad N_a) and H symmetric, the entry of dof
+  // (a, c) is JxW (H grad N_a)_c. Shared by the time loop's history update
+  // and the stand-alone assembly it is measured against.
+  template <int dim>
+  inline void
+  ViscoplasticContact<dim>::subtract_stress_point_load(
+    const SymmetricTensor<2, dim> &H,
+    const unsigned int             cell,
+    const unsigned int             q,
+    Vector<double>                &target) const
+  {
+    const unsigned int             n_a = n_cell_vertices;
+    const types::global_dof_index *dofs
+      = &cell_dof_indices[std::size_t(cell) * n_a * dim];
+    const std::size_t point = std::size_t(cell) * stress_quadrature.size() + q;
+    const Tensor<1, dim> *gradients = &stress_point_gradients[point * n_a];
+    const double          JxW       = stress_point_JxW[point];
+    for (unsigned int a = 0; a < n_a; ++a)
+      {
+        const Tensor<1, dim> force = H * gradients[a];
+        for (unsigned int c = 0; c < dim; ++c)
+          target[dofs[a * dim + c]] -= JxW * force[c];
+      }
   }
 
 
@@ -715,7 +731,6 @@ namespace ViscoContact
     const double a = current_time_step / (2 * material.viscosity());
     const SymmetricTensor<4, dim> &E       = material.elasticity_tensor();
     const unsigned int             n_q     = stress_quadrature.size();
-    const unsigned int             n_a     = n_cell_vertices;
     const unsigned int             n_cells = triangulation.n_active_cells();
 
     if (update_history)
@@ -723,14 +738,9 @@ namespace ViscoContact
     max_von_mises = 0;
     for (unsigned int cell = 0; cell < n_cells; ++cell)
       {
-        const types::global_dof_index *dofs
-          = &cell_dof_indices[std::size_t(cell) * n_a * dim];
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            const std::size_t     point = std::size_t(cell) * n_q + q;
-            const Tensor<1, dim> *gradients
-              = &stress_point_gradients[point * n_a];
-
+            const std::size_t    point = std::size_t(cell) * n_q + q;
             const Tensor<2, dim> displacement_gradient
               = displacement_gradient_at(solution, cell, q);
 
@@ -760,13 +770,10 @@ namespace ViscoContact
                   += next_time_step
                      * material.viscoplastic_rate(state.stress,
                                                   &state.plastic_multiplier);
-                const double JxW = stress_point_JxW[point];
-                for (unsigned int a = 0; a < n_a; ++a)
-                  {
-                    const Tensor<1, dim> force = state.history * gradients[a];
-                    for (unsigned int c = 0; c < dim; ++c)
-                      history_load[dofs[a * dim + c]] -= JxW * force[c];
-                  }
+                subtract_stress_point_load(state.history,
+                                           cell,
+                                           q,
+                                           history_load);
               }
           }
       }

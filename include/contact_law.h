@@ -66,6 +66,15 @@ namespace ViscoContact
     unsigned int
     find_piece(const double q, const double c) const;
 
+    // The active-set update of one node: the piece that q = p + c r names,
+    // except that a node whose q lies within rounding of the ends of its
+    // current piece stays there, so that roundoff cannot make a node at a
+    // breakpoint flip back and forth.
+    unsigned int
+    next_piece(const unsigned int current,
+               const double       q,
+               const double       c) const;
+
     // The single-valued part of the compliance law: p(r) for r below the
     // rigid limit (the left limit at breakpoints).
     double

@@ -28,6 +28,9 @@ namespace ViscoContact
       std::vector<double> lengths;      // L1, L2 (, L3)
       unsigned int        subdivisions; // squares (cubes) along each edge
       std::string         cell_type;    // "simplex" or "hypercube"
+      std::string         mesh_file;    // Gmsh .msh; empty: the generated box
+      unsigned int global_refinements;  // uniform, after generation/reading
+      unsigned int contact_refinements; // extra levels near Gamma_3
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -114,7 +117,10 @@ namespace ViscoContact
 
     struct LinearSolver
     {
-      std::string direct_solver; // "cholmod" or "umfpack"
+      std::string method;             // "condensed" (serial) or "distributed"
+      std::string direct_solver;      // condensed: "cholmod" or "umfpack"
+      std::string preconditioner;     // distributed: "amg" or "direct"
+      double      relative_tolerance; // distributed: of the CG solves
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -167,6 +173,11 @@ namespace ViscoContact
       declare_parameters(ParameterHandler &prm);
       void
       parse_parameters(ParameterHandler &prm);
+
+      // Checks between subsections that depend on how the program is run
+      // (the number of MPI ranks).
+      void
+      check_run_configuration(const unsigned int n_mpi_ranks) const;
     };
   } // namespace Parameters
 } // namespace ViscoContact

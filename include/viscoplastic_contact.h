@@ -38,18 +38,6 @@ namespace ViscoContact
 {
   using namespace dealii;
 
-  // The state of the material at one stress point (a cell of a simplex mesh,
-  // a Gauss point of a hypercube mesh).
-  template <int dim>
-  struct QuadraturePointHistory
-  {
-    SymmetricTensor<2, dim> stress;  // sigma_n
-    SymmetricTensor<2, dim> history; // H_{n+1}: the history part of the
-                                     // stress of the next step
-    double plastic_multiplier = 0;   // of the last projection onto K, the
-                                     // next projection's starting guess
-  };
-
   // A node of Gamma_3 that is free to move: its displacement dofs, the
   // outward normal nu (the weighted mean of the adjacent faces' normals) and
   // the lumped weight w = int_Gamma3 phi.

@@ -7,7 +7,7 @@
 # packages of the doc and benchmark scripts. Does nothing if all is there.
 set -euo pipefail
 
-packages=(libdeal.ii-dev libsuitesparse-dev libopenblas0-serial cmake g++ make
+packages=(libdeal.ii-dev libsuitesparse-dev openmpi-bin libopenblas0-serial cmake g++ make
           numdiff libgtest-dev ccache
           python3 python3-matplotlib python3-numpy python3-meshio)
 

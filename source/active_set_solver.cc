@@ -9,22 +9,6 @@
 
 namespace ViscoContact
 {
-  namespace
-  {
-    // The interval of q = p + c r that a piece covers.
-    std::pair<double, double>
-    q_range(const ContactLawPiece &piece, const double c)
-    {
-      if (piece.vertical)
-        return {piece.p_lower + c * piece.r_lower,
-                piece.p_upper + c * piece.r_upper};
-      return {piece.intercept + (piece.slope + c) * piece.r_lower,
-              piece.intercept + (piece.slope + c) * piece.r_upper};
-    }
-  } // namespace
-
-
-
   std::string
   ContactActiveSetSolver::Result::describe() const
   {
@@ -178,9 +162,8 @@ namespace ViscoContact
   //
   // The iteration itself: solve for the forces on the current pieces, move
   // each node to the piece that q_i = z_i/w_i + c_i r_i names, stop when no
-  // node moves and the linear equations hold to the tolerance. A node whose
-  // q lies within rounding of the end of its current piece stays there, so
-  // that roundoff cannot make a node at a breakpoint flip back and forth.
+  // node moves and the linear equations hold to the tolerance
+  // (ContactLaw::next_piece() keeps a node within rounding of its piece).
   ContactActiveSetSolver::Result
   ContactActiveSetSolver::solve(const Vector<double> &d,
                                 const unsigned int    max_iterations,
@@ -201,14 +184,13 @@ namespace ViscoContact
         unsigned int changed = 0, rigid = 0;
         for (unsigned int i = 0; i < n_nodes(); ++i)
           {
-            const double q = z[i] / w[i] + c[i] * r[i];
-            const auto   current
-              = q_range(contact_law->piece(node_pieces[i]), c[i]);
-            const double slack
-              = 1e-12 * (std::abs(q) + c[i] * contact_law->gap()) + 1e-300;
-            if (q < current.first - slack || q > current.second + slack)
+            const unsigned int next
+              = contact_law->next_piece(node_pieces[i],
+                                        z[i] / w[i] + c[i] * r[i],
+                                        c[i]);
+            if (next != node_pieces[i])
               {
-                node_pieces[i] = contact_law->find_piece(q, c[i]);
+                node_pieces[i] = next;
                 ++changed;
               }
             if (contact_law->piece(node_pieces[i]).rigid)

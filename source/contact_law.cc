@@ -162,6 +162,26 @@ namespace ViscoContact
 
 
 
+  unsigned int
+  ContactLaw::next_piece(const unsigned int current,
+                         const double       q,
+                         const double       c) const
+  {
+    const ContactLawPiece &piece = pieces[current];
+    const double           q_lower
+      = (piece.vertical ? piece.p_lower + c * piece.r_lower
+                        : piece.intercept + (piece.slope + c) * piece.r_lower);
+    const double q_upper
+      = (piece.vertical ? piece.p_upper + c * piece.r_upper
+                        : piece.intercept + (piece.slope + c) * piece.r_upper);
+    const double slack = 1e-12 * (std::abs(q) + c * gap_value) + 1e-300;
+    if (q < q_lower - slack || q > q_upper + slack)
+      return find_piece(q, c);
+    return current;
+  }
+
+
+
   double
   ContactLaw::compliance_pressure(const double r) const
   {

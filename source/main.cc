@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include "convergence_study.h"
+#include "distributed_viscoplastic_contact.h"
 #include "parameters.h"
 #include "viscoplastic_contact.h"
 
@@ -36,10 +37,18 @@ main(int argc, char **argv)
   using namespace dealii;
   using namespace ViscoContact;
 
+  // Outside the try block, so that MPI is still up when an error is
+  // reported; with several ranks an error on one of them ends all of them.
+  Utilities::MPI::MPI_InitFinalize mpi_initialization(argc, argv, 1);
+  const bool                       several_ranks
+    = (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1);
+  const auto stop_all_ranks = [&]() {
+    if (several_ranks)
+      MPI_Abort(MPI_COMM_WORLD, 1);
+    return 1;
+  };
   try
     {
-      Utilities::MPI::MPI_InitFinalize mpi_initialization(argc, argv, 1);
-
       const std::string first = (argc > 1 ? argv[1] : "");
       if (first == "--help" || first == "-h")
         {
@@ -68,20 +77,29 @@ main(int argc, char **argv)
       AssertThrow(std::filesystem::is_regular_file(first),
                   ExcMessage("The parameter file <" + first
                              + "> does not exist or is not a regular file."));
-      AssertThrow(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1,
-                  ExcMessage("This version of viscoplastic_contact runs on "
-                             "one MPI rank; start it without mpirun."));
-
       ParameterHandler prm;
       Parameters::AllParameters::declare_parameters(prm);
       prm.parse_input(first);
       Parameters::AllParameters parameters;
       parameters.parse_parameters(prm);
+      // A mesh file is found relative to the parameter file that names it.
+      if (!parameters.mesh_file.empty()
+          && std::filesystem::path(parameters.mesh_file).is_relative())
+        parameters.mesh_file
+          = (std::filesystem::path(first).parent_path() / parameters.mesh_file)
+              .lexically_normal()
+              .string();
+      parameters.check_run_configuration(
+        Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD));
 
       if (parameters.study_enabled && parameters.dimension == 2)
         ConvergenceStudy<2>(parameters).run();
       else if (parameters.study_enabled)
         ConvergenceStudy<3>(parameters).run();
+      else if (parameters.method == "distributed" && parameters.dimension == 2)
+        DistributedViscoplasticContact<2>(parameters).run();
+      else if (parameters.method == "distributed")
+        DistributedViscoplasticContact<3>(parameters).run();
       else if (parameters.dimension == 2)
         ViscoplasticContact<2>(parameters).run();
       else
@@ -97,7 +115,7 @@ main(int argc, char **argv)
       std::cerr << "Aborting.\n"
                 << "----------------------------------------------------"
                 << std::endl;
-      return 1;
+      return stop_all_ranks();
     }
   catch (std::exception &exc)
     {
@@ -105,12 +123,12 @@ main(int argc, char **argv)
                 << "Error: " << exc.what() << "Aborting.\n"
                 << "----------------------------------------------------"
                 << std::endl;
-      return 1;
+      return stop_all_ranks();
     }
   catch (...)
     {
       std::cerr << "\nUnknown exception. Aborting." << std::endl;
-      return 1;
+      return stop_all_ranks();
     }
   return 0;
 }

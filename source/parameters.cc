@@ -75,6 +75,27 @@ namespace ViscoContact
           "tetrahedra), P1 displacement, piecewise-constant stress; "
           "hypercube: quadrilaterals/hexahedra, Q1 displacement, stresses at "
           "the 2^dim Gauss points.");
+        prm.declare_entry(
+          "Mesh file",
+          "",
+          Patterns::Anything(),
+          "A Gmsh .msh file (format 2 or 4, ASCII) instead of the generated "
+          "box; its physical groups on boundary faces are the boundary ids of "
+          "subsection Boundary, and its cells must be of the Cell type. "
+          "A relative path is relative to the directory of the parameter "
+          "file. Faces without a physical group get boundary id 0. Empty: the "
+          "box of Lengths and Subdivisions.");
+        prm.declare_entry("Global refinements",
+                          "0",
+                          Patterns::Integer(0, 20),
+                          "Uniform refinements of the generated or read mesh.");
+        prm.declare_entry(
+          "Contact refinement levels",
+          "0",
+          Patterns::Integer(0, 20),
+          "Extra refinements of the cells that touch Gamma_3, repeated this "
+          "many times (a mesh graded toward the contact boundary; hanging "
+          "nodes are constrained). Hypercube meshes only.");
       }
       prm.leave_subsection();
     }
@@ -99,8 +120,18 @@ namespace ViscoContact
                   "Lengths",
                   prm.get("Lengths"),
                   "strictly positive lengths");
-        subdivisions = prm.get_integer("Subdivisions");
-        cell_type    = prm.get("Cell type");
+        subdivisions        = prm.get_integer("Subdivisions");
+        cell_type           = prm.get("Cell type");
+        mesh_file           = prm.get("Mesh file");
+        global_refinements  = prm.get_integer("Global refinements");
+        contact_refinements = prm.get_integer("Contact refinement levels");
+        require(contact_refinements == 0 || cell_type == "hypercube",
+                "Geometry",
+                "Contact refinement levels",
+                prm.get("Contact refinement levels"),
+                "0 for Cell type = simplex (deal.II 9.4 has no hanging-node "
+                "constraints on simplices); any number up to 20 for "
+                "hypercube meshes");
       }
       prm.leave_subsection();
     }
@@ -243,7 +274,7 @@ namespace ViscoContact
           Patterns::Anything(),
           "f_0(x,t) [N/m^2 in 2D]: one muparser expression per component, "
           "separated by ';', in the variables x, y (, z) and t and the "
-          "constants L1, L2 (, L3). A load without the variable t is "
+          "constants pi, L1, L2 (, L3). A load without the variable t is "
           "assembled once for the whole run.");
         prm.declare_entry(
           "Surface traction",
@@ -492,6 +523,32 @@ namespace ViscoContact
       prm.enter_subsection("Linear solver");
       {
         prm.declare_entry(
+          "Method",
+          "condensed",
+          Patterns::Selection("condensed|distributed"),
+          "condensed: one MPI rank; the elastic operator is factorised once "
+          "and the active set works on the contact nodes alone (the fastest "
+          "choice for 2D and small 3D scenes). distributed: any number of MPI "
+          "ranks; p4est (hypercubes) or fully distributed (simplices) meshes, "
+          "Trilinos matrices, and the active set in the full space with CG "
+          "preconditioned by the Preconditioner of the elastic operator, "
+          "built once per run. Explicit stress update only.");
+        prm.declare_entry(
+          "Preconditioner",
+          "amg",
+          Patterns::Selection("amg|direct"),
+          "Method = distributed: amg (Trilinos ML smoothed aggregation with "
+          "the rigid-body modes as near-null space; for large runs) or direct "
+          "(a sparse direct factorisation of the elastic operator by "
+          "Amesos/KLU; for small runs, then CG needs a few iterations per "
+          "active set).");
+        prm.declare_entry("Relative tolerance",
+                          "1e-10",
+                          Patterns::Double(),
+                          "Method = distributed: CG stops when the residual "
+                          "is this fraction of the right-hand side; in "
+                          "(0, 1e-2].");
+        prm.declare_entry(
           "Direct solver",
           "cholmod",
           Patterns::Selection("cholmod|umfpack"),
@@ -507,7 +564,15 @@ namespace ViscoContact
     LinearSolver::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Linear solver");
-      direct_solver = prm.get("Direct solver");
+      method             = prm.get("Method");
+      direct_solver      = prm.get("Direct solver");
+      preconditioner     = prm.get("Preconditioner");
+      relative_tolerance = prm.get_double("Relative tolerance");
+      require(relative_tolerance > 0 && relative_tolerance <= 1e-2,
+              "Linear solver",
+              "Relative tolerance",
+              prm.get("Relative tolerance"),
+              "a number in (0, 1e-2]");
       prm.leave_subsection();
     }
 
@@ -699,6 +764,43 @@ namespace ViscoContact
       LinearSolver::parse_parameters(prm);
       ConvergenceStudy::parse_parameters(prm, cell_type);
       Output::parse_parameters(prm);
+
+      if (study_enabled)
+        require(mesh_file.empty() && global_refinements == 0
+                  && contact_refinements == 0,
+                "Geometry",
+                "Mesh file",
+                mesh_file,
+                "an empty Mesh file and no Global refinements or Contact "
+                "refinement levels when a convergence study runs (it builds "
+                "its own nested boxes)");
+      if (method == "distributed")
+        {
+          require(stress_update == "explicit",
+                  "Linear solver",
+                  "Method",
+                  "distributed",
+                  "condensed for <Stress update> = implicit in subsection "
+                  "<Time> (the implicit scheme runs on one rank)");
+          require(!study_enabled,
+                  "Linear solver",
+                  "Method",
+                  "distributed",
+                  "condensed for a convergence study (subsection "
+                  "<Convergence study>)");
+        }
+    }
+
+    void
+    AllParameters::check_run_configuration(const unsigned int n_ranks) const
+    {
+      require(n_ranks == 1 || method == "distributed",
+              "Linear solver",
+              "Method",
+              method,
+              "distributed when the program runs on more than one MPI rank ("
+                + std::to_string(n_ranks)
+                + " here); condensed runs on one rank");
     }
   } // namespace Parameters
 } // namespace ViscoContact

@@ -18,6 +18,8 @@
 
 #include <deal.II/numerics/vector_tools.h>
 
+#include "loads.h"
+#include "mesh.h"
 #include "viscoplastic_contact.h"
 
 #include <algorithm>
@@ -26,94 +28,6 @@
 
 namespace ViscoContact
 {
-  namespace
-  {
-    // FunctionParser's variable names, plus time.
-    template <int dim>
-    std::string
-    load_variables()
-    {
-      return FunctionParser<dim>::default_variable_names() + ",t";
-    }
-
-    // A load expression is time dependent iff it mentions the variable t.
-    bool
-    mentions_time(const std::string &expression)
-    {
-      static const std::regex t_variable("(^|[^A-Za-z0-9_])t($|[^A-Za-z0-9_])");
-      return std::regex_search(expression, t_variable);
-    }
-
-    // Every component is the literal number zero.
-    bool
-    is_zero_expression(const std::string &expression)
-    {
-      for (const std::string &part :
-           Utilities::split_string_list(expression, ';'))
-        {
-          try
-            {
-              if (Utilities::string_to_double(part) != 0.)
-                return false;
-            }
-          catch (...)
-            {
-              return false;
-            }
-        }
-      return true;
-    }
-
-    // Parse a load expression with dim components; turn muparser's messages
-    // into one that names the parameter.
-    template <int dim>
-    void
-    initialize_load(FunctionParser<dim>       &function,
-                    const std::string         &entry,
-                    const std::string         &expression,
-                    const std::vector<double> &lengths)
-    {
-      const unsigned int n_parts
-        = Utilities::split_string_list(expression, ';').size();
-      AssertThrow(n_parts == dim,
-                  ExcMessage("Invalid parameter <" + entry
-                             + "> in subsection <Loads>: value <" + expression
-                             + ">; accepted: " + std::to_string(dim)
-                             + " expressions separated by ';' (one per "
-                               "displacement component)."));
-      std::map<std::string, double> constants;
-      for (unsigned int d = 0; d < lengths.size(); ++d)
-        constants["L" + std::to_string(d + 1)] = lengths[d];
-      std::string parser_message;
-      try
-        {
-          function.initialize(load_variables<dim>(),
-                              expression,
-                              constants,
-                              /*time_dependent=*/true);
-          // muparser reports unknown variables only when evaluating.
-          Vector<double> values(dim);
-          function.vector_value(Point<dim>(), values);
-        }
-      catch (const ExceptionBase &exc)
-        {
-          std::ostringstream info;
-          exc.print_info(info);
-          parser_message = info.str();
-        }
-      catch (const std::exception &exc)
-        {
-          parser_message = exc.what();
-        }
-      AssertThrow(parser_message.empty(),
-                  ExcMessage("Invalid parameter <" + entry
-                             + "> in subsection <Loads>: value <" + expression
-                             + ">; accepted: muparser expressions in "
-                             + load_variables<dim>()
-                             + " and the constants L1, L2 (, L3). "
-                             + parser_message));
-    }
-  } // namespace
 
 
 
@@ -176,66 +90,16 @@ namespace ViscoContact
 
   // @sect4{ViscoplasticContact::make_grid}
   //
-  // The box (0,L1)x(0,L2)(x(0,L3)) with Subdivisions squares (cubes) along
-  // each edge; on simplex meshes each square is split into two triangles
-  // (each cube into five tetrahedra). deal.II 9.4 cannot colorize the simplex
-  // generator, so the boundary ids are set from the face centres with the
-  // numbering colorize uses for hypercubes: 2d and 2d+1 at x_d = 0 and L_d.
+  // The mesh of mesh.cc (the generated box or a Gmsh file, refined as the
+  // parameter file says), with the named boundary parts checked.
   template <int dim>
   void
   ViscoplasticContact<dim>::make_grid()
   {
     TimerOutput::Scope t(computing_timer, "Setup: mesh");
-
-    Point<dim>                corner;
-    std::vector<unsigned int> repetitions(dim, parameters.subdivisions);
-    for (unsigned int d = 0; d < dim; ++d)
-      corner[d] = parameters.lengths[d];
-
-    if (reference_cell.is_simplex())
-      GridGenerator::subdivided_hyper_rectangle_with_simplices(triangulation,
-                                                               repetitions,
-                                                               Point<dim>(),
-                                                               corner);
-    else
-      GridGenerator::subdivided_hyper_rectangle(triangulation,
-                                                repetitions,
-                                                Point<dim>(),
-                                                corner,
-                                                /*colorize=*/true);
-
-    if (reference_cell.is_simplex())
-      for (const auto &face : triangulation.active_face_iterators())
-        if (face->at_boundary())
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              const double x         = face->center()[d];
-              const double tolerance = 1e-10 * parameters.lengths[d];
-              if (std::abs(x) < tolerance)
-                face->set_boundary_id(2 * d);
-              else if (std::abs(x - parameters.lengths[d]) < tolerance)
-                face->set_boundary_id(2 * d + 1);
-            }
-
-    // Every boundary part named in the parameter file must exist.
-    std::set<types::boundary_id> present;
-    for (const auto &face : triangulation.active_face_iterators())
-      if (face->at_boundary())
-        present.insert(face->boundary_id());
-    const auto check_ids = [&](const std::vector<types::boundary_id> &ids,
-                               const std::string                     &entry) {
-      for (const auto id : ids)
-        AssertThrow(present.count(id) == 1,
-                    ExcMessage("Invalid parameter <" + entry
-                               + "> in subsection <Boundary>: boundary id "
-                               + std::to_string(id)
-                               + " is not on the mesh; accepted: ids 0 to "
-                               + std::to_string(2 * dim - 1)
-                               + " of the generated box."));
-    };
-    check_ids(parameters.clamped_ids, "Clamped boundary ids");
-    check_ids(parameters.contact_ids, "Contact boundary ids");
-    check_ids(parameters.loaded_ids, "Loaded boundary ids");
+    create_coarse_mesh(parameters, triangulation);
+    refine_mesh(parameters, triangulation);
+    check_boundary_ids(parameters, triangulation, MPI_COMM_SELF);
   }
 
 

@@ -1,0 +1,60 @@
+#!/usr/bin/python3
+"""Writes the example Gmsh meshes of this folder (format 2.2, ASCII).
+
+rotated_square_N.msh: the unit square of the reference benchmark, cut into
+N x N quadrilaterals and rotated by 30 degrees counterclockwise about the
+origin, so that no boundary part is axis-aligned. Physical groups of the
+boundary lines (the boundary ids of the parameter file):
+  1  the side that was x = 0   (clamped, Gamma_1)
+  2  the side that was x = 1   (traction-free)
+  3  the side that was y = 0   (contact, Gamma_3)
+  4  the side that was y = 1   (loaded)
+Rotated with its loads, the scene is the benchmark itself: the contact
+forces and contact states must be those of the axis-aligned run (the
+tests compare them).
+
+Run from anywhere: python3 meshes/make_example_meshes.py
+"""
+import math
+import os
+
+ANGLE = math.radians(30.0)
+
+
+def rotated_square(n):
+    c, s = math.cos(ANGLE), math.sin(ANGLE)
+    index = lambda i, j: j * (n + 1) + i + 1
+    nodes = []
+    for j in range(n + 1):
+        for i in range(n + 1):
+            x, y = i / n, j / n
+            nodes.append((index(i, j), c * x - s * y, s * x + c * y))
+    lines = []
+    for k in range(n):
+        lines.append((1, index(0, k), index(0, k + 1)))
+        lines.append((2, index(n, k), index(n, k + 1)))
+        lines.append((3, index(k, 0), index(k + 1, 0)))
+        lines.append((4, index(k, n), index(k + 1, n)))
+    quads = [(index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1))
+             for j in range(n) for i in range(n)]
+    out = ["$MeshFormat", "2.2 0 8", "$EndMeshFormat", "$PhysicalNames", "5",
+           '1 1 "clamped"', '1 2 "free"', '1 3 "contact"', '1 4 "loaded"',
+           '2 10 "body"', "$EndPhysicalNames", "$Nodes", str(len(nodes))]
+    out += ["%d %.17g %.17g 0" % node for node in nodes]
+    out += ["$EndNodes", "$Elements", str(len(lines) + len(quads))]
+    number = 0
+    for tag, a, b in lines:
+        number += 1
+        out.append("%d 1 2 %d %d %d %d" % (number, tag, tag, a, b))
+    for quad in quads:
+        number += 1
+        out.append("%d 3 2 10 10 %d %d %d %d" % ((number,) + quad))
+    out.append("$EndElements")
+    return "\n".join(out) + "\n"
+
+
+if __name__ == "__main__":
+    folder = os.path.dirname(os.path.abspath(__file__))
+    for n in (8, 16):
+        with open(os.path.join(folder, "rotated_square_%d.msh" % n), "w") as f:
+            f.write(rotated_square(n))

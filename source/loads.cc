@@ -1,0 +1,114 @@
+// Parsing the load expressions of subsection Loads.
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/lac/vector.h>
+
+#include "loads.h"
+
+#include <map>
+#include <regex>
+#include <sstream>
+
+namespace ViscoContact
+{
+  // FunctionParser's variable names, plus time.
+  template <int dim>
+  static std::string
+  load_variables()
+  {
+    return FunctionParser<dim>::default_variable_names() + ",t";
+  }
+
+  // A load expression is time dependent iff it mentions the variable t.
+  bool
+  mentions_time(const std::string &expression)
+  {
+    static const std::regex t_variable("(^|[^A-Za-z0-9_])t($|[^A-Za-z0-9_])");
+    return std::regex_search(expression, t_variable);
+  }
+
+  // Every component is the literal number zero.
+  bool
+  is_zero_expression(const std::string &expression)
+  {
+    for (const std::string &part :
+         Utilities::split_string_list(expression, ';'))
+      {
+        try
+          {
+            if (Utilities::string_to_double(part) != 0.)
+              return false;
+          }
+        catch (...)
+          {
+            return false;
+          }
+      }
+    return true;
+  }
+
+  // Parse a load expression with dim components; turn muparser's messages
+  // into one that names the parameter.
+  template <int dim>
+  void
+  initialize_load(FunctionParser<dim>       &function,
+                  const std::string         &entry,
+                  const std::string         &expression,
+                  const std::vector<double> &lengths)
+  {
+    const unsigned int n_parts
+      = Utilities::split_string_list(expression, ';').size();
+    AssertThrow(n_parts == dim,
+                ExcMessage("Invalid parameter <" + entry
+                           + "> in subsection <Loads>: value <" + expression
+                           + ">; accepted: " + std::to_string(dim)
+                           + " expressions separated by ';' (one per "
+                             "displacement component)."));
+    std::map<std::string, double> constants;
+    for (unsigned int d = 0; d < lengths.size(); ++d)
+      constants["L" + std::to_string(d + 1)] = lengths[d];
+    constants["pi"] = numbers::PI;
+    std::string parser_message;
+    try
+      {
+        function.initialize(load_variables<dim>(),
+                            expression,
+                            constants,
+                            /*time_dependent=*/true);
+        // muparser reports unknown variables only when evaluating.
+        Vector<double> values(dim);
+        function.vector_value(Point<dim>(), values);
+      }
+    catch (const ExceptionBase &exc)
+      {
+        std::ostringstream info;
+        exc.print_info(info);
+        parser_message = info.str();
+      }
+    catch (const std::exception &exc)
+      {
+        parser_message = exc.what();
+      }
+    AssertThrow(parser_message.empty(),
+                ExcMessage("Invalid parameter <" + entry
+                           + "> in subsection <Loads>: value <" + expression
+                           + ">; accepted: muparser expressions in "
+                           + load_variables<dim>()
+                           + " and the constants pi, L1, L2 (, L3). "
+                           + parser_message));
+  }
+
+
+  template void
+  initialize_load(FunctionParser<2> &,
+                  const std::string &,
+                  const std::string &,
+                  const std::vector<double> &);
+  template void
+  initialize_load(FunctionParser<3> &,
+                  const std::string &,
+                  const std::string &,
+                  const std::vector<double> &);
+} // namespace ViscoContact

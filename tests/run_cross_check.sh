@@ -1,0 +1,36 @@
+#!/bin/bash
+# Runs the program on N MPI ranks and compares, step by step, the contact
+# states and the total contact force it prints with a reference output of
+# another run (another solver, or the same scene axis-aligned):
+#   columns compared: step, time, nodes at the rigid limit, in compliance
+#   contact, out of contact (exactly), total contact force (numdiff with
+#   the given tolerances).
+#   run_cross_check.sh EXECUTABLE PRM REFERENCE N ABSOLUTE RELATIVE
+set -u
+here=$(dirname "$0")
+executable=$1 prm=$2 reference=$3 n=$4 absolute=$5 relative=$6
+
+"$here/run_mpi.sh" "$n" "$executable" "$prm" > output.txt 2> error.txt
+status=$?
+if [ $status -ne 0 ]; then
+  echo "The program failed with exit status $status on $n rank(s):"
+  cat error.txt
+  exit 1
+fi
+extract() {
+  grep '^Step' "$1" | awk '{print $2, $5, $10, $12, $15, $18}'
+}
+extract "$reference" > expected.txt
+extract output.txt > observed.txt
+if [ ! -s observed.txt ] || \
+   [ "$(wc -l < expected.txt)" -ne "$(wc -l < observed.txt)" ]; then
+  echo "The run printed $(wc -l < observed.txt) steps, the reference $(wc -l < expected.txt)."
+  exit 1
+fi
+if ! numdiff -q -a "$absolute" -r "$relative" expected.txt observed.txt > /dev/null; then
+  echo "Contact states or forces differ from $reference beyond -a $absolute -r $relative"
+  echo "(step, t, rigid, compliance, no contact, force):"
+  numdiff -a "$absolute" -r "$relative" expected.txt observed.txt | head -40
+  exit 1
+fi
+echo "$(wc -l < observed.txt) steps on $n rank(s) match $reference (numdiff -a $absolute -r $relative)."

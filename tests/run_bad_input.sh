@@ -2,15 +2,17 @@
 # Runs the program on a parameter file that must be rejected: the run must
 # fail (non-zero exit status), write nothing into its output directory, and
 # print the message given on the file's first line as "# expect: MESSAGE".
+# A line "# ranks: N" runs it on N MPI ranks.
 # With a third argument "failing-solve" the run may have written output
 # before it stopped (a solve that fails during the time loop).
 #   run_bad_input.sh EXECUTABLE PRM [failing-solve]
 set -u
 executable=$1 prm=$2 kind=${3:-bad-input}
 expected=$(sed -n '1s/^# expect: //p' "$prm")
+ranks=$(sed -n 's/^# ranks: //p' "$prm")
 rm -rf results
 
-"$executable" "$prm" > stdout.txt 2> stderr.txt
+"$(dirname "$0")/run_mpi.sh" "${ranks:-1}" "$executable" "$prm" > stdout.txt 2> stderr.txt
 status=$?
 if [ $status -eq 0 ]; then
   echo "The program accepted $prm; it must reject it."

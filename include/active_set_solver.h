@@ -51,6 +51,8 @@ namespace ViscoContact
       // Iterations of earlier solves in the same time step (the implicit
       // scheme solves one contact problem per Newton iteration).
       unsigned int earlier_iterations = 0;
+      // Why the solve failed, if it did (for the report).
+      std::string failure;
       unsigned int
       iterations() const
       {
@@ -77,6 +79,18 @@ namespace ViscoContact
     solve(const Vector<double> &free_normal_displacement,
           const unsigned int    max_iterations,
           const double          tolerance);
+
+    // The pieces and the last (r, z): what a retried time step restores and
+    // a checkpoint stores.
+    struct State
+    {
+      std::vector<unsigned int> pieces;
+      Vector<double>            r, z;
+    };
+    State
+    state() const;
+    void
+    set_state(const State &state);
 
     unsigned int
     n_nodes() const;

@@ -106,8 +106,14 @@ namespace ViscoContact
     // One time step.
     void
     assemble_external_load(const double time);
+    void
+    assemble_history_load();
     ContactActiveSetSolver::Result
-    solve_time_step(const unsigned int step, const double time);
+    solve_step_with_recovery(const unsigned int n, std::vector<double> &times);
+    ContactActiveSetSolver::Result
+    solve_time_step();
+    void
+    rescale_history_increment(const double old_step, const double new_step);
     unsigned int
     solve_step_problem(const TrilinosWrappers::MPI::Vector &rhs,
                        TrilinosWrappers::MPI::Vector       &displacement);
@@ -118,7 +124,17 @@ namespace ViscoContact
     void
     prepare_output_directory();
     void
-    output_results(const unsigned int step, const double time);
+    output_results(const unsigned int step,
+                   const double       time,
+                   const std::string &stem = "solution");
+
+    // Checkpoints (checkpoint.h), keyed by cell id and node location.
+    void
+    write_checkpoint(const unsigned int         step,
+                     const std::vector<double> &times,
+                     const double               wall_time);
+    unsigned int
+    resume_from_checkpoint(std::vector<double> &times);
     std::array<unsigned int, 3>
     count_contact_states() const;
     double
@@ -155,6 +171,7 @@ namespace ViscoContact
     unsigned int                                    n_preconditioner_setups = 0;
     unsigned int                                    total_cg_iterations     = 0;
     unsigned int                                    n_cg_solves             = 0;
+    std::string cg_failure; // why the last CG solve failed, if it did
 
     // Vectors: u_n (owned and ghosted), f_n, -(H_n, eps(v)), their sum.
     TrilinosWrappers::MPI::Vector solution;
@@ -169,6 +186,7 @@ namespace ViscoContact
     FunctionParser<dim>                      body_force;
     FunctionParser<dim>                      surface_traction;
     bool                                     loads_depend_on_time;
+    bool                                     external_load_assembled = false;
     std::vector<QuadraturePointHistory<dim>> quadrature_point_history;
     double                                   max_von_mises = 0;
 
@@ -184,6 +202,8 @@ namespace ViscoContact
     std::ofstream                               time_series;
     double                                      time_loop_compute_time = 0;
     unsigned int                                n_time_steps           = 0;
+    double       loop_time_offset     = 0; // of the run a resumed run continues
+    unsigned int last_checkpoint_step = numbers::invalid_unsigned_int;
   };
 } // namespace ViscoContact
 

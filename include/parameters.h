@@ -97,6 +97,8 @@ namespace ViscoContact
       double      end_time;
       double      time_step;
       std::string stress_update; // "explicit" or "implicit"
+      std::string on_failure;    // "stop" or "cut time step"
+      double      minimum_time_step;
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -144,6 +146,18 @@ namespace ViscoContact
       parse_parameters(ParameterHandler &prm);
     };
 
+    struct Checkpoint
+    {
+      unsigned int checkpoint_interval; // 0: never
+      bool         resume;
+      unsigned int stop_after_step; // 0: never
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
     struct ConvergenceStudy
     {
       bool                      study_enabled;
@@ -167,7 +181,8 @@ namespace ViscoContact
                            public ActiveSetSolver,
                            public LinearSolver,
                            public ConvergenceStudy,
-                           public Output
+                           public Output,
+                           public Checkpoint
     {
       static void
       declare_parameters(ParameterHandler &prm);

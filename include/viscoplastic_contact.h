@@ -128,11 +128,13 @@ namespace ViscoContact
     void
     assemble_history_load();
     ContactActiveSetSolver::Result
-    solve_time_step(const unsigned int step, const double time);
+    solve_step_with_recovery(const unsigned int n, std::vector<double> &times);
     ContactActiveSetSolver::Result
-    solve_implicit_time_step(const unsigned int step,
-                             const double       time,
-                             const double       time_step);
+    solve_time_step();
+    ContactActiveSetSolver::Result
+    solve_implicit_time_step(const double time_step);
+    void
+    rescale_history_increment(const double old_step, const double new_step);
     void
     assemble_tangent_system(const Vector<double> &displacement, const double a);
     bool
@@ -151,7 +153,17 @@ namespace ViscoContact
     void
     prepare_output_directory();
     void
-    output_results(const unsigned int step, const double time);
+    output_results(const unsigned int step,
+                   const double       time,
+                   const std::string &stem = "solution");
+    // Checkpoints (checkpoint.h): write after step n; read the last one and
+    // return its step.
+    void
+    write_checkpoint(const unsigned int         step,
+                     const std::vector<double> &times,
+                     const double               wall_time);
+    unsigned int
+    resume_from_checkpoint(std::vector<double> &times);
     void
     write_contact_profile(const unsigned int step, const double time) const;
     void
@@ -273,6 +285,8 @@ namespace ViscoContact
     std::vector<unsigned int>                   profile_steps;
     double                                      time_loop_compute_time = 0;
     unsigned int                                n_time_steps           = 0;
+    double       loop_time_offset     = 0; // of the run a resumed run continues
+    unsigned int last_checkpoint_step = numbers::invalid_unsigned_int;
   };
 } // namespace ViscoContact
 

@@ -170,7 +170,7 @@ namespace ViscoContact
                                 const double          tolerance)
   {
     AssertDimension(d.size(), n_nodes());
-    Result result{false, {}};
+    Result result{false, {}, 0, {}};
     if (n_nodes() == 0)
       {
         result.converged = true;
@@ -205,6 +205,25 @@ namespace ViscoContact
           }
       }
     return result;
+  }
+
+
+
+  ContactActiveSetSolver::State
+  ContactActiveSetSolver::state() const
+  {
+    return {node_pieces, r, z};
+  }
+
+
+
+  void
+  ContactActiveSetSolver::set_state(const State &state)
+  {
+    AssertDimension(state.pieces.size(), n_nodes());
+    node_pieces = state.pieces;
+    r           = state.r;
+    z           = state.z;
   }
 
 

@@ -128,11 +128,25 @@ namespace ViscoContact
       }
     else
       {
+        // Each coarse cell is a p4est tree, and trees are expensive (every
+        // rank stores all of them): the generated box of Subdivisions =
+        // m 2^j cubes per edge is made of m^dim coarse cells refined j times,
+        // the same mesh.
+        Parameters::AllParameters coarse_parameters = parameters;
+        unsigned int              box_refinements   = 0;
+        if (parameters.mesh_file.empty())
+          while (coarse_parameters.subdivisions % 2 == 0)
+            {
+              coarse_parameters.subdivisions /= 2;
+              ++box_refinements;
+            }
         Triangulation<dim> coarse_mesh;
-        create_coarse_mesh(parameters, coarse_mesh);
+        create_coarse_mesh(coarse_parameters, coarse_mesh);
         auto mesh = std::make_unique<parallel::distributed::Triangulation<dim>>(
           mpi_communicator);
         mesh->copy_triangulation(coarse_mesh);
+        if (box_refinements > 0)
+          mesh->refine_global(box_refinements);
         refine_mesh(parameters, *mesh);
         triangulation = std::move(mesh);
       }

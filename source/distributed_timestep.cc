@@ -14,6 +14,7 @@
 
 #include <deal.II/numerics/data_out.h>
 
+#include "checkpoint.h"
 #include "distributed_viscoplastic_contact.h"
 
 #include <Epetra_MultiVector.h>
@@ -156,9 +157,10 @@ namespace ViscoContact
 
   // @sect4{DistributedViscoplasticContact::run}
   //
-  // The time loop of the serial program. Before it, one solve of the
-  // elastic problem without contact is timed: the benchmark's figure of
-  // merit is the time per step in units of that solve.
+  // The time loop of the serial program, with the same recovery from failed
+  // solves, checkpoints and resume. Before it, one solve of the elastic
+  // problem without contact is timed: the benchmark's figure of merit is
+  // the time per step in units of that solve.
   template <int dim>
   void
   DistributedViscoplasticContact<dim>::run()
@@ -168,7 +170,6 @@ namespace ViscoContact
     setup_preconditioner();
     setup_contact();
     setup_stress_points();
-    prepare_output_directory();
 
     const double       T = parameters.end_time, k = parameters.time_step;
     const unsigned int N
@@ -176,8 +177,12 @@ namespace ViscoContact
     std::vector<double> times(N + 1);
     for (unsigned int n = 0; n < N; ++n)
       times[n] = n * k;
-    times[N]     = T;
-    n_time_steps = N;
+    times[N]                = T;
+    unsigned int first_step = 1;
+    if (parameters.resume)
+      first_step = resume_from_checkpoint(times) + 1;
+    prepare_output_directory();
+    n_time_steps = times.size() - 1;
 
     const unsigned int n_ranks
       = Utilities::MPI::n_mpi_processes(mpi_communicator);
@@ -200,34 +205,27 @@ namespace ViscoContact
 
     const double reference_solve_time = time_reference_elastic_solve();
 
-    if (parameters.write_vtu)
+    if (parameters.write_vtu && first_step == 1)
       output_results(0, 0.);
     Timer loop_timer;
-    for (unsigned int n = 1; n <= n_time_steps; ++n)
+    for (unsigned int n = first_step; n < times.size(); ++n)
       {
-        Timer step_timer;
-        {
-          TimerOutput::Scope t(computing_timer, "Assemble right-hand side");
-          if (loads_depend_on_time || n == 1)
-            assemble_external_load(times[n]);
-          system_rhs = external_load;
-          if (parameters.plasticity)
-            system_rhs += history_load;
-        }
+        Timer                                step_timer;
         const ContactActiveSetSolver::Result result
-          = solve_time_step(n, times[n]);
-        update_stresses(n < n_time_steps ? times[n + 1] - times[n] : 0.);
+          = solve_step_with_recovery(n, times);
+        update_stresses(n + 1 < times.size() ? times[n + 1] - times[n] : 0.);
         time_loop_compute_time += step_timer.wall_time();
+        n_time_steps = times.size() - 1;
 
         const auto   states      = count_contact_states();
         const double total_force = total_contact_force();
+        const double wall_time   = loop_time_offset + loop_timer.wall_time();
         if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
           {
             time_series << n << ',' << times[n] << ',' << result.iterations()
                         << ',' << states[0] << ',' << states[1] << ','
                         << states[2] << ',' << total_force << ','
-                        << max_von_mises << ',' << loop_timer.wall_time()
-                        << '\n';
+                        << max_von_mises << ',' << wall_time << '\n';
             time_series.flush();
           }
         if (parameters.verbose)
@@ -240,10 +238,84 @@ namespace ViscoContact
                 << "  contact force " << std::setprecision(8) << total_force
                 << '\n';
         if (parameters.write_vtu
-            && (n % parameters.interval == 0 || n == n_time_steps))
+            && (n % parameters.interval == 0 || n + 1 == times.size()))
           output_results(n, times[n]);
+        if (parameters.checkpoint_interval > 0
+            && n % parameters.checkpoint_interval == 0)
+          write_checkpoint(n, times, wall_time);
+        if (n == parameters.stop_after_step)
+          {
+            pcout << "Stopped after step " << n
+                  << " as requested (Stop after step, subsection "
+                     "<Checkpoint>).\n";
+            break;
+          }
       }
     print_run_summary(reference_solve_time);
+  }
+
+
+
+  // @sect4{DistributedViscoplasticContact::solve_step_with_recovery}
+  //
+  // As in the serial program: a failed solve restores the state at the
+  // start of the step, and the step is either cut in half (rescaling the
+  // explicit history increment) or the last accepted state is written to
+  // failed_step_NNNN.pvtu and the run stops with a report. Every rank takes
+  // the same decision: all failure criteria are reduced over the ranks.
+  template <int dim>
+  ContactActiveSetSolver::Result
+  DistributedViscoplasticContact<dim>::solve_step_with_recovery(
+    const unsigned int   n,
+    std::vector<double> &times)
+  {
+    const VectorType                               start_solution = solution;
+    const std::vector<DistributedContactNode<dim>> start_nodes = contact_nodes;
+    while (true)
+      {
+        const double k = times[n] - times[n - 1];
+        {
+          TimerOutput::Scope t(computing_timer, "Assemble right-hand side");
+          if (loads_depend_on_time || !external_load_assembled)
+            assemble_external_load(times[n]);
+          external_load_assembled = true;
+          system_rhs              = external_load;
+          if (parameters.plasticity)
+            system_rhs += history_load;
+        }
+        const ContactActiveSetSolver::Result result = solve_time_step();
+        if (result.converged)
+          return result;
+
+        const std::array<unsigned int, 3> states = count_contact_states();
+        solution                                 = start_solution;
+        ghosted_solution                         = solution;
+        contact_nodes                            = start_nodes;
+        if (parameters.on_failure == "cut time step"
+            && k / 2 >= parameters.minimum_time_step)
+          {
+            pcout << "Step " << n << " (t = " << times[n] << ", k = " << k
+                  << ") failed: " << result.failure
+                  << "\n  Cutting the time step to k = " << k / 2 << ".\n";
+            if (parameters.plasticity)
+              rescale_history_increment(k, k / 2);
+            times.insert(times.begin() + n, times[n - 1] + k / 2);
+            continue;
+          }
+
+        output_results(n, times[n - 1], "failed_step");
+        std::ostringstream name;
+        name << "failed_step_" << std::setw(4) << std::setfill('0') << n
+             << ".pvtu";
+        AssertThrow(false,
+                    ExcMessage(failure_report(parameters,
+                                              n,
+                                              times[n],
+                                              k,
+                                              result,
+                                              states,
+                                              name.str())));
+      }
   }
 
 
@@ -278,7 +350,8 @@ namespace ViscoContact
       reference,
       external_load,
       StepPreconditioner<dim>(apply_M, no_nodes, no_flags));
-    const double time = timer.wall_time();
+    const double time       = timer.wall_time();
+    external_load_assembled = false; // the loads of t = 0, not of step 1
     pcout << "Reference: one linear elastic solve (CG, " << control.last_step()
           << " iterations) takes " << std::setprecision(4) << time << " s\n";
     return Utilities::MPI::max(time, mpi_communicator);
@@ -417,17 +490,16 @@ namespace ViscoContact
       }
     catch (const SolverControl::NoConvergence &failure)
       {
-        AssertThrow(
-          false,
-          ExcMessage(
-            "CG did not converge in " + std::to_string(failure.last_step)
-            + " iterations (residual " + std::to_string(failure.last_residual)
-            + "): the step problem on the current pieces is not "
-              "positive definite, i.e. the contact law softens more "
-              "than the body can carry (model.md, section 4), or "
-              "<Relative tolerance> in subsection <Linear solver> = "
-            + std::to_string(parameters.relative_tolerance)
-            + " is below what the arithmetic can reach."));
+        std::ostringstream reason;
+        reason << "CG did not converge in " << failure.last_step
+               << " iterations (residual " << failure.last_residual
+               << "): the step problem on the current pieces is not positive "
+                  "definite (the contact law softens more than the body can "
+                  "carry, model.md, section 4), or <Relative tolerance> = "
+               << parameters.relative_tolerance
+               << " in subsection <Linear solver> is below what the "
+                  "arithmetic reaches.";
+        cg_failure = reason.str();
       }
     displacement += constrained_part;
     total_cg_iterations += control.last_step();
@@ -448,15 +520,15 @@ namespace ViscoContact
   // same fixed points.
   template <int dim>
   ContactActiveSetSolver::Result
-  DistributedViscoplasticContact<dim>::solve_time_step(const unsigned int step,
-                                                       const double       time)
+  DistributedViscoplasticContact<dim>::solve_time_step()
   {
     TimerOutput::Scope             t(computing_timer, "Solve: active set + CG");
-    ContactActiveSetSolver::Result result{false, {}};
+    ContactActiveSetSolver::Result result{false, {}, 0, {}};
+    cg_failure.clear();
     if (!contact_enabled)
       {
         solve_step_problem(system_rhs, solution);
-        result.converged = true;
+        result.converged = cg_failure.empty();
       }
     for (unsigned int iteration = 0;
          contact_enabled && iteration < parameters.max_iterations;
@@ -464,6 +536,8 @@ namespace ViscoContact
       {
         const unsigned int cg_iterations
           = solve_step_problem(system_rhs, solution);
+        if (!cg_failure.empty())
+          break;
 
         VectorType residual(locally_owned_dofs, mpi_communicator);
         stiffness_matrix.vmult(residual, solution);
@@ -507,34 +581,29 @@ namespace ViscoContact
       }
     total_active_set_iterations += result.iterations();
 
-    if (!result.converged)
+    if (!cg_failure.empty())
+      result.failure = cg_failure;
+    else if (!result.converged)
+      result.failure = "The active-set iteration did not converge within "
+                       + std::to_string(result.iterations())
+                       + " iterations (Maximum iterations = "
+                       + std::to_string(parameters.max_iterations)
+                       + " in subsection <Active set solver>; the linear "
+                         "residual column of the history is the number of CG "
+                         "iterations).";
+    if (!result.failure.empty())
       {
-        const auto         states = count_contact_states();
-        std::ostringstream message;
-        message << "The active-set iteration did not converge in time step "
-                << step << " (t = " << time << ") within "
-                << result.iterations() << " iterations (Maximum iterations = "
-                << parameters.max_iterations
-                << " in subsection <Active set solver>).\n"
-                << "Iteration history (the linear residual column is the "
-                   "number of CG iterations):\n"
-                << result.describe()
-                << "Contact state at the end: " << states[0]
-                << " nodes at the rigid limit, " << states[1]
-                << " in normal-compliance contact, " << states[2]
-                << " out of contact.\n"
-                << "If the contact law softens more than the body can carry "
-                   "(model.md, section 4) the step problem may have several "
-                   "solutions or none.";
-        AssertThrow(false, ExcMessage(message.str()));
+        result.converged = false;
+        return result;
       }
 
     constraints.distribute(solution);
     ghosted_solution = solution;
-    AssertThrow(std::isfinite(solution.l2_norm()),
-                ExcMessage("The displacement of time step "
-                           + std::to_string(step)
-                           + " is not finite (NaN or Inf)."));
+    if (!std::isfinite(solution.l2_norm()))
+      {
+        result.converged = false;
+        result.failure   = "The displacement is not finite (NaN or Inf).";
+      }
     return result;
   }
 
@@ -622,6 +691,82 @@ namespace ViscoContact
 
 
 
+  // @sect4{DistributedViscoplasticContact::assemble_history_load}
+  //
+  // -(H, eps(v)) from the stored history alone: after a cut step rescaled
+  // the history increment, and after a resume (the time loop otherwise
+  // assembles it inside update_stresses()).
+  template <int dim>
+  void
+  DistributedViscoplasticContact<dim>::assemble_history_load()
+  {
+    const FEValuesExtractors::Vector     displacements(0);
+    FEValues<dim>                        fe_values(*mapping,
+                            *fe,
+                            stress_quadrature,
+                            update_gradients | update_JxW_values);
+    const unsigned int                   dofs_per_cell = fe->n_dofs_per_cell();
+    const unsigned int                   n_q = stress_quadrature.size();
+    Vector<double>                       cell_rhs(dofs_per_cell);
+    std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
+    history_load = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell_rhs = 0;
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              const SymmetricTensor<2, dim> &H
+                = quadrature_point_history
+                    [std::size_t(cell->active_cell_index()) * n_q + q]
+                      .history;
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                cell_rhs(i)
+                  -= scalar_product(
+                       H,
+                       fe_values[displacements].symmetric_gradient(i, q))
+                     * fe_values.JxW(q);
+            }
+          cell->get_dof_indices(local_dof_indices);
+          constraints.distribute_local_to_global(cell_rhs,
+                                                 local_dof_indices,
+                                                 history_load);
+        }
+    history_load.compress(VectorOperation::add);
+  }
+
+
+
+  // @sect4{DistributedViscoplasticContact::rescale_history_increment}
+  //
+  // H_n += (k' - k) G(sigma_{n-1}) at the stress points of the locally
+  // owned cells, for a step cut from k to k'.
+  template <int dim>
+  void
+  DistributedViscoplasticContact<dim>::rescale_history_increment(
+    const double old_step,
+    const double new_step)
+  {
+    const unsigned int n_q = stress_quadrature.size();
+    for (const auto &cell : triangulation->active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            QuadraturePointHistory<dim> &state
+              = quadrature_point_history[std::size_t(cell->active_cell_index())
+                                           * n_q
+                                         + q];
+            state.history
+              += (new_step - old_step)
+                 * material.viscoplastic_rate(state.stress,
+                                              &state.plastic_multiplier);
+          }
+    assemble_history_load();
+  }
+
+
+
   // @sect4{Contact state}
   //
   // Counts over all ranks: at the rigid limit, in normal-compliance contact
@@ -680,14 +825,18 @@ namespace ViscoContact
           {
             std::ofstream prm_copy(directory / "parameters.prm");
             prm_copy << parameters.parsed_parameters;
-            time_series.open(directory / "time_series.csv");
+            // A resumed run continues the series of the run it resumes.
+            time_series.open(directory / "time_series.csv",
+                             parameters.resume ? std::ios::app
+                                               : std::ios::trunc);
             if (!prm_copy || !time_series)
               problem = "it is not writable";
-            time_series
-              << "step,time,active_set_iterations,unilateral_nodes,"
-                 "compliance_nodes,no_contact_nodes,total_contact_force,"
-                 "max_von_mises,wall_time\n"
-              << std::setprecision(10);
+            if (!parameters.resume)
+              time_series
+                << "step,time,active_set_iterations,unilateral_nodes,"
+                   "compliance_nodes,no_contact_nodes,total_contact_force,"
+                   "max_von_mises,wall_time\n";
+            time_series << std::setprecision(10);
           }
       }
     problem = Utilities::MPI::broadcast(mpi_communicator, problem, 0);
@@ -708,7 +857,8 @@ namespace ViscoContact
   template <int dim>
   void
   DistributedViscoplasticContact<dim>::output_results(const unsigned int step,
-                                                      const double       time)
+                                                      const double       time,
+                                                      const std::string &stem)
   {
     TimerOutput::Scope t(computing_timer, "Output");
     DataOut<dim>       data_out;
@@ -758,12 +908,13 @@ namespace ViscoContact
       = std::min(8u, Utilities::MPI::n_mpi_processes(mpi_communicator));
     const std::string record
       = data_out.write_vtu_with_pvtu_record(parameters.directory + "/",
-                                            "solution",
+                                            stem,
                                             step,
                                             mpi_communicator,
                                             4,
                                             n_groups);
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+    if (stem == "solution"
+        && Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
         times_and_names.emplace_back(time, record);
         std::ofstream pvd(std::filesystem::path(parameters.directory)

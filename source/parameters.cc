@@ -454,6 +454,21 @@ namespace ViscoContact
           "stress point and a Newton iteration with the consistent tangent "
           "per step (model.md, section 3; unconditionally stable, a "
           "factorisation per Newton iteration).");
+        prm.declare_entry(
+          "On solver failure",
+          "stop",
+          Patterns::Selection("stop|cut time step"),
+          "When a step's solve fails (the active-set or Newton iteration "
+          "reaches its limit, CG fails, or the displacement is not finite): "
+          "stop (write the last accepted state as failed_step_NNNN.vtu, "
+          "report, exit status 1), or cut time step (retry the step with half "
+          "the time step, down to Minimum time step; the remainder of the "
+          "step follows as the next step).");
+        prm.declare_entry("Minimum time step",
+                          "1e-6",
+                          Patterns::Double(),
+                          "The smallest time step a cut may reach [s]; in "
+                          "(0, Time step].");
       }
       prm.leave_subsection();
     }
@@ -472,7 +487,54 @@ namespace ViscoContact
                 "Time step",
                 to_string(time_step),
                 "0 < k <= T = " + to_string(end_time));
+        on_failure        = prm.get("On solver failure");
+        minimum_time_step = prm.get_double("Minimum time step");
+        require(minimum_time_step > 0 && minimum_time_step <= time_step,
+                "Time",
+                "Minimum time step",
+                to_string(minimum_time_step),
+                "0 < Minimum time step <= Time step = " + to_string(time_step));
       }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    Checkpoint::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Checkpoint");
+      {
+        prm.declare_entry(
+          "Checkpoint interval",
+          "0",
+          Patterns::Integer(0),
+          "Write a checkpoint (everything a resumed run needs) into "
+          "<Output directory>/checkpoint every n-th step; 0: never. Only the "
+          "last complete checkpoint is kept.");
+        prm.declare_entry(
+          "Resume",
+          "false",
+          Patterns::Bool(),
+          "Continue from the last complete checkpoint in the Output "
+          "directory (same scene, same number of MPI ranks) instead of "
+          "starting at t = 0. The time series and the .pvd record continue.");
+        prm.declare_entry("Stop after step",
+                          "0",
+                          Patterns::Integer(0),
+                          "End the run after this step as if it had been "
+                          "killed (for tests of Resume); 0: never.");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    Checkpoint::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Checkpoint");
+      checkpoint_interval = prm.get_integer("Checkpoint interval");
+      resume              = prm.get_bool("Resume");
+      stop_after_step     = prm.get_integer("Stop after step");
       prm.leave_subsection();
     }
 
@@ -749,6 +811,7 @@ namespace ViscoContact
       LinearSolver::declare_parameters(prm);
       ConvergenceStudy::declare_parameters(prm);
       Output::declare_parameters(prm);
+      Checkpoint::declare_parameters(prm);
     }
 
     void
@@ -764,6 +827,14 @@ namespace ViscoContact
       LinearSolver::parse_parameters(prm);
       ConvergenceStudy::parse_parameters(prm, cell_type);
       Output::parse_parameters(prm);
+      Checkpoint::parse_parameters(prm);
+      if (study_enabled)
+        require(checkpoint_interval == 0 && !resume && stop_after_step == 0,
+                "Checkpoint",
+                "Checkpoint interval",
+                std::to_string(checkpoint_interval),
+                "0, and Resume = false, Stop after step = 0, when a "
+                "convergence study runs");
 
       if (study_enabled)
         require(mesh_file.empty() && global_refinements == 0

@@ -45,10 +45,17 @@ namespace ViscoContact
       prm_copy << parameters.parsed_parameters;
     }
 
-    time_series.open(directory / "time_series.csv");
-    time_series << "step,time,active_set_iterations,unilateral_nodes,"
-                   "compliance_nodes,no_contact_nodes,total_contact_force,"
-                   "max_von_mises,wall_time\n";
+    // A resumed run continues the series of the run it resumes; its rows
+    // after the checkpoint are cut off when the checkpoint is read.
+    if (parameters.resume)
+      time_series.open(directory / "time_series.csv", std::ios::app);
+    else
+      {
+        time_series.open(directory / "time_series.csv");
+        time_series << "step,time,active_set_iterations,unilateral_nodes,"
+                       "compliance_nodes,no_contact_nodes,total_contact_force,"
+                       "max_von_mises,wall_time\n";
+      }
     time_series << std::setprecision(10);
   }
 
@@ -122,10 +129,14 @@ namespace ViscoContact
   // the deformed mesh); stresses are cell data (averaged over the stress
   // points of a cell on hypercubes); the contact quantities are nodal
   // fields, zero away from Gamma_3.
+  //
+  // With another file stem (failed_step) the file is written for
+  // inspection only and not listed in solution.pvd.
   template <int dim>
   void
   ViscoplasticContact<dim>::output_results(const unsigned int step,
-                                           const double       time)
+                                           const double       time,
+                                           const std::string &stem)
   {
     TimerOutput::Scope t(computing_timer, "Output");
 
@@ -212,9 +223,11 @@ namespace ViscoContact
     data_out.set_flags(flags);
 
     std::ostringstream name;
-    name << "solution_" << std::setw(4) << std::setfill('0') << step << ".vtu";
+    name << stem << '_' << std::setw(4) << std::setfill('0') << step << ".vtu";
     std::ofstream vtu(std::filesystem::path(parameters.directory) / name.str());
     data_out.write_vtu(vtu);
+    if (stem != "solution")
+      return;
 
     times_and_names.emplace_back(time, name.str());
     std::ofstream pvd(std::filesystem::path(parameters.directory)

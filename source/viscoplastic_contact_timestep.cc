@@ -6,6 +6,7 @@
 
 #include <deal.II/fe/fe_values.h>
 
+#include "checkpoint.h"
 #include "viscoplastic_contact.h"
 
 #include <algorithm>
@@ -20,7 +21,10 @@ namespace ViscoContact
   // The algorithm of model.md, section 2, as the reader would write it down:
   // set up, then for each time step assemble the right-hand side, solve the
   // step's variational-hemivariational inequality by the active-set method,
-  // update the stresses and the history, and write the results.
+  // update the stresses and the history, and write the results. Around it:
+  // a resumed run starts after the step of its checkpoint, a checkpoint is
+  // written every Checkpoint interval steps, and a run may be told to stop
+  // after a given step (as if it had been killed).
   template <int dim>
   void
   ViscoplasticContact<dim>::run()
@@ -29,10 +33,13 @@ namespace ViscoContact
     setup_system();
     setup_contact();
     setup_quadrature_point_history();
-    prepare_output_directory();
 
-    const std::vector<double> times = time_levels();
-    n_time_steps                    = times.size() - 1;
+    std::vector<double> times      = time_levels();
+    unsigned int        first_step = 1;
+    if (parameters.resume)
+      first_step = resume_from_checkpoint(times) + 1;
+    prepare_output_directory();
+    n_time_steps = times.size() - 1;
 
     pcout << "Mesh: " << triangulation.n_active_cells() << ' '
           << reference_cell.to_string() << " cells, " << dof_handler.n_dofs()
@@ -42,36 +49,39 @@ namespace ViscoContact
           << ", contact " << (contact_enabled ? "on" : "off") << '\n';
     report_scheme_limits();
 
-    // The steps whose contact profile is written: the ones closest to the
-    // requested times.
-    for (const double t : parameters.profile_times)
-      {
-        unsigned int closest = 0;
-        for (unsigned int n = 1; n < times.size(); ++n)
-          if (std::abs(times[n] - t) < std::abs(times[closest] - t))
-            closest = n;
-        profile_steps.push_back(closest);
-      }
+    // The step whose contact profile is written for a requested time is the
+    // one closest to it in the schedule (which a cut step refines).
+    const auto is_profile_step = [&](const unsigned int n) {
+      for (const double target : parameters.profile_times)
+        {
+          unsigned int closest = 0;
+          for (unsigned int m = 1; m < times.size(); ++m)
+            if (std::abs(times[m] - target) < std::abs(times[closest] - target))
+              closest = m;
+          if (closest == n)
+            return true;
+        }
+      return false;
+    };
 
-    if (parameters.write_vtu)
+    if (parameters.write_vtu && first_step == 1)
       output_results(0, 0.);
 
     Timer loop_timer;
-    for (unsigned int n = 1; n <= n_time_steps; ++n)
+    for (unsigned int n = first_step; n < times.size(); ++n)
       {
-        Timer step_timer;
-        assemble_right_hand_side(times[n]);
+        Timer                                step_timer;
         const ContactActiveSetSolver::Result result
-          = (parameters.stress_update == "implicit"
-               ? solve_implicit_time_step(n, times[n], times[n] - times[n - 1])
-               : solve_time_step(n, times[n]));
+          = solve_step_with_recovery(n, times);
         update_stresses(times[n] - times[n - 1],
-                        n < n_time_steps ? times[n + 1] - times[n] : 0.);
+                        n + 1 < times.size() ? times[n + 1] - times[n] : 0.);
         time_loop_compute_time += step_timer.wall_time();
+        n_time_steps = times.size() - 1;
         if (step_observer)
           step_observer(n, times[n]);
 
-        write_time_series_row(n, times[n], result, loop_timer.wall_time());
+        const double wall_time = loop_time_offset + loop_timer.wall_time();
+        write_time_series_row(n, times[n], result, wall_time);
         if (parameters.verbose)
           {
             const auto states = count_contact_states();
@@ -84,15 +94,110 @@ namespace ViscoContact
                   << "  contact force " << std::setprecision(8)
                   << total_contact_force() << '\n';
           }
-        if (std::find(profile_steps.begin(), profile_steps.end(), n)
-            != profile_steps.end())
+        if (is_profile_step(n))
           write_contact_profile(n, times[n]);
         if (parameters.write_vtu
-            && (n % parameters.interval == 0 || n == n_time_steps))
+            && (n % parameters.interval == 0 || n + 1 == times.size()))
           output_results(n, times[n]);
+        if (parameters.checkpoint_interval > 0
+            && n % parameters.checkpoint_interval == 0)
+          write_checkpoint(n, times, wall_time);
+        if (n == parameters.stop_after_step)
+          {
+            pcout << "Stopped after step " << n
+                  << " as requested (Stop after step, subsection "
+                     "<Checkpoint>).\n";
+            break;
+          }
       }
 
     print_run_summary();
+  }
+
+
+
+  // @sect4{ViscoplasticContact::solve_step_with_recovery}
+  //
+  // One time step, and what happens when its solve fails (the active-set
+  // or Newton iteration reaches its limit, or the displacement is not
+  // finite): the state at the start of the step is restored, and either the
+  // step is cut in half (the other half becomes the next step of the
+  // schedule; with the explicit update the history increment H_n - H_{n-1}
+  // = k G(sigma_{n-1}) is rescaled to the new k) or, when cutting is not
+  // asked for or would go below Minimum time step, the last accepted state
+  // is written to failed_step_NNNN.vtu and the run stops with a report.
+  template <int dim>
+  ContactActiveSetSolver::Result
+  ViscoplasticContact<dim>::solve_step_with_recovery(const unsigned int   n,
+                                                     std::vector<double> &times)
+  {
+    const Vector<double>          start_solution = solution;
+    ContactActiveSetSolver::State start_contact;
+    if (contact_enabled)
+      start_contact = active_set_solver.state();
+    const bool explicit_history
+      = parameters.plasticity && parameters.stress_update == "explicit";
+
+    while (true)
+      {
+        const double k = times[n] - times[n - 1];
+        assemble_right_hand_side(times[n]);
+        const ContactActiveSetSolver::Result result
+          = (parameters.stress_update == "implicit"
+               ? solve_implicit_time_step(k)
+               : solve_time_step());
+        if (result.converged)
+          return result;
+
+        const std::array<unsigned int, 3> states = count_contact_states();
+        solution                                 = start_solution;
+        if (contact_enabled)
+          active_set_solver.set_state(start_contact);
+        const bool cut = (parameters.on_failure == "cut time step"
+                          && k / 2 >= parameters.minimum_time_step);
+        if (cut)
+          {
+            pcout << "Step " << n << " (t = " << times[n] << ", k = " << k
+                  << ") failed: " << result.failure
+                  << "\n  Cutting the time step to k = " << k / 2 << ".\n";
+            if (explicit_history)
+              rescale_history_increment(k, k / 2);
+            times.insert(times.begin() + n, times[n - 1] + k / 2);
+            continue;
+          }
+
+        output_results(n, times[n - 1], "failed_step");
+        std::ostringstream name;
+        name << "failed_step_" << std::setw(4) << std::setfill('0') << n
+             << ".vtu";
+        AssertThrow(false,
+                    ExcMessage(failure_report(parameters,
+                                              n,
+                                              times[n],
+                                              k,
+                                              result,
+                                              states,
+                                              name.str())));
+      }
+  }
+
+
+
+  // @sect4{ViscoplasticContact::rescale_history_increment}
+  //
+  // H_n = H_{n-1} + k G(sigma_{n-1}) was computed with the step length k
+  // the schedule had; a cut step needs it with k': H_n += (k' - k) G.
+  // sigma_{n-1} is unchanged by the failed attempt, so G is the same.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::rescale_history_increment(const double old_step,
+                                                      const double new_step)
+  {
+    for (QuadraturePointHistory<dim> &state : quadrature_point_history)
+      state.history += (new_step - old_step)
+                       * material.viscoplastic_rate(state.stress,
+                                                    &state.plastic_multiplier);
+    assemble_history_load();
   }
 
 
@@ -314,10 +419,9 @@ namespace ViscoContact
   // here.
   template <int dim>
   ContactActiveSetSolver::Result
-  ViscoplasticContact<dim>::solve_time_step(const unsigned int step,
-                                            const double       time)
+  ViscoplasticContact<dim>::solve_time_step()
   {
-    ContactActiveSetSolver::Result result{true, {}};
+    ContactActiveSetSolver::Result result{true, {}, 0, {}};
     {
       TimerOutput::Scope t(computing_timer, "Solve: elastic solves");
       solution = system_rhs;
@@ -339,25 +443,15 @@ namespace ViscoContact
         total_active_set_iterations += result.iterations();
         if (!result.converged)
           {
-            const auto         states = count_contact_states();
-            std::ostringstream message;
-            message << "The active-set iteration did not converge in time step "
-                    << step << " (t = " << time << ") within "
-                    << result.iterations()
-                    << " iterations (Maximum iterations = "
-                    << parameters.max_iterations
-                    << ", Tolerance = " << parameters.tolerance
-                    << " in subsection <Active set solver>).\n"
-                    << "Iteration history:\n"
-                    << result.describe()
-                    << "Contact state at the end: " << states[0]
-                    << " nodes at the rigid limit, " << states[1]
-                    << " in normal-compliance contact, " << states[2]
-                    << " out of contact.\n"
-                    << "If the contact law softens more than the body can "
-                       "carry (model.md, section 4) the step problem may have "
-                       "several solutions or none.";
-            AssertThrow(false, ExcMessage(message.str()));
+            std::ostringstream reason;
+            reason << "The active-set iteration did not converge within "
+                   << result.iterations()
+                   << " iterations (Maximum iterations = "
+                   << parameters.max_iterations
+                   << ", Tolerance = " << parameters.tolerance
+                   << " in subsection <Active set solver>).";
+            result.failure = reason.str();
+            return result;
           }
       }
 
@@ -385,10 +479,11 @@ namespace ViscoContact
       }
     constraints.distribute(solution);
 
-    AssertThrow(std::isfinite(solution.l2_norm()),
-                ExcMessage("The displacement of time step "
-                           + std::to_string(step)
-                           + " is not finite (NaN or Inf)."));
+    if (!std::isfinite(solution.l2_norm()))
+      {
+        result.converged = false;
+        result.failure   = "The displacement is not finite (NaN or Inf).";
+      }
     return result;
   }
 
@@ -550,7 +645,7 @@ namespace ViscoContact
     factorization.solve(displacement);
     ++n_elastic_solves;
     if (!contact_enabled)
-      return ContactActiveSetSolver::Result{true, {}};
+      return ContactActiveSetSolver::Result{true, {}, 0, {}};
 
     const unsigned int          m = contact_nodes.size();
     FullMatrix<double>          compliance(m, m);
@@ -669,12 +764,10 @@ namespace ViscoContact
   // solver is.
   template <int dim>
   ContactActiveSetSolver::Result
-  ViscoplasticContact<dim>::solve_implicit_time_step(const unsigned int step,
-                                                     const double       time,
-                                                     const double time_step)
+  ViscoplasticContact<dim>::solve_implicit_time_step(const double time_step)
   {
     const double                   a = time_step / (2 * material.viscosity());
-    ContactActiveSetSolver::Result result{true, {}};
+    ContactActiveSetSolver::Result result{true, {}, 0, {}};
     Vector<double>                 iterate;
     for (unsigned int stages = 1; stages <= 64; stages *= 2)
       {
@@ -693,16 +786,14 @@ namespace ViscoContact
             return result;
           }
       }
-    AssertThrow(false,
-                ExcMessage("The Newton iteration of the implicit scheme did "
-                           "not converge in time step "
-                           + std::to_string(step)
-                           + " (t = " + std::to_string(time)
-                           + "), not even with continuation in a = k/(2 "
-                             "lambda) over 64 stages (Maximum iterations = "
-                           + std::to_string(parameters.max_iterations)
-                           + " per Newton iteration and per active-set "
-                             "iteration, subsection <Active set solver>)."));
+    result.converged = false;
+    result.failure
+      = "The Newton iteration of the implicit scheme did not converge, not "
+        "even with continuation in a = k/(2 lambda) over 64 stages (Maximum "
+        "iterations = "
+        + std::to_string(parameters.max_iterations)
+        + " per Newton iteration and per active-set iteration, subsection "
+          "<Active set solver>).";
     return result;
   }
 

@@ -4,7 +4,8 @@
 # print the message given on the file's first line as "# expect: MESSAGE".
 # A line "# ranks: N" runs it on N MPI ranks.
 # With a third argument "failing-solve" the run may have written output
-# before it stopped (a solve that fails during the time loop).
+# before it stopped (a solve that fails during the time loop), and it must
+# have written the last accepted state as results/failed_step_*.vtu.
 #   run_bad_input.sh EXECUTABLE PRM [failing-solve]
 set -u
 executable=$1 prm=$2 kind=${3:-bad-input}
@@ -26,5 +27,13 @@ fi
 if [ "$kind" = bad-input ] && [ -e results ]; then
   echo "The rejected run wrote into its output directory."
   exit 1
+fi
+# A failed solve writes the last accepted state for inspection.
+if [ "$kind" = failing-solve ]; then
+  state=$(find results -name 'failed_step_*.vtu' 2>/dev/null | head -1)
+  if [ -z "$state" ]; then
+    echo "The failed solve wrote no failed_step_*.vtu."
+    exit 1
+  fi
 fi
 echo "Stopped with exit status $status and the expected message."

@@ -18,7 +18,7 @@ if [ $status -ne 0 ]; then
   exit 1
 fi
 extract() {
-  grep '^Step' "$1" | awk '{print $2, $5, $10, $12, $15, $18}'
+  grep -E '^Step +[0-9]+  t =' "$1" | awk '{print $2, $5, $10, $12, $15, $18}'
 }
 extract "$reference" > expected.txt
 extract output.txt > observed.txt

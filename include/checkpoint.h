@@ -3,15 +3,13 @@
 
 #include <deal.II/base/mpi.h>
 
-#include "active_set_solver.h"
-#include "parameters.h"
 
-#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace ViscoContact
@@ -96,6 +94,9 @@ namespace ViscoContact
     std::string
     read_string();
 
+    const std::filesystem::path &
+    name() const;
+
   private:
     void
     check();
@@ -106,6 +107,41 @@ namespace ViscoContact
     std::ifstream         in;
     std::uint64_t         file_size;
   };
+
+  // What every checkpoint file starts with: the layout version, the space
+  // dimension, the step, the time schedule (cut steps included), and the
+  // wall and compute time of the time loop so far.
+  struct CheckpointHeader
+  {
+    std::uint32_t       version   = 0;
+    std::uint32_t       dimension = 0;
+    std::uint32_t       step      = 0;
+    std::vector<double> times;
+    double              wall_time    = 0;
+    double              compute_time = 0;
+
+    void
+    write(CheckpointWriter &out) const;
+    // Reads a header and checks it against what the reader expects.
+    void
+    read(CheckpointReader   &in,
+         const std::uint32_t expected_version,
+         const std::uint32_t expected_dimension,
+         const std::uint32_t expected_step);
+  };
+
+  // The .pvd record: (time, file name) per output step.
+  void
+  write_output_records(
+    CheckpointWriter                                  &out,
+    const std::vector<std::pair<double, std::string>> &records);
+  std::vector<std::pair<double, std::string>>
+  read_output_records(CheckpointReader &in);
+
+  // A consistency check of a file being read: throws, naming the file, if
+  // the condition is false.
+  void
+  check_checkpoint_content(const bool condition, const CheckpointReader &in);
 
   // What checkpoint.info records: the step, its time, the number of ranks
   // that wrote the files, and the size of the problem (a resumed run checks
@@ -148,18 +184,6 @@ namespace ViscoContact
   truncate_time_series(const std::filesystem::path &file,
                        const unsigned int           step);
 
-  // The report of a time step whose solve failed and that is not cut
-  // (again): the step, its time and length, why it failed, the iteration
-  // history, the contact state of the last iterate, where the last accepted
-  // state was written, and what can be changed.
-  std::string
-  failure_report(const Parameters::AllParameters      &parameters,
-                 const unsigned int                    step,
-                 const double                          time,
-                 const double                          time_step,
-                 const ContactActiveSetSolver::Result &result,
-                 const std::array<unsigned int, 3>    &contact_states,
-                 const std::string                    &state_file);
 } // namespace ViscoContact
 
 #endif

@@ -114,6 +114,9 @@ namespace ViscoContact
     solve_time_step();
     void
     rescale_history_increment(const double old_step, const double new_step);
+    void
+    apply_preconditioner(TrilinosWrappers::MPI::Vector       &dst,
+                         const TrilinosWrappers::MPI::Vector &src) const;
     unsigned int
     solve_step_problem(const TrilinosWrappers::MPI::Vector &rhs,
                        TrilinosWrappers::MPI::Vector       &displacement);

@@ -197,8 +197,6 @@ namespace ViscoContact
     contact_status(const unsigned int node) const;
     double
     total_contact_force() const;
-    std::vector<double>
-    time_levels() const;
 
     // Run control, console and timing.
     const Parameters::AllParameters parameters;

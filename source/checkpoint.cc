@@ -67,6 +67,88 @@ namespace ViscoContact
 
 
 
+  const std::filesystem::path &
+  CheckpointReader::name() const
+  {
+    return file;
+  }
+
+
+
+  void
+  check_checkpoint_content(const bool condition, const CheckpointReader &in)
+  {
+    AssertThrow(condition,
+                ExcMessage("The checkpoint file " + in.name().string()
+                           + " does not belong to this scene or was written "
+                             "by another version of the program."));
+  }
+
+
+
+  void
+  CheckpointHeader::write(CheckpointWriter &out) const
+  {
+    out.write(version);
+    out.write(dimension);
+    out.write(step);
+    out.write_vector(times);
+    out.write(wall_time);
+    out.write(compute_time);
+  }
+
+
+
+  void
+  CheckpointHeader::read(CheckpointReader   &in,
+                         const std::uint32_t expected_version,
+                         const std::uint32_t expected_dimension,
+                         const std::uint32_t expected_step)
+  {
+    version = in.read<std::uint32_t>();
+    check_checkpoint_content(version == expected_version, in);
+    dimension = in.read<std::uint32_t>();
+    check_checkpoint_content(dimension == expected_dimension, in);
+    step = in.read<std::uint32_t>();
+    check_checkpoint_content(step == expected_step, in);
+    times = in.read_vector<double>();
+    check_checkpoint_content(step < times.size(), in);
+    wall_time    = in.read<double>();
+    compute_time = in.read<double>();
+  }
+
+
+
+  void
+  write_output_records(
+    CheckpointWriter                                  &out,
+    const std::vector<std::pair<double, std::string>> &records)
+  {
+    out.write<std::uint64_t>(records.size());
+    for (const auto &entry : records)
+      {
+        out.write(entry.first);
+        out.write_string(entry.second);
+      }
+  }
+
+
+
+  std::vector<std::pair<double, std::string>>
+  read_output_records(CheckpointReader &in)
+  {
+    std::vector<std::pair<double, std::string>> records;
+    const std::uint64_t                         n = in.read<std::uint64_t>();
+    for (std::uint64_t i = 0; i < n; ++i)
+      {
+        const double time = in.read<double>();
+        records.emplace_back(time, in.read_string());
+      }
+    return records;
+  }
+
+
+
   void
   CheckpointReader::check()
   {
@@ -221,40 +303,5 @@ namespace ViscoContact
     std::ofstream out(file, std::ios::trunc);
     for (const std::string &row : kept)
       out << row << '\n';
-  }
-
-
-
-  std::string
-  failure_report(const Parameters::AllParameters      &parameters,
-                 const unsigned int                    step,
-                 const double                          time,
-                 const double                          time_step,
-                 const ContactActiveSetSolver::Result &result,
-                 const std::array<unsigned int, 3>    &contact_states,
-                 const std::string                    &state_file)
-  {
-    std::ostringstream message;
-    message << "Time step " << step << " (t = " << time << ", k = " << time_step
-            << ") failed. " << result.failure << '\n'
-            << "Iteration history:\n"
-            << result.describe()
-            << "Contact state of the last iterate: " << contact_states[0]
-            << " nodes at the rigid limit, " << contact_states[1]
-            << " in normal-compliance contact, " << contact_states[2]
-            << " out of contact.\n"
-            << "The last accepted state (t = " << time - time_step
-            << ") is written to " << state_file << ".\n";
-    if (parameters.on_failure == "cut time step")
-      message << "Cutting the step further would go below <Minimum time "
-                 "step> = "
-              << parameters.minimum_time_step << " in subsection <Time>.\n";
-    else
-      message << "<On solver failure> = cut time step in subsection <Time> "
-                 "retries failing steps with smaller time steps.\n";
-    message << "If the contact law softens more than the body can carry "
-               "(model.md, section 4) the step problem may have several "
-               "solutions or none.";
-    return message.str();
   }
 } // namespace ViscoContact

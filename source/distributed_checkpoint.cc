@@ -46,12 +46,14 @@ namespace ViscoContact
     AssertThrowMPI(error);
 
     CheckpointWriter out(checkpoint_file(parameters.directory, step, rank));
-    out.write(distributed_checkpoint_version);
-    out.write<std::uint32_t>(dim);
-    out.write<std::uint32_t>(step);
-    out.write_vector(times);
-    out.write(wall_time);
-    out.write(time_loop_compute_time);
+    CheckpointHeader header;
+    header.version      = distributed_checkpoint_version;
+    header.dimension    = dim;
+    header.step         = step;
+    header.times        = times;
+    header.wall_time    = wall_time;
+    header.compute_time = time_loop_compute_time;
+    header.write(out);
     out.write<std::uint32_t>(total_active_set_iterations);
     out.write<std::uint32_t>(total_cg_iterations);
     out.write<std::uint32_t>(n_cg_solves);
@@ -81,12 +83,7 @@ namespace ViscoContact
         out.write(node.r);
         out.write(node.z);
       }
-    out.write<std::uint64_t>(times_and_names.size());
-    for (const auto &entry : times_and_names)
-      {
-        out.write(entry.first);
-        out.write_string(entry.second);
-      }
+    write_output_records(out, times_and_names);
     out.finish();
 
     CheckpointRecord record;
@@ -123,24 +120,18 @@ namespace ViscoContact
     const std::filesystem::path file
       = checkpoint_file(parameters.directory, record.step, rank);
     CheckpointReader in(file);
-    const auto       damaged = [&](const bool ok) {
-      AssertThrow(ok,
-                  ExcMessage("The checkpoint file " + file.string()
-                             + " does not belong to this scene or was written "
-                                     "by another version of the program."));
-    };
-    damaged(in.read<std::uint32_t>() == distributed_checkpoint_version);
-    damaged(in.read<std::uint32_t>() == dim);
-    const unsigned int step = in.read<std::uint32_t>();
-    damaged(step == record.step);
-    times                       = in.read_vector<double>();
-    loop_time_offset            = in.read<double>();
-    time_loop_compute_time      = in.read<double>();
+    const auto       damaged
+      = [&](const bool ok) { check_checkpoint_content(ok, in); };
+    CheckpointHeader header;
+    header.read(in, distributed_checkpoint_version, dim, record.step);
+    const unsigned int step     = header.step;
+    times                       = header.times;
+    loop_time_offset            = header.wall_time;
+    time_loop_compute_time      = header.compute_time;
     total_active_set_iterations = in.read<std::uint32_t>();
     total_cg_iterations         = in.read<std::uint32_t>();
     n_cg_solves                 = in.read<std::uint32_t>();
     max_von_mises               = in.read<double>();
-    damaged(step < times.size());
 
     // The cells of the file, by id.
     const unsigned int  n_q     = stress_quadrature.size();
@@ -206,13 +197,7 @@ namespace ViscoContact
         node.z     = stored[entry->second].z;
       }
 
-    const std::uint64_t n_records = in.read<std::uint64_t>();
-    times_and_names.clear();
-    for (std::uint64_t i = 0; i < n_records; ++i)
-      {
-        const double time = in.read<double>();
-        times_and_names.emplace_back(time, in.read_string());
-      }
+    times_and_names = read_output_records(in);
 
     if (parameters.plasticity)
       assemble_history_load();

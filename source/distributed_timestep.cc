@@ -15,11 +15,13 @@
 #include <deal.II/numerics/data_out.h>
 
 #include "checkpoint.h"
+#include "time_loop.h"
 #include "distributed_viscoplastic_contact.h"
 
 #include <Epetra_MultiVector.h>
 
 #include <cmath>
+#include <functional>
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
@@ -71,22 +73,23 @@ namespace ViscoContact
       dst.compress(VectorOperation::add);
     }
 
-    // The operator of one active-set iteration,
-    //   A = P (K + sum_i k_i nu_i nu_i^T) P + (I - P),
-    // with k_i = w_i s_i at the nodes on sloped pieces (slope s_i). K is
-    // applied as it is; the contact terms touch the contact nodes only.
+    // v -> P inner(P v) + (I - P) v. With inner = K + sum_i k_i nu_i nu_i^T
+    // (k_i = w_i s_i at the nodes on sloped pieces of slope s_i) this is
+    // the operator of one active-set iteration; with inner = M^{-1}, the
+    // preconditioner of K, its preconditioner. Both are symmetric, and
+    // positive definite when inner is, so CG applies.
     template <int dim>
-    class StepOperator
+    class ProjectedOperator
     {
     public:
-      StepOperator(const TrilinosWrappers::SparseMatrix           &K,
-                   const std::vector<DistributedContactNode<dim>> &nodes,
-                   const std::vector<bool>                        &fixed,
-                   const std::vector<double> &normal_stiffness)
-        : K(K)
+      using Inner = std::function<void(VectorType &, const VectorType &)>;
+
+      ProjectedOperator(const Inner                                    &inner,
+                        const std::vector<DistributedContactNode<dim>> &nodes,
+                        const std::vector<bool>                        &fixed)
+        : inner(inner)
         , nodes(nodes)
         , fixed(fixed)
-        , normal_stiffness(normal_stiffness)
       {}
 
       void
@@ -95,61 +98,16 @@ namespace ViscoContact
         projected.reinit(src, /*omit_zeroing_entries=*/true);
         projected = src;
         project_out_normals(nodes, fixed, projected);
-        K.vmult(dst, projected);
-        for (unsigned int i = 0; i < nodes.size(); ++i)
-          if (normal_stiffness[i] != 0)
-            {
-              double normal_part = 0;
-              for (unsigned int c = 0; c < dim; ++c)
-                normal_part += nodes[i].normal[c] * projected[nodes[i].dofs[c]];
-              for (unsigned int c = 0; c < dim; ++c)
-                dst[nodes[i].dofs[c]]
-                  += normal_stiffness[i] * normal_part * nodes[i].normal[c];
-            }
-        dst.compress(VectorOperation::add);
+        inner(dst, projected);
         project_out_normals(nodes, fixed, dst);
         add_normal_parts(nodes, fixed, src, dst);
       }
 
     private:
-      const TrilinosWrappers::SparseMatrix           &K;
+      const Inner                                    &inner;
       const std::vector<DistributedContactNode<dim>> &nodes;
       const std::vector<bool>                        &fixed;
-      const std::vector<double>                      &normal_stiffness;
       mutable VectorType                              projected;
-    };
-
-    // P M^{-1} P + (I - P) for the preconditioner M^{-1} of K: symmetric
-    // positive definite like A, so CG applies.
-    template <int dim>
-    class StepPreconditioner
-    {
-    public:
-      StepPreconditioner(
-        const std::function<void(VectorType &, const VectorType &)> &apply_M,
-        const std::vector<DistributedContactNode<dim>>              &nodes,
-        const std::vector<bool>                                     &fixed)
-        : apply_M(apply_M)
-        , nodes(nodes)
-        , fixed(fixed)
-      {}
-
-      void
-      vmult(VectorType &dst, const VectorType &src) const
-      {
-        projected.reinit(src, /*omit_zeroing_entries=*/true);
-        projected = src;
-        project_out_normals(nodes, fixed, projected);
-        apply_M(dst, projected);
-        project_out_normals(nodes, fixed, dst);
-        add_normal_parts(nodes, fixed, src, dst);
-      }
-
-    private:
-      const std::function<void(VectorType &, const VectorType &)> &apply_M;
-      const std::vector<DistributedContactNode<dim>>              &nodes;
-      const std::vector<bool>                                     &fixed;
-      mutable VectorType                                           projected;
     };
   } // namespace
 
@@ -171,13 +129,8 @@ namespace ViscoContact
     setup_contact();
     setup_stress_points();
 
-    const double       T = parameters.end_time, k = parameters.time_step;
-    const unsigned int N
-      = static_cast<unsigned int>(std::ceil(T / k * (1 - 1e-12)));
-    std::vector<double> times(N + 1);
-    for (unsigned int n = 0; n < N; ++n)
-      times[n] = n * k;
-    times[N]                = T;
+    std::vector<double> times
+      = time_levels(parameters.end_time, parameters.time_step);
     unsigned int first_step = 1;
     if (parameters.resume)
       first_step = resume_from_checkpoint(times) + 1;
@@ -229,14 +182,12 @@ namespace ViscoContact
             time_series.flush();
           }
         if (parameters.verbose)
-          pcout << "Step " << std::setw(4) << n << "  t = " << std::setw(9)
-                << std::setprecision(6) << times[n]
-                << "  active-set iterations " << std::setw(2)
-                << result.iterations() << "  unilateral " << std::setw(4)
-                << states[0] << "  compliance " << std::setw(4) << states[1]
-                << "  no contact " << std::setw(4) << states[2]
-                << "  contact force " << std::setprecision(8) << total_force
-                << '\n';
+          print_step_line(pcout,
+                          n,
+                          times[n],
+                          result.iterations(),
+                          states,
+                          total_force);
         if (parameters.write_vtu
             && (n % parameters.interval == 0 || n + 1 == times.size()))
           output_results(n, times[n]);
@@ -291,22 +242,15 @@ namespace ViscoContact
         solution                                 = start_solution;
         ghosted_solution                         = solution;
         contact_nodes                            = start_nodes;
-        if (parameters.on_failure == "cut time step"
-            && k / 2 >= parameters.minimum_time_step)
+        if (cut_failed_step(parameters, pcout, n, times, result.failure))
           {
-            pcout << "Step " << n << " (t = " << times[n] << ", k = " << k
-                  << ") failed: " << result.failure
-                  << "\n  Cutting the time step to k = " << k / 2 << ".\n";
             if (parameters.plasticity)
-              rescale_history_increment(k, k / 2);
-            times.insert(times.begin() + n, times[n - 1] + k / 2);
+              rescale_history_increment(k, times[n] - times[n - 1]);
             continue;
           }
 
+        const std::string state_file = failed_state_file(n, "pvtu");
         output_results(n, times[n - 1], "failed_step");
-        std::ostringstream name;
-        name << "failed_step_" << std::setw(4) << std::setfill('0') << n
-             << ".pvtu";
         AssertThrow(false,
                     ExcMessage(failure_report(parameters,
                                               n,
@@ -314,7 +258,7 @@ namespace ViscoContact
                                               k,
                                               result,
                                               states,
-                                              name.str())));
+                                              state_file)));
       }
   }
 
@@ -333,23 +277,19 @@ namespace ViscoContact
     VectorType reference(locally_owned_dofs, mpi_communicator);
     const std::vector<DistributedContactNode<dim>> no_nodes;
     const std::vector<bool>                        no_flags;
-    const std::vector<double>                      no_stiffness;
-    const auto apply_M = [&](VectorType &dst, const VectorType &src) {
-      if (direct_solver)
-        direct_solver->solve(dst, src);
-      else
-        amg_preconditioner.vmult(dst, src);
-    };
+    const typename ProjectedOperator<dim>::Inner   apply_M
+      = [this](VectorType &dst, const VectorType &src) {
+          apply_preconditioner(dst, src);
+        };
     SolverControl        control(10000,
                           parameters.relative_tolerance
                             * std::max(external_load.l2_norm(), 1e-300));
     SolverCG<VectorType> cg(control);
     Timer                timer;
-    cg.solve(
-      StepOperator<dim>(stiffness_matrix, no_nodes, no_flags, no_stiffness),
-      reference,
-      external_load,
-      StepPreconditioner<dim>(apply_M, no_nodes, no_flags));
+    cg.solve(stiffness_matrix,
+             reference,
+             external_load,
+             ProjectedOperator<dim>(apply_M, no_nodes, no_flags));
     const double time       = timer.wall_time();
     external_load_assembled = false; // the loads of t = 0, not of step 1
     pcout << "Reference: one linear elastic solve (CG, " << control.last_step()
@@ -429,6 +369,24 @@ namespace ViscoContact
 
 
 
+  // @sect4{DistributedViscoplasticContact::apply_preconditioner}
+  //
+  // dst = M^{-1} src with the preconditioner of K built at set-up: one AMG
+  // V-cycle, or the solve with the MUMPS factors.
+  template <int dim>
+  void
+  DistributedViscoplasticContact<dim>::apply_preconditioner(
+    VectorType       &dst,
+    const VectorType &src) const
+  {
+    if (direct_solver)
+      direct_solver->solve(dst, src);
+    else
+      amg_preconditioner.vmult(dst, src);
+  }
+
+
+
   // @sect4{DistributedViscoplasticContact::solve_step_problem}
   //
   // For the current pieces: nodes on sloped pieces (slope s, intercept o)
@@ -468,25 +426,36 @@ namespace ViscoContact
     project_out_normals(contact_nodes, fixed, step_rhs);
     project_out_normals(contact_nodes, fixed, displacement);
 
-    const auto apply_M = [&](VectorType &dst, const VectorType &src) {
-      if (direct_solver)
-        direct_solver->solve(dst, src);
-      else
-        amg_preconditioner.vmult(dst, src);
-    };
+    const typename ProjectedOperator<dim>::Inner apply_K
+      = [&](VectorType &dst, const VectorType &src) {
+          stiffness_matrix.vmult(dst, src);
+          for (unsigned int i = 0; i < m; ++i)
+            if (normal_stiffness[i] != 0)
+              {
+                const DistributedContactNode<dim> &node = contact_nodes[i];
+                double                             normal_part = 0;
+                for (unsigned int c = 0; c < dim; ++c)
+                  normal_part += node.normal[c] * src[node.dofs[c]];
+                for (unsigned int c = 0; c < dim; ++c)
+                  dst[node.dofs[c]]
+                    += normal_stiffness[i] * normal_part * node.normal[c];
+              }
+          dst.compress(VectorOperation::add);
+        };
+    const typename ProjectedOperator<dim>::Inner apply_M
+      = [this](VectorType &dst, const VectorType &src) {
+          apply_preconditioner(dst, src);
+        };
     SolverControl        control(10000,
                           parameters.relative_tolerance
                             * std::max(rhs.l2_norm(), 1e-300));
     SolverCG<VectorType> cg(control);
     try
       {
-        cg.solve(StepOperator<dim>(stiffness_matrix,
-                                   contact_nodes,
-                                   fixed,
-                                   normal_stiffness),
+        cg.solve(ProjectedOperator<dim>(apply_K, contact_nodes, fixed),
                  displacement,
                  step_rhs,
-                 StepPreconditioner<dim>(apply_M, contact_nodes, fixed));
+                 ProjectedOperator<dim>(apply_M, contact_nodes, fixed));
       }
     catch (const SolverControl::NoConvergence &failure)
       {

@@ -7,6 +7,7 @@
 #include <deal.II/fe/fe_values.h>
 
 #include "checkpoint.h"
+#include "time_loop.h"
 #include "viscoplastic_contact.h"
 
 #include <algorithm>
@@ -34,8 +35,9 @@ namespace ViscoContact
     setup_contact();
     setup_quadrature_point_history();
 
-    std::vector<double> times      = time_levels();
-    unsigned int        first_step = 1;
+    std::vector<double> times
+      = time_levels(parameters.end_time, parameters.time_step);
+    unsigned int first_step = 1;
     if (parameters.resume)
       first_step = resume_from_checkpoint(times) + 1;
     prepare_output_directory();
@@ -83,17 +85,12 @@ namespace ViscoContact
         const double wall_time = loop_time_offset + loop_timer.wall_time();
         write_time_series_row(n, times[n], result, wall_time);
         if (parameters.verbose)
-          {
-            const auto states = count_contact_states();
-            pcout << "Step " << std::setw(4) << n << "  t = " << std::setw(9)
-                  << std::setprecision(6) << times[n]
-                  << "  active-set iterations " << std::setw(2)
-                  << result.iterations() << "  unilateral " << std::setw(4)
-                  << states[0] << "  compliance " << std::setw(4) << states[1]
-                  << "  no contact " << std::setw(4) << states[2]
-                  << "  contact force " << std::setprecision(8)
-                  << total_contact_force() << '\n';
-          }
+          print_step_line(pcout,
+                          n,
+                          times[n],
+                          result.iterations(),
+                          count_contact_states(),
+                          total_contact_force());
         if (is_profile_step(n))
           write_contact_profile(n, times[n]);
         if (parameters.write_vtu
@@ -153,23 +150,15 @@ namespace ViscoContact
         solution                                 = start_solution;
         if (contact_enabled)
           active_set_solver.set_state(start_contact);
-        const bool cut = (parameters.on_failure == "cut time step"
-                          && k / 2 >= parameters.minimum_time_step);
-        if (cut)
+        if (cut_failed_step(parameters, pcout, n, times, result.failure))
           {
-            pcout << "Step " << n << " (t = " << times[n] << ", k = " << k
-                  << ") failed: " << result.failure
-                  << "\n  Cutting the time step to k = " << k / 2 << ".\n";
             if (explicit_history)
-              rescale_history_increment(k, k / 2);
-            times.insert(times.begin() + n, times[n - 1] + k / 2);
+              rescale_history_increment(k, times[n] - times[n - 1]);
             continue;
           }
 
+        const std::string state_file = failed_state_file(n, "vtu");
         output_results(n, times[n - 1], "failed_step");
-        std::ostringstream name;
-        name << "failed_step_" << std::setw(4) << std::setfill('0') << n
-             << ".vtu";
         AssertThrow(false,
                     ExcMessage(failure_report(parameters,
                                               n,
@@ -177,7 +166,7 @@ namespace ViscoContact
                                               k,
                                               result,
                                               states,
-                                              name.str())));
+                                              state_file)));
       }
   }
 
@@ -257,25 +246,6 @@ namespace ViscoContact
     return quadrature_point_history[active_cell_index * stress_quadrature.size()
                                     + stress_point]
       .stress;
-  }
-
-
-
-  // @sect4{ViscoplasticContact::time_levels}
-  //
-  // t_n = n k, with the last step shortened so that the run ends at T.
-  template <int dim>
-  std::vector<double>
-  ViscoplasticContact<dim>::time_levels() const
-  {
-    const double       T = parameters.end_time, k = parameters.time_step;
-    const unsigned int N
-      = static_cast<unsigned int>(std::ceil(T / k * (1 - 1e-12)));
-    std::vector<double> times(N + 1);
-    for (unsigned int n = 0; n < N; ++n)
-      times[n] = n * k;
-    times[N] = T;
-    return times;
   }
 
 

@@ -203,8 +203,10 @@ TEST(Projection3D, RadialReturnOfTheDeviator)
       EXPECT_NEAR(trace(p), trace(tau), 1e-12 * tau.norm());
       const double eq = material.equivalent_stress(tau);
       if (eq > 2.)
-        EXPECT_LE((deviator(p) - deviator(tau) * (2. / eq)).norm(),
-                  1e-13 * tau.norm());
+        {
+          EXPECT_LE((deviator(p) - deviator(tau) * (2. / eq)).norm(),
+                    1e-13 * tau.norm());
+        }
     }
 }
 

@@ -24,7 +24,7 @@ cube_benchmark.png (time per step and its phases against dofs).
 
     benchmarks/run_cube_benchmark.py [--executable build/viscoplastic_contact]
         [--subdivisions 8,16,32,48,64,72] [--cell-types hypercube,simplex]
-        [--steps 4] [--output-dir doc/benchmark_3d]
+        [--tet-subdivisions 8,16,32,48] [--steps 4] [--output-dir doc/benchmark_3d]
 
 Subdivisions n gives 3 (n+1)^3 dofs on both cell types (n = 72: 1.20e6).
 Build in Release mode. Runs as root need no flag: the script sets Open MPI's
@@ -212,7 +212,9 @@ def write_outputs(rows, output_dir, command_line):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--executable")
-    parser.add_argument("--subdivisions", default="8,16,32,48,64,72")
+    parser.add_argument("--subdivisions", default="8,16,32,48,64,72",
+                        help="for every cell type; --tet-subdivisions overrides it for tetrahedra")
+    parser.add_argument("--tet-subdivisions", default=None)
     parser.add_argument("--cell-types", default="hypercube,simplex")
     parser.add_argument("--ranks", default="1,2")
     parser.add_argument("--steps", type=int, default=4)
@@ -221,7 +223,10 @@ def main():
     executable = resolve_executable(args.executable)
     rows = []
     for cell_type in args.cell_types.split(","):
-        for n in [int(v) for v in args.subdivisions.split(",")]:
+        sizes = args.subdivisions
+        if cell_type == "simplex" and args.tet_subdivisions:
+            sizes = args.tet_subdivisions
+        for n in [int(v) for v in sizes.split(",")]:
             by_ranks = {}
             for ranks in [int(v) for v in args.ranks.split(",")]:
                 print("running %s n = %d on %d rank(s) ..." % (cell_type, n, ranks),
@@ -233,7 +238,9 @@ def main():
             if 1 in by_ranks and 2 in by_ranks:
                 by_ranks[2]["speedup_2_over_1"] = (by_ranks[1]["time_per_step"]
                                                    / by_ranks[2]["time_per_step"])
-    write_outputs(rows, args.output_dir, " ".join(sys.argv))
+            # Written after every resolution, so that an interrupted
+            # benchmark keeps what it measured.
+            write_outputs(rows, args.output_dir, " ".join(sys.argv))
 
 
 if __name__ == "__main__":

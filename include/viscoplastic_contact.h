@@ -280,7 +280,6 @@ namespace ViscoContact
     // Output records.
     std::vector<std::pair<double, std::string>> times_and_names;
     std::ofstream                               time_series;
-    std::vector<unsigned int>                   profile_steps;
     double                                      time_loop_compute_time = 0;
     unsigned int                                n_time_steps           = 0;
     double       loop_time_offset     = 0; // of the run a resumed run continues

@@ -18,7 +18,6 @@
 #include "time_loop.h"
 #include "distributed_viscoplastic_contact.h"
 
-#include <Epetra_MultiVector.h>
 
 #include <cmath>
 #include <functional>

@@ -3,10 +3,9 @@
 
 #include <deal.II/base/mpi.h>
 
-
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -18,66 +17,69 @@ namespace ViscoContact
 
   // @sect3{Checkpoints}
   //
-  // A checkpoint of step n is one binary file per MPI rank,
-  //   <Output directory>/checkpoint/step_NNNNNN.rank_RRRR.bin,
-  // and the text file checkpoint/checkpoint.info that names the last
-  // complete one. Every file is written under a temporary name and renamed
-  // when it is complete; checkpoint.info is renamed only after all ranks
-  // have renamed their files, and the files of the previous checkpoint are
-  // deleted only after that. A run killed at any moment therefore leaves a
-  // checkpoint.info that names complete files.
+  // A checkpoint of step n is one file,
+  //   <Output directory>/checkpoint/step_NNNNNN.bin,
+  // written by all ranks together through MPI I/O, and the text file
+  // checkpoint/checkpoint.info that names the last complete one. The file
+  // holds a header (the same for all ranks) and one fixed-size record per
+  // cell of the mesh, keyed by the cell's id: its displacement values, its
+  // contact state and its stress points. Cell ids do not depend on the
+  // partition, so a checkpoint written on one number of ranks is read on
+  // any other: each rank reads an equal share of the records and
+  // MPITools::exchange_records() delivers every record to the rank that
+  // now owns the cell.
   //
-  // The solvers decide what goes into their files (CheckpointWriter and
-  // CheckpointReader are plain binary streams with error checks); the data
-  // are keyed by what does not depend on the partition (cell ids, node
-  // locations), never by a rank-local index alone.
-  class CheckpointWriter
+  // The file is written under a temporary name and renamed when complete;
+  // checkpoint.info is renamed only after that, and the file of the
+  // previous checkpoint is deleted only after that. A run killed at any
+  // moment therefore leaves a checkpoint.info that names a complete file.
+
+  // The header's bytes, built and read in memory.
+  class ByteWriter
   {
   public:
-    explicit CheckpointWriter(const std::filesystem::path &file);
-
     template <typename T>
     void
     write(const T &value)
     {
       static_assert(std::is_trivially_copyable<T>::value,
                     "only plain data can be written directly");
-      out.write(reinterpret_cast<const char *>(&value), sizeof(T));
+      const char *begin = reinterpret_cast<const char *>(&value);
+      bytes.insert(bytes.end(), begin, begin + sizeof(T));
     }
     template <typename T>
     void
     write_vector(const std::vector<T> &values)
     {
-      static_assert(std::is_trivially_copyable<T>::value,
-                    "only plain data can be written directly");
       write<std::uint64_t>(values.size());
-      out.write(reinterpret_cast<const char *>(values.data()),
-                sizeof(T) * values.size());
+      for (const T &value : values)
+        write(value);
     }
     void
-    write_string(const std::string &text);
+    write_string(const std::string &text)
+    {
+      write_vector(std::vector<char>(text.begin(), text.end()));
+    }
 
-    // Flush, check and rename to the final name.
-    void
-    finish();
-
-  private:
-    std::filesystem::path file, temporary;
-    std::ofstream         out;
+    std::vector<char> bytes;
   };
 
-  class CheckpointReader
+  class ByteReader
   {
   public:
-    explicit CheckpointReader(const std::filesystem::path &file);
+    // file: for the messages.
+    ByteReader(const std::vector<char> &bytes, const std::string &file);
 
     template <typename T>
     T
     read()
     {
+      static_assert(std::is_trivially_copyable<T>::value,
+                    "only plain data can be read directly");
+      check_available(sizeof(T));
       T value;
-      in.read(reinterpret_cast<char *>(&value), sizeof(T));
-      check();
+      std::memcpy(&value, bytes.data() + position, sizeof(T));
+      position += sizeof(T);
       return value;
     }
     template <typename T>
@@ -85,67 +87,31 @@ namespace ViscoContact
     read_vector()
     {
       const std::uint64_t n = read<std::uint64_t>();
-      check_size(n * sizeof(T));
+      check_available(n * sizeof(T));
       std::vector<T> values(n);
-      in.read(reinterpret_cast<char *>(values.data()), sizeof(T) * n);
-      check();
+      for (T &value : values)
+        value = read<T>();
       return values;
     }
     std::string
     read_string();
 
-    const std::filesystem::path &
-    name() const;
+    // Throws, naming the file, if the condition is false.
+    void
+    check(const bool condition) const;
 
   private:
     void
-    check();
-    void
-    check_size(const std::uint64_t bytes);
+    check_available(const std::uint64_t n_bytes) const;
 
-    std::filesystem::path file;
-    std::ifstream         in;
-    std::uint64_t         file_size;
+    const std::vector<char> &bytes;
+    const std::string        file;
+    std::size_t              position = 0;
   };
-
-  // What every checkpoint file starts with: the layout version, the space
-  // dimension, the step, the time schedule (cut steps included), and the
-  // wall and compute time of the time loop so far.
-  struct CheckpointHeader
-  {
-    std::uint32_t       version   = 0;
-    std::uint32_t       dimension = 0;
-    std::uint32_t       step      = 0;
-    std::vector<double> times;
-    double              wall_time    = 0;
-    double              compute_time = 0;
-
-    void
-    write(CheckpointWriter &out) const;
-    // Reads a header and checks it against what the reader expects.
-    void
-    read(CheckpointReader   &in,
-         const std::uint32_t expected_version,
-         const std::uint32_t expected_dimension,
-         const std::uint32_t expected_step);
-  };
-
-  // The .pvd record: (time, file name) per output step.
-  void
-  write_output_records(
-    CheckpointWriter                                  &out,
-    const std::vector<std::pair<double, std::string>> &records);
-  std::vector<std::pair<double, std::string>>
-  read_output_records(CheckpointReader &in);
-
-  // A consistency check of a file being read: throws, naming the file, if
-  // the condition is false.
-  void
-  check_checkpoint_content(const bool condition, const CheckpointReader &in);
 
   // What checkpoint.info records: the step, its time, the number of ranks
-  // that wrote the files, and the size of the problem (a resumed run checks
-  // it against its own).
+  // that wrote the file (for information), and the size of the problem (a
+  // resumed run checks it against its own).
   struct CheckpointRecord
   {
     unsigned int  step    = 0;
@@ -157,13 +123,30 @@ namespace ViscoContact
   std::filesystem::path
   checkpoint_directory(const std::string &output_directory);
   std::filesystem::path
-  checkpoint_file(const std::string &output_directory,
-                  const unsigned int step,
-                  const unsigned int rank);
+  checkpoint_file(const std::string &output_directory, const unsigned int step);
 
-  // Collective. Called by every rank after it has finished its own file:
-  // rank 0 publishes the record, then every rank removes its file of the
-  // previous checkpoint (previous_step, if not numbers::invalid_unsigned_int).
+  // Collective. A file of the header (rank 0's) followed by the records of
+  // all ranks in rank order, each record_size bytes; under a temporary
+  // name, renamed when complete.
+  void
+  write_record_file(const std::filesystem::path &file,
+                    const std::vector<char>     &header,
+                    const std::vector<char>     &local_records,
+                    const std::uint64_t          record_size,
+                    const MPI_Comm               communicator);
+
+  // Collective. The header, and an equal share of the records for each
+  // rank (whatever the number of ranks that wrote them).
+  void
+  read_record_file(const std::filesystem::path &file,
+                   std::vector<char>           &header,
+                   std::vector<char>           &record_share,
+                   const std::uint64_t          record_size,
+                   const MPI_Comm               communicator);
+
+  // Collective. After the checkpoint file is complete: rank 0 publishes
+  // the record and removes the file of the previous checkpoint
+  // (previous_step, if not numbers::invalid_unsigned_int).
   void
   publish_checkpoint(const std::string      &output_directory,
                      const CheckpointRecord &record,
@@ -171,11 +154,10 @@ namespace ViscoContact
                      const MPI_Comm          communicator);
 
   // The last complete checkpoint; throws with a message that names the
-  // Resume entry if there is none or it was written by another number of
-  // ranks or for another problem size.
+  // Resume entry if there is none or it was written for another problem
+  // size.
   CheckpointRecord
   read_checkpoint_record(const std::string  &output_directory,
-                         const unsigned int  n_ranks,
                          const std::uint64_t n_dofs);
 
   // Keep the header and the rows of steps <= step of time_series.csv (the
@@ -183,7 +165,6 @@ namespace ViscoContact
   void
   truncate_time_series(const std::filesystem::path &file,
                        const unsigned int           step);
-
 } // namespace ViscoContact
 
 #endif

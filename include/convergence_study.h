@@ -1,15 +1,14 @@
 #ifndef viscoplastic_contact_convergence_study_h
 #define viscoplastic_contact_convergence_study_h
 
-#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/mpi.h>
 
-#include <deal.II/lac/vector.h>
-
+#include "mpi_tools.h"
 #include "parameters.h"
 #include "viscoplastic_contact.h"
 
-#include <array>
-#include <memory>
+#include <string>
 #include <vector>
 
 namespace ViscoContact
@@ -19,25 +18,35 @@ namespace ViscoContact
   // @sect3{The convergence study}
   //
   // Runs the scene at a sequence of resolutions (h_i, k_i) and at a
-  // reference resolution, and measures the error of model.md, section 1,
+  // reference resolution, and measures the error of doc/model.md,
+  // section 1,
   //   max_n ( ||u_n - u_n^ref||_V + ||sigma_n - sigma_n^ref||_Q ),
   //   ||v||_V = ||eps(v)||_L2, ||tau||_Q = ||tau||_L2,
-  // together with its displacement and stress parts, the observed orders in
-  // h + k, the number of unknowns and steps and the wall time of each run.
+  // with its displacement and stress parts, the observed orders in h + k,
+  // the number of unknowns and steps and the wall time of each run; on any
+  // number of ranks, for simplex and hypercube boxes.
   //
   // The comparison is exact, on the reference mesh and at the common time
-  // levels: the meshes are nested, so a coarse P1 displacement is a P1
-  // function on the reference mesh (its values at the reference vertices,
-  // by barycentric coordinates in the coarse cell that contains them) and a
-  // coarse piecewise-constant stress is piecewise constant on the reference
-  // cells. The coarse runs keep their states at all their time levels; the
-  // reference run compares against them while it runs, so no reference
-  // state is stored.
+  // levels. The meshes are nested boxes: every reference stress point lies
+  // inside one coarse cell, in the square (cube) of the coarse box that
+  // contains it. Every coarse run records, per cell, its vertices and, at
+  // each time level, grad u and sigma at its stress points; a coarse run's
+  // cells are then sent to the ranks of the reference mesh that need them,
+  // keyed by their square (MPITools::exchange_records). There, grad u_h and
+  // sigma_h are evaluated at the reference stress points: on simplices they
+  // are constant per cell (P1 displacement, piecewise-constant stress); on
+  // hypercubes grad u_h is the Q1 gradient and sigma_h the polynomial of
+  // degree one in each variable through the values at the 2^dim Gauss
+  // points, which represents the Q1 gradient exactly and is the natural
+  // reading of stresses stored at Gauss points. The reference quadrature
+  // then integrates the squared differences exactly on simplices and on
+  // the reference's Gauss points on hypercubes.
   template <int dim>
   class ConvergenceStudy
   {
   public:
-    explicit ConvergenceStudy(const Parameters::AllParameters &parameters);
+    ConvergenceStudy(const Parameters::AllParameters &parameters,
+                     const MPI_Comm                   communicator);
 
     void
     run();
@@ -45,29 +54,29 @@ namespace ViscoContact
   private:
     struct Run
     {
-      unsigned int                                      subdivisions;
-      double                                            time_step;
-      std::unique_ptr<ViscoplasticContact<dim>>         problem;
-      std::vector<double>                               times;
-      std::vector<Vector<double>>                       displacements;
-      std::vector<std::vector<SymmetricTensor<2, dim>>> stresses;
-      double                                            wall_time = 0;
+      unsigned int            subdivisions;
+      double                  time_step;
+      std::vector<double>     times;
+      types::global_dof_index n_dofs = 0;
+      // The cells of this rank (key: its square), growing by one level of
+      // grad u and sigma at every step.
+      std::vector<MPITools::Record> cells;
+      double                        wall_time = 0;
 
-      // For every reference vertex: the coarse dofs (vertex a, component c)
-      // of the coarse cell containing it and its barycentric coordinates;
-      // for every reference cell: the coarse cell containing it.
-      std::vector<std::array<types::global_dof_index, (dim + 1) * dim>>
-                                               vertex_dofs;
-      std::vector<std::array<double, dim + 1>> vertex_weights;
-      std::vector<unsigned int>                cell_map;
+      // Per reference stress point (locally owned reference cells): the
+      // coarse cell containing it (its payload) and the point in that
+      // cell's unit coordinates.
+      std::vector<std::vector<double>> located_cells;
+      std::vector<unsigned int>        point_cell;
+      std::vector<Point<dim>>          unit_points;
 
       double       max_error_u       = 0;
       double       max_error_sigma   = 0;
       double       max_error         = 0;
       unsigned int n_compared_levels = 0;
       // A run that stopped (iteration limit, blow-up) is kept in the table
-      // with infinite error, so that a stability sweep shows where a method
-      // fails instead of aborting the study.
+      // with infinite error, so that a stability sweep shows where a
+      // method fails instead of aborting the study.
       bool        failed = false;
       std::string failure;
     };
@@ -76,18 +85,24 @@ namespace ViscoContact
     parameters_for(const unsigned int subdivisions,
                    const double       time_step,
                    const std::string &name) const;
+    std::string
+    square_key(const Point<dim> &point, const unsigned int subdivisions) const;
     void
-    build_transfer(Run &run, const ViscoplasticContact<dim> &reference) const;
+    record_state(Run &run, const ViscoplasticContact<dim> &problem) const;
+    void
+    locate(Run &run, const ViscoplasticContact<dim> &reference) const;
     void
     compare(Run                            &run,
             const unsigned int              level,
             const ViscoplasticContact<dim> &reference) const;
     void
-    write_table(const unsigned int reference_dofs,
-                const unsigned int reference_steps,
-                const double       reference_wall_time) const;
+    write_table(const types::global_dof_index reference_dofs,
+                const unsigned int            reference_steps,
+                const double                  reference_wall_time) const;
 
     const Parameters::AllParameters parameters;
+    const MPI_Comm                  communicator;
+    ConditionalOStream              pcout;
     std::vector<Run>                runs;
   };
 } // namespace ViscoContact

@@ -3,9 +3,13 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <deal.II/distributed/tria_base.h>
+
 #include <deal.II/grid/tria.h>
 
 #include "parameters.h"
+
+#include <memory>
 
 namespace ViscoContact
 {
@@ -13,19 +17,50 @@ namespace ViscoContact
 
   // @sect3{Meshes}
   //
-  // Every mesh of the program is made in two stages, so that the serial and
-  // the distributed solvers see the same cells:
-  //  - create_coarse_mesh(): the generated box or a Gmsh file, with the
-  //    boundary ids of subsection Boundary, on a serial Triangulation (p4est
-  //    meshes copy it, fully distributed meshes are partitioned from it);
+  // Every mesh of the program is a distributed mesh, also on one MPI rank
+  // (as in step-40): quadrilaterals and hexahedra live on p4est
+  // (parallel::distributed::Triangulation), triangles and tetrahedra, which
+  // p4est cannot hold, on a parallel::fullydistributed::Triangulation
+  // partitioned by METIS. create_distributed_mesh() builds it in stages:
+  //  - create_coarse_mesh(): the generated box (simplices cut by the
+  //    Simplex pattern) or a Gmsh file, with the boundary ids of subsection
+  //    Boundary, on a serial Triangulation;
   //  - refine_mesh(): the uniform refinements and the refinement toward
-  //    Gamma_3, on any triangulation (only locally owned cells are flagged).
-  // check_boundary_ids() then makes sure that the boundary parts the
-  // parameter file names exist, across all MPI ranks.
+  //    Gamma_3 (only locally owned cells are flagged);
+  //  - check_boundary_ids(): the boundary parts the parameter file names
+  //    exist, across all MPI ranks.
+  template <int dim>
+  std::unique_ptr<parallel::DistributedTriangulationBase<dim>>
+  create_distributed_mesh(const Parameters::AllParameters &parameters,
+                          const MPI_Comm                   communicator);
+
   template <int dim>
   void
   create_coarse_mesh(const Parameters::AllParameters &parameters,
                      Triangulation<dim>              &triangulation);
+
+  // The box (0,L1)x(0,L2)(x(0,L3)) with n squares (cubes) along each edge,
+  // cut into simplices by the given pattern (parameters.h), with the
+  // boundary ids deal.II's colorize gives hypercubes: 2d and 2d+1 at
+  // x_d = 0 and x_d = L_d.
+  template <int dim>
+  void
+  create_simplex_box(Triangulation<dim>              &triangulation,
+                     const std::vector<double>       &lengths,
+                     const unsigned int               n,
+                     const Parameters::SimplexPattern pattern);
+  template <>
+  void
+  create_simplex_box(Triangulation<2> &,
+                     const std::vector<double> &,
+                     const unsigned int,
+                     const Parameters::SimplexPattern);
+  template <>
+  void
+  create_simplex_box(Triangulation<3> &,
+                     const std::vector<double> &,
+                     const unsigned int,
+                     const Parameters::SimplexPattern);
 
   template <int dim>
   void

@@ -20,16 +20,92 @@ namespace ViscoContact
   // (strict positivity, consistency between entries). A violated check
   // throws an ExcMessage that names the subsection, the entry, the value
   // and the accepted range.
+  //
+  // Entries that select behaviour (cell types, laws, updates, solvers) are
+  // turned into the enums below once, here; the rest of the program never
+  // compares strings.
   namespace Parameters
   {
+    enum class CellType
+    {
+      simplex,
+      hypercube
+    };
+
+    // How the generated box is cut into simplices. In 2D each square
+    // [x_i, x_i+1] x [y_j, y_j+1] is split by the diagonal "/" from
+    // (x_i, y_j) to (x_i+1, y_j+1) (the published benchmark), by the other
+    // one ("backslash"), by alternating diagonals that meet at every
+    // second vertex ("union jack"), or by both diagonals around a vertex
+    // at its centre ("crossed"). In 3D, "/" cuts every cube into the six
+    // tetrahedra around its diagonal from (x_i, y_j, z_k) to
+    // (x_i+1, y_j+1, z_k+1) (Kuhn's subdivision), "five tetrahedra" is
+    // deal.II's generator. All but "five tetrahedra" give nested meshes
+    // when the number of subdivisions is doubled.
+    enum class SimplexPattern
+    {
+      slash,
+      backslash,
+      union_jack,
+      crossed,
+      five_tetrahedra
+    };
+
+    enum class ContactLawType
+    {
+      nonmonotone,
+      piecewise_linear
+    };
+
+    enum class StressUpdate
+    {
+      explicit_euler, // the paper's scheme: the history from the past
+      implicit_euler  // backward Euler with a Newton iteration per step
+    };
+
+    enum class FailurePolicy
+    {
+      stop,
+      cut_time_step
+    };
+
+    // How a step's linear contact problem is solved (contact_solver.h).
+    enum class Method
+    {
+      automatic,
+      condensed,
+      full_space
+    };
+
+    enum class Preconditioner
+    {
+      amg,
+      direct
+    };
+
+    enum class DirectSolver
+    {
+      automatic,
+      cholmod,
+      umfpack,
+      mumps
+    };
+
+    std::string
+    to_string(const Method method);
+    std::string
+    to_string(const DirectSolver solver);
+
+
     struct Geometry
     {
       unsigned int        dimension;
       std::vector<double> lengths;      // L1, L2 (, L3)
       unsigned int        subdivisions; // squares (cubes) along each edge
-      std::string         cell_type;    // "simplex" or "hypercube"
-      std::string         mesh_file;    // Gmsh .msh; empty: the generated box
-      unsigned int global_refinements;  // uniform, after generation/reading
+      CellType            cell_type;
+      SimplexPattern      simplex_pattern;
+      std::string         mesh_file;   // Gmsh .msh; empty: the generated box
+      unsigned int global_refinements; // uniform, after generation/reading
       unsigned int contact_refinements; // extra levels near Gamma_3
 
       static void
@@ -77,14 +153,15 @@ namespace ViscoContact
 
     struct Contact
     {
-      bool        unilateral_constraint; // rigid foundation below the layer
-      bool        normal_compliance;     // the deformable layer
-      double      gap;                   // g, thickness of the layer
-      std::string law_type;              // "nonmonotone" or "piecewise linear"
-      double      c1, c2, u1;            // the benchmark law
-      std::vector<double> breakpoints;   // a general piecewise-linear law
+      bool                unilateral_constraint; // rigid foundation
+      bool                normal_compliance;     // the deformable layer
+      double              gap;                   // g, layer thickness
+      ContactLawType      law_type;
+      double              c1, c2, u1; // the benchmark law
+      std::vector<double> breakpoints; // a general piecewise-linear law
       std::vector<double> slopes;
       std::vector<double> jumps;
+      bool                check_uniqueness;
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -94,11 +171,11 @@ namespace ViscoContact
 
     struct Time
     {
-      double      end_time;
-      double      time_step;
-      std::string stress_update; // "explicit" or "implicit"
-      std::string on_failure;    // "stop" or "cut time step"
-      double      minimum_time_step;
+      double        end_time;
+      double        time_step;
+      StressUpdate  stress_update;
+      FailurePolicy on_failure;
+      double        minimum_time_step;
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -109,7 +186,7 @@ namespace ViscoContact
     struct ActiveSetSolver
     {
       unsigned int max_iterations;
-      double       tolerance;
+      double       tolerance; // of every linear solve for fixed pieces
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -119,10 +196,9 @@ namespace ViscoContact
 
     struct LinearSolver
     {
-      std::string method;             // "condensed" (serial) or "distributed"
-      std::string direct_solver;      // condensed: "cholmod" or "umfpack"
-      std::string preconditioner;     // distributed: "amg" or "direct"
-      double      relative_tolerance; // distributed: of the CG solves
+      Method         method;
+      Preconditioner preconditioner; // full space back end
+      DirectSolver   direct_solver;  // the factorisations of the operator
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -169,7 +245,7 @@ namespace ViscoContact
       static void
       declare_parameters(ParameterHandler &prm);
       void
-      parse_parameters(ParameterHandler &prm, const std::string &cell_type);
+      parse_parameters(ParameterHandler &prm);
     };
 
     struct AllParameters : public Geometry,

@@ -3,7 +3,7 @@
 
 #include <deal.II/base/conditional_ostream.h>
 
-#include "active_set_solver.h"
+#include "active_set.h"
 #include "parameters.h"
 
 #include <array>
@@ -14,7 +14,7 @@ namespace ViscoContact
 {
   using namespace dealii;
 
-  // @sect3{Pieces of the time loop shared by both solvers}
+  // @sect3{Pieces of the time loop}
 
   // t_n = n k, with the last step shortened so that the run ends at T.
   std::vector<double>
@@ -54,7 +54,7 @@ namespace ViscoContact
                  const unsigned int                    step,
                  const double                          time,
                  const double                          time_step,
-                 const ContactActiveSetSolver::Result &result,
+                 const ActiveSetResult                &result,
                  const std::array<unsigned int, 3>    &contact_states,
                  const std::string                    &state_file);
 } // namespace ViscoContact

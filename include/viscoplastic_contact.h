@@ -3,85 +3,60 @@
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/function_parser.h>
+#include <deal.II/base/index_set.h>
 #include <deal.II/base/quadrature.h>
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/timer.h>
+
+#include <deal.II/distributed/tria_base.h>
 
 #include <deal.II/dofs/dof_handler.h>
 
 #include <deal.II/fe/fe.h>
 #include <deal.II/fe/mapping.h>
 
-#include <deal.II/grid/tria.h>
-
 #include <deal.II/lac/affine_constraints.h>
-#include <deal.II/lac/lapack_full_matrix.h>
-#include <deal.II/lac/sparse_direct.h>
-#include <deal.II/lac/sparse_matrix.h>
-#include <deal.II/lac/sparsity_pattern.h>
-#include <deal.II/lac/vector.h>
 
-#include "active_set_solver.h"
+#include "active_set.h"
+#include "contact_set.h"
+#include "contact_solver.h"
+#include "linear_algebra.h"
 #include "material.h"
 #include "parameters.h"
-#include "sparse_cholesky.h"
 
-#include <array>
 #include <fstream>
 #include <functional>
-#include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ViscoContact
 {
   using namespace dealii;
 
-  // A node of Gamma_3 that is free to move: its displacement dofs, the
-  // outward normal nu (the weighted mean of the adjacent faces' normals) and
-  // the lumped weight w = int_Gamma3 phi.
-  template <int dim>
-  struct ContactNode
-  {
-    Point<dim>                               location;
-    Tensor<1, dim>                           normal;
-    double                                   weight;
-    std::array<types::global_dof_index, dim> dofs;
-    types::global_dof_index                  scalar_dof;
-  };
-
-  // Lumped weights w_i = int_Gamma3 phi_i and mean outward normals of the
-  // vertices on the given boundary parts, keyed by vertex index. Exposed for
-  // the tests: the weights sum to the measure of Gamma_3.
-  template <int dim>
-  struct BoundaryVertexData
-  {
-    Point<dim>     location;
-    Tensor<1, dim> normal;
-    double         weight = 0;
-  };
-
-  template <int dim>
-  std::map<unsigned int, BoundaryVertexData<dim>>
-  lumped_boundary_weights(const Mapping<dim>        &mapping,
-                          const DoFHandler<dim>     &dof_handler,
-                          const Quadrature<dim - 1> &face_quadrature,
-                          const std::vector<types::boundary_id> &boundary_ids);
-
   // @sect3{The ViscoplasticContact class}
   //
-  // The program in the structure of step-18 (quasistatic time loop, history
-  // at the stress points) and step-41/42 (active set on the contact nodes).
-  // run() reads as the algorithm of model.md, section 2:
-  //   setup; for n = 1..N: assemble the right-hand side,
-  //   solve the contact problem by the active-set method,
-  //   update the stresses and the history, write output.
+  // The program, in the structure of step-18 (a quasistatic time loop with
+  // history at the stress points), step-40 (one code for one or many MPI
+  // ranks: distributed meshes, locally owned cells and dofs, Trilinos) and
+  // step-41/42 (an active set on the contact nodes). run() reads as the
+  // algorithm of doc/model.md, section 2:
+  //   set up; for n = 1..N: assemble the right-hand side, solve the step's
+  //   contact problem by the active-set method, update the stresses and
+  //   the history, write the results.
+  // How the linear problem of fixed pieces is solved is the business of a
+  // back end (contact_solver.h): condensed to the contact nodes through a
+  // factorised operator, or in the full space by a preconditioned Krylov
+  // method. The explicit (the paper's) and the implicit (backward Euler)
+  // stress updates run on either.
   template <int dim>
   class ViscoplasticContact
   {
   public:
-    explicit ViscoplasticContact(const Parameters::AllParameters &parameters);
+    ViscoplasticContact(const Parameters::AllParameters &parameters,
+                        const MPI_Comm communicator = MPI_COMM_WORLD);
+    ~ViscoplasticContact();
 
     void
     run();
@@ -92,21 +67,24 @@ namespace ViscoContact
     void
     set_step_observer(
       const std::function<void(const unsigned int, const double)> &observer);
-    const Triangulation<dim> &
-    get_triangulation() const;
     const DoFHandler<dim> &
     get_dof_handler() const;
-    const Mapping<dim> &
-    get_mapping() const;
-    const Vector<double> &
-    get_displacement() const;
-    // sigma_n at the stress points of cell number active_cell_index.
+    const Quadrature<dim> &
+    get_stress_quadrature() const;
+    // The locally owned cells, in the order of the stress-point data.
+    const std::vector<typename DoFHandler<dim>::active_cell_iterator> &
+    get_owned_cells() const;
+    // sigma_n and grad u_n at stress point q of the k-th locally owned cell.
     const SymmetricTensor<2, dim> &
-    get_stress(const unsigned int active_cell_index,
-               const unsigned int stress_point) const;
+    get_stress(const unsigned int k, const unsigned int q) const;
+    Tensor<2, dim>
+    get_displacement_gradient(const unsigned int k, const unsigned int q) const;
+    // JxW of stress point q of the k-th locally owned cell.
+    double
+    get_stress_point_weight(const unsigned int k, const unsigned int q) const;
 
   private:
-    // Setup.
+    // @sect4{Set-up}
     void
     make_grid();
     void
@@ -114,134 +92,129 @@ namespace ViscoContact
     void
     assemble_elastic_operator();
     void
+    setup_stress_points();
+    void
     setup_contact();
     void
-    setup_quadrature_point_history();
+    setup_back_end();
     void
-    report_scheme_limits() const;
+    print_header(const unsigned int n_steps) const;
+    void
+    report_scheme_limits();
+    double
+    smallest_uniqueness_eigenvalue();
 
-    // One time step.
+    // @sect4{One time step}
+    ActiveSetResult
+    solve_step_with_recovery(const unsigned int n, std::vector<double> &times);
     void
     assemble_right_hand_side(const double time);
     void
     assemble_external_load(const double time);
     void
     assemble_history_load();
-    ContactActiveSetSolver::Result
-    solve_step_with_recovery(const unsigned int n, std::vector<double> &times);
-    ContactActiveSetSolver::Result
-    solve_time_step();
-    ContactActiveSetSolver::Result
-    solve_implicit_time_step(const double time_step);
+    ActiveSetResult
+    solve_contact_problem(const VectorType &rhs);
+    ActiveSetResult
+    solve_explicit_step();
+    ActiveSetResult
+    solve_implicit_step(const double time_step);
+    bool
+    implicit_newton(const double a, VectorType &iterate, ActiveSetResult &result);
+    void
+    assemble_tangent_system(const VectorType &displacement, const double a);
     void
     rescale_history_increment(const double old_step, const double new_step);
     void
-    assemble_tangent_system(const Vector<double> &displacement, const double a);
-    bool
-    implicit_newton(const double                    a,
-                    Vector<double>                 &iterate,
-                    ContactActiveSetSolver::Result &result);
-    ContactActiveSetSolver::Result
-    solve_contact_with(SparseDirectUMFPACK  &factorization,
-                       const Vector<double> &rhs,
-                       Vector<double>       &displacement);
-    void
-    update_stresses(const double current_time_step,
-                    const double next_time_step);
+    update_stresses(const double current_time_step, const double next_time_step);
 
-    // Output.
+    // @sect4{Output}
     void
     prepare_output_directory();
     void
     output_results(const unsigned int step,
                    const double       time,
                    const std::string &stem = "solution");
-    // Checkpoints (checkpoint.h): write after step n; read the last one and
-    // return its step.
+    void
+    write_time_series_row(const unsigned int     step,
+                          const double           time,
+                          const ActiveSetResult &result,
+                          const double           wall_time);
+    void
+    write_contact_profile(const unsigned int step, const double time) const;
+    void
+    print_run_summary();
+
+    // @sect4{Checkpoints}
     void
     write_checkpoint(const unsigned int         step,
                      const std::vector<double> &times,
                      const double               wall_time);
     unsigned int
     resume_from_checkpoint(std::vector<double> &times);
-    void
-    write_contact_profile(const unsigned int step, const double time) const;
-    void
-    write_time_series_row(const unsigned int                    step,
-                          const double                          time,
-                          const ContactActiveSetSolver::Result &result,
-                          const double                          wall_time);
-    void
-    print_run_summary();
 
-    // Solves with the factorised elastic operator, one or n_columns
-    // right-hand sides (column-major) at once.
-    void
-    solve_elastic(Vector<double> &rhs_and_solution);
-    void
-    solve_elastic(std::vector<double> &columns, const unsigned int n_columns);
-
-    // Helpers.
-    void
-    subtract_stress_point_load(const SymmetricTensor<2, dim> &H,
-                               const unsigned int             cell,
-                               const unsigned int             q,
-                               Vector<double>                &target) const;
+    // @sect4{Stress-point helpers}
     Tensor<2, dim>
-    displacement_gradient_at(const Vector<double> &displacement,
-                             const unsigned int    cell,
-                             const unsigned int    q) const;
+    displacement_gradient_at(const VectorType  &displacement,
+                             const unsigned int k,
+                             const unsigned int q) const;
+    void
+    add_stress_point_load(const SymmetricTensor<2, dim> &stress,
+                          const unsigned int             k,
+                          const unsigned int             q,
+                          Vector<double>                &cell_vector) const;
+    void
+    distribute_cell_vector(const unsigned int    k,
+                           const Vector<double> &cell_vector,
+                           VectorType           &target) const;
     std::array<unsigned int, 3>
     count_contact_states() const;
-    unsigned int
-    contact_status(const unsigned int node) const;
     double
     total_contact_force() const;
 
     // Run control, console and timing.
     const Parameters::AllParameters parameters;
+    const MPI_Comm                  mpi_communicator;
     ConditionalOStream              pcout;
     TimerOutput                     computing_timer;
 
-    // Mesh, finite element, quadratures, degrees of freedom.
-    Triangulation<dim>                  triangulation;
-    ReferenceCell                       reference_cell;
-    const Mapping<dim>                 *mapping;
-    std::unique_ptr<FiniteElement<dim>> fe;
-    std::unique_ptr<FiniteElement<dim>> scalar_fe; // nodal output fields
-    DoFHandler<dim>                     dof_handler;
-    DoFHandler<dim>                     scalar_dof_handler;
-    Quadrature<dim>                     stress_quadrature;
-    Quadrature<dim>                     load_quadrature;
-    Quadrature<dim - 1>                 face_quadrature;
-    AffineConstraints<double>           constraints;
+    // Mesh, finite elements, quadratures, degrees of freedom.
+    std::unique_ptr<parallel::DistributedTriangulationBase<dim>> triangulation;
+    const ReferenceCell                                          reference_cell;
+    const Mapping<dim>                                          &mapping;
+    const std::unique_ptr<FiniteElement<dim>>                    fe;
+    const std::unique_ptr<FiniteElement<dim>> scalar_fe; // nodal output
+    DoFHandler<dim>                           dof_handler;
+    DoFHandler<dim>                           scalar_dof_handler;
+    const Quadrature<dim>                     stress_quadrature;
+    const Quadrature<dim>                     load_quadrature;
+    const Quadrature<dim - 1>                 face_quadrature;
+    IndexSet                                  locally_owned_dofs;
+    IndexSet                                  locally_relevant_dofs;
+    AffineConstraints<double>                 constraints;
 
-    // The elastic operator: assembled and factorised once per run.
-    SparsityPattern      sparsity_pattern;
-    SparseMatrix<double> stiffness_matrix;
-    SparseCholesky       cholesky_factorization;
-    // The implicit scheme's tangent stiffness, re-assembled and factorised
-    // (LU: the consistent tangent is unsymmetric) per Newton iteration.
-    SparseMatrix<double> tangent_matrix;
-    SparseDirectUMFPACK  tangent_factorization;
-    Vector<double>       internal_force;
-    unsigned int         total_newton_iterations = 0;
-    SparseDirectUMFPACK  lu_factorization;
-    unsigned int         n_operator_assemblies      = 0;
-    unsigned int         n_operator_factorizations  = 0;
-    unsigned int         n_elastic_solves           = 0;
-    unsigned int         n_external_load_assemblies = 0;
+    // The elastic operator K (assembled once per run) and, for the implicit
+    // update, the tangent and internal force of the current Newton iterate.
+    MatrixType   stiffness_matrix;
+    MatrixType   tangent_matrix;
+    VectorType   internal_force;
+    unsigned int n_operator_assemblies      = 0;
+    unsigned int n_external_load_assemblies = 0;
+    unsigned int total_newton_iterations    = 0;
 
-    // Vectors: the displacement u_n, the external load f_n, the history load
-    // -(H_n, eps(v)) and their sum.
-    Vector<double> solution;
-    Vector<double> external_load;
-    Vector<double> history_load;
-    Vector<double> system_rhs;
-    Vector<double>
-      contact_response; // -(displacement due to the contact forces)
+    // How the step problems are solved.
+    Parameters::Method                  method;
+    std::string                         method_reason;
+    std::unique_ptr<ContactSolver<dim>> contact_solver;
 
-    // Material, loads and the state at the stress points.
+    // u_n (with ghost entries), f_n, -(H_n, eps(v)), their sum.
+    VectorType solution;
+    VectorType external_load;
+    VectorType history_load;
+    VectorType system_rhs;
+
+    // Material, loads, and the state at the stress points of the locally
+    // owned cells.
     PerzynaMaterial<dim>                     material;
     FunctionParser<dim>                      body_force;
     FunctionParser<dim>                      surface_traction;
@@ -252,36 +225,31 @@ namespace ViscoContact
 
     // The geometry of the stress points, computed once (the mesh does not
     // move), so that the cell loops of the time loop need no FEValues: per
-    // cell its dofs in the order (vertex a, component c), and per stress
-    // point JxW and the gradients of the scalar shape functions N_a; the
-    // strain is sym(sum_a u_a (x) grad N_a).
-    unsigned int                         n_cell_vertices = 0;
-    std::vector<types::global_dof_index> cell_dof_indices;
-    std::vector<Tensor<1, dim>>          stress_point_gradients;
-    std::vector<double>                  stress_point_JxW;
+    // locally owned cell k its dofs (vertex a, component c) as indices into
+    // the vectors' local storage, whether any of them is constrained, and
+    // per stress point JxW and the gradients of the scalar shape functions
+    // N_a; the strain is sym(sum_a u_a (x) grad N_a).
+    std::vector<typename DoFHandler<dim>::active_cell_iterator> owned_cells;
+    unsigned int                                                n_cell_vertices = 0;
+    std::vector<unsigned int>                                   cell_local_dofs;
+    std::vector<bool>                                           cell_is_constrained;
+    std::vector<Tensor<1, dim>>                                 stress_point_gradients;
+    std::vector<double>                                         stress_point_JxW;
 
-    // Contact: the nodes of Gamma_3 and the condensed active-set solver.
-    bool                          contact_enabled;
-    std::vector<ContactNode<dim>> contact_nodes;
-    ContactActiveSetSolver        active_set_solver;
-    // The smallest generalised eigenvalue of (stiffness, lumped normal
-    // boundary mass), model.md section 4: the step problem is strongly
-    // convex iff it exceeds the steepest softening of the contact law.
-    double uniqueness_eigenvalue = 0;
-    // W = K^{-1} N^T, the displacement response to unit normal forces at
-    // the contact nodes (n_dofs x m, column-major), kept when it fits in
-    // memory: then u = K^{-1} b - W z needs one solve per step, not two.
-    LAPACKFullMatrix<double> contact_responses;
-    bool                     contact_responses_stored    = false;
-    unsigned int             total_active_set_iterations = 0;
+    // Contact: the nodes of Gamma_3 this rank owns, with their pieces.
+    bool             contact_enabled = false;
+    ContactSet<dim> contact_set;
+    unsigned int     total_active_set_iterations = 0;
+    unsigned int     total_inner_iterations      = 0;
 
     std::function<void(const unsigned int, const double)> step_observer;
 
     // Output records.
     std::vector<std::pair<double, std::string>> times_and_names;
-    std::ofstream                               time_series;
+    std::ofstream                               time_series; // rank 0
     double                                      time_loop_compute_time = 0;
     unsigned int                                n_time_steps           = 0;
+    unsigned int                                n_steps_done           = 0;
     double       loop_time_offset     = 0; // of the run a resumed run continues
     unsigned int last_checkpoint_step = numbers::invalid_unsigned_int;
   };

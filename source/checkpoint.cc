@@ -1,65 +1,55 @@
-// Checkpoint files: binary streams with error checks, the published record
-// of the last complete checkpoint, and the time series of a resumed run.
+// Checkpoints: the record file written and read by all ranks through MPI
+// I/O, the published record of the last complete checkpoint, and the
+// checkpoint of ViscoplasticContact<dim> itself.
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
-#include "checkpoint.h"
+#include <deal.II/grid/cell_id.h>
 
+#include "checkpoint.h"
+#include "mpi_tools.h"
+#include "viscoplastic_contact.h"
+
+#include <fstream>
 #include <iomanip>
 #include <sstream>
 
 namespace ViscoContact
 {
-  CheckpointWriter::CheckpointWriter(const std::filesystem::path &file)
-    : file(file)
-    , temporary(file.string() + ".tmp")
-    , out(temporary, std::ios::binary | std::ios::trunc)
+  namespace
   {
-    AssertThrow(out,
-                ExcMessage("Cannot write the checkpoint file "
-                           + temporary.string()
-                           + " (is the Output directory writable?)."));
-  }
+    // Bumped whenever the layout of the files changes.
+    constexpr std::uint32_t checkpoint_version = 2;
+
+    // Every rank learns whether any rank saw an MPI error, and which, and
+    // all throw the same message.
+    void
+    agree_on_errors(const int                    error,
+                    const std::filesystem::path &file,
+                    const std::string           &what,
+                    const MPI_Comm               communicator)
+    {
+      const int first_error = Utilities::MPI::max(error, communicator);
+      AssertThrow(first_error == MPI_SUCCESS,
+                  ExcMessage(what + " the checkpoint file " + file.string() +
+                             " failed: " + MPITools::error_string(first_error) +
+                             "."));
+    }
+  } // namespace
 
 
 
-  void
-  CheckpointWriter::write_string(const std::string &text)
-  {
-    write_vector(std::vector<char>(text.begin(), text.end()));
-  }
-
-
-
-  void
-  CheckpointWriter::finish()
-  {
-    out.flush();
-    AssertThrow(out,
-                ExcMessage("Writing the checkpoint file " + temporary.string()
-                           + " failed (disk full?)."));
-    out.close();
-    std::filesystem::rename(temporary, file);
-  }
-
-
-
-  CheckpointReader::CheckpointReader(const std::filesystem::path &file)
-    : file(file)
-    , in(file, std::ios::binary)
-  {
-    AssertThrow(in,
-                ExcMessage("Cannot read the checkpoint file " + file.string()
-                           + "."));
-    file_size = std::filesystem::file_size(file);
-  }
+  ByteReader::ByteReader(const std::vector<char> &bytes, const std::string &file)
+    : bytes(bytes)
+    , file(file)
+  {}
 
 
 
   std::string
-  CheckpointReader::read_string()
+  ByteReader::read_string()
   {
     const std::vector<char> characters = read_vector<char>();
     return std::string(characters.begin(), characters.end());
@@ -67,105 +57,24 @@ namespace ViscoContact
 
 
 
-  const std::filesystem::path &
-  CheckpointReader::name() const
-  {
-    return file;
-  }
-
-
-
   void
-  check_checkpoint_content(const bool condition, const CheckpointReader &in)
+  ByteReader::check(const bool condition) const
   {
     AssertThrow(condition,
-                ExcMessage("The checkpoint file " + in.name().string()
-                           + " does not belong to this scene or was written "
-                             "by another version of the program."));
+                ExcMessage("The checkpoint file " + file +
+                           " does not belong to this scene or was written "
+                           "by another version of the program."));
   }
 
 
 
   void
-  CheckpointHeader::write(CheckpointWriter &out) const
+  ByteReader::check_available(const std::uint64_t n_bytes) const
   {
-    out.write(version);
-    out.write(dimension);
-    out.write(step);
-    out.write_vector(times);
-    out.write(wall_time);
-    out.write(compute_time);
-  }
-
-
-
-  void
-  CheckpointHeader::read(CheckpointReader   &in,
-                         const std::uint32_t expected_version,
-                         const std::uint32_t expected_dimension,
-                         const std::uint32_t expected_step)
-  {
-    version = in.read<std::uint32_t>();
-    check_checkpoint_content(version == expected_version, in);
-    dimension = in.read<std::uint32_t>();
-    check_checkpoint_content(dimension == expected_dimension, in);
-    step = in.read<std::uint32_t>();
-    check_checkpoint_content(step == expected_step, in);
-    times = in.read_vector<double>();
-    check_checkpoint_content(step < times.size(), in);
-    wall_time    = in.read<double>();
-    compute_time = in.read<double>();
-  }
-
-
-
-  void
-  write_output_records(
-    CheckpointWriter                                  &out,
-    const std::vector<std::pair<double, std::string>> &records)
-  {
-    out.write<std::uint64_t>(records.size());
-    for (const auto &entry : records)
-      {
-        out.write(entry.first);
-        out.write_string(entry.second);
-      }
-  }
-
-
-
-  std::vector<std::pair<double, std::string>>
-  read_output_records(CheckpointReader &in)
-  {
-    std::vector<std::pair<double, std::string>> records;
-    const std::uint64_t                         n = in.read<std::uint64_t>();
-    for (std::uint64_t i = 0; i < n; ++i)
-      {
-        const double time = in.read<double>();
-        records.emplace_back(time, in.read_string());
-      }
-    return records;
-  }
-
-
-
-  void
-  CheckpointReader::check()
-  {
-    AssertThrow(in,
-                ExcMessage("The checkpoint file " + file.string()
-                           + " is shorter than its contents say: it is damaged "
-                             "or was written by another version."));
-  }
-
-
-
-  void
-  CheckpointReader::check_size(const std::uint64_t bytes)
-  {
-    AssertThrow(bytes <= file_size,
-                ExcMessage("The checkpoint file " + file.string()
-                           + " is damaged or was written by another version."));
+    AssertThrow(position + n_bytes <= bytes.size(),
+                ExcMessage("The checkpoint file " + file +
+                           " is shorter than its contents say: it is damaged "
+                           "or was written by another version."));
   }
 
 
@@ -179,38 +88,198 @@ namespace ViscoContact
 
 
   std::filesystem::path
-  checkpoint_file(const std::string &output_directory,
-                  const unsigned int step,
-                  const unsigned int rank)
+  checkpoint_file(const std::string &output_directory, const unsigned int step)
   {
     std::ostringstream name;
-    name << "step_" << std::setw(6) << std::setfill('0') << step << ".rank_"
-         << std::setw(4) << rank << ".bin";
+    name << "step_" << std::setw(6) << std::setfill('0') << step << ".bin";
     return checkpoint_directory(output_directory) / name.str();
+  }
+
+
+
+  // @sect4{write_record_file}
+  //
+  // Layout: the header's size, the header, the number of records and their
+  // size, then the records. Rank 0 writes the prefix, every rank its
+  // records at the offset an exclusive prefix sum gives it.
+  void
+  write_record_file(const std::filesystem::path &file,
+                    const std::vector<char>     &header,
+                    const std::vector<char>     &local_records,
+                    const std::uint64_t          record_size,
+                    const MPI_Comm               communicator)
+  {
+    const std::uint64_t n_local = local_records.size() / record_size;
+    const std::uint64_t n_total = Utilities::MPI::sum(n_local, communicator);
+    std::uint64_t       first   = 0;
+    int error = MPI_Exscan(&n_local, &first, 1, MPI_UINT64_T, MPI_SUM, communicator);
+    AssertThrowMPI(error);
+    const unsigned int rank = Utilities::MPI::this_mpi_process(communicator);
+    if (rank == 0)
+      first = 0;
+    const std::uint64_t header_size =
+      Utilities::MPI::broadcast(communicator, std::uint64_t(header.size()), 0);
+    const MPI_Offset records_start = 3 * sizeof(std::uint64_t) + header_size;
+
+    const std::filesystem::path temporary = file.string() + ".tmp";
+    MPI_File                    handle;
+    error = MPI_File_open(communicator,
+                          temporary.c_str(),
+                          MPI_MODE_CREATE | MPI_MODE_WRONLY,
+                          MPI_INFO_NULL,
+                          &handle);
+    agree_on_errors(error, file, "Opening", communicator);
+    error = MPI_File_set_size(handle, 0);
+    if (error == MPI_SUCCESS && rank == 0)
+      {
+        std::vector<char> prefix;
+        const auto        append = [&prefix](const std::uint64_t value) {
+          const char *bytes = reinterpret_cast<const char *>(&value);
+          prefix.insert(prefix.end(), bytes, bytes + sizeof(value));
+        };
+        append(header_size);
+        prefix.insert(prefix.end(), header.begin(), header.end());
+        append(n_total);
+        append(record_size);
+        error = MPI_File_write_at(
+          handle, 0, prefix.data(), prefix.size(), MPI_CHAR, MPI_STATUS_IGNORE);
+      }
+    error = Utilities::MPI::max(error, communicator);
+    // Blocks beyond 2 GiB are written in pieces (MPI counts are int).
+    const std::uint64_t chunk = std::uint64_t(1) << 30;
+    for (std::uint64_t done = 0;
+         error == MPI_SUCCESS &&
+         done < Utilities::MPI::max(std::uint64_t(local_records.size()),
+                                    communicator);
+         done += chunk)
+      {
+        const std::uint64_t begin = std::min<std::uint64_t>(done, local_records.size());
+        const std::uint64_t size =
+          std::min<std::uint64_t>(chunk, local_records.size() - begin);
+        error = MPI_File_write_at_all(handle,
+                                      records_start + first * record_size + begin,
+                                      local_records.data() + begin,
+                                      size,
+                                      MPI_CHAR,
+                                      MPI_STATUS_IGNORE);
+        error = Utilities::MPI::max(error, communicator);
+      }
+    const int close_error = MPI_File_close(&handle);
+    agree_on_errors(error != MPI_SUCCESS ? error : close_error,
+                    file,
+                    "Writing",
+                    communicator);
+    if (rank == 0)
+      std::filesystem::rename(temporary, file);
+    error = MPI_Barrier(communicator);
+    AssertThrowMPI(error);
+  }
+
+
+
+  // @sect4{read_record_file}
+  template <typename T>
+  T
+  read_value(MPI_File handle, const MPI_Offset offset, int &error)
+  {
+    T value{};
+    if (error == MPI_SUCCESS)
+      error = MPI_File_read_at(
+        handle, offset, &value, sizeof(T), MPI_CHAR, MPI_STATUS_IGNORE);
+    return value;
+  }
+
+
+
+  void
+  read_record_file(const std::filesystem::path &file,
+                   std::vector<char>           &header,
+                   std::vector<char>           &record_share,
+                   const std::uint64_t          record_size,
+                   const MPI_Comm               communicator)
+  {
+    MPI_File handle;
+    int      error = MPI_File_open(
+      communicator, file.c_str(), MPI_MODE_RDONLY, MPI_INFO_NULL, &handle);
+    agree_on_errors(error, file, "Opening", communicator);
+    MPI_Offset file_size = 0;
+    MPI_File_get_size(handle, &file_size);
+
+    const std::uint64_t header_size =
+      read_value<std::uint64_t>(handle, 0, error);
+    const bool header_fits =
+      header_size + 3 * sizeof(std::uint64_t) <= std::uint64_t(file_size);
+    header.resize(header_fits ? header_size : 0);
+    if (error == MPI_SUCCESS && header_fits)
+      error = MPI_File_read_at(handle,
+                               sizeof(std::uint64_t),
+                               header.data(),
+                               header_size,
+                               MPI_CHAR,
+                               MPI_STATUS_IGNORE);
+    const MPI_Offset    counts = sizeof(std::uint64_t) + header_size;
+    const std::uint64_t n_total =
+      header_fits ? read_value<std::uint64_t>(handle, counts, error) : 0;
+    const std::uint64_t stored_size =
+      header_fits ? read_value<std::uint64_t>(handle, counts + 8, error) : 0;
+    const MPI_Offset records_start = counts + 2 * sizeof(std::uint64_t);
+    const bool       consistent =
+      header_fits && stored_size == record_size &&
+      records_start + n_total * record_size == std::uint64_t(file_size);
+    if (!consistent)
+      {
+        MPI_File_close(&handle);
+        AssertThrow(false,
+                    ExcMessage("The checkpoint file " + file.string() +
+                               " is damaged, or does not belong to this scene "
+                               "or to this version of the program."));
+      }
+
+    const unsigned int  n_ranks = Utilities::MPI::n_mpi_processes(communicator);
+    const unsigned int  rank    = Utilities::MPI::this_mpi_process(communicator);
+    const std::uint64_t begin   = n_total * rank / n_ranks;
+    const std::uint64_t end     = n_total * (rank + 1) / n_ranks;
+    record_share.resize((end - begin) * record_size);
+    const std::uint64_t chunk = std::uint64_t(1) << 30;
+    for (std::uint64_t done = 0;
+         error == MPI_SUCCESS &&
+         done < Utilities::MPI::max(std::uint64_t(record_share.size()),
+                                    communicator);
+         done += chunk)
+      {
+        const std::uint64_t offset = std::min<std::uint64_t>(done, record_share.size());
+        const std::uint64_t size =
+          std::min<std::uint64_t>(chunk, record_share.size() - offset);
+        error = MPI_File_read_at_all(handle,
+                                     records_start + begin * record_size + offset,
+                                     record_share.data() + offset,
+                                     size,
+                                     MPI_CHAR,
+                                     MPI_STATUS_IGNORE);
+        error = Utilities::MPI::max(error, communicator);
+      }
+    MPI_File_close(&handle);
+    agree_on_errors(error, file, "Reading", communicator);
   }
 
 
 
   // @sect4{publish_checkpoint}
   //
-  // The barrier makes sure every rank's file is renamed before rank 0
-  // names the checkpoint complete; the rename of checkpoint.info is atomic
-  // on POSIX file systems.
+  // The rename of checkpoint.info is atomic on POSIX file systems.
   void
   publish_checkpoint(const std::string      &output_directory,
                      const CheckpointRecord &record,
                      const unsigned int      previous_step,
                      const MPI_Comm          communicator)
   {
-    const int error = MPI_Barrier(communicator);
-    AssertThrowMPI(error);
-    const std::filesystem::path directory
-      = checkpoint_directory(output_directory);
+    std::string problem;
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       {
-        const std::filesystem::path info = directory / "checkpoint.info";
-        const std::filesystem::path temporary
-          = directory / "checkpoint.info.tmp";
+        const std::filesystem::path directory =
+          checkpoint_directory(output_directory);
+        const std::filesystem::path info      = directory / "checkpoint.info";
+        const std::filesystem::path temporary = directory / "checkpoint.info.tmp";
         {
           std::ofstream out(temporary);
           out << std::setprecision(17) << "step " << record.step << '\n'
@@ -218,63 +287,54 @@ namespace ViscoContact
               << "ranks " << record.n_ranks << '\n'
               << "dofs " << record.n_dofs << '\n';
           out.flush();
-          AssertThrow(out,
-                      ExcMessage("Writing " + temporary.string() + " failed."));
+          if (!out)
+            problem = "Writing " + temporary.string() + " failed.";
         }
-        std::filesystem::rename(temporary, info);
+        std::error_code error;
+        if (problem.empty())
+          std::filesystem::rename(temporary, info, error);
+        if (error)
+          problem = "Renaming " + temporary.string() + " failed: " +
+                    error.message() + ".";
+        if (problem.empty() && previous_step != numbers::invalid_unsigned_int &&
+            previous_step != record.step)
+          std::filesystem::remove(checkpoint_file(output_directory,
+                                                  previous_step),
+                                  error);
       }
-    const int error2 = MPI_Barrier(communicator);
-    AssertThrowMPI(error2);
-    if (previous_step != numbers::invalid_unsigned_int
-        && previous_step != record.step)
-      {
-        std::error_code ignored;
-        std::filesystem::remove(
-          checkpoint_file(output_directory,
-                          previous_step,
-                          Utilities::MPI::this_mpi_process(communicator)),
-          ignored);
-      }
+    problem = Utilities::MPI::broadcast(communicator, problem, 0);
+    AssertThrow(problem.empty(), ExcMessage(problem));
   }
 
 
 
   CheckpointRecord
   read_checkpoint_record(const std::string  &output_directory,
-                         const unsigned int  n_ranks,
                          const std::uint64_t n_dofs)
   {
-    const std::filesystem::path info
-      = checkpoint_directory(output_directory) / "checkpoint.info";
+    const std::filesystem::path info =
+      checkpoint_directory(output_directory) / "checkpoint.info";
     std::ifstream    in(info);
     CheckpointRecord record;
     std::string      key_step, key_time, key_ranks, key_dofs;
-    in >> key_step >> record.step >> key_time >> record.time >> key_ranks
-      >> record.n_ranks >> key_dofs >> record.n_dofs;
-    AssertThrow(in && key_step == "step" && key_ranks == "ranks"
-                  && key_dofs == "dofs",
+    in >> key_step >> record.step >> key_time >> record.time >> key_ranks >>
+      record.n_ranks >> key_dofs >> record.n_dofs;
+    AssertThrow(in && key_step == "step" && key_ranks == "ranks" &&
+                  key_dofs == "dofs",
                 ExcMessage("Invalid parameter <Resume> in subsection "
-                           "<Checkpoint>: value <true>, but "
-                           + info.string()
-                           + " does not exist or is damaged; accepted: true "
-                             "only when the Output directory holds a complete "
-                             "checkpoint of an earlier run of this scene."));
-    AssertThrow(record.n_ranks == n_ranks,
-                ExcMessage("Invalid parameter <Resume> in subsection "
-                           "<Checkpoint>: the checkpoint of step "
-                           + std::to_string(record.step) + " was written by "
-                           + std::to_string(record.n_ranks)
-                           + " MPI rank(s); accepted: resuming on the same "
-                             "number of ranks (here "
-                           + std::to_string(n_ranks) + ")."));
+                           "<Checkpoint>: value <true>, but " +
+                           info.string() +
+                           " does not exist or is damaged; accepted: true "
+                           "only when the Output directory holds a complete "
+                           "checkpoint of an earlier run of this scene."));
     AssertThrow(record.n_dofs == n_dofs,
                 ExcMessage("Invalid parameter <Resume> in subsection "
-                           "<Checkpoint>: the checkpoint of step "
-                           + std::to_string(record.step) + " has "
-                           + std::to_string(record.n_dofs)
-                           + " displacement dofs, this scene "
-                           + std::to_string(n_dofs)
-                           + "; accepted: resuming the scene that wrote it."));
+                           "<Checkpoint>: the checkpoint of step " +
+                           std::to_string(record.step) + " has " +
+                           std::to_string(record.n_dofs) +
+                           " displacement dofs, this scene " +
+                           std::to_string(n_dofs) +
+                           "; accepted: resuming the scene that wrote it."));
     return record;
   }
 
@@ -294,8 +354,7 @@ namespace ViscoContact
             kept.push_back(line); // the header
             continue;
           }
-        const unsigned int row_step
-          = std::stoul(line.substr(0, line.find(',')));
+        const unsigned int row_step = std::stoul(line.substr(0, line.find(',')));
         if (row_step <= step)
           kept.push_back(line);
       }
@@ -304,4 +363,234 @@ namespace ViscoContact
     for (const std::string &row : kept)
       out << row << '\n';
   }
+
+
+
+  // @sect4{ViscoplasticContact::write_checkpoint}
+  //
+  // The mesh is not stored: it is rebuilt from the parameter file, which
+  // makes it the same mesh with the same cell ids (deal.II 9.4 cannot
+  // reliably save and load fully distributed meshes on several ranks).
+  // Stored are, in the header, the time schedule (cut steps included), the
+  // counters and the .pvd record; per locally owned cell, keyed by its id:
+  // the displacement values at the cell's dofs, the contact state at the
+  // cell's dofs (the piece + 1 at the x-dof of a contact node, its force z
+  // at the y-dof, zero elsewhere: the warm start of the next active set, so
+  // that its iterations are those of the uninterrupted run), and the state
+  // of every stress point (sigma_n, the history of the next step, the
+  // plastic multiplier).
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::write_checkpoint(const unsigned int         step,
+                                             const std::vector<double> &times,
+                                             const double wall_time)
+  {
+    TimerOutput::Scope t(computing_timer, "Checkpoint");
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      std::filesystem::create_directories(
+        checkpoint_directory(parameters.directory));
+
+    ByteWriter header;
+    header.write(checkpoint_version);
+    header.write<std::uint32_t>(dim);
+    header.write<std::uint32_t>(step);
+    header.write_vector(times);
+    header.write(wall_time);
+    header.write(time_loop_compute_time);
+    header.write<std::uint32_t>(total_active_set_iterations);
+    header.write<std::uint32_t>(total_newton_iterations);
+    header.write<std::uint32_t>(total_inner_iterations);
+    header.write(max_von_mises);
+    header.write<std::uint64_t>(times_and_names.size());
+    for (const auto &[time, name] : times_and_names)
+      {
+        header.write(time);
+        header.write_string(name);
+      }
+
+    VectorType contact_state(solution);
+    contact_state = 0;
+    if (contact_enabled)
+      for (unsigned int i = 0; i < contact_set.size(); ++i)
+        {
+          contact_state.local_element(contact_set.node(i).local_dofs[0]) =
+            contact_set.piece(i) + 1.;
+          contact_state.local_element(contact_set.node(i).local_dofs[1]) =
+            contact_set.z[i];
+        }
+    contact_state.update_ghost_values();
+
+    using Key                        = CellId::binary_type;
+    const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
+    const unsigned int n_q           = stress_quadrature.size();
+    const std::size_t  record_size =
+      sizeof(Key) + 2 * dofs_per_cell * sizeof(double) +
+      n_q * sizeof(QuadraturePointHistory<dim>);
+    std::vector<char>                    records(owned_cells.size() * record_size);
+    std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
+    char                                *out = records.data();
+    for (unsigned int k = 0; k < owned_cells.size(); ++k)
+      {
+        const Key key = owned_cells[k]->id().template to_binary<dim>();
+        std::memcpy(out, &key, sizeof(Key));
+        out += sizeof(Key);
+        owned_cells[k]->get_dof_indices(dof_indices);
+        for (const VectorType *vector : {&solution, &contact_state})
+          for (const types::global_dof_index dof : dof_indices)
+            {
+              const double value = (*vector)(dof);
+              std::memcpy(out, &value, sizeof(double));
+              out += sizeof(double);
+            }
+        std::memcpy(out,
+                    &quadrature_point_history[std::size_t(k) * n_q],
+                    n_q * sizeof(QuadraturePointHistory<dim>));
+        out += n_q * sizeof(QuadraturePointHistory<dim>);
+      }
+    write_record_file(checkpoint_file(parameters.directory, step),
+                      header.bytes,
+                      records,
+                      record_size,
+                      mpi_communicator);
+
+    CheckpointRecord record;
+    record.step    = step;
+    record.time    = times[step];
+    record.n_ranks = Utilities::MPI::n_mpi_processes(mpi_communicator);
+    record.n_dofs  = dof_handler.n_dofs();
+    publish_checkpoint(parameters.directory,
+                       record,
+                       last_checkpoint_step,
+                       mpi_communicator);
+    last_checkpoint_step = step;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::resume_from_checkpoint}
+  //
+  // Reads what write_checkpoint() wrote, on any number of ranks: each rank
+  // reads its share of the records, the records travel to the owners of
+  // their cells, and every owned cell must be found. Then what the time
+  // loop derives from the state is rebuilt (the ghosts, the history load of
+  // the next step) and the time series is cut back to the checkpoint.
+  template <int dim>
+  unsigned int
+  ViscoplasticContact<dim>::resume_from_checkpoint(std::vector<double> &times)
+  {
+    const CheckpointRecord checkpoint =
+      read_checkpoint_record(parameters.directory, dof_handler.n_dofs());
+    const std::filesystem::path file =
+      checkpoint_file(parameters.directory, checkpoint.step);
+
+    using Key                        = CellId::binary_type;
+    const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
+    const unsigned int n_q           = stress_quadrature.size();
+    const unsigned int n_doubles =
+      2 * dofs_per_cell + n_q * sizeof(QuadraturePointHistory<dim>) / sizeof(double);
+    const std::size_t record_size = sizeof(Key) + n_doubles * sizeof(double);
+    std::vector<char> header_bytes, share;
+    read_record_file(file, header_bytes, share, record_size, mpi_communicator);
+
+    ByteReader header(header_bytes, file.string());
+    header.check(header.read<std::uint32_t>() == checkpoint_version);
+    header.check(header.read<std::uint32_t>() == dim);
+    const unsigned int step = header.read<std::uint32_t>();
+    header.check(step == checkpoint.step);
+    times = header.read_vector<double>();
+    header.check(step < times.size());
+    loop_time_offset            = header.read<double>();
+    time_loop_compute_time      = header.read<double>();
+    total_active_set_iterations = header.read<std::uint32_t>();
+    total_newton_iterations     = header.read<std::uint32_t>();
+    total_inner_iterations      = header.read<std::uint32_t>();
+    max_von_mises               = header.read<double>();
+    times_and_names.clear();
+    const std::uint64_t n_records = header.read<std::uint64_t>();
+    for (std::uint64_t i = 0; i < n_records; ++i)
+      {
+        const double time = header.read<double>();
+        times_and_names.emplace_back(time, header.read_string());
+      }
+
+    // The records of this rank's share go to the owners of their cells.
+    std::vector<MPITools::Record> records(share.size() / record_size);
+    for (std::size_t r = 0; r < records.size(); ++r)
+      {
+        const char *in = share.data() + r * record_size;
+        records[r].first.assign(in, sizeof(Key));
+        records[r].second.resize(n_doubles);
+        std::memcpy(records[r].second.data(),
+                    in + sizeof(Key),
+                    n_doubles * sizeof(double));
+      }
+    std::vector<std::string> requests(owned_cells.size());
+    for (unsigned int k = 0; k < owned_cells.size(); ++k)
+      {
+        const Key key = owned_cells[k]->id().template to_binary<dim>();
+        requests[k].assign(reinterpret_cast<const char *>(&key), sizeof(Key));
+      }
+    const auto found =
+      MPITools::exchange_records(records, requests, mpi_communicator);
+
+    VectorType contact_state(solution);
+    contact_state = 0;
+    solution      = 0;
+    std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
+    bool                                 complete = true;
+    for (unsigned int k = 0; k < owned_cells.size(); ++k)
+      {
+        const auto entry = found.find(requests[k]);
+        if (entry == found.end() || entry->second.size() != 1 ||
+            entry->second[0].size() != n_doubles)
+          {
+            complete = false;
+            continue;
+          }
+        const std::vector<double> &values = entry->second[0];
+        owned_cells[k]->get_dof_indices(dof_indices);
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          if (locally_owned_dofs.is_element(dof_indices[i]))
+            {
+              solution(dof_indices[i])      = values[i];
+              contact_state(dof_indices[i]) = values[dofs_per_cell + i];
+            }
+        std::memcpy(&quadrature_point_history[std::size_t(k) * n_q],
+                    values.data() + 2 * dofs_per_cell,
+                    n_q * sizeof(QuadraturePointHistory<dim>));
+      }
+    header.check(Utilities::MPI::min(complete ? 1 : 0, mpi_communicator) == 1);
+    solution.update_ghost_values();
+
+    if (contact_enabled)
+      for (unsigned int i = 0; i < contact_set.size(); ++i)
+        {
+          const double piece =
+            contact_state.local_element(contact_set.node(i).local_dofs[0]) - 1.;
+          header.check(piece >= 0 && piece < contact_set.law().n_pieces());
+          contact_set.set_piece(i, static_cast<unsigned int>(piece + 0.5));
+          contact_set.z[i] =
+            contact_state.local_element(contact_set.node(i).local_dofs[1]);
+          contact_set.r[i] = contact_set.normal_component(solution, i);
+        }
+
+    if (parameters.plasticity &&
+        parameters.stress_update == Parameters::StressUpdate::explicit_euler)
+      assemble_history_load();
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      truncate_time_series(std::filesystem::path(parameters.directory) /
+                             "time_series.csv",
+                           step);
+    last_checkpoint_step = step;
+    n_steps_done         = step;
+    pcout << "Resuming from the checkpoint of step " << step
+          << " (t = " << times[step] << ", written on " << checkpoint.n_ranks
+          << " MPI rank(s))\n";
+    return step;
+  }
+
+
+
+  template class ViscoplasticContact<2>;
+  template class ViscoplasticContact<3>;
 } // namespace ViscoContact

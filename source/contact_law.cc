@@ -97,13 +97,13 @@ namespace ViscoContact
                         {},
                         contact.unilateral_constraint,
                         contact.gap);
-    if (contact.law_type == "nonmonotone" && contact.u1 == 0)
+    if (contact.law_type == Parameters::ContactLawType::nonmonotone && contact.u1 == 0)
       return ContactLaw({0.},
                         {0., contact.c2},
                         {0.},
                         contact.unilateral_constraint,
                         contact.gap);
-    if (contact.law_type == "nonmonotone")
+    if (contact.law_type == Parameters::ContactLawType::nonmonotone)
       return ContactLaw({0., contact.u1},
                         {0., contact.c1, contact.c2},
                         {0., 0.},

@@ -1,11 +1,9 @@
 // The convergence study: runs at several resolutions compared exactly with
-// a reference run on the reference mesh.
+// a reference run on the reference mesh, on any number of ranks.
 
 #include <deal.II/base/exceptions.h>
-#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
-
-#include <deal.II/fe/fe_values.h>
 
 #include "convergence_study.h"
 
@@ -22,8 +20,11 @@ namespace ViscoContact
 {
   template <int dim>
   ConvergenceStudy<dim>::ConvergenceStudy(
-    const Parameters::AllParameters &parameters)
+    const Parameters::AllParameters &parameters,
+    const MPI_Comm                   communicator)
     : parameters(parameters)
+    , communicator(communicator)
+    , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
   {}
 
 
@@ -44,6 +45,7 @@ namespace ViscoContact
     run_parameters.write_vtu                 = false;
     run_parameters.verbose                   = false;
     run_parameters.print_timing_summary      = false;
+    run_parameters.check_uniqueness          = false;
     run_parameters.profile_times.clear();
     run_parameters.directory = parameters.directory + "/runs/" + name;
 
@@ -51,28 +53,91 @@ namespace ViscoContact
     // entries the study changed appended (later entries win), so that it
     // reproduces the run.
     std::ostringstream changes;
-    changes
-      << std::setprecision(17)
-      << "\n# This run of the convergence study changed these entries:\n"
-      << "subsection Convergence study\n  set Enabled = false\nend\n"
-      << "subsection Geometry\n  set Subdivisions = " << subdivisions
-      << "\nend\n"
-      << "subsection Time\n  set Time step = " << time_step << "\nend\n"
-      << "subsection Output\n  set Output directory = "
-      << run_parameters.directory
-      << "\n  set Write vtu = false\n  set Verbose = false\n"
-      << "  set Print timing summary = false\n  set Profile times =\nend\n";
+    changes << std::setprecision(17)
+            << "\n# This run of the convergence study changed these entries:\n"
+            << "subsection Convergence study\n  set Enabled = false\nend\n"
+            << "subsection Geometry\n  set Subdivisions = " << subdivisions
+            << "\nend\n"
+            << "subsection Contact\n  set Check uniqueness = false\nend\n"
+            << "subsection Time\n  set Time step = " << time_step << "\nend\n"
+            << "subsection Output\n  set Output directory = "
+            << run_parameters.directory
+            << "\n  set Write vtu = false\n  set Verbose = false\n"
+            << "  set Print timing summary = false\n  set Profile times =\nend\n";
     run_parameters.parsed_parameters += changes.str();
     return run_parameters;
   }
 
 
 
+  // The square (cube) of the box with n subdivisions that contains the
+  // point, as a key.
+  template <int dim>
+  std::string
+  ConvergenceStudy<dim>::square_key(const Point<dim>  &point,
+                                    const unsigned int n) const
+  {
+    std::uint64_t index = 0;
+    for (int d = dim - 1; d >= 0; --d)
+      {
+        const double h = parameters.lengths[d] / n;
+        const int i = std::clamp(static_cast<int>(std::floor(point[d] / h)),
+                                 0,
+                                 static_cast<int>(n) - 1);
+        index = index * n + i;
+      }
+    return std::string(reinterpret_cast<const char *>(&index), sizeof(index));
+  }
+
+
+
+  // @sect4{ConvergenceStudy::record_state}
+  //
+  // Per locally owned cell: at the first step its square and vertices, at
+  // every step grad u and sigma (as full dim x dim tensors) at its stress
+  // points.
+  template <int dim>
+  void
+  ConvergenceStudy<dim>::record_state(Run                            &run,
+                                      const ViscoplasticContact<dim> &problem) const
+  {
+    const auto        &cells = problem.get_owned_cells();
+    const unsigned int n_q   = problem.get_stress_quadrature().size();
+    if (run.cells.empty())
+      {
+        run.n_dofs = problem.get_dof_handler().n_dofs();
+        run.cells.resize(cells.size());
+        for (unsigned int k = 0; k < cells.size(); ++k)
+          {
+            run.cells[k].first = square_key(cells[k]->center(), run.subdivisions);
+            std::vector<double> &payload = run.cells[k].second;
+            payload.push_back(cells[k]->n_vertices());
+            for (const unsigned int v : cells[k]->vertex_indices())
+              for (unsigned int d = 0; d < dim; ++d)
+                payload.push_back(cells[k]->vertex(v)[d]);
+          }
+      }
+    for (unsigned int k = 0; k < cells.size(); ++k)
+      for (unsigned int q = 0; q < n_q; ++q)
+        {
+          const Tensor<2, dim> gradient = problem.get_displacement_gradient(k, q);
+          const SymmetricTensor<2, dim> &stress = problem.get_stress(k, q);
+          for (unsigned int a = 0; a < dim; ++a)
+            for (unsigned int b = 0; b < dim; ++b)
+              {
+                run.cells[k].second.push_back(gradient[a][b]);
+                run.cells[k].second.push_back(stress[a][b]);
+              }
+        }
+  }
+
+
+
   // @sect4{ConvergenceStudy::run}
   //
-  // The coarse runs first, keeping their states at every time level; then
-  // the reference run, which compares with them at every common time level
-  // while it goes.
+  // The coarse runs first, each recording its states at all its time
+  // levels; then the reference run, which compares with them at every
+  // common time level while it goes.
   template <int dim>
   void
   ConvergenceStudy<dim>::run()
@@ -86,23 +151,16 @@ namespace ViscoContact
         run.time_step    = parameters.study_time_steps[r];
         std::ostringstream name;
         name << "h_1_" << run.subdivisions << "_k_" << run.time_step;
-        std::cout << "Convergence study: run " << r + 1 << " of " << n_runs
-                  << ", h = 1/" << run.subdivisions << ", k = " << run.time_step
-                  << '\n';
-        run.problem = std::make_unique<ViscoplasticContact<dim>>(
-          parameters_for(run.subdivisions, run.time_step, name.str()));
-        ViscoplasticContact<dim> &problem = *run.problem;
-        problem.set_step_observer(
-          [&run, &problem](const unsigned int, const double time) {
-            run.times.push_back(time);
-            run.displacements.push_back(problem.get_displacement());
-            const unsigned int n_cells
-              = problem.get_triangulation().n_active_cells();
-            std::vector<SymmetricTensor<2, dim>> stress(n_cells);
-            for (unsigned int c = 0; c < n_cells; ++c)
-              stress[c] = problem.get_stress(c, 0);
-            run.stresses.push_back(std::move(stress));
-          });
+        pcout << "Convergence study: run " << r + 1 << " of " << n_runs
+              << ", h = 1/" << run.subdivisions << ", k = " << run.time_step
+              << std::endl;
+        ViscoplasticContact<dim> problem(
+          parameters_for(run.subdivisions, run.time_step, name.str()),
+          communicator);
+        problem.set_step_observer([&](const unsigned int, const double time) {
+          run.times.push_back(time);
+          record_state(run, problem);
+        });
         Timer timer;
         try
           {
@@ -114,191 +172,197 @@ namespace ViscoContact
             exc.print_info(info);
             run.failed  = true;
             run.failure = info.str();
-            std::cout << "Convergence study: the run h = 1/" << run.subdivisions
-                      << ", k = " << run.time_step << " failed:\n"
-                      << run.failure;
+            pcout << "Convergence study: the run h = 1/" << run.subdivisions
+                  << ", k = " << run.time_step << " failed:\n"
+                  << run.failure;
           }
-        run.wall_time = timer.wall_time();
+        run.wall_time = Utilities::MPI::max(timer.wall_time(), communicator);
       }
 
-    std::cout << "Convergence study: reference run, h = 1/"
-              << parameters.reference_subdivisions
-              << ", k = " << parameters.reference_time_step << '\n';
+    pcout << "Convergence study: reference run, h = 1/"
+          << parameters.reference_subdivisions
+          << ", k = " << parameters.reference_time_step << std::endl;
     ViscoplasticContact<dim> reference(
       parameters_for(parameters.reference_subdivisions,
                      parameters.reference_time_step,
-                     "reference"));
+                     "reference"),
+      communicator);
     unsigned int reference_steps = 0;
-    reference.set_step_observer(
-      [&](const unsigned int step, const double time) {
-        if (step == 1)
-          for (Run &run : runs)
-            build_transfer(run, reference);
-        reference_steps = step;
+    reference.set_step_observer([&](const unsigned int step, const double time) {
+      if (step == 1)
         for (Run &run : runs)
-          {
-            if (run.failed)
-              continue;
-            const auto level
-              = std::find_if(run.times.begin(), run.times.end(), [&](double t) {
-                  return std::abs(t - time) <= 1e-10 * parameters.end_time;
-                });
-            if (level != run.times.end())
-              compare(run, level - run.times.begin(), reference);
-          }
-      });
+          if (!run.failed)
+            locate(run, reference);
+      reference_steps = step;
+      for (Run &run : runs)
+        {
+          if (run.failed)
+            continue;
+          const auto level =
+            std::find_if(run.times.begin(), run.times.end(), [&](double t) {
+              return std::abs(t - time) <= 1e-10 * parameters.end_time;
+            });
+          if (level != run.times.end())
+            compare(run, level - run.times.begin(), reference);
+        }
+    });
     Timer timer;
     reference.run();
     write_table(reference.get_dof_handler().n_dofs(),
                 reference_steps,
-                timer.wall_time());
+                Utilities::MPI::max(timer.wall_time(), communicator));
   }
 
 
 
-  // @sect4{ConvergenceStudy::build_transfer}
+  // @sect4{ConvergenceStudy::locate}
   //
-  // Locate every reference vertex and every reference cell centre in the
-  // coarse mesh. The coarse cells are sorted into the squares (cubes) of
-  // the generated box they lie in, so each point is tested against the few
-  // cells of its square and the neighbouring ones. The barycentric
-  // coordinates of a point in the coarse simplex that contains it are the
-  // values of the coarse P1 shape functions there.
+  // The coarse cells of the squares that hold this rank's reference stress
+  // points come to this rank; each point is located in one of them
+  // (barycentric coordinates on simplices; on the axis-aligned boxes of a
+  // hypercube mesh the square holds one cell).
   template <int dim>
   void
-  ConvergenceStudy<dim>::build_transfer(
-    Run                            &run,
-    const ViscoplasticContact<dim> &reference) const
+  ConvergenceStudy<dim>::locate(Run                            &run,
+                                const ViscoplasticContact<dim> &reference) const
   {
-    const DoFHandler<dim> &coarse    = run.problem->get_dof_handler();
-    const unsigned int     N         = run.subdivisions;
-    const auto             bucket_of = [&](const Point<dim>     &p,
-                               const Tensor<1, dim> &shift) {
-      unsigned int index = 0;
-      for (int d = dim - 1; d >= 0; --d)
+    const auto            &cells      = reference.get_owned_cells();
+    const Quadrature<dim> &quadrature = reference.get_stress_quadrature();
+    const Mapping<dim>    &mapping =
+      cells.empty() ?
+        ReferenceCells::get_hypercube<dim>().template get_default_linear_mapping<dim>() :
+        cells[0]->reference_cell().template get_default_linear_mapping<dim>();
+
+    std::vector<Point<dim>>  points;
+    std::vector<std::string> keys;
+    for (const auto &cell : cells)
+      for (unsigned int q = 0; q < quadrature.size(); ++q)
         {
-          const double h = parameters.lengths[d] / N;
-          const int    i
-            = std::clamp(static_cast<int>(std::floor((p[d] + shift[d]) / h)),
-                         0,
-                         int(N) - 1);
-          index = index * N + i;
+          points.push_back(
+            mapping.transform_unit_to_real_cell(cell, quadrature.point(q)));
+          keys.push_back(square_key(points.back(), run.subdivisions));
         }
-      return index;
-    };
+    std::vector<std::string> requests(keys);
+    std::sort(requests.begin(), requests.end());
+    requests.erase(std::unique(requests.begin(), requests.end()), requests.end());
+    const auto found = MPITools::exchange_records(run.cells, requests, communicator);
+    run.cells.clear();
 
-    std::map<unsigned int,
-             std::vector<typename DoFHandler<dim>::active_cell_iterator>>
-      buckets;
-    for (const auto &cell : coarse.active_cell_iterators())
-      buckets[bucket_of(cell->center(), Tensor<1, dim>())].push_back(cell);
-
-    // The coarse cell containing p, and the barycentric coordinates of p.
-    const auto locate = [&](const Point<dim> &p) {
-      const double tolerance = 1e-9 * parameters.lengths[0] / N;
-      for (unsigned int corner = 0; corner < (1u << dim); ++corner)
-        {
-          Tensor<1, dim> shift;
-          for (unsigned int d = 0; d < dim; ++d)
-            shift[d] = ((corner >> d) & 1 ? tolerance : -tolerance);
-          for (const auto &cell : buckets[bucket_of(p, shift)])
-            {
-              Tensor<2, dim> J;
-              for (unsigned int a = 1; a <= dim; ++a)
+    std::map<const std::vector<double> *, unsigned int> index_of;
+    run.point_cell.resize(points.size());
+    run.unit_points.resize(points.size());
+    for (unsigned int p = 0; p < points.size(); ++p)
+      {
+        const auto entry = found.find(keys[p]);
+        AssertThrow(entry != found.end(),
+                    ExcMessage("Convergence study: a point of the reference "
+                               "mesh lies in no cell of the coarse mesh; the "
+                               "meshes are not nested boxes."));
+        const std::vector<double> *containing = nullptr;
+        for (const std::vector<double> &candidate : entry->second)
+          {
+            const unsigned int n_vertices = candidate[0];
+            const auto         vertex     = [&](const unsigned int v) {
+              Point<dim> x;
+              for (unsigned int d = 0; d < dim; ++d)
+                x[d] = candidate[1 + v * dim + d];
+              return x;
+            };
+            Point<dim> unit;
+            bool       inside = true;
+            if (n_vertices == dim + 1)
+              {
+                Tensor<2, dim> J;
+                for (unsigned int a = 1; a <= dim; ++a)
+                  for (unsigned int d = 0; d < dim; ++d)
+                    J[d][a - 1] = vertex(a)[d] - vertex(0)[d];
+                const Tensor<1, dim> lambda = invert(J) * (points[p] - vertex(0));
+                double               sum    = 0;
                 for (unsigned int d = 0; d < dim; ++d)
-                  J[d][a - 1] = cell->vertex(a)[d] - cell->vertex(0)[d];
-              const Tensor<1, dim> lambda = invert(J) * (p - cell->vertex(0));
-              std::array<double, dim + 1> weights;
-              weights[0] = 1;
-              for (unsigned int a = 1; a <= dim; ++a)
-                {
-                  weights[a] = lambda[a - 1];
-                  weights[0] -= lambda[a - 1];
-                }
-              if (*std::min_element(weights.begin(), weights.end()) >= -1e-10)
-                return std::make_pair(cell, weights);
-            }
-        }
-      AssertThrow(false,
-                  ExcMessage("Convergence study: a point of the reference "
-                             "mesh lies in no cell of the coarse mesh; the "
-                             "meshes are not nested."));
-      return std::make_pair(coarse.begin_active(),
-                            std::array<double, dim + 1>());
-    };
-
-    const Triangulation<dim> &fine = reference.get_triangulation();
-    run.vertex_dofs.resize(fine.n_vertices());
-    run.vertex_weights.resize(fine.n_vertices());
-    for (unsigned int v = 0; v < fine.n_vertices(); ++v)
-      if (fine.get_used_vertices()[v])
-        {
-          const auto [cell, weights] = locate(fine.get_vertices()[v]);
-          run.vertex_weights[v]      = weights;
-          for (unsigned int a = 0; a <= dim; ++a)
-            for (unsigned int c = 0; c < dim; ++c)
-              run.vertex_dofs[v][a * dim + c] = cell->vertex_dof_index(a, c);
-        }
-    run.cell_map.resize(fine.n_active_cells());
-    for (const auto &cell : fine.active_cell_iterators())
-      run.cell_map[cell->active_cell_index()]
-        = locate(cell->center()).first->active_cell_index();
+                  {
+                    unit[d] = lambda[d];
+                    sum += lambda[d];
+                    inside = inside && lambda[d] >= -1e-10;
+                  }
+                inside = inside && sum <= 1 + 1e-10;
+              }
+            else
+              for (unsigned int d = 0; d < dim; ++d)
+                unit[d] = (points[p][d] - vertex(0)[d]) /
+                          (vertex(n_vertices - 1)[d] - vertex(0)[d]);
+            if (inside)
+              {
+                containing         = &candidate;
+                run.unit_points[p] = unit;
+                break;
+              }
+          }
+        AssertThrow(containing != nullptr,
+                    ExcMessage("Convergence study: a point of the reference "
+                               "mesh lies in no cell of the coarse mesh; the "
+                               "meshes are not nested."));
+        const auto [position, inserted] =
+          index_of.emplace(containing, run.located_cells.size());
+        if (inserted)
+          run.located_cells.push_back(*containing);
+        run.point_cell[p] = position->second;
+      }
   }
 
 
 
   // @sect4{ConvergenceStudy::compare}
   //
-  // ||eps(u_ref - I u_h)||_L2 with the one-point rule (exact for P1 on the
-  // reference mesh) and ||sigma_ref - sigma_h||_L2 cell by cell.
+  // ||eps(u_ref - u_h)||_L2 and ||sigma_ref - sigma_h||_L2 with the
+  // reference's stress-point quadrature, summed over the ranks.
   template <int dim>
   void
-  ConvergenceStudy<dim>::compare(
-    Run                            &run,
-    const unsigned int              level,
-    const ViscoplasticContact<dim> &reference) const
+  ConvergenceStudy<dim>::compare(Run                            &run,
+                                 const unsigned int              level,
+                                 const ViscoplasticContact<dim> &reference) const
   {
-    const DoFHandler<dim> &dof_handler = reference.get_dof_handler();
-    const Vector<double>  &coarse_u    = run.displacements[level];
-    Vector<double>         error       = reference.get_displacement();
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      for (const unsigned int v : cell->vertex_indices())
+    const auto            &cells      = reference.get_owned_cells();
+    const Quadrature<dim> &quadrature = reference.get_stress_quadrature();
+    const unsigned int     n_q        = quadrature.size();
+    double                 error_u = 0, error_sigma = 0;
+    for (unsigned int k = 0; k < cells.size(); ++k)
+      for (unsigned int q = 0; q < n_q; ++q)
         {
-          const unsigned int vertex = cell->vertex_index(v);
-          for (unsigned int c = 0; c < dim; ++c)
+          const unsigned int         p       = k * n_q + q;
+          const std::vector<double> &payload = run.located_cells[run.point_cell[p]];
+          const unsigned int         n_vertices = payload[0];
+          const double *values = &payload[1 + n_vertices * dim +
+                                          std::size_t(level) * n_q * 2 * dim * dim];
+          // sum_j L_j(x) v_j with the Lagrange polynomials of the coarse
+          // cell's stress points (a single point on simplices).
+          Tensor<2, dim> gradient, stress;
+          for (unsigned int j = 0; j < n_q; ++j)
             {
-              double value = 0;
-              for (unsigned int a = 0; a <= dim; ++a)
-                value += run.vertex_weights[vertex][a]
-                         * coarse_u[run.vertex_dofs[vertex][a * dim + c]];
-              // Vertices are visited once per adjacent cell; assign, do not
-              // add.
-              error[cell->vertex_dof_index(v, c)]
-                = reference.get_displacement()[cell->vertex_dof_index(v, c)]
-                  - value;
+              double weight = 1;
+              if (n_q > 1)
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    const double node  = quadrature.point(j)[d];
+                    const double other = 1 - node; // the other Gauss point
+                    weight *= (run.unit_points[p][d] - other) / (node - other);
+                  }
+              for (unsigned int a = 0; a < dim; ++a)
+                for (unsigned int b = 0; b < dim; ++b)
+                  {
+                    gradient[a][b] += weight * values[(j * dim * dim + a * dim + b) * 2];
+                    stress[a][b] += weight * values[(j * dim * dim + a * dim + b) * 2 + 1];
+                  }
             }
+          const SymmetricTensor<2, dim> strain_error =
+            symmetrize(reference.get_displacement_gradient(k, q) - gradient);
+          const Tensor<2, dim> stress_error =
+            Tensor<2, dim>(reference.get_stress(k, q)) - stress;
+          const double JxW = reference.get_stress_point_weight(k, q);
+          error_u += (strain_error * strain_error) * JxW;
+          error_sigma += scalar_product(stress_error, stress_error) * JxW;
         }
-
-    const QGaussSimplex<dim>             quadrature(1);
-    FEValues<dim>                        fe_values(reference.get_mapping(),
-                            dof_handler.get_fe(),
-                            quadrature,
-                            update_gradients | update_JxW_values);
-    const FEValuesExtractors::Vector     displacement(0);
-    std::vector<SymmetricTensor<2, dim>> strain(1);
-    double                               error_u = 0, error_sigma = 0;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      {
-        fe_values.reinit(cell);
-        fe_values[displacement].get_function_symmetric_gradients(error, strain);
-        const unsigned int            c = cell->active_cell_index();
-        const SymmetricTensor<2, dim> stress_error
-          = reference.get_stress(c, 0) - run.stresses[level][run.cell_map[c]];
-        error_u += (strain[0] * strain[0]) * fe_values.JxW(0);
-        error_sigma += (stress_error * stress_error) * fe_values.JxW(0);
-      }
-    error_u     = std::sqrt(error_u);
-    error_sigma = std::sqrt(error_sigma);
+    error_u     = std::sqrt(Utilities::MPI::sum(error_u, communicator));
+    error_sigma = std::sqrt(Utilities::MPI::sum(error_sigma, communicator));
 
     run.max_error_u     = std::max(run.max_error_u, error_u);
     run.max_error_sigma = std::max(run.max_error_sigma, error_sigma);
@@ -310,18 +374,21 @@ namespace ViscoContact
 
   // @sect4{ConvergenceStudy::write_table}
   //
-  // convergence.csv and the same table on the terminal. The observed order
-  // between consecutive runs is log(e_{i-1}/e_i) / log(s_{i-1}/s_i) with
-  // s = h + k, or s = k (s = h) when the mesh (the time step) is the same.
+  // convergence.csv and the same table on the terminal (rank 0). The
+  // observed order between consecutive runs is log(e_{i-1}/e_i) /
+  // log(s_{i-1}/s_i) with s = h + k, or s = k (s = h) when the mesh (the
+  // time step) is the same.
   template <int dim>
   void
-  ConvergenceStudy<dim>::write_table(const unsigned int reference_dofs,
+  ConvergenceStudy<dim>::write_table(const types::global_dof_index reference_dofs,
                                      const unsigned int reference_steps,
-                                     const double reference_wall_time) const
+                                     const double       reference_wall_time) const
   {
+    if (Utilities::MPI::this_mpi_process(communicator) != 0)
+      return;
     std::filesystem::create_directories(parameters.directory);
-    std::ofstream csv(std::filesystem::path(parameters.directory)
-                      / "convergence.csv");
+    std::ofstream csv(std::filesystem::path(parameters.directory) /
+                      "convergence.csv");
     csv << "h,k,subdivisions,dofs,steps,compared_levels,wall_time,error_u,"
            "error_sigma,error,order_u,order_sigma,order\n"
         << std::setprecision(10);
@@ -350,17 +417,17 @@ namespace ViscoContact
           if (r == 0 || runs[r - 1].failed)
             return std::numeric_limits<double>::quiet_NaN();
           const Run   &previous = runs[r - 1];
-          const double h_prev = parameters.lengths[0] / previous.subdivisions;
-          // The order in the quantity that varies: k on a fixed mesh, h at a
-          // fixed step, h + k when both change.
-          const double size_prev
-            = (previous.subdivisions == run.subdivisions ? 0. : h_prev)
-              + (previous.time_step == run.time_step ? 0. : previous.time_step);
-          const double size
-            = (previous.subdivisions == run.subdivisions ? 0. : h)
-              + (previous.time_step == run.time_step ? 0. : run.time_step);
-          return std::log(previous.*member / run.*member)
-                 / std::log(size_prev / size);
+          const double h_prev   = parameters.lengths[0] / previous.subdivisions;
+          // The order in the quantity that varies: k on a fixed mesh, h at
+          // a fixed step, h + k when both change.
+          const double size_prev =
+            (previous.subdivisions == run.subdivisions ? 0. : h_prev) +
+            (previous.time_step == run.time_step ? 0. : previous.time_step);
+          const double size =
+            (previous.subdivisions == run.subdivisions ? 0. : h) +
+            (previous.time_step == run.time_step ? 0. : run.time_step);
+          return std::log(previous.*member / run.*member) /
+                 std::log(size_prev / size);
         };
         if (run.failed)
           {
@@ -371,29 +438,29 @@ namespace ViscoContact
                       << "   failed: see above\n";
             continue;
           }
-        const double       order_u     = order(&Run::max_error_u);
-        const double       order_sigma = order(&Run::max_error_sigma);
-        const double       order_total = order(&Run::max_error);
-        const unsigned int dofs = run.problem->get_dof_handler().n_dofs();
+        const double order_u     = order(&Run::max_error_u);
+        const double order_sigma = order(&Run::max_error_sigma);
+        const double order_total = order(&Run::max_error);
 
         csv << h << ',' << run.time_step << ',' << run.subdivisions << ','
-            << dofs << ',' << run.times.size() << ',' << run.n_compared_levels
-            << ',' << run.wall_time << ',' << run.max_error_u << ','
-            << run.max_error_sigma << ',' << run.max_error << ',' << order_u
-            << ',' << order_sigma << ',' << order_total << '\n';
+            << run.n_dofs << ',' << run.times.size() << ','
+            << run.n_compared_levels << ',' << run.wall_time << ','
+            << run.max_error_u << ',' << run.max_error_sigma << ','
+            << run.max_error << ',' << order_u << ',' << order_sigma << ','
+            << order_total << '\n';
         std::cout << std::setw(6) << "1/" + std::to_string(run.subdivisions)
                   << std::setw(11) << std::setprecision(4) << run.time_step
-                  << std::setw(9) << dofs << std::setw(6) << run.times.size()
-                  << std::setw(10) << wall_time_text(run.wall_time)
-                  << std::scientific << std::setprecision(3) << std::setw(11)
-                  << run.max_error_u << std::fixed << std::setprecision(2)
-                  << std::setw(7) << order_u << std::scientific
-                  << std::setprecision(3) << std::setw(11)
-                  << run.max_error_sigma << std::fixed << std::setprecision(2)
-                  << std::setw(7) << order_sigma << std::scientific
-                  << std::setprecision(3) << std::setw(11) << run.max_error
+                  << std::setw(9) << run.n_dofs << std::setw(6)
+                  << run.times.size() << std::setw(10)
+                  << wall_time_text(run.wall_time) << std::scientific
+                  << std::setprecision(3) << std::setw(11) << run.max_error_u
                   << std::fixed << std::setprecision(2) << std::setw(7)
-                  << order_total << std::defaultfloat << '\n';
+                  << order_u << std::scientific << std::setprecision(3)
+                  << std::setw(11) << run.max_error_sigma << std::fixed
+                  << std::setprecision(2) << std::setw(7) << order_sigma
+                  << std::scientific << std::setprecision(3) << std::setw(11)
+                  << run.max_error << std::fixed << std::setprecision(2)
+                  << std::setw(7) << order_total << std::defaultfloat << '\n';
       }
   }
 

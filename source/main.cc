@@ -4,7 +4,6 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include "convergence_study.h"
-#include "distributed_viscoplastic_contact.h"
 #include "parameters.h"
 #include "viscoplastic_contact.h"
 
@@ -21,11 +20,13 @@ namespace
         << "       viscoplastic_contact --print-parameters [FILE.prm]\n"
         << "       viscoplastic_contact --help\n\n"
         << "Solves the quasistatic contact problem of a viscoplastic body with "
-           "a\nnonmonotone normal compliance law (../shared/design/model.md) "
-           "for the\nscene FILE.prm describes. --print-parameters writes a "
-           "complete, documented\nparameter file with the default values (the "
-           "reference benchmark) to\nstandard output or to FILE.prm. The "
-           "default scene is parameters/default.prm.\n";
+           "a\nnonmonotone normal compliance law for the scene FILE.prm "
+           "describes, on\none MPI rank or many (mpirun -np N ...). The model "
+           "and the scheme are\ndescribed in doc/model.md, the program in "
+           "doc/algorithm.md.\n--print-parameters writes a complete, documented "
+           "parameter file with the\ndefault values (the reference benchmark) "
+           "to standard output or to FILE.prm.\nThe default scene is "
+           "parameters/default.prm.\n";
   }
 } // namespace
 
@@ -93,13 +94,9 @@ main(int argc, char **argv)
         Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD));
 
       if (parameters.study_enabled && parameters.dimension == 2)
-        ConvergenceStudy<2>(parameters).run();
+        ConvergenceStudy<2>(parameters, MPI_COMM_WORLD).run();
       else if (parameters.study_enabled)
-        ConvergenceStudy<3>(parameters).run();
-      else if (parameters.method == "distributed" && parameters.dimension == 2)
-        DistributedViscoplasticContact<2>(parameters).run();
-      else if (parameters.method == "distributed")
-        DistributedViscoplasticContact<3>(parameters).run();
+        ConvergenceStudy<3>(parameters, MPI_COMM_WORLD).run();
       else if (parameters.dimension == 2)
         ViscoplasticContact<2>(parameters).run();
       else

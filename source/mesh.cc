@@ -4,14 +4,20 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 
+#include <deal.II/distributed/fully_distributed_tria.h>
+#include <deal.II/distributed/tria.h>
+
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria_description.h>
 #include <deal.II/grid/tria_accessor.h>
 #include <deal.II/grid/tria_iterator.h>
 
 #include "mesh.h"
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -31,13 +37,178 @@ namespace ViscoContact
 
 
 
+  // @sect4{create_simplex_box}
+  //
+  // The vertices of the box are numbered lexicographically (x fastest);
+  // every square (cube) is cut into simplices by the pattern. Each simplex
+  // is listed with positive orientation (counter-clockwise triangles,
+  // tetrahedra with a positive Jacobian), which is what deal.II's reference
+  // simplices have.
+  namespace
+  {
+    template <int dim>
+    void
+    set_box_boundary_ids(Triangulation<dim>        &triangulation,
+                         const std::vector<double> &lengths)
+    {
+      for (const auto &face : triangulation.active_face_iterators())
+        if (face->at_boundary())
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const double x         = face->center()[d];
+              const double tolerance = 1e-10 * lengths[d];
+              if (std::abs(x) < tolerance)
+                face->set_boundary_id(2 * d);
+              else if (std::abs(x - lengths[d]) < tolerance)
+                face->set_boundary_id(2 * d + 1);
+            }
+    }
+
+
+
+    // The simplex with these vertices, reordered if needed so that its
+    // orientation is positive.
+    template <int dim>
+    CellData<dim>
+    positive_simplex(const std::vector<Point<dim>> &points,
+                     std::array<unsigned int, dim + 1> vertices)
+    {
+      Tensor<2, dim> J;
+      for (unsigned int a = 1; a <= dim; ++a)
+        for (unsigned int d = 0; d < dim; ++d)
+          J[d][a - 1] = points[vertices[a]][d] - points[vertices[0]][d];
+      if (determinant(J) < 0)
+        std::swap(vertices[dim - 1], vertices[dim]);
+      CellData<dim> cell(dim + 1);
+      for (unsigned int a = 0; a <= dim; ++a)
+        cell.vertices[a] = vertices[a];
+      return cell;
+    }
+  } // namespace
+
+
+
+  template <>
+  void
+  create_simplex_box(Triangulation<2>                &triangulation,
+                     const std::vector<double>       &lengths,
+                     const unsigned int               n,
+                     const Parameters::SimplexPattern pattern)
+  {
+    using Pattern = Parameters::SimplexPattern;
+    const double         hx = lengths[0] / n, hy = lengths[1] / n;
+    std::vector<Point<2>> points;
+    for (unsigned int j = 0; j <= n; ++j)
+      for (unsigned int i = 0; i <= n; ++i)
+        points.emplace_back(i * hx, j * hy);
+    const auto vertex = [n](const unsigned int i, const unsigned int j) {
+      return j * (n + 1) + i;
+    };
+
+    std::vector<CellData<2>> cells;
+    for (unsigned int j = 0; j < n; ++j)
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          const unsigned int a = vertex(i, j), b = vertex(i + 1, j),
+                             c = vertex(i, j + 1), d = vertex(i + 1, j + 1);
+          const bool slash =
+            pattern == Pattern::slash ||
+            (pattern == Pattern::union_jack && (i + j) % 2 == 0);
+          if (pattern == Pattern::crossed)
+            {
+              // Both diagonals: a vertex at the centre, four triangles.
+              const unsigned int e = points.size();
+              points.emplace_back((i + 0.5) * hx, (j + 0.5) * hy);
+              for (const auto &edge : {std::array<unsigned int, 2>{{a, b}},
+                                       std::array<unsigned int, 2>{{b, d}},
+                                       std::array<unsigned int, 2>{{d, c}},
+                                       std::array<unsigned int, 2>{{c, a}}})
+                cells.push_back(positive_simplex<2>(points,
+                                                    {{edge[0], edge[1], e}}));
+            }
+          else if (slash)
+            {
+              cells.push_back(positive_simplex<2>(points, {{a, b, d}}));
+              cells.push_back(positive_simplex<2>(points, {{a, d, c}}));
+            }
+          else
+            {
+              cells.push_back(positive_simplex<2>(points, {{a, b, c}}));
+              cells.push_back(positive_simplex<2>(points, {{b, d, c}}));
+            }
+        }
+    triangulation.create_triangulation(points, cells, SubCellData());
+    set_box_boundary_ids(triangulation, lengths);
+  }
+
+
+
+  template <>
+  void
+  create_simplex_box(Triangulation<3>                &triangulation,
+                     const std::vector<double>       &lengths,
+                     const unsigned int               n,
+                     const Parameters::SimplexPattern pattern)
+  {
+    if (pattern == Parameters::SimplexPattern::five_tetrahedra)
+      {
+        GridGenerator::subdivided_hyper_rectangle_with_simplices(
+          triangulation,
+          std::vector<unsigned int>(3, n),
+          Point<3>(),
+          Point<3>(lengths[0], lengths[1], lengths[2]));
+        set_box_boundary_ids(triangulation, lengths);
+        return;
+      }
+
+    // Kuhn's subdivision: for every ordering (p0, p1, p2) of the axes, the
+    // tetrahedron of the path from the lower to the upper corner of the
+    // cube that steps along e_p0, then e_p1, then e_p2. All cubes are cut
+    // the same way, so the faces match.
+    std::vector<Point<3>> points;
+    for (unsigned int k = 0; k <= n; ++k)
+      for (unsigned int j = 0; j <= n; ++j)
+        for (unsigned int i = 0; i <= n; ++i)
+          points.emplace_back(i * lengths[0] / n,
+                              j * lengths[1] / n,
+                              k * lengths[2] / n);
+    const auto vertex = [n](const std::array<unsigned int, 3> &index) {
+      return (index[2] * (n + 1) + index[1]) * (n + 1) + index[0];
+    };
+    std::array<unsigned int, 3> axes = {{0, 1, 2}};
+    std::vector<CellData<3>>    cells;
+    for (unsigned int k = 0; k < n; ++k)
+      for (unsigned int j = 0; j < n; ++j)
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            std::sort(axes.begin(), axes.end());
+            do
+              {
+                std::array<unsigned int, 3> corner = {{i, j, k}};
+                std::array<unsigned int, 4> tetrahedron;
+                tetrahedron[0] = vertex(corner);
+                for (unsigned int s = 0; s < 3; ++s)
+                  {
+                    ++corner[axes[s]];
+                    tetrahedron[s + 1] = vertex(corner);
+                  }
+                cells.push_back(positive_simplex<3>(points, tetrahedron));
+              }
+            while (std::next_permutation(axes.begin(), axes.end()));
+          }
+    triangulation.create_triangulation(points, cells, SubCellData());
+    set_box_boundary_ids(triangulation, lengths);
+  }
+
+
+
   // @sect4{create_coarse_mesh}
   //
   // The box (0,L1)x(0,L2)(x(0,L3)) with Subdivisions squares (cubes) along
-  // each edge, on simplex meshes each square split into two triangles (each
-  // cube into five tetrahedra). deal.II 9.4 cannot colorize the simplex
+  // each edge, on simplex meshes cut by the Simplex pattern
+  // (create_simplex_box(); deal.II 9.4 cannot colorize its simplex
   // generator, so the boundary ids are set from the face centres with the
-  // numbering colorize uses for hypercubes: 2d and 2d+1 at x_d = 0 and L_d.
+  // numbering colorize uses for hypercubes: 2d and 2d+1 at x_d = 0 and L_d).
   //
   // A Gmsh file brings its own boundary ids (the physical groups of its
   // boundary faces); its cells must all be of the chosen Cell type, since
@@ -47,7 +218,8 @@ namespace ViscoContact
   create_coarse_mesh(const Parameters::AllParameters &parameters,
                      Triangulation<dim>              &triangulation)
   {
-    const bool simplex = (parameters.cell_type == "simplex");
+    const bool simplex =
+      (parameters.cell_type == Parameters::CellType::simplex);
     if (!parameters.mesh_file.empty())
       {
         const std::string &file = parameters.mesh_file;
@@ -56,7 +228,8 @@ namespace ViscoContact
                                "<Geometry>: value <"
                                + file
                                + ">; accepted: an existing Gmsh .msh file "
-                                 "(relative to the working directory) or "
+                                 "(a relative path is relative to the "
+                                 "directory of the parameter file) or "
                                  "nothing for the generated box."));
         std::string reader_message;
         try
@@ -93,8 +266,8 @@ namespace ViscoContact
                         + cell->reference_cell().to_string()
                         + " cells; accepted: a mesh of "
                         + (simplex ? "simplices" : "quadrilaterals/hexahedra")
-                        + " only, as <Cell type> = " + parameters.cell_type
-                        + " requires."));
+                        + " only, as <Cell type> = "
+                        + (simplex ? "simplex" : "hypercube") + " requires."));
         return;
       }
 
@@ -104,29 +277,78 @@ namespace ViscoContact
       corner[d] = parameters.lengths[d];
 
     if (simplex)
-      {
-        GridGenerator::subdivided_hyper_rectangle_with_simplices(triangulation,
-                                                                 repetitions,
-                                                                 Point<dim>(),
-                                                                 corner);
-        for (const auto &face : triangulation.active_face_iterators())
-          if (face->at_boundary())
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                const double x         = face->center()[d];
-                const double tolerance = 1e-10 * parameters.lengths[d];
-                if (std::abs(x) < tolerance)
-                  face->set_boundary_id(2 * d);
-                else if (std::abs(x - parameters.lengths[d]) < tolerance)
-                  face->set_boundary_id(2 * d + 1);
-              }
-      }
+      create_simplex_box(triangulation,
+                         parameters.lengths,
+                         parameters.subdivisions,
+                         parameters.simplex_pattern);
     else
       GridGenerator::subdivided_hyper_rectangle(triangulation,
                                                 repetitions,
                                                 Point<dim>(),
                                                 corner,
                                                 /*colorize=*/true);
+  }
+
+
+
+  // @sect4{create_distributed_mesh}
+  //
+  // Hypercube meshes live on p4est: every rank holds the coarse mesh, p4est
+  // distributes the refined cells, and the refinement toward Gamma_3 runs
+  // in parallel. Each coarse cell is a p4est tree, and trees are expensive
+  // (every rank stores all of them), so the generated box of Subdivisions =
+  // m 2^j cubes per edge is made of m^dim coarse cells refined j times: the
+  // same mesh.
+  //
+  // A simplex mesh is built and refined as a serial mesh, partitioned by
+  // METIS, and each rank keeps its part. (The serial mesh exists on every
+  // rank during set-up only; for meshes beyond a few million cells,
+  // create_description_from_triangulation_in_groups() would build it once
+  // per node.) On one rank both are the one-rank case of the same classes.
+  template <int dim>
+  std::unique_ptr<parallel::DistributedTriangulationBase<dim>>
+  create_distributed_mesh(const Parameters::AllParameters &parameters,
+                          const MPI_Comm                   communicator)
+  {
+    std::unique_ptr<parallel::DistributedTriangulationBase<dim>> mesh;
+    if (parameters.cell_type == Parameters::CellType::simplex)
+      {
+        Triangulation<dim> serial_mesh;
+        create_coarse_mesh(parameters, serial_mesh);
+        refine_mesh(parameters, serial_mesh);
+        GridTools::partition_triangulation(
+          Utilities::MPI::n_mpi_processes(communicator), serial_mesh);
+        const auto description = TriangulationDescription::Utilities::
+          create_description_from_triangulation(serial_mesh, communicator);
+        auto distributed_mesh =
+          std::make_unique<parallel::fullydistributed::Triangulation<dim>>(
+            communicator);
+        distributed_mesh->create_triangulation(description);
+        mesh = std::move(distributed_mesh);
+      }
+    else
+      {
+        Parameters::AllParameters coarse_parameters = parameters;
+        unsigned int              box_refinements   = 0;
+        if (parameters.mesh_file.empty())
+          while (coarse_parameters.subdivisions % 2 == 0)
+            {
+              coarse_parameters.subdivisions /= 2;
+              ++box_refinements;
+            }
+        Triangulation<dim> coarse_mesh;
+        create_coarse_mesh(coarse_parameters, coarse_mesh);
+        auto distributed_mesh =
+          std::make_unique<parallel::distributed::Triangulation<dim>>(
+            communicator);
+        distributed_mesh->copy_triangulation(coarse_mesh);
+        if (box_refinements > 0)
+          distributed_mesh->refine_global(box_refinements);
+        refine_mesh(parameters, *distributed_mesh);
+        mesh = std::move(distributed_mesh);
+      }
+    check_boundary_ids(parameters, *mesh, communicator);
+    return mesh;
   }
 
 
@@ -225,6 +447,10 @@ namespace ViscoContact
 
 
 
+  template std::unique_ptr<parallel::DistributedTriangulationBase<2>>
+  create_distributed_mesh(const Parameters::AllParameters &, const MPI_Comm);
+  template std::unique_ptr<parallel::DistributedTriangulationBase<3>>
+  create_distributed_mesh(const Parameters::AllParameters &, const MPI_Comm);
   template void
   create_coarse_mesh(const Parameters::AllParameters &, Triangulation<2> &);
   template void

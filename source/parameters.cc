@@ -71,10 +71,26 @@ namespace ViscoContact
           "Cell type",
           "simplex",
           Patterns::Selection("simplex|hypercube"),
-          "simplex: each square split into 2 triangles (each cube into 5 "
-          "tetrahedra), P1 displacement, piecewise-constant stress; "
-          "hypercube: quadrilaterals/hexahedra, Q1 displacement, stresses at "
-          "the 2^dim Gauss points.");
+          "simplex: triangles/tetrahedra (see Simplex pattern), P1 "
+          "displacement, piecewise-constant stress; hypercube: "
+          "quadrilaterals/hexahedra, Q1 displacement, stresses at the 2^dim "
+          "Gauss points.");
+        prm.declare_entry(
+          "Simplex pattern",
+          "/",
+          Patterns::Selection("/|backslash|union jack|crossed|five tetrahedra"),
+          "How the generated box is cut into simplices. 2D: / splits each "
+          "square [x_i,x_i+1]x[y_j,y_j+1] by the diagonal from (x_i,y_j) to "
+          "(x_i+1,y_j+1) (the published benchmark); backslash by the other "
+          "diagonal (written as a word: a parameter line ending in a "
+          "backslash continues on the next line); union jack by alternating "
+          "diagonals that meet at every second vertex; crossed by both "
+          "diagonals around a new vertex at the centre (4 triangles). 3D: / "
+          "cuts each cube into the 6 tetrahedra around its diagonal from "
+          "(x_i,y_j,z_k) to (x_i+1,y_j+1,z_k+1); five tetrahedra is "
+          "deal.II's generator (5 per cube, alternating). Every pattern but "
+          "five tetrahedra gives nested meshes when Subdivisions doubles. "
+          "Ignored for hypercube cells and Gmsh meshes.");
         prm.declare_entry(
           "Mesh file",
           "",
@@ -120,12 +136,31 @@ namespace ViscoContact
                   "Lengths",
                   prm.get("Lengths"),
                   "strictly positive lengths");
-        subdivisions        = prm.get_integer("Subdivisions");
-        cell_type           = prm.get("Cell type");
+        subdivisions = prm.get_integer("Subdivisions");
+        cell_type    = (prm.get("Cell type") == "simplex" ? CellType::simplex :
+                                                            CellType::hypercube);
+        const std::string pattern = prm.get("Simplex pattern");
+        simplex_pattern
+          = (pattern == "/"            ? SimplexPattern::slash :
+             pattern == "backslash"    ? SimplexPattern::backslash :
+             pattern == "union jack"   ? SimplexPattern::union_jack :
+             pattern == "crossed"      ? SimplexPattern::crossed :
+                                         SimplexPattern::five_tetrahedra);
+        if (cell_type == CellType::simplex)
+          require(dimension == 2 ?
+                    simplex_pattern != SimplexPattern::five_tetrahedra :
+                    (simplex_pattern == SimplexPattern::slash ||
+                     simplex_pattern == SimplexPattern::five_tetrahedra),
+                  "Geometry",
+                  "Simplex pattern",
+                  pattern,
+                  dimension == 2 ?
+                    "/, backslash, union jack or crossed in 2D" :
+                    "/ or five tetrahedra in 3D");
         mesh_file           = prm.get("Mesh file");
         global_refinements  = prm.get_integer("Global refinements");
         contact_refinements = prm.get_integer("Contact refinement levels");
-        require(contact_refinements == 0 || cell_type == "hypercube",
+        require(contact_refinements == 0 || cell_type == CellType::hypercube,
                 "Geometry",
                 "Contact refinement levels",
                 prm.get("Contact refinement levels"),
@@ -353,6 +388,16 @@ namespace ViscoContact
           Patterns::List(Patterns::Double()),
           "Piecewise-linear law: K jumps p(b_k+) - p(b_k-) >= 0 (empty: all "
           "zero). A jump makes the Clarke subdifferential an interval.");
+        prm.declare_entry(
+          "Check uniqueness",
+          "true",
+          Patterns::Bool(),
+          "At set-up, compute the smallest generalised eigenvalue of "
+          "(stiffness, lumped normal boundary mass) by a Lanczos iteration and "
+          "compare it with the steepest softening of the law (doc/model.md, "
+          "section 4): a dense product per iteration on the condensed back "
+          "end, one elastic solve per iteration (about 10 to 20) on the full "
+          "space back end.");
       }
       prm.leave_subsection();
     }
@@ -365,7 +410,10 @@ namespace ViscoContact
         unilateral_constraint = prm.get_bool("Unilateral constraint");
         normal_compliance     = prm.get_bool("Normal compliance");
         gap                   = prm.get_double("Layer thickness");
-        law_type              = prm.get("Law");
+        law_type              = (prm.get("Law") == "nonmonotone" ?
+                                   ContactLawType::nonmonotone :
+                                   ContactLawType::piecewise_linear);
+        check_uniqueness      = prm.get_bool("Check uniqueness");
         c1                    = prm.get_double("c1");
         c2                    = prm.get_double("c2");
         u1                    = prm.get_double("u1");
@@ -389,12 +437,12 @@ namespace ViscoContact
                   to_string(gap),
                   "g >= 0");
 
-        if (normal_compliance && law_type == "nonmonotone")
+        if (normal_compliance && law_type == ContactLawType::nonmonotone)
           {
             require(c1 >= 0, "Contact", "c1", to_string(c1), "c1 >= 0");
             require(u1 >= 0, "Contact", "u1", to_string(u1), "u1 >= 0");
           }
-        if (normal_compliance && law_type == "piecewise linear")
+        if (normal_compliance && law_type == ContactLawType::piecewise_linear)
           {
             require(breakpoints.size() >= 1,
                     "Contact",
@@ -449,18 +497,18 @@ namespace ViscoContact
           "explicit",
           Patterns::Selection("explicit|implicit"),
           "explicit: the paper's scheme, H_n from the previous stresses "
-          "(model.md, section 2; stable for k < 4 lambda/lambda_max(E)); "
+          "(doc/model.md, section 2; stable for k < 4 lambda/lambda_max(E)); "
           "implicit: backward Euler, sigma_n from a local equation at each "
           "stress point and a Newton iteration with the consistent tangent "
-          "per step (model.md, section 3; unconditionally stable, a "
-          "factorisation per Newton iteration).");
+          "per step (doc/model.md, section 3; unconditionally stable; the "
+          "back end sets up the tangent in every Newton iteration).");
         prm.declare_entry(
           "On solver failure",
           "stop",
           Patterns::Selection("stop|cut time step"),
           "When a step's solve fails (the active-set or Newton iteration "
           "reaches its limit, CG fails, or the displacement is not finite): "
-          "stop (write the last accepted state as failed_step_NNNN.vtu, "
+          "stop (write the last accepted state as failed_step_NNNN.pvtu, "
           "report, exit status 1), or cut time step (retry the step with half "
           "the time step, down to Minimum time step; the remainder of the "
           "step follows as the next step).");
@@ -480,14 +528,18 @@ namespace ViscoContact
       {
         end_time      = prm.get_double("End time");
         time_step     = prm.get_double("Time step");
-        stress_update = prm.get("Stress update");
+        stress_update = (prm.get("Stress update") == "explicit" ?
+                           StressUpdate::explicit_euler :
+                           StressUpdate::implicit_euler);
         require(end_time > 0, "Time", "End time", to_string(end_time), "T > 0");
         require(time_step > 0 && time_step <= end_time,
                 "Time",
                 "Time step",
                 to_string(time_step),
                 "0 < k <= T = " + to_string(end_time));
-        on_failure        = prm.get("On solver failure");
+        on_failure        = (prm.get("On solver failure") == "stop" ?
+                               FailurePolicy::stop :
+                               FailurePolicy::cut_time_step);
         minimum_time_step = prm.get_double("Minimum time step");
         require(minimum_time_step > 0 && minimum_time_step <= time_step,
                 "Time",
@@ -517,7 +569,7 @@ namespace ViscoContact
           "false",
           Patterns::Bool(),
           "Continue from the last complete checkpoint in the Output "
-          "directory (same scene, same number of MPI ranks) instead of "
+          "directory (same scene; any number of MPI ranks) instead of "
           "starting at t = 0. The time series and the .pvd record continue.");
         prm.declare_entry("Stop after step",
                           "0",
@@ -555,8 +607,12 @@ namespace ViscoContact
           "Tolerance",
           "1e-10",
           Patterns::Double(0),
-          "Relative residual of the condensed contact equations accepted once "
-          "the active set (the pieces of the contact law) no longer changes.");
+          "Relative accuracy of every linear solve for fixed pieces: the "
+          "residual of CG/GMRES relative to the right-hand side (full space "
+          "back end), the defect of the condensed equations relative to the "
+          "normal displacements (condensed back end). The iteration stops "
+          "when no contact node changes its piece and the last solve met "
+          "this tolerance; in (0, 1e-2].");
       }
       prm.leave_subsection();
     }
@@ -568,11 +624,11 @@ namespace ViscoContact
       {
         max_iterations = prm.get_integer("Maximum iterations");
         tolerance      = prm.get_double("Tolerance");
-        require(tolerance > 0,
+        require(tolerance > 0 && tolerance <= 1e-2,
                 "Active set solver",
                 "Tolerance",
                 to_string(tolerance),
-                "a positive number");
+                "a number in (0, 1e-2]");
       }
       prm.leave_subsection();
     }
@@ -586,38 +642,37 @@ namespace ViscoContact
       {
         prm.declare_entry(
           "Method",
-          "condensed",
-          Patterns::Selection("condensed|distributed"),
-          "condensed: one MPI rank; the elastic operator is factorised once "
-          "and the active set works on the contact nodes alone (the fastest "
-          "choice for 2D and small 3D scenes). distributed: any number of MPI "
-          "ranks; p4est (hypercubes) or fully distributed (simplices) meshes, "
-          "Trilinos matrices, and the active set in the full space with CG "
-          "preconditioned by the Preconditioner of the elastic operator, "
-          "built once per run. Explicit stress update only.");
+          "auto",
+          Patterns::Selection("auto|condensed|full space"),
+          "How a time step's linear contact problem is solved (doc/model.md, "
+          "section 2). condensed: the operator is factorised (Direct solver) "
+          "and the active set works on the contact nodes alone through the "
+          "contact compliance S = N K^-1 N^T, which costs one solve per "
+          "contact node at set-up and m^2 doubles on every rank; fastest for "
+          "2D and for small contact surfaces. full space: the active set in "
+          "the full space, CG (GMRES for the implicit update's tangent) "
+          "preconditioned by the Preconditioner of the operator; scales to "
+          "large 3D meshes and many ranks. auto: condensed on one rank when "
+          "the contact surface and the mesh are small enough (printed at "
+          "start-up with the reason), full space otherwise.");
         prm.declare_entry(
           "Preconditioner",
           "amg",
           Patterns::Selection("amg|direct"),
-          "Method = distributed: amg (Trilinos ML smoothed aggregation with "
+          "Full space back end: amg (Trilinos ML smoothed aggregation with "
           "the rigid-body modes as near-null space; for large runs) or direct "
-          "(a sparse direct factorisation of the elastic operator by "
-          "Amesos/KLU; for small runs, then CG needs a few iterations per "
-          "active set).");
-        prm.declare_entry("Relative tolerance",
-                          "1e-10",
-                          Patterns::Double(),
-                          "Method = distributed: CG stops when the residual "
-                          "is this fraction of the right-hand side; in "
-                          "(0, 1e-2].");
+          "(the factorisation of the Direct solver; for small runs).");
         prm.declare_entry(
           "Direct solver",
-          "cholmod",
-          Patterns::Selection("cholmod|umfpack"),
-          "Factorisation of the elastic operator, computed once per run: "
-          "cholmod (sparse Cholesky, supernodal; about 4x faster solves "
-          "measured on the 2D benchmark) or umfpack (LU, deal.II's "
-          "SparseDirectUMFPACK).");
+          "auto",
+          Patterns::Selection("auto|cholmod|umfpack|mumps"),
+          "Sparse direct factorisation of the operator (condensed back end, "
+          "and the full space back end's direct preconditioner): cholmod "
+          "(supernodal Cholesky of the symmetric elastic operator; one MPI "
+          "rank; the implicit update's unsymmetric tangent then uses "
+          "umfpack), umfpack (LU; one MPI rank), mumps (LU or LDL^T, "
+          "distributed over all ranks). auto: cholmod on one rank, mumps on "
+          "several.");
       }
       prm.leave_subsection();
     }
@@ -626,16 +681,55 @@ namespace ViscoContact
     LinearSolver::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Linear solver");
-      method             = prm.get("Method");
-      direct_solver      = prm.get("Direct solver");
-      preconditioner     = prm.get("Preconditioner");
-      relative_tolerance = prm.get_double("Relative tolerance");
-      require(relative_tolerance > 0 && relative_tolerance <= 1e-2,
-              "Linear solver",
-              "Relative tolerance",
-              prm.get("Relative tolerance"),
-              "a number in (0, 1e-2]");
+      {
+        const std::string method_name = prm.get("Method");
+        method = (method_name == "auto"      ? Method::automatic :
+                  method_name == "condensed" ? Method::condensed :
+                                               Method::full_space);
+        preconditioner = (prm.get("Preconditioner") == "amg" ?
+                            Preconditioner::amg :
+                            Preconditioner::direct);
+        const std::string solver_name = prm.get("Direct solver");
+        direct_solver = (solver_name == "auto"    ? DirectSolver::automatic :
+                         solver_name == "cholmod" ? DirectSolver::cholmod :
+                         solver_name == "umfpack" ? DirectSolver::umfpack :
+                                                    DirectSolver::mumps);
+      }
       prm.leave_subsection();
+    }
+
+
+
+    std::string
+    to_string(const Method method)
+    {
+      switch (method)
+        {
+          case Method::automatic:
+            return "auto";
+          case Method::condensed:
+            return "condensed";
+          default:
+            return "full space";
+        }
+    }
+
+
+
+    std::string
+    to_string(const DirectSolver solver)
+    {
+      switch (solver)
+        {
+          case DirectSolver::automatic:
+            return "auto";
+          case DirectSolver::cholmod:
+            return "CHOLMOD";
+          case DirectSolver::umfpack:
+            return "UMFPACK";
+          default:
+            return "MUMPS";
+        }
     }
 
 
@@ -715,7 +809,9 @@ namespace ViscoContact
           "Instead of one run: run the scene for each (Subdivisions, Time "
           "steps) pair and for the reference resolution, and tabulate "
           "max_n (||u_n - u_n^ref||_V + ||sigma_n - sigma_n^ref||_Q) with "
-          "observed orders in convergence.csv (simplex meshes).");
+          "observed orders in convergence.csv. The meshes must be nested "
+          "generated boxes (every Subdivisions entry divides Reference "
+          "subdivisions; not with Simplex pattern = five tetrahedra).");
         prm.declare_entry("Subdivisions",
                           "2, 4, 8, 16, 32",
                           Patterns::List(Patterns::Integer(1)),
@@ -740,8 +836,7 @@ namespace ViscoContact
     }
 
     void
-    ConvergenceStudy::parse_parameters(ParameterHandler  &prm,
-                                       const std::string &cell_type)
+    ConvergenceStudy::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Convergence study");
       {
@@ -755,12 +850,6 @@ namespace ViscoContact
         reference_time_step    = prm.get_double("Reference time step");
         if (study_enabled)
           {
-            require(cell_type == "simplex",
-                    "Geometry",
-                    "Cell type",
-                    cell_type,
-                    "simplex for a convergence study (piecewise-constant "
-                    "stresses are compared cell by cell)");
             require(study_time_steps.size() == study_subdivisions.size(),
                     "Convergence study",
                     "Time steps",
@@ -825,7 +914,7 @@ namespace ViscoContact
       Time::parse_parameters(prm);
       ActiveSetSolver::parse_parameters(prm);
       LinearSolver::parse_parameters(prm);
-      ConvergenceStudy::parse_parameters(prm, cell_type);
+      ConvergenceStudy::parse_parameters(prm);
       Output::parse_parameters(prm);
       Checkpoint::parse_parameters(prm);
       if (study_enabled)
@@ -845,33 +934,26 @@ namespace ViscoContact
                 "an empty Mesh file and no Global refinements or Contact "
                 "refinement levels when a convergence study runs (it builds "
                 "its own nested boxes)");
-      if (method == "distributed")
-        {
-          require(stress_update == "explicit",
-                  "Linear solver",
-                  "Method",
-                  "distributed",
-                  "condensed for <Stress update> = implicit in subsection "
-                  "<Time> (the implicit scheme runs on one rank)");
-          require(!study_enabled,
-                  "Linear solver",
-                  "Method",
-                  "distributed",
-                  "condensed for a convergence study (subsection "
-                  "<Convergence study>)");
-        }
+      if (study_enabled && cell_type == CellType::simplex)
+        require(simplex_pattern != SimplexPattern::five_tetrahedra,
+                "Geometry",
+                "Simplex pattern",
+                "five tetrahedra",
+                "a pattern that gives nested meshes (/) when a convergence "
+                "study runs");
     }
 
     void
     AllParameters::check_run_configuration(const unsigned int n_ranks) const
     {
-      require(n_ranks == 1 || method == "distributed",
+      require(n_ranks == 1 || (direct_solver != DirectSolver::cholmod &&
+                               direct_solver != DirectSolver::umfpack),
               "Linear solver",
-              "Method",
-              method,
-              "distributed when the program runs on more than one MPI rank ("
-                + std::to_string(n_ranks)
-                + " here); condensed runs on one rank");
+              "Direct solver",
+              direct_solver == DirectSolver::cholmod ? "cholmod" : "umfpack",
+              "auto or mumps when the program runs on more than one MPI rank (" +
+                std::to_string(n_ranks) +
+                " here); cholmod and umfpack factorise on one rank");
     }
   } // namespace Parameters
 } // namespace ViscoContact

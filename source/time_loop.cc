@@ -1,5 +1,5 @@
-// Pieces of the time loop that both solvers share: the schedule, the line
-// per step, cutting a failed step, and the report of a step that failed.
+// Pieces of the time loop: the schedule, the line per step, cutting a
+// failed step, and the report of a step that failed.
 
 #include <deal.II/base/exceptions.h>
 
@@ -52,7 +52,7 @@ namespace ViscoContact
                   const std::string               &failure)
   {
     const double k = times[step] - times[step - 1];
-    if (parameters.on_failure != "cut time step"
+    if (parameters.on_failure != Parameters::FailurePolicy::cut_time_step
         || k / 2 < parameters.minimum_time_step)
       return false;
     out << "Step " << step << " (t = " << times[step] << ", k = " << k
@@ -80,7 +80,7 @@ namespace ViscoContact
                  const unsigned int                    step,
                  const double                          time,
                  const double                          time_step,
-                 const ContactActiveSetSolver::Result &result,
+                 const ActiveSetResult                &result,
                  const std::array<unsigned int, 3>    &contact_states,
                  const std::string                    &state_file)
   {
@@ -95,7 +95,7 @@ namespace ViscoContact
             << " out of contact.\n"
             << "The last accepted state (t = " << time - time_step
             << ") is written to " << state_file << ".\n";
-    if (parameters.on_failure == "cut time step")
+    if (parameters.on_failure == Parameters::FailurePolicy::cut_time_step)
       message << "Cutting the step further would go below <Minimum time "
                  "step> = "
               << parameters.minimum_time_step << " in subsection <Time>.\n";
@@ -103,7 +103,7 @@ namespace ViscoContact
       message << "<On solver failure> = cut time step in subsection <Time> "
                  "retries failing steps with smaller time steps.\n";
     message << "If the contact law softens more than the body can carry "
-               "(model.md, section 4) the step problem may have several "
+               "(doc/model.md, section 4) the step problem may have several "
                "solutions or none.";
     return message.str();
   }

@@ -1,8 +1,12 @@
 // Unit tests of the pieces where the physics lives: the E-norm projection
 // onto the von Mises set, the contact law and its pieces, the lumped contact
-// weights, and the condensed active-set solver. Each expectation states its
-// tolerance; reference values are computed by hand or by an independent
-// method written out here (bisection, exhaustive enumeration).
+// weights, the active-set iteration on the condensed contact problem, the
+// sparse direct solvers, the simplex patterns of the generated box, and the
+// parallel tools (exchange of keyed records, collective text files). Each
+// expectation states its tolerance; reference values are computed by hand
+// or by an independent method written out here (bisection, exhaustive
+// enumeration, a Krylov solve). The executable also runs on two MPI ranks
+// (ctest unit_tests.np2), where the parallel tools exchange across ranks.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/symmetric_tensor.h>
@@ -30,12 +34,19 @@
 
 #include <gtest/gtest.h>
 
-#include "active_set_solver.h"
+#include "active_set.h"
+#include "condensed_system.h"
 #include "contact_law.h"
+#include "contact_set.h"
 #include "material.h"
-#include "viscoplastic_contact.h"
+#include "mesh.h"
+#include "mpi_tools.h"
+
+#include "direct_solver.h"
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <random>
 
 using namespace dealii;
@@ -369,38 +380,56 @@ check_lumped_weights(const bool simplex, const double angle)
   if (angle != 0)
     GridTools::rotate(angle, triangulation);
 
-  const ReferenceCell cell = (simplex ? ReferenceCells::get_simplex<dim>()
-                                      : ReferenceCells::get_hypercube<dim>());
+  const ReferenceCell cell = (simplex ? ReferenceCells::get_simplex<dim>() :
+                                        ReferenceCells::get_hypercube<dim>());
   DoFHandler<dim>     dof_handler(triangulation);
   if (simplex)
     dof_handler.distribute_dofs(FESystem<dim>(FE_SimplexP<dim>(1), dim));
   else
     dof_handler.distribute_dofs(FESystem<dim>(FE_Q<dim>(1), dim));
-  const auto vertices = lumped_boundary_weights<dim>(
+  VectorType weights(complete_index_set(dof_handler.n_dofs()), MPI_COMM_SELF);
+  VectorType normals(weights);
+  assemble_lumped_weights<dim>(
     cell.template get_default_linear_mapping<dim>(),
     dof_handler,
     cell.face_reference_cell(0).template get_gauss_type_quadrature<dim - 1>(2),
-    {7});
+    {7},
+    weights,
+    normals);
 
+  // The vertices on the boundary part, each with its weight and normal.
+  std::map<unsigned int, std::pair<Point<dim>, types::global_dof_index>>
+    vertices;
+  for (const auto &c : dof_handler.active_cell_iterators())
+    for (const unsigned int f : c->face_indices())
+      if (c->face(f)->at_boundary() && c->face(f)->boundary_id() == 7)
+        for (const unsigned int v : c->face(f)->vertex_indices())
+          vertices[c->face(f)->vertex_index(v)] = {c->face(f)->vertex(v),
+                                                   c->face(f)->vertex_dof_index(v, 0)};
   EXPECT_EQ(vertices.size(), (dim == 2 ? N + 1 : (N + 1) * (N + 1)));
   double sum = 0;
-  for (const auto &v : vertices)
+  for (const auto &[vertex, data] : vertices)
     {
-      sum += v.second.weight;
+      const double weight = weights(data.second);
+      sum += weight;
+      Tensor<1, dim> normal;
+      for (unsigned int c = 0; c < dim; ++c)
+        normal[c] = normals(data.second + c);
+      normal /= normal.norm();
       Tensor<1, dim> expected_normal;
       expected_normal[dim - 1] = -1;
       if (dim == 2 && angle != 0)
         expected_normal = Tensor<1, dim>({std::sin(angle), -std::cos(angle)});
-      EXPECT_LE((v.second.normal - expected_normal).norm(), 1e-12);
+      EXPECT_LE((normal - expected_normal).norm(), 1e-12);
+      if (dim == 2)
+        {
+          const double s   = data.first.norm();
+          const bool   end = (s < 1e-12 || std::abs(s - 1.) < 1e-12);
+          EXPECT_NEAR(weight, (end ? 0.5 : 1.) / N, 1e-13);
+        }
     }
   EXPECT_NEAR(sum, 1., 1e-12);
-  if (dim == 2)
-    for (const auto &v : vertices)
-      {
-        const double s   = v.second.location.norm();
-        const bool   end = (s < 1e-12 || std::abs(s - 1.) < 1e-12);
-        EXPECT_NEAR(v.second.weight, (end ? 0.5 : 1.) / N, 1e-13);
-      }
+  EXPECT_NEAR(weights.l1_norm(), 1., 1e-12); // nothing off the boundary part
 }
 
 TEST(LumpedWeights, TrianglesSumToLength)
@@ -449,6 +478,48 @@ namespace
       return w * (c1 * u1 + c2 * (r - u1));
     return (d - g) / s; // at the rigid limit
   }
+
+  // The condensed active set as the program runs it on one rank: the nodes
+  // of ContactNodes, moved by ContactNodes::solve around the dense solves
+  // of CondensedContactSystem (what the condensed back end does for fixed
+  // pieces). The parameter c_i = 1/(w_i S_ii) is the node's condensed
+  // stiffness per unit weight.
+  struct DenseActiveSet
+  {
+    DenseActiveSet(const ContactLaw          &law,
+                   const FullMatrix<double>  &S,
+                   const std::vector<double> &w)
+    {
+      nodes.reinit(law, w);
+      std::vector<double> c(w.size());
+      for (unsigned int i = 0; i < w.size(); ++i)
+        c[i] = std::max(1. / (w[i] * S(i, i)), 2 * law.steepest_softening());
+      nodes.set_parameters(c);
+      system.reinit(law, S, w);
+    }
+
+    ActiveSetResult
+    solve(const Vector<double> &d,
+          const unsigned int    max_iterations,
+          const double          tolerance)
+    {
+      return nodes.solve(
+        [&]() {
+          LinearSolveReport report;
+          Vector<double>    r, z;
+          report.residual = system.solve(nodes.pieces(), d, r, z);
+          std::copy(r.begin(), r.end(), nodes.r.begin());
+          std::copy(z.begin(), z.end(), nodes.z.begin());
+          return report;
+        },
+        max_iterations,
+        tolerance,
+        MPI_COMM_SELF);
+    }
+
+    ContactNodes           nodes;
+    CondensedContactSystem system;
+  };
 } // namespace
 
 
@@ -464,22 +535,21 @@ TEST(ActiveSetSolver, DecoupledNodesMatchClosedForm)
   for (unsigned int i = 0; i < m; ++i)
     S(i, i) = 0.01 * (1 + 0.1 * i);
 
-  ContactActiveSetSolver solver;
-  solver.reinit(benchmark_law, S, w);
+  DenseActiveSet solver(benchmark_law, S, w);
   Vector<double> d_vector(d.begin(), d.end());
   const auto     result = solver.solve(d_vector, 50, 1e-12);
   ASSERT_TRUE(result.converged);
   for (unsigned int i = 0; i < m; ++i)
-    EXPECT_NEAR(solver.normal_forces()[i],
+    EXPECT_NEAR(solver.nodes.z[i],
                 decoupled_force(d[i], S(i, i), w[i]),
                 1e-13);
-  EXPECT_NEAR(solver.normal_displacements()[4], 0.01, 1e-15);
+  EXPECT_NEAR(solver.nodes.r[4], 0.01, 1e-15);
 
   // Warm start: the same data again is solved in one iteration, with the
   // LU factorisation of the unchanged active set reused.
-  const unsigned int factorizations = solver.n_factorizations();
+  const unsigned int factorizations = solver.system.n_factorizations();
   EXPECT_EQ(solver.solve(d_vector, 50, 1e-12).iterations(), 1u);
-  EXPECT_EQ(solver.n_factorizations(), factorizations);
+  EXPECT_EQ(solver.system.n_factorizations(), factorizations);
 }
 
 
@@ -543,12 +613,11 @@ TEST(ActiveSetSolver, CoupledNodesMatchExhaustiveEnumeration)
     }
   ASSERT_EQ(solutions.size(), 1u);
 
-  ContactActiveSetSolver solver;
-  solver.reinit(benchmark_law, S, w);
-  const auto result = solver.solve(d_vector, 50, 1e-12);
+  DenseActiveSet solver(benchmark_law, S, w);
+  const auto     result = solver.solve(d_vector, 50, 1e-12);
   ASSERT_TRUE(result.converged);
   for (unsigned int i = 0; i < m; ++i)
-    EXPECT_NEAR(solver.normal_forces()[i], solutions[0][i], 1e-12);
+    EXPECT_NEAR(solver.nodes.z[i], solutions[0][i], 1e-12);
 }
 
 
@@ -645,19 +714,20 @@ TEST(ActiveSetSolver, CondensationMatchesFullSpaceSolveAndKKT)
     }
 
   // The free contact nodes (normal (0,-1): r = -u_y) and their weights.
-  const auto vertices
-    = lumped_boundary_weights<dim>(mapping, dof_handler, face_quadrature, {2});
+  VectorType weights(complete_index_set(n), MPI_COMM_SELF), normals(weights);
+  assemble_lumped_weights<dim>(
+    mapping, dof_handler, face_quadrature, {2}, weights, normals);
   std::vector<types::global_dof_index> y_dof;
   std::vector<double>                  w;
   for (const auto &cell : dof_handler.active_cell_iterators())
     for (const unsigned int v : cell->vertex_indices())
-      if (vertices.count(cell->vertex_index(v)) == 1
-          && !constraints.is_constrained(cell->vertex_dof_index(v, 1))
-          && std::find(y_dof.begin(), y_dof.end(), cell->vertex_dof_index(v, 1))
-               == y_dof.end())
+      if (weights(cell->vertex_dof_index(v, 0)) > 0 &&
+          !constraints.is_constrained(cell->vertex_dof_index(v, 1)) &&
+          std::find(y_dof.begin(), y_dof.end(), cell->vertex_dof_index(v, 1)) ==
+            y_dof.end())
         {
           y_dof.push_back(cell->vertex_dof_index(v, 1));
-          w.push_back(vertices.at(cell->vertex_index(v)).weight);
+          w.push_back(weights(cell->vertex_dof_index(v, 0)));
         }
   const unsigned int m = y_dof.size();
   ASSERT_EQ(m, 6u);
@@ -679,12 +749,11 @@ TEST(ActiveSetSolver, CondensationMatchesFullSpaceSolveAndKKT)
   Vector<double> d(m);
   for (unsigned int i = 0; i < m; ++i)
     d[i] = -u_free[y_dof[i]];
-  ContactActiveSetSolver solver;
-  solver.reinit(benchmark_law, S, w);
+  DenseActiveSet solver(benchmark_law, S, w);
   ASSERT_TRUE(solver.solve(d, 50, 1e-12).converged);
   Vector<double> u_condensed = b;
   for (unsigned int i = 0; i < m; ++i)
-    u_condensed[y_dof[i]] += solver.normal_forces()[i]; // b - N^T z
+    u_condensed[y_dof[i]] += solver.nodes.z[i]; // b - N^T z
   K_inverse.solve(u_condensed);
 
   // Full space with the final pieces.
@@ -695,7 +764,7 @@ TEST(ActiveSetSolver, CondensationMatchesFullSpaceSolveAndKKT)
   unsigned int                              n_rigid = 0;
   for (unsigned int i = 0; i < m; ++i)
     {
-      const ContactLawPiece &p = benchmark_law.piece(solver.pieces()[i]);
+      const ContactLawPiece &p = benchmark_law.piece(solver.nodes.piece(i));
       if (p.vertical)
         {
           rigid_values[y_dof[i]] = -p.r_lower;
@@ -730,7 +799,7 @@ TEST(ActiveSetSolver, CondensationMatchesFullSpaceSolveAndKKT)
         EXPECT_GE(z / w[i] - benchmark_law.compliance_pressure(0.01), -1e-9);
       else
         EXPECT_NEAR(z / w[i], benchmark_law.compliance_pressure(r), 1e-9);
-      EXPECT_NEAR(z, solver.normal_forces()[i], 1e-9);
+      EXPECT_NEAR(z, solver.nodes.z[i], 1e-9);
     }
 }
 
@@ -742,8 +811,7 @@ TEST(ActiveSetSolver, ReportsIterationLimit)
   FullMatrix<double> S(2, 2);
   S(0, 0) = S(1, 1) = 0.01;
   S(0, 1) = S(1, 0) = 0.005;
-  ContactActiveSetSolver solver;
-  solver.reinit(benchmark_law, S, {0.03, 0.03});
+  DenseActiveSet solver(benchmark_law, S, {0.03, 0.03});
   Vector<double> d(2);
   d[0] = d[1]       = 0.05;
   const auto result = solver.solve(d, 1, 1e-12);
@@ -754,10 +822,291 @@ TEST(ActiveSetSolver, ReportsIterationLimit)
 
 
 
+// @sect3{The simplex patterns of the generated box}
+//
+// Every pattern tiles the box with positively oriented simplices, gives the
+// faces the colorized boundary ids, cuts the squares along the diagonals it
+// names, and (all but deal.II's five tetrahedra) is nested: every simplex of
+// the box with 2n subdivisions lies inside one simplex of the box with n.
+namespace
+{
+  template <int dim>
+  double
+  simplex_measure(const typename Triangulation<dim>::active_cell_iterator &cell)
+  {
+    Tensor<2, dim> J;
+    for (unsigned int a = 1; a <= dim; ++a)
+      for (unsigned int d = 0; d < dim; ++d)
+        J[d][a - 1] = cell->vertex(a)[d] - cell->vertex(0)[d];
+    return determinant(J) / (dim == 2 ? 2. : 6.);
+  }
+
+  // Barycentric coordinates of p in the simplex.
+  template <int dim>
+  std::array<double, dim + 1>
+  barycentric(const typename Triangulation<dim>::active_cell_iterator &cell,
+              const Point<dim>                                        &p)
+  {
+    Tensor<2, dim> J;
+    for (unsigned int a = 1; a <= dim; ++a)
+      for (unsigned int d = 0; d < dim; ++d)
+        J[d][a - 1] = cell->vertex(a)[d] - cell->vertex(0)[d];
+    const Tensor<1, dim>        lambda = invert(J) * (p - cell->vertex(0));
+    std::array<double, dim + 1> weights;
+    weights[0] = 1;
+    for (unsigned int a = 0; a < dim; ++a)
+      {
+        weights[a + 1] = lambda[a];
+        weights[0] -= lambda[a];
+      }
+    return weights;
+  }
+
+  template <int dim>
+  void
+  check_pattern(const Parameters::SimplexPattern pattern,
+                const unsigned int               cells_per_square,
+                const bool                       nested)
+  {
+    const std::vector<double> lengths(dim, 1.);
+    Triangulation<dim>        coarse, fine;
+    create_simplex_box(coarse, lengths, 2, pattern);
+    create_simplex_box(fine, lengths, 4, pattern);
+    EXPECT_EQ(fine.n_active_cells(),
+              cells_per_square * Utilities::pow(4u, dim));
+
+    double volume = 0;
+    for (const auto &cell : fine.active_cell_iterators())
+      {
+        EXPECT_GT(simplex_measure<dim>(cell), 1e-14);
+        volume += simplex_measure<dim>(cell);
+      }
+    EXPECT_NEAR(volume, 1., 1e-12);
+
+    std::map<types::boundary_id, double> boundary_measure;
+    for (const auto &face : fine.active_face_iterators())
+      if (face->at_boundary())
+        boundary_measure[face->boundary_id()] += face->measure();
+    EXPECT_EQ(boundary_measure.size(), 2 * dim);
+    for (const auto &[id, measure] : boundary_measure)
+      EXPECT_NEAR(measure, 1., 1e-12) << "boundary id " << int(id);
+
+    if (!nested)
+      return;
+    for (const auto &cell : fine.active_cell_iterators())
+      {
+        unsigned int containing = 0;
+        for (const auto &coarse_cell : coarse.active_cell_iterators())
+          {
+            bool inside = true;
+            for (const unsigned int v : cell->vertex_indices())
+              for (const double weight :
+                   barycentric<dim>(coarse_cell, cell->vertex(v)))
+                inside = inside && weight >= -1e-12;
+            containing += inside;
+          }
+        EXPECT_EQ(containing, 1u);
+      }
+  }
+
+  // The number of edges of the 2D mesh along the directions (1, 1) and
+  // (1, -1).
+  std::array<unsigned int, 2>
+  count_diagonals(const Parameters::SimplexPattern pattern)
+  {
+    Triangulation<2> triangulation;
+    create_simplex_box(triangulation, {1., 1.}, 4, pattern);
+    std::array<unsigned int, 2> counts = {{0, 0}};
+    for (const auto &line : triangulation.active_face_iterators())
+      {
+        const Tensor<1, 2> t = line->vertex(1) - line->vertex(0);
+        if (std::abs(std::abs(t[0]) - std::abs(t[1])) < 1e-12)
+          ++counts[t[0] * t[1] > 0 ? 0 : 1];
+      }
+    return counts;
+  }
+} // namespace
+
+TEST(SimplexPatterns, TwoDimensional)
+{
+  using Pattern = Parameters::SimplexPattern;
+  check_pattern<2>(Pattern::slash, 2, true);
+  check_pattern<2>(Pattern::backslash, 2, true);
+  check_pattern<2>(Pattern::union_jack, 2, true);
+  check_pattern<2>(Pattern::crossed, 4, true);
+  // 16 squares: "/" has 16 diagonals along (1,1), "\" 16 along (1,-1),
+  // the union jack 8 of each, crossed 32 half-diagonals of each.
+  EXPECT_EQ(count_diagonals(Pattern::slash), (std::array<unsigned int, 2>{{16, 0}}));
+  EXPECT_EQ(count_diagonals(Pattern::backslash),
+            (std::array<unsigned int, 2>{{0, 16}}));
+  EXPECT_EQ(count_diagonals(Pattern::union_jack),
+            (std::array<unsigned int, 2>{{8, 8}}));
+  EXPECT_EQ(count_diagonals(Pattern::crossed),
+            (std::array<unsigned int, 2>{{32, 32}}));
+}
+
+TEST(SimplexPatterns, ThreeDimensional)
+{
+  check_pattern<3>(Parameters::SimplexPattern::slash, 6, true);
+  check_pattern<3>(Parameters::SimplexPattern::five_tetrahedra, 5, false);
+}
+
+
+
+// @sect3{Sparse direct solvers}
+//
+// A 1D-Laplacian-like matrix distributed over the ranks, made unsymmetric
+// on request; the solution of A x = b for a known x, with one and with
+// several right-hand sides.
+namespace
+{
+  void
+  check_direct_solver(const Parameters::DirectSolver kind, const bool symmetric)
+  {
+    const MPI_Comm     comm    = MPI_COMM_WORLD;
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+    const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);
+    const unsigned int n       = 40;
+    IndexSet           owned(n);
+    owned.add_range(n * rank / n_ranks, n * (rank + 1) / n_ranks);
+    DynamicSparsityPattern dsp(n, n, owned);
+    for (const auto i : owned)
+      for (unsigned int j = (i > 0 ? i - 1 : 0); j <= std::min(i + 1, n - 1); ++j)
+        dsp.add(i, j);
+    MatrixType A;
+    A.reinit(owned, owned, dsp, comm);
+    for (const auto i : owned)
+      {
+        A.set(i, i, 2.5 + 0.01 * i);
+        if (i > 0)
+          A.set(i, i - 1, symmetric ? -1. : -1.2);
+        if (i + 1 < n)
+          A.set(i, i + 1, -1.);
+      }
+    A.compress(VectorOperation::insert);
+
+    VectorType x_true(owned, comm), b(x_true), x(x_true);
+    for (const auto i : owned)
+      x_true(i) = std::sin(0.3 * i) + 0.1 * i;
+    A.vmult(b, x_true);
+
+    SparseDirectSolver solver(kind, comm);
+    solver.factorize(A, symmetric);
+    solver.solve(x, b);
+    x -= x_true;
+    EXPECT_LE(x.linfty_norm(), 1e-12 * x_true.linfty_norm())
+      << solver.description();
+
+    // Three columns at once: b, 2 b, -b.
+    const unsigned int  n_local = owned.n_elements();
+    std::vector<double> columns(3 * n_local);
+    for (unsigned int k = 0; k < n_local; ++k)
+      {
+        columns[k]               = b.local_element(k);
+        columns[n_local + k]     = 2 * b.local_element(k);
+        columns[2 * n_local + k] = -b.local_element(k);
+      }
+    solver.solve(columns, 3);
+    double error = 0;
+    for (unsigned int k = 0; k < n_local; ++k)
+      error = std::max({error,
+                        std::abs(columns[k] - x_true.local_element(k)),
+                        std::abs(columns[n_local + k] - 2 * x_true.local_element(k)),
+                        std::abs(columns[2 * n_local + k] + x_true.local_element(k))});
+    EXPECT_LE(Utilities::MPI::max(error, comm), 1e-11 * x_true.linfty_norm());
+  }
+} // namespace
+
+TEST(SparseDirectSolver, SolvesSymmetricAndUnsymmetricSystems)
+{
+  check_direct_solver(Parameters::DirectSolver::mumps, true);
+  check_direct_solver(Parameters::DirectSolver::mumps, false);
+  if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1)
+    {
+      check_direct_solver(Parameters::DirectSolver::cholmod, true);
+      check_direct_solver(Parameters::DirectSolver::cholmod, false); // UMFPACK
+      check_direct_solver(Parameters::DirectSolver::umfpack, true);
+      check_direct_solver(Parameters::DirectSolver::umfpack, false);
+    }
+}
+
+
+
+// @sect3{Parallel tools}
+//
+// Every rank holds records under its own keys and one under a shared key,
+// and asks for the keys of the next rank: each answer must be that rank's
+// payload; the shared key brings one payload per rank, in rank order.
+TEST(MPITools, ExchangeRecordsAcrossRanks)
+{
+  const MPI_Comm     comm    = MPI_COMM_WORLD;
+  const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+  const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);
+  const auto         key     = [](const unsigned int r, const unsigned int i) {
+    return "rank " + std::to_string(r) + " record " + std::to_string(i);
+  };
+  std::vector<MPITools::Record> records;
+  for (unsigned int i = 0; i < 50; ++i)
+    records.emplace_back(key(rank, i), std::vector<double>{1. * rank, 1. * i});
+  records.emplace_back("shared", std::vector<double>{1. * rank});
+  std::vector<std::string> requests;
+  const unsigned int       next = (rank + 1) % n_ranks;
+  for (unsigned int i = 0; i < 50; i += 7)
+    requests.push_back(key(next, i));
+  requests.push_back("shared");
+  requests.push_back("nobody has this key");
+
+  const auto found = MPITools::exchange_records(records, requests, comm);
+  EXPECT_EQ(found.size(), requests.size() - 1);
+  for (unsigned int i = 0; i < 50; i += 7)
+    {
+      ASSERT_EQ(found.count(key(next, i)), 1u);
+      EXPECT_EQ(found.at(key(next, i)),
+                (std::vector<std::vector<double>>{{1. * next, 1. * i}}));
+    }
+  ASSERT_EQ(found.at("shared").size(), n_ranks);
+  for (unsigned int r = 0; r < n_ranks; ++r)
+    EXPECT_EQ(found.at("shared")[r], std::vector<double>{1. * r});
+}
+
+TEST(MPITools, TextFileInRankOrder)
+{
+  const MPI_Comm     comm = MPI_COMM_WORLD;
+  const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
+  const std::string  file = "mpi_tools_test_" +
+                           std::to_string(Utilities::MPI::n_mpi_processes(comm)) +
+                           ".txt";
+  MPITools::write_text_collectively(file,
+                                    std::string(rank + 1, 'a' + rank) + "\n",
+                                    comm);
+  if (rank == 0)
+    {
+      std::ifstream in(file);
+      std::string   expected, line, content;
+      for (unsigned int r = 0; r < Utilities::MPI::n_mpi_processes(comm); ++r)
+        expected += std::string(r + 1, 'a' + r) + "\n";
+      while (std::getline(in, line))
+        content += line + "\n";
+      EXPECT_EQ(content, expected);
+      EXPECT_FALSE(std::filesystem::exists(file + ".tmp"));
+    }
+  EXPECT_THROW(MPITools::write_text_collectively(
+                 "no such directory/file.txt", "x", comm),
+               ExceptionBase);
+}
+
+
+
 int
 main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
+  // Every rank runs every test; only rank 0 reports, but a failure on any
+  // rank makes the exit status non-zero.
+  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+    delete ::testing::UnitTest::GetInstance()->listeners().Release(
+      ::testing::UnitTest::GetInstance()->listeners().default_result_printer());
+  const int status = RUN_ALL_TESTS();
+  return Utilities::MPI::max(status, MPI_COMM_WORLD);
 }

@@ -1,0 +1,128 @@
+#ifndef viscoplastic_contact_contact_set_h
+#define viscoplastic_contact_contact_set_h
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/quadrature.h>
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/mapping.h>
+
+#include <deal.II/lac/affine_constraints.h>
+
+#include "active_set.h"
+#include "linear_algebra.h"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace ViscoContact
+{
+  using namespace dealii;
+
+  // w_i = int_Gamma3 phi_i and int_Gamma3 phi_i nu at every vertex of the
+  // given boundary parts, assembled like a right-hand side into the
+  // displacement layout (the value of vertex i sits at its x-dof for the
+  // weight, at its dim dofs for the weighted normal). Each rank adds its
+  // faces and the owners receive the sums, so the result does not depend
+  // on the partition. With an exact face quadrature these are the row sums
+  // of the boundary mass matrix: the lumped contact terms of
+  // doc/model.md, section 2, on any mesh.
+  template <int dim>
+  void
+  assemble_lumped_weights(const Mapping<dim>                    &mapping,
+                          const DoFHandler<dim>                 &dof_handler,
+                          const Quadrature<dim - 1>             &face_quadrature,
+                          const std::vector<types::boundary_id> &boundary_ids,
+                          VectorType                            &weights,
+                          VectorType &weighted_normals);
+
+  // @sect3{The contact set}
+  //
+  // The contact nodes this MPI rank owns: the locally owned vertices of
+  // Gamma_3 that are not constrained (the corner on Gamma_1 and hanging
+  // nodes are not contact nodes), each with its outward normal nu_i (the
+  // normalised int phi_i nu, so a contact boundary need not be
+  // axis-aligned), its lumped weight w_i, its dofs, and (through
+  // ContactNodes) its piece of the contact law and the last (r, z). The
+  // nodes are sorted along Gamma_3 (lexicographically); across ranks they
+  // are numbered rank by rank.
+  template <int dim>
+  class ContactSet : public ContactNodes
+  {
+  public:
+    struct NodeGeometry
+    {
+      Point<dim>                               location;
+      Tensor<1, dim>                           normal;
+      std::array<types::global_dof_index, dim> dofs;
+      // The same dofs as indices into the local storage of the
+      // displacement vectors (owned entries first, then ghosts).
+      std::array<unsigned int, dim> local_dofs;
+      // The vertex's dof of the scalar output fields.
+      types::global_dof_index scalar_dof;
+    };
+
+    void
+    setup(const ContactLaw                      &law,
+          const Mapping<dim>                    &mapping,
+          const DoFHandler<dim>                 &dof_handler,
+          const DoFHandler<dim>                 &scalar_dof_handler,
+          const Quadrature<dim - 1>             &face_quadrature,
+          const std::vector<types::boundary_id> &contact_ids,
+          const AffineConstraints<double>       &constraints,
+          const VectorType                      &layout);
+
+    // The active-set parameter of every node from the operator A of the
+    // step problem: c_i = max(nu^T A_ii nu / w_i, 2 * steepest softening),
+    // A_ii the dim x dim block of node i, which scales c like the node's
+    // stiffness per unit weight (step-41/42 scale it with the diagonal of
+    // the matrix). One formula for every back end.
+    void
+    set_operator(const MatrixType &A);
+
+    const NodeGeometry &
+    node(const unsigned int i) const;
+    types::global_dof_index
+    n_global_nodes() const;
+    // The global number of the first node of this rank.
+    types::global_dof_index
+    first_global_index() const;
+    MPI_Comm
+    get_communicator() const;
+
+    // nu_i . u_i, from the locally owned entries of u.
+    double
+    normal_component(const VectorType &u, const unsigned int i) const;
+    // v_i += value nu_i.
+    void
+    add_normal(VectorType &v, const unsigned int i, const double value) const;
+
+    // The contact profile along Gamma_3, one line per node, written by all
+    // ranks into one file (collective): the coordinates, the time, u_nu,
+    // the pressures of the layer, of the foundation and in all, the nodal
+    // force, the weight and the status.
+    void
+    write_profile(const std::string &file, const double time) const;
+
+    // The nodal contact fields of the output at the contact nodes of this
+    // rank (zero elsewhere): contact pressure z/w, its parts carried by the
+    // layer and by the foundation, and the status.
+    void
+    fill_output_fields(VectorType &contact_pressure,
+                       VectorType &compliance_pressure,
+                       VectorType &foundation_pressure,
+                       VectorType &contact_status) const;
+
+  private:
+    std::vector<NodeGeometry> geometry;
+    types::global_dof_index   n_global = 0;
+    types::global_dof_index   first_global = 0;
+    MPI_Comm                  communicator = MPI_COMM_SELF;
+  };
+} // namespace ViscoContact
+
+#endif

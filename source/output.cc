@@ -1,0 +1,341 @@
+// Output of ViscoplasticContact<dim>: the .pvtu/.vtu records and the .pvd
+// time record for ParaView, the time series and contact profiles (CSV), and
+// the run summary with the cost measurements.
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/numerics/data_out.h>
+
+#include "viscoplastic_contact.h"
+
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+namespace ViscoContact
+{
+  // @sect4{ViscoplasticContact::prepare_output_directory}
+  //
+  // Called once the input is known to be good (parameters parsed, mesh,
+  // boundary parts and a requested checkpoint checked), so a bad run never
+  // touches an earlier run's results. Rank 0 creates the directory, writes
+  // the complete parsed parameter file for reproducibility and opens the
+  // time series; the other ranks learn whether that worked, so that all
+  // stop together.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::prepare_output_directory()
+  {
+    const std::filesystem::path directory(parameters.directory);
+    std::string                 problem;
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      {
+        std::error_code error;
+        std::filesystem::create_directories(directory, error);
+        if (error)
+          problem = "it cannot be created (" + error.message() + ")";
+        else
+          {
+            std::ofstream prm_copy(directory / "parameters.prm");
+            prm_copy << parameters.parsed_parameters;
+            // A resumed run continues the series of the run it resumes.
+            time_series.open(directory / "time_series.csv",
+                             parameters.resume ? std::ios::app :
+                                                 std::ios::trunc);
+            if (!prm_copy || !time_series)
+              problem = "it is not writable";
+            if (!parameters.resume)
+              time_series
+                << "step,time,active_set_iterations,unilateral_nodes,"
+                   "compliance_nodes,no_contact_nodes,total_contact_force,"
+                   "max_von_mises,wall_time,krylov_iterations\n";
+            time_series << std::setprecision(10);
+          }
+      }
+    problem = Utilities::MPI::broadcast(mpi_communicator, problem, 0);
+    AssertThrow(problem.empty(),
+                ExcMessage("Invalid parameter <Output directory> in subsection "
+                           "<Output>: value <" +
+                           parameters.directory + ">; " + problem + "."));
+  }
+
+
+
+  // One row per step: the counts and the force are sums over all ranks,
+  // written by rank 0.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::write_time_series_row(const unsigned int step,
+                                                  const double       time,
+                                                  const ActiveSetResult &result,
+                                                  const double wall_time)
+  {
+    const auto   states = count_contact_states();
+    const double force  = total_contact_force();
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+    time_series << step << ',' << time << ',' << result.iterations() << ','
+                << states[0] << ',' << states[1] << ',' << states[2] << ','
+                << force << ',' << max_von_mises << ',' << wall_time << ','
+                << result.inner_iterations() << '\n';
+    time_series.flush();
+  }
+
+
+
+  // @sect4{ViscoplasticContact::write_contact_profile}
+  //
+  // contact_profile_NNNN.csv: the state of every contact node along
+  // Gamma_3 (contact_set.h), written by all ranks into one file.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::write_contact_profile(const unsigned int step,
+                                                  const double time) const
+  {
+    std::ostringstream name;
+    name << "contact_profile_" << std::setw(4) << std::setfill('0') << step
+         << ".csv";
+    contact_set.write_profile(
+      (std::filesystem::path(parameters.directory) / name.str()).string(),
+      time);
+  }
+
+
+
+  // @sect4{ViscoplasticContact::output_results}
+  //
+  // One .pvtu record per output step (with at most 8 .vtu pieces, whatever
+  // the number of ranks, written through MPI I/O), listed with its time in
+  // solution.pvd. The displacement is a nodal vector field (ParaView's
+  // "Warp By Vector" shows the deformed body). The stresses, their
+  // viscoplastic part sigma - E eps(u) and the von Mises stress are
+  // constant per cell (averaged over the stress points of a hypercube);
+  // like every field of a deal.II .vtu file they are written at the
+  // vertices of each cell, so ParaView lists them as point data,
+  // discontinuous from cell to cell. The contact fields are nodal, zero
+  // away from Gamma_3; "subdomain" is the rank that owns the cell.
+  //
+  // With another file stem (failed_step) the record is written for
+  // inspection only and not listed in solution.pvd.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::output_results(const unsigned int step,
+                                           const double       time,
+                                           const std::string &stem)
+  {
+    TimerOutput::Scope t(computing_timer, "Output");
+    const unsigned int n_components = dim * (dim + 1) / 2;
+    const unsigned int n_q          = stress_quadrature.size();
+    const unsigned int n_cells      = triangulation->n_active_cells();
+    std::vector<Vector<float>> stress(n_components, Vector<float>(n_cells));
+    std::vector<Vector<float>> viscoplastic(n_components,
+                                            Vector<float>(n_cells));
+    Vector<float>              von_mises(n_cells), subdomain(n_cells);
+    const SymmetricTensor<4, dim> &E = material.elasticity_tensor();
+    for (unsigned int k = 0; k < owned_cells.size(); ++k)
+      {
+        const unsigned int c = owned_cells[k]->active_cell_index();
+        subdomain[c]         = owned_cells[k]->subdomain_id();
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            const SymmetricTensor<2, dim> &sigma =
+              quadrature_point_history[std::size_t(k) * n_q + q].stress;
+            const SymmetricTensor<2, dim> vp =
+              sigma - E * symmetrize(displacement_gradient_at(solution, k, q));
+            for (unsigned int i = 0; i < n_components; ++i)
+              {
+                const auto index = sigma.unrolled_to_component_indices(i);
+                stress[i][c] += sigma[index] / n_q;
+                viscoplastic[i][c] += vp[index] / n_q;
+              }
+            von_mises[c] += material.equivalent_stress(sigma) / n_q;
+          }
+      }
+
+    IndexSet scalar_relevant;
+    DoFTools::extract_locally_relevant_dofs(scalar_dof_handler, scalar_relevant);
+    std::vector<VectorType> contact_fields(
+      4,
+      VectorType(scalar_dof_handler.locally_owned_dofs(),
+                 scalar_relevant,
+                 mpi_communicator));
+    if (contact_enabled)
+      contact_set.fill_output_fields(contact_fields[0],
+                                     contact_fields[1],
+                                     contact_fields[2],
+                                     contact_fields[3]);
+    for (VectorType &field : contact_fields)
+      field.update_ghost_values();
+
+    DataOut<dim> data_out;
+    data_out.attach_triangulation(*triangulation);
+    data_out.add_data_vector(
+      dof_handler,
+      solution,
+      std::vector<std::string>(dim, "displacement"),
+      std::vector<DataComponentInterpretation::DataComponentInterpretation>(
+        dim, DataComponentInterpretation::component_is_part_of_vector));
+    const char *axes = "xyz";
+    for (unsigned int i = 0; i < n_components; ++i)
+      {
+        const auto index =
+          SymmetricTensor<2, dim>::unrolled_to_component_indices(i);
+        const std::string suffix = {axes[index[0]], axes[index[1]]};
+        data_out.add_data_vector(stress[i],
+                                 "stress_" + suffix,
+                                 DataOut<dim>::type_cell_data);
+        data_out.add_data_vector(viscoplastic[i],
+                                 "viscoplastic_stress_" + suffix,
+                                 DataOut<dim>::type_cell_data);
+      }
+    data_out.add_data_vector(von_mises,
+                             "von_mises_stress",
+                             DataOut<dim>::type_cell_data);
+    data_out.add_data_vector(subdomain,
+                             "subdomain",
+                             DataOut<dim>::type_cell_data);
+    const char *contact_names[4] = {"contact_pressure",
+                                    "compliance_pressure",
+                                    "foundation_pressure",
+                                    "contact_status"};
+    for (unsigned int i = 0; i < 4; ++i)
+      data_out.add_data_vector(scalar_dof_handler,
+                               contact_fields[i],
+                               contact_names[i]);
+    data_out.build_patches(mapping);
+
+    DataOutBase::VtkFlags flags(time, step);
+    flags.compression_level = DataOutBase::VtkFlags::best_speed;
+    data_out.set_flags(flags);
+    const std::string record = data_out.write_vtu_with_pvtu_record(
+      parameters.directory + "/",
+      stem,
+      step,
+      mpi_communicator,
+      4,
+      std::min(8u, Utilities::MPI::n_mpi_processes(mpi_communicator)));
+    if (stem != "solution" ||
+        Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+    times_and_names.emplace_back(time, record);
+    std::ofstream pvd(std::filesystem::path(parameters.directory) /
+                      "solution.pvd");
+    DataOutBase::write_pvd_record(pvd, times_and_names);
+  }
+
+
+
+  // @sect4{ViscoplasticContact::print_run_summary}
+  //
+  // What a user checks after a run: norms of the final state, iteration
+  // counts, how often the operator was assembled and set up by the back end
+  // (once and once for the explicit update), and, with the timing summary,
+  // the cost of an average step relative to the work every step has
+  // without contact, measured now in the same process: one solve with the
+  // step operator (the back end's, no contact) and one stress update with
+  // the history load. These ratios are what the benchmarks report.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::print_run_summary()
+  {
+    const unsigned int n_q         = stress_quadrature.size();
+    double             strain_norm = 0, stress_norm = 0;
+    for (unsigned int k = 0; k < owned_cells.size(); ++k)
+      for (unsigned int q = 0; q < n_q; ++q)
+        {
+          const SymmetricTensor<2, dim> strain =
+            symmetrize(displacement_gradient_at(solution, k, q));
+          const SymmetricTensor<2, dim> &sigma =
+            quadrature_point_history[std::size_t(k) * n_q + q].stress;
+          const double JxW = stress_point_JxW[std::size_t(k) * n_q + q];
+          strain_norm += (strain * strain) * JxW;
+          stress_norm += (sigma * sigma) * JxW;
+        }
+    strain_norm = std::sqrt(Utilities::MPI::sum(strain_norm, mpi_communicator));
+    stress_norm = std::sqrt(Utilities::MPI::sum(stress_norm, mpi_communicator));
+    const double l2_norm    = solution.l2_norm();
+    const double max_norm   = solution.linfty_norm();
+    const auto   states     = count_contact_states();
+    const double force      = total_contact_force();
+    const auto  &statistics = contact_solver->statistics();
+
+    pcout << std::setprecision(8) << "\nRun summary\n"
+          << "  final state: ||eps(u)||_L2 = " << strain_norm
+          << ", ||sigma||_L2 = " << stress_norm
+          << ", max von Mises = " << max_von_mises << '\n'
+          << "  final contact: " << states[0] << " unilateral, " << states[1]
+          << " compliance, " << states[2]
+          << " no contact, total force = " << force << '\n';
+    if (parameters.stress_update == Parameters::StressUpdate::implicit_euler)
+      pcout << "  Newton iterations (implicit scheme): "
+            << total_newton_iterations << '\n';
+    pcout << "  active-set iterations: " << total_active_set_iterations
+          << " in " << n_time_steps << " steps\n"
+          << "  operator: assembled " << n_operator_assemblies
+          << "x, set up by the back end " << statistics.operator_setups
+          << "x; external load assembled " << n_external_load_assemblies
+          << "x\n"
+          << "  back end: " << statistics.solves << " solves, "
+          << statistics.inner_iterations << " Krylov iterations\n"
+          << "Final displacement: l2 norm " << l2_norm << ", max norm "
+          << max_norm << '\n';
+
+    if (!parameters.print_timing_summary)
+      return;
+    computing_timer.print_summary();
+
+    // The reference costs, measured now (the run is over, so the state may
+    // be overwritten), averaged over a few repetitions and taken as the
+    // maximum over the ranks.
+    const unsigned int repetitions = 3;
+    VectorType         reference(solution);
+    Timer              timer;
+    unsigned int       krylov_iterations = 0;
+    for (unsigned int r = 0; r < repetitions; ++r)
+      krylov_iterations +=
+        contact_solver->solve_without_contact(external_load, reference)
+          .inner_iterations;
+    const double solve_time = Utilities::MPI::max(timer.wall_time() / repetitions,
+                                                  mpi_communicator);
+    timer.restart();
+    for (unsigned int r = 0; r < repetitions; ++r)
+      update_stresses(parameters.time_step, parameters.time_step);
+    const double update_time = Utilities::MPI::max(timer.wall_time() / repetitions,
+                                                   mpi_communicator);
+    const double step_time =
+      Utilities::MPI::max(time_loop_compute_time, mpi_communicator) /
+      std::max(1u, n_steps_done);
+
+    Utilities::System::MemoryStats memory;
+    Utilities::System::get_memory_stats(memory);
+    const double peak_memory =
+      Utilities::MPI::sum(double(memory.VmHWM) / 1024., mpi_communicator);
+    pcout << std::setprecision(4)
+          << "Cost measurement (wall time, maximum over the ranks):\n"
+          << "  average time step (without output): " << step_time * 1e3
+          << " ms\n"
+          << "  one solve with the step operator, no contact: "
+          << solve_time * 1e3 << " ms ("
+          << krylov_iterations / repetitions << " Krylov iterations)\n"
+          << "  one stress update with the history load: " << update_time * 1e3
+          << " ms\n"
+          << "  ratio step / solve: " << step_time / solve_time << '\n'
+          << "  ratio step / (solve + stress update): "
+          << step_time / (solve_time + update_time) << '\n'
+          << "  per dof and step: " << step_time / dof_handler.n_dofs() * 1e6
+          << " us\n"
+          << "  time loop (without output): " << time_loop_compute_time
+          << " s\n"
+          << "  peak memory (sum over ranks): " << peak_memory << " MB\n";
+  }
+
+
+
+  template class ViscoplasticContact<2>;
+  template class ViscoplasticContact<3>;
+} // namespace ViscoContact

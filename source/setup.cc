@@ -1,0 +1,421 @@
+// The set-up phase of ViscoplasticContact<dim>: the distributed mesh, the
+// dofs and their ownership, the elastic operator (assembled once), the
+// stress points, the contact set, the back end, and the limits of the
+// scheme reported before the time loop.
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/tridiagonal_matrix.h>
+
+#include <deal.II/numerics/vector_tools.h>
+
+#include "mesh.h"
+#include "viscoplastic_contact.h"
+
+#include <cmath>
+
+namespace ViscoContact
+{
+  // @sect4{ViscoplasticContact::make_grid}
+  //
+  // The distributed mesh of mesh.cc: p4est for hypercubes, fully
+  // distributed for simplices, on any number of ranks.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::make_grid()
+  {
+    TimerOutput::Scope t(computing_timer, "Setup: mesh");
+    triangulation = create_distributed_mesh<dim>(parameters, mpi_communicator);
+  }
+
+
+
+  // @sect4{ViscoplasticContact::setup_system}
+  //
+  // Dofs and their ownership (as in step-40), the clamping of Gamma_1 and
+  // the hanging nodes of a graded mesh as constraints, the distributed
+  // sparsity pattern, the vectors, and then the elastic operator K, which
+  // the explicit scheme never changes. The scalar DoFHandler only carries
+  // the nodal contact fields of the output.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::setup_system()
+  {
+    {
+      TimerOutput::Scope t(computing_timer, "Setup: dofs and constraints");
+      dof_handler.reinit(*triangulation);
+      dof_handler.distribute_dofs(*fe);
+      scalar_dof_handler.reinit(*triangulation);
+      scalar_dof_handler.distribute_dofs(*scalar_fe);
+      locally_owned_dofs = dof_handler.locally_owned_dofs();
+      DoFTools::extract_locally_relevant_dofs(dof_handler,
+                                              locally_relevant_dofs);
+
+      constraints.clear();
+      constraints.reinit(locally_relevant_dofs);
+      DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+      for (const auto id : parameters.clamped_ids)
+        VectorTools::interpolate_boundary_values(
+          mapping,
+          dof_handler,
+          id,
+          Functions::ZeroFunction<dim>(dim),
+          constraints);
+      constraints.close();
+
+      DynamicSparsityPattern dsp(locally_relevant_dofs);
+      DoFTools::make_sparsity_pattern(dof_handler,
+                                      dsp,
+                                      constraints,
+                                      /*keep_constrained_dofs=*/false);
+      SparsityTools::distribute_sparsity_pattern(dsp,
+                                                 locally_owned_dofs,
+                                                 mpi_communicator,
+                                                 locally_relevant_dofs);
+      stiffness_matrix.reinit(locally_owned_dofs,
+                              locally_owned_dofs,
+                              dsp,
+                              mpi_communicator);
+      if (parameters.stress_update ==
+          Parameters::StressUpdate::implicit_euler)
+        tangent_matrix.reinit(locally_owned_dofs,
+                              locally_owned_dofs,
+                              dsp,
+                              mpi_communicator);
+
+      // All displacement-sized vectors share one partition: owned entries
+      // and the ghosts of the locally relevant dofs.
+      solution.reinit(locally_owned_dofs,
+                      locally_relevant_dofs,
+                      mpi_communicator);
+      for (VectorType *vector :
+           {&external_load, &history_load, &system_rhs, &internal_force})
+        vector->reinit(solution);
+    }
+    assemble_elastic_operator();
+  }
+
+
+
+  // @sect4{ViscoplasticContact::assemble_elastic_operator}
+  //
+  // K_ij = (E eps(phi_j), eps(phi_i)) on the locally owned cells, with the
+  // constrained rows and columns condensed (their diagonal stays positive,
+  // so K is symmetric positive definite on all dofs). The count is printed
+  // in the run summary: a change that re-assembles per step shows up there.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::assemble_elastic_operator()
+  {
+    TimerOutput::Scope t(computing_timer, "Setup: assemble elastic operator");
+    FEValues<dim>      fe_values(mapping,
+                            *fe,
+                            stress_quadrature,
+                            update_gradients | update_JxW_values);
+    const FEValuesExtractors::Vector     displacement(0);
+    const unsigned int                   dofs_per_cell = fe->n_dofs_per_cell();
+    FullMatrix<double>                   cell_matrix(dofs_per_cell, dofs_per_cell);
+    std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
+    std::vector<SymmetricTensor<2, dim>> strains(dofs_per_cell);
+    const SymmetricTensor<4, dim>       &E = material.elasticity_tensor();
+
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell_matrix = 0;
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            {
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                strains[i] = fe_values[displacement].symmetric_gradient(i, q);
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  const SymmetricTensor<2, dim> stress_i =
+                    E * strains[i] * fe_values.JxW(q);
+                  for (unsigned int j = 0; j <= i; ++j)
+                    cell_matrix(i, j) += stress_i * strains[j];
+                }
+            }
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
+              cell_matrix(i, j) = cell_matrix(j, i);
+          cell->get_dof_indices(local_dof_indices);
+          constraints.distribute_local_to_global(cell_matrix,
+                                                 local_dof_indices,
+                                                 stiffness_matrix);
+        }
+    stiffness_matrix.compress(VectorOperation::add);
+    ++n_operator_assemblies;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::setup_stress_points}
+  //
+  // One record per stress point of the locally owned cells, in a flat
+  // array (as step-18 does); sigma_0 = 0 and u_0 = 0, so H_1 = 0.
+  // Alongside, the stress-point geometry the time loop uses instead of
+  // FEValues: the dofs of each cell as indices into the vectors' local
+  // storage, and JxW and the scalar shape gradients at each stress point.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::setup_stress_points()
+  {
+    TimerOutput::Scope t(computing_timer, "Setup: stress points");
+    owned_cells.clear();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        owned_cells.push_back(cell);
+    const std::size_t  n_cells = owned_cells.size();
+    const unsigned int n_q     = stress_quadrature.size();
+    quadrature_point_history.assign(n_cells * n_q,
+                                    QuadraturePointHistory<dim>());
+
+    n_cell_vertices = scalar_fe->n_dofs_per_cell();
+    cell_local_dofs.resize(n_cells * n_cell_vertices * dim);
+    cell_is_constrained.assign(n_cells, false);
+    stress_point_gradients.resize(n_cells * n_q * n_cell_vertices);
+    stress_point_JxW.resize(n_cells * n_q);
+
+    FEValues<dim>                        fe_values(mapping,
+                            *fe,
+                            stress_quadrature,
+                            update_gradients | update_JxW_values);
+    std::vector<types::global_dof_index> dof_indices(fe->n_dofs_per_cell());
+    const auto &partitioner = *solution.get_partitioner();
+    for (std::size_t k = 0; k < n_cells; ++k)
+      {
+        fe_values.reinit(owned_cells[k]);
+        owned_cells[k]->get_dof_indices(dof_indices);
+        for (unsigned int a = 0; a < n_cell_vertices; ++a)
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const types::global_dof_index dof =
+                dof_indices[fe->component_to_system_index(d, a)];
+              cell_local_dofs[(k * n_cell_vertices + a) * dim + d] =
+                partitioner.global_to_local(dof);
+              if (constraints.is_constrained(dof))
+                cell_is_constrained[k] = true;
+            }
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            stress_point_JxW[k * n_q + q] = fe_values.JxW(q);
+            for (unsigned int a = 0; a < n_cell_vertices; ++a)
+              stress_point_gradients[(k * n_q + q) * n_cell_vertices + a] =
+                fe_values.shape_grad_component(fe->component_to_system_index(0,
+                                                                             a),
+                                               q,
+                                               0);
+          }
+      }
+  }
+
+
+
+  // @sect4{ViscoplasticContact::setup_contact}
+  //
+  // The contact set of contact_set.h, and its active-set parameters from K.
+  // Without Gamma_3 or with a law that is zero everywhere and has no rigid
+  // limit, contact is skipped altogether.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::setup_contact()
+  {
+    const ContactLaw law = ContactLaw::from_parameters(parameters);
+    contact_enabled      = !parameters.contact_ids.empty() && !law.is_void();
+    if (!contact_enabled)
+      return;
+    TimerOutput::Scope t(computing_timer, "Setup: contact nodes");
+    contact_set.setup(law,
+                      mapping,
+                      dof_handler,
+                      scalar_dof_handler,
+                      face_quadrature,
+                      parameters.contact_ids,
+                      constraints,
+                      solution);
+    contact_set.set_operator(stiffness_matrix);
+  }
+
+
+
+  // @sect4{ViscoplasticContact::setup_back_end}
+  //
+  // Method = auto picks the back end from the scene (contact_solver.cc);
+  // the back end then factorises or preconditions K, which for the explicit
+  // update is the operator of every step problem of the run.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::setup_back_end()
+  {
+    const MethodChoice choice =
+      choose_method(parameters,
+                    dim,
+                    Utilities::MPI::n_mpi_processes(mpi_communicator),
+                    dof_handler.n_dofs(),
+                    contact_enabled ? contact_set.n_global_nodes() : 0);
+    method         = choice.method;
+    method_reason  = choice.reason;
+    contact_solver = create_contact_solver<dim>(
+      method, parameters, mapping, dof_handler, solution);
+    TimerOutput::Scope t(computing_timer, "Setup: back end for K");
+    contact_solver->set_operator(stiffness_matrix, true, contact_set);
+  }
+
+
+
+  // @sect4{ViscoplasticContact::print_header}
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::print_header(const unsigned int n_steps) const
+  {
+    pcout << "Mesh: " << triangulation->n_global_active_cells() << ' '
+          << reference_cell.to_string() << " cells, " << dof_handler.n_dofs()
+          << " displacement dofs, "
+          << (contact_enabled ? contact_set.n_global_nodes() : 0)
+          << " contact nodes, " << n_steps << " time steps\n"
+          << "Model: " << (parameters.plasticity ? "viscoplastic" : "elastic")
+          << ", contact " << (contact_enabled ? "on" : "off") << ", "
+          << (parameters.stress_update ==
+                  Parameters::StressUpdate::explicit_euler ?
+                "explicit" :
+                "implicit")
+          << " stress update\n"
+          << "Back end: " << contact_solver->description() << " ("
+          << method_reason << ")\n"
+          << "Parallel: " << Utilities::MPI::n_mpi_processes(mpi_communicator)
+          << " MPI rank(s), "
+          << (reference_cell.is_simplex() ? "fully distributed" : "p4est")
+          << " mesh\n";
+  }
+
+
+
+  // @sect4{ViscoplasticContact::report_scheme_limits}
+  //
+  // Where the method may fail, said before the run starts (doc/model.md,
+  // sections 3 and 4): the explicit history update is forward Euler on a
+  // relaxation with rate up to lambda_max(E)/(2 lambda), stable for
+  // k < 4 lambda / lambda_max(E); and the step problem has a unique
+  // solution (its energy is strongly convex) iff the smallest generalised
+  // eigenvalue of stiffness against the lumped normal boundary mass
+  // exceeds the steepest softening of the contact law.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::report_scheme_limits()
+  {
+    if (parameters.plasticity &&
+        parameters.stress_update == Parameters::StressUpdate::implicit_euler)
+      pcout << "Implicit (backward-Euler) history update: no stability limit "
+               "on k (doc/model.md, section 3); k = "
+            << parameters.time_step << " s\n";
+    else if (parameters.plasticity)
+      {
+        const double bound =
+          4 * material.viscosity() / material.largest_elastic_eigenvalue();
+        pcout << "Explicit history update: stable for k < 4 lambda / "
+                 "lambda_max(E) = "
+              << bound << " s; k = " << parameters.time_step << " s\n";
+        if (parameters.time_step >= bound)
+          pcout << "WARNING: the time step exceeds the stability limit of the "
+                   "explicit history update (doc/model.md, section 3): the "
+                   "stresses may oscillate or blow up.\n";
+      }
+    if (contact_enabled && parameters.check_uniqueness)
+      {
+        TimerOutput::Scope t(computing_timer, "Setup: uniqueness margin");
+        const double eigenvalue = smallest_uniqueness_eigenvalue();
+        const double softening  = contact_set.law().steepest_softening();
+        pcout << "Uniqueness: smallest eigenvalue of (stiffness, lumped "
+                 "normal boundary mass) = "
+              << eigenvalue
+              << ", steepest softening of the contact law = " << softening
+              << '\n';
+        if (eigenvalue <= softening)
+          pcout << "WARNING: the contact law softens more than the body can "
+                   "carry (doc/model.md, section 4): the step problem may "
+                   "have several solutions and the active-set iteration may "
+                   "cycle.\n";
+      }
+  }
+
+
+
+  // @sect4{ViscoplasticContact::smallest_uniqueness_eigenvalue}
+  //
+  // min_v a(v,v) / sum_i w_i (v . nu_i)^2: for given normal displacements
+  // r the smallest energy is r^T S^{-1} r (the harmonic extension), so the
+  // minimum is 1 / lambda_max(D^{1/2} S D^{1/2}), D = diag(w_i). The
+  // largest eigenvalue is found by the Lanczos iteration (with full
+  // reorthogonalisation; the vectors live on the contact nodes, so they are
+  // small), whose extreme Ritz values converge fast; a product with S is
+  // the back end's apply_compliance(): a dense product on the condensed
+  // back end, one elastic solve on the full space back end.
+  template <int dim>
+  double
+  ViscoplasticContact<dim>::smallest_uniqueness_eigenvalue()
+  {
+    const unsigned int m_local = contact_set.size();
+    const unsigned int m       = contact_set.n_global_nodes();
+    const auto         dot     = [&](const Vector<double> &a,
+                             const Vector<double> &b) {
+      return Utilities::MPI::sum(a * b, mpi_communicator);
+    };
+    const auto apply = [&](const Vector<double> &x, Vector<double> &y) {
+      Vector<double> scaled(x);
+      for (unsigned int i = 0; i < m_local; ++i)
+        scaled[i] *= std::sqrt(contact_set.weight(i));
+      contact_solver->apply_compliance(contact_set, scaled, y);
+      for (unsigned int i = 0; i < m_local; ++i)
+        y[i] *= std::sqrt(contact_set.weight(i));
+    };
+
+    std::vector<Vector<double>> basis;
+    std::vector<double>         alpha, beta;
+    Vector<double>              v(m_local), w(m_local);
+    v = 1.;
+    v /= std::sqrt(dot(v, v));
+    double largest = 0;
+    for (unsigned int k = 0; k < std::min(m, 60u); ++k)
+      {
+        basis.push_back(v);
+        apply(v, w);
+        alpha.push_back(dot(w, v));
+        for (const Vector<double> &b : basis) // full reorthogonalisation
+          w.add(-dot(w, b), b);
+        const double norm = std::sqrt(dot(w, w));
+
+        TridiagonalMatrix<double> T(alpha.size(), true);
+        for (unsigned int i = 0; i < alpha.size(); ++i)
+          {
+            T(i, i) = alpha[i];
+            if (i + 1 < alpha.size())
+              T(i, i + 1) = T(i + 1, i) = beta[i];
+          }
+        T.compute_eigenvalues();
+        const double ritz = T.eigenvalue(alpha.size() - 1);
+        const bool   converged =
+          k > 0 && std::abs(ritz - largest) <= 1e-12 * std::abs(ritz);
+        largest = ritz;
+        if (converged || norm <= 1e-14 * std::abs(ritz))
+          break;
+        beta.push_back(norm);
+        v = w;
+        v /= norm;
+      }
+    return 1. / largest;
+  }
+
+
+
+  template class ViscoplasticContact<2>;
+  template class ViscoplasticContact<3>;
+} // namespace ViscoContact

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Regenerate the documentation figures and the contact-count table.
 
-The figures reproduce those of the reference benchmark (doc model.md,
+The figures reproduce those of the reference benchmark (doc/model.md,
 section 1) from the program's own output:
 
 * fig3_plasticity.png  with / without plasticity, g = 0.01, at t = 1;
@@ -20,9 +20,13 @@ out of contact (status 0), and the total contact force (sum of the nodal
 forces), all computed from the contact_profile_NNNN.csv files, and checks them
 against the same step of time_series.csv (a warning is printed on mismatch).
 
-All cases use h = 1/32, k = 1/64 and are derived from parameters/default.prm
-by overriding single entries (the same differences as parameters/elastic.prm,
-monotone.prm and gap_0.008.prm). Runs go to output/doc/<case>.
+All cases use h = 1/32, k = 1/64 on the default mesh (Simplex pattern = /,
+each square split by its diagonal from (x_i,y_j) to (x_i+1,y_j+1)) and are
+derived from parameters/default.prm by overriding single entries (the same
+differences as parameters/elastic.prm, monotone.prm and gap_0.008.prm). Runs
+go to output/doc/<case>. The VTU output of a step N is read from its parallel
+record solution_NNNN.pvtu (found through solution.pvd) and the piece files it
+lists (solution_NNNN.0.vtu on one MPI rank).
 
 Usage (from anywhere):
 
@@ -170,6 +174,9 @@ def find_profile(case_dir, time):
     for path in glob.glob(os.path.join(case_dir, "contact_profile_*.csv")):
         step = int(re.search(r"contact_profile_(\d+)\.csv$", path).group(1))
         cols = read_csv_columns(path)
+        # Sorted along Gamma_3 (the program sorts on one rank only).
+        order = np.argsort(cols["x"], kind="stable")
+        cols = {k: v[order] for k, v in cols.items()}
         dt = abs(cols["time"][0] - time)
         if best is None or dt < best[0]:
             best = (dt, step, cols)
@@ -181,15 +188,52 @@ def find_profile(case_dir, time):
     return best[1], best[2]
 
 
-def find_vtu(case_dir, time):
-    """(time, path) of the VTU file in solution.pvd closest to ``time``."""
+def find_pvtu(case_dir, time):
+    """(time, path) of the .pvtu record in solution.pvd closest to ``time``."""
     pvd = os.path.join(case_dir, "solution.pvd")
     entries = [(float(ds.get("timestep")), os.path.join(case_dir, ds.get("file")))
                for ds in ET.parse(pvd).getroot().iter("DataSet")]
     t, path = min(entries, key=lambda e: abs(e[0] - time))
     if abs(t - time) > 0.5 * TIME_STEP:
-        print(f"warning: {pvd}: no VTU near t = {time} (closest t = {t:g})")
+        print(f"warning: {pvd}: no VTU output near t = {time} (closest t = {t:g})")
     return t, path
+
+
+def pvtu_for_step(case_dir, step):
+    """Path of the parallel record solution_NNNN.pvtu of one step."""
+    return os.path.join(case_dir, f"solution_{step:04d}.pvtu")
+
+
+def read_pvtu(path):
+    """Read a parallel VTU record: the pieces it lists (solution_NNNN.0.vtu on
+    one MPI rank; .0, .1, ... on several), merged into one meshio.Mesh.
+
+    The program writes every cell with its own copies of the vertices, so the
+    pieces are simply concatenated (point indices of later pieces shifted).
+    """
+    directory = os.path.dirname(path)
+    pieces = [os.path.join(directory, piece.get("Source"))
+              for piece in ET.parse(path).getroot().iter("Piece")]
+    if not pieces:
+        sys.exit(f"error: {path} lists no piece files")
+    meshes = [meshio.read(piece) for piece in pieces]
+    if len(meshes) == 1:
+        return meshes[0]
+    offsets = np.cumsum([0] + [len(m.points) for m in meshes[:-1]])
+    cell_types = []
+    for m in meshes:
+        for block in m.cells:
+            if block.type not in cell_types:
+                cell_types.append(block.type)
+    cells = []
+    for cell_type in cell_types:
+        blocks = [block.data + offset for m, offset in zip(meshes, offsets)
+                  for block in m.cells if block.type == cell_type]
+        cells.append((cell_type, np.concatenate(blocks)))
+    point_data = {name: np.concatenate([m.point_data[name] for m in meshes])
+                  for name in meshes[0].point_data}
+    return meshio.Mesh(np.concatenate([m.points for m in meshes]), cells,
+                       point_data=point_data)
 
 
 def read_time_series(case_dir):
@@ -205,6 +249,13 @@ def layer_thickness(case_dir):
     return float(m.group(1))
 
 
+def simplex_pattern(case_dir):
+    """Simplex pattern as actually used by the run (from its parameters.prm)."""
+    with open(os.path.join(case_dir, "parameters.prm")) as f:
+        m = re.search(r"set\s+Simplex pattern\s*=\s*([^#\n]*)", f.read())
+    return m.group(1).strip() if m else "?"
+
+
 class Snapshot:
     """Everything plotted/tabulated for one (case, time)."""
 
@@ -215,10 +266,14 @@ class Snapshot:
         self.g = layer_thickness(self.case_dir)
         self.step, self.profile = find_profile(self.case_dir, time)
         self.time = float(self.profile["time"][0])
-        vtu_time, vtu_path = find_vtu(self.case_dir, time)
+        vtu_time, vtu_path = find_pvtu(self.case_dir, time)
         if abs(vtu_time - self.time) > 1e-12:
             print(f"warning: {self.case}: VTU time {vtu_time} != profile time {self.time}")
-        self.mesh = meshio.read(vtu_path)
+        if os.path.abspath(vtu_path) != os.path.abspath(
+                pvtu_for_step(self.case_dir, self.step)):
+            print(f"warning: {self.case}: solution.pvd lists {vtu_path} for "
+                  f"t = {vtu_time:g}, expected solution_{self.step:04d}.pvtu")
+        self.mesh = read_pvtu(vtu_path)
         self.series_row = read_time_series(self.case_dir).get(self.step)
         status = self.profile["status"].astype(int)
         self.counts = {s: int(np.sum(status == s)) for s in (0, 1, 2)}
@@ -378,7 +433,9 @@ def make_figure(path, suptitle, snaps, magnification):
                        markeredgecolor="k", label=lab)
                 for lab, m, f in STATUS_STYLE.values()]
     axes[1, -1].legend(handles=handles, loc="upper left", fontsize=7, framealpha=0.85)
-    fig.suptitle(f"{suptitle} - h = 1/{SUBDIVISIONS}, k = 1/{round(1 / TIME_STEP)}; "
+    patterns = ", ".join(sorted({simplex_pattern(s.case_dir) for s in snaps}))
+    fig.suptitle(f"{suptitle} - h = 1/{SUBDIVISIONS} (triangles, pattern {patterns}), "
+                 f"k = 1/{round(1 / TIME_STEP)}; "
                  f"displacements magnified {magnification:g}x", fontsize=12)
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -394,7 +451,8 @@ def write_counts(path, snaps):
         "# Contact node counts of the documentation figures",
         "",
         f"Generated by doc/make_figures.py from the program's contact profiles "
-        f"(h = 1/{SUBDIVISIONS}, k = 1/{round(1 / TIME_STEP)}, "
+        f"(h = 1/{SUBDIVISIONS}, Simplex pattern = "
+        f"{simplex_pattern(snaps[0].case_dir)}, k = 1/{round(1 / TIME_STEP)}, "
         f"{len(snaps[0].profile['x'])} contact nodes on Gamma_3). The total contact "
         "force is the sum of the nodal forces. *time_series.csv* says whether "
         "these numbers equal the same step of the run's time_series.csv.",

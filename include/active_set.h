@@ -34,8 +34,8 @@ namespace ViscoContact
   // What one linear solve for fixed pieces did.
   struct LinearSolveReport
   {
-    bool         converged = true;
-    double       residual  = 0; // relative, as the back end measures it
+    bool         converged        = true;
+    double       residual         = 0; // relative, as the back end measures it
     unsigned int inner_iterations = 0; // CG/GMRES iterations; 0 if direct
     std::string  failure;              // why it did not converge
   };

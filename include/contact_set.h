@@ -33,9 +33,9 @@ namespace ViscoContact
   // doc/model.md, section 2, on any mesh.
   template <int dim>
   void
-  assemble_lumped_weights(const Mapping<dim>                    &mapping,
-                          const DoFHandler<dim>                 &dof_handler,
-                          const Quadrature<dim - 1>             &face_quadrature,
+  assemble_lumped_weights(const Mapping<dim>        &mapping,
+                          const DoFHandler<dim>     &dof_handler,
+                          const Quadrature<dim - 1> &face_quadrature,
                           const std::vector<types::boundary_id> &boundary_ids,
                           VectorType                            &weights,
                           VectorType &weighted_normals);
@@ -119,7 +119,7 @@ namespace ViscoContact
 
   private:
     std::vector<NodeGeometry> geometry;
-    types::global_dof_index   n_global = 0;
+    types::global_dof_index   n_global     = 0;
     types::global_dof_index   first_global = 0;
     MPI_Comm                  communicator = MPI_COMM_SELF;
   };

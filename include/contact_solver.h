@@ -62,30 +62,36 @@ namespace ViscoContact
     description() const = 0;
 
     virtual void
-    set_operator(const MatrixType       &A,
-                 const bool              symmetric,
-                 const ContactSet<dim> &contact) = 0;
+    set_operator(const MatrixType      &A,
+                 const bool             symmetric,
+                 const ContactSet<dim> &contact)
+      = 0;
 
     virtual void
-    set_right_hand_side(const VectorType &b, const ContactSet<dim> &contact) = 0;
+    set_right_hand_side(const VectorType &b, const ContactSet<dim> &contact)
+      = 0;
 
     // u holds the previous iterate on entry (the full space back end starts
     // from it) and, for the full space back end, the solution on exit.
     virtual LinearSolveReport
-    solve_for_pieces(ContactSet<dim> &contact, VectorType &u) = 0;
+    solve_for_pieces(ContactSet<dim> &contact, VectorType &u)
+      = 0;
 
     virtual void
-    finish(const ContactSet<dim> &contact, VectorType &u) = 0;
+    finish(const ContactSet<dim> &contact, VectorType &u)
+      = 0;
 
     virtual LinearSolveReport
-    solve_without_contact(const VectorType &b, VectorType &u) = 0;
+    solve_without_contact(const VectorType &b, VectorType &u)
+      = 0;
 
     // y = N A^{-1} N^T x, x and y indexed by this rank's contact nodes.
     // Collective.
     virtual void
     apply_compliance(const ContactSet<dim> &contact,
                      const Vector<double>  &x,
-                     Vector<double>        &y) = 0;
+                     Vector<double>        &y)
+      = 0;
 
     const Statistics &
     statistics() const

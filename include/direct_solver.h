@@ -38,7 +38,8 @@ namespace ViscoContact
     ~SparseDirectSolver();
     SparseDirectSolver(const SparseDirectSolver &) = delete;
     SparseDirectSolver &
-    operator=(const SparseDirectSolver &) = delete;
+    operator=(const SparseDirectSolver &)
+      = delete;
 
     // Analyse and factorise A; symmetric says whether its values are (the
     // elastic operator) or not (a tangent). Replaces an earlier

@@ -3,6 +3,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <functional>
 #include <map>
 #include <string>
 #include <utility>
@@ -34,6 +35,26 @@ namespace ViscoContact
     write_text_collectively(const std::string &file,
                             const std::string &local_text,
                             const MPI_Comm     communicator);
+
+    // Collective. The general form: rank 0's prefix, then the blocks of all
+    // ranks in rank order.
+    void
+    write_blocks_collectively(const std::string &file,
+                              const std::string &prefix,
+                              const char        *local_block,
+                              const std::size_t  local_size,
+                              const MPI_Comm     communicator);
+
+    // Collective. Calls io(start, size) for consecutive pieces of a local
+    // block of local_size bytes, at most 1 GiB each (MPI counts are int),
+    // the same number of times on every rank (with empty pieces where a
+    // rank has less), as collective MPI I/O needs. Returns the first error
+    // of any rank, or MPI_SUCCESS.
+    int
+    transfer_in_pieces(
+      const std::size_t                                       local_size,
+      const MPI_Comm                                          communicator,
+      const std::function<int(const std::size_t, const int)> &io);
 
     using Record = std::pair<std::string, std::vector<double>>;
 

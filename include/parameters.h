@@ -104,8 +104,8 @@ namespace ViscoContact
       unsigned int        subdivisions; // squares (cubes) along each edge
       CellType            cell_type;
       SimplexPattern      simplex_pattern;
-      std::string         mesh_file;   // Gmsh .msh; empty: the generated box
-      unsigned int global_refinements; // uniform, after generation/reading
+      std::string         mesh_file;    // Gmsh .msh; empty: the generated box
+      unsigned int global_refinements;  // uniform, after generation/reading
       unsigned int contact_refinements; // extra levels near Gamma_3
 
       static void
@@ -157,7 +157,7 @@ namespace ViscoContact
       bool                normal_compliance;     // the deformable layer
       double              gap;                   // g, layer thickness
       ContactLawType      law_type;
-      double              c1, c2, u1; // the benchmark law
+      double              c1, c2, u1;  // the benchmark law
       std::vector<double> breakpoints; // a general piecewise-linear law
       std::vector<double> slopes;
       std::vector<double> jumps;

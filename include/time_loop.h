@@ -50,13 +50,13 @@ namespace ViscoContact
   // history, the contact state of the last iterate, where the last accepted
   // state was written, and what can be changed.
   std::string
-  failure_report(const Parameters::AllParameters      &parameters,
-                 const unsigned int                    step,
-                 const double                          time,
-                 const double                          time_step,
-                 const ActiveSetResult                &result,
-                 const std::array<unsigned int, 3>    &contact_states,
-                 const std::string                    &state_file);
+  failure_report(const Parameters::AllParameters   &parameters,
+                 const unsigned int                 step,
+                 const double                       time,
+                 const double                       time_step,
+                 const ActiveSetResult             &result,
+                 const std::array<unsigned int, 3> &contact_states,
+                 const std::string                 &state_file);
 } // namespace ViscoContact
 
 #endif

@@ -120,13 +120,16 @@ namespace ViscoContact
     ActiveSetResult
     solve_implicit_step(const double time_step);
     bool
-    implicit_newton(const double a, VectorType &iterate, ActiveSetResult &result);
+    implicit_newton(const double     a,
+                    VectorType      &iterate,
+                    ActiveSetResult &result);
     void
     assemble_tangent_system(const VectorType &displacement, const double a);
     void
     rescale_history_increment(const double old_step, const double new_step);
     void
-    update_stresses(const double current_time_step, const double next_time_step);
+    update_stresses(const double current_time_step,
+                    const double next_time_step);
 
     // @sect4{Output}
     void
@@ -230,17 +233,17 @@ namespace ViscoContact
     // per stress point JxW and the gradients of the scalar shape functions
     // N_a; the strain is sym(sum_a u_a (x) grad N_a).
     std::vector<typename DoFHandler<dim>::active_cell_iterator> owned_cells;
-    unsigned int                                                n_cell_vertices = 0;
-    std::vector<unsigned int>                                   cell_local_dofs;
-    std::vector<bool>                                           cell_is_constrained;
-    std::vector<Tensor<1, dim>>                                 stress_point_gradients;
-    std::vector<double>                                         stress_point_JxW;
+    unsigned int                n_cell_vertices = 0;
+    std::vector<unsigned int>   cell_local_dofs;
+    std::vector<bool>           cell_is_constrained;
+    std::vector<Tensor<1, dim>> stress_point_gradients;
+    std::vector<double>         stress_point_JxW;
 
     // Contact: the nodes of Gamma_3 this rank owns, with their pieces.
-    bool             contact_enabled = false;
+    bool            contact_enabled = false;
     ContactSet<dim> contact_set;
-    unsigned int     total_active_set_iterations = 0;
-    unsigned int     total_inner_iterations      = 0;
+    unsigned int    total_active_set_iterations = 0;
+    unsigned int    total_inner_iterations      = 0;
 
     std::function<void(const unsigned int, const double)> step_observer;
 

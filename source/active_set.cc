@@ -20,8 +20,12 @@ namespace ViscoContact
                    const MPI_Comm                     communicator)
     {
       std::array<unsigned int, N> sums;
-      const int error = MPI_Allreduce(
-        local.data(), sums.data(), N, MPI_UNSIGNED, MPI_SUM, communicator);
+      const int                   error = MPI_Allreduce(local.data(),
+                                      sums.data(),
+                                      N,
+                                      MPI_UNSIGNED,
+                                      MPI_SUM,
+                                      communicator);
       AssertThrowMPI(error);
       return sums;
     }
@@ -57,10 +61,10 @@ namespace ViscoContact
           << " nodes changed their piece, " << history[i].rigid_nodes
           << " nodes at the rigid limit, linear residual "
           << std::setprecision(3) << history[i].linear_residual
-          << (history[i].inner_iterations > 0 ?
-                " after " + std::to_string(history[i].inner_iterations) +
-                  " Krylov iterations" :
-                std::string())
+          << (history[i].inner_iterations > 0
+                ? " after " + std::to_string(history[i].inner_iterations)
+                    + " Krylov iterations"
+                : std::string())
           << '\n';
     return out.str();
   }
@@ -68,7 +72,8 @@ namespace ViscoContact
 
 
   void
-  ContactNodes::reinit(const ContactLaw &law, const std::vector<double> &weights)
+  ContactNodes::reinit(const ContactLaw          &law,
+                       const std::vector<double> &weights)
   {
     contact_law.emplace(law);
     w = weights;
@@ -108,8 +113,10 @@ namespace ViscoContact
     unsigned int changed = 0, rigid = 0;
     for (unsigned int i = 0; i < size(); ++i)
       {
-        const unsigned int next =
-          contact_law->next_piece(node_pieces[i], z[i] / w[i] + c[i] * r[i], c[i]);
+        const unsigned int next
+          = contact_law->next_piece(node_pieces[i],
+                                    z[i] / w[i] + c[i] * r[i],
+                                    c[i]);
         if (next != node_pieces[i])
           {
             node_pieces[i] = next;
@@ -129,10 +136,11 @@ namespace ViscoContact
   // decision to stop depends on sums over all ranks only, so every rank
   // takes it at the same iteration.
   ActiveSetResult
-  ContactNodes::solve(const std::function<LinearSolveReport()> &solve_for_pieces,
-                      const unsigned int max_iterations,
-                      const double       tolerance,
-                      const MPI_Comm     communicator)
+  ContactNodes::solve(
+    const std::function<LinearSolveReport()> &solve_for_pieces,
+    const unsigned int                        max_iterations,
+    const double                              tolerance,
+    const MPI_Comm                            communicator)
   {
     ActiveSetResult result;
     for (unsigned int iteration = 0; iteration < max_iterations; ++iteration)
@@ -143,8 +151,8 @@ namespace ViscoContact
             result.failure = report.failure;
             return result;
           }
-        const std::array<unsigned int, 2> moved =
-          sum_over_ranks(update_pieces(), communicator);
+        const std::array<unsigned int, 2> moved
+          = sum_over_ranks(update_pieces(), communicator);
         result.history.push_back(
           {moved[0], moved[1], report.residual, report.inner_iterations});
         if (moved[0] == 0 && report.residual <= tolerance)
@@ -155,8 +163,9 @@ namespace ViscoContact
       }
     std::ostringstream reason;
     reason << "The active-set iteration did not converge within "
-           << max_iterations << " iterations (Maximum iterations = "
-           << max_iterations << ", Tolerance = " << tolerance
+           << max_iterations
+           << " iterations (Maximum iterations = " << max_iterations
+           << ", Tolerance = " << tolerance
            << " in subsection <Active set solver>).";
     result.failure = reason.str();
     return result;

@@ -1,6 +1,6 @@
 // Assembly of ViscoplasticContact<dim>: the right-hand side of a step (the
-// external load and the history load), the implicit update's tangent
-// system, and the stress-point helpers they share with the stress update.
+// external load and the history load) and the implicit update's tangent
+// system.
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/timer.h>
@@ -27,8 +27,8 @@ namespace ViscoContact
     if (loads_depend_on_time || n_external_load_assemblies == 0)
       assemble_external_load(time);
     system_rhs = external_load;
-    if (parameters.plasticity &&
-        parameters.stress_update == Parameters::StressUpdate::explicit_euler)
+    if (parameters.plasticity
+        && parameters.stress_update == Parameters::StressUpdate::explicit_euler)
       system_rhs += history_load;
   }
 
@@ -52,17 +52,18 @@ namespace ViscoContact
     FEValues<dim>                        fe_values(mapping,
                             *fe,
                             load_quadrature,
-                            update_values | update_quadrature_points |
-                              update_JxW_values);
+                            update_values | update_quadrature_points
+                              | update_JxW_values);
     FEFaceValues<dim>                    fe_face_values(mapping,
                                      *fe,
                                      face_quadrature,
-                                     update_values | update_quadrature_points |
-                                       update_JxW_values);
+                                     update_values | update_quadrature_points
+                                       | update_JxW_values);
     const auto is_loaded = [&](const types::boundary_id id) {
       return std::find(parameters.loaded_ids.begin(),
                        parameters.loaded_ids.end(),
-                       id) != parameters.loaded_ids.end();
+                       id)
+             != parameters.loaded_ids.end();
     };
 
     for (const auto &cell : owned_cells)
@@ -77,26 +78,28 @@ namespace ViscoContact
                 body_force.vector_value(fe_values.quadrature_point(q),
                                         load_value);
                 for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                  cell_rhs(i) +=
-                    load_value(fe->system_to_component_index(i).first) *
-                    fe_values.shape_value(i, q) * fe_values.JxW(q);
+                  cell_rhs(i)
+                    += load_value(fe->system_to_component_index(i).first)
+                       * fe_values.shape_value(i, q) * fe_values.JxW(q);
               }
             has_loads = true;
           }
         for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary() &&
-              is_loaded(cell->face(f)->boundary_id()))
+          if (cell->face(f)->at_boundary()
+              && is_loaded(cell->face(f)->boundary_id()))
             {
               fe_face_values.reinit(cell, f);
               for (const unsigned int q :
                    fe_face_values.quadrature_point_indices())
                 {
-                  surface_traction.vector_value(
-                    fe_face_values.quadrature_point(q), load_value);
+                  surface_traction.vector_value(fe_face_values.quadrature_point(
+                                                  q),
+                                                load_value);
                   for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                    cell_rhs(i) +=
-                      load_value(fe->system_to_component_index(i).first) *
-                      fe_face_values.shape_value(i, q) * fe_face_values.JxW(q);
+                    cell_rhs(i)
+                      += load_value(fe->system_to_component_index(i).first)
+                         * fe_face_values.shape_value(i, q)
+                         * fe_face_values.JxW(q);
                 }
               has_loads = true;
             }
@@ -125,104 +128,21 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::assemble_history_load()
   {
-    history_load               = 0;
-    const unsigned int n_q     = stress_quadrature.size();
+    history_load           = 0;
+    const unsigned int n_q = stress_quadrature.size();
     Vector<double>     cell_vector(n_cell_vertices * dim);
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
       {
-        cell_vector = 0;
+        std::fill(cell_vector.begin(), cell_vector.end(), 0.);
         for (unsigned int q = 0; q < n_q; ++q)
           add_stress_point_load(
-            quadrature_point_history[std::size_t(k) * n_q + q].history,
+            -quadrature_point_history[std::size_t(k) * n_q + q].history,
             k,
             q,
             cell_vector);
-        cell_vector *= -1.;
         distribute_cell_vector(k, cell_vector, history_load);
       }
     history_load.compress(VectorOperation::add);
-  }
-
-
-
-  // @sect4{ViscoplasticContact::displacement_gradient_at}
-  //
-  // grad u = sum_a u_a (x) grad N_a at stress point q of the k-th owned
-  // cell, from the geometry stored at set-up and the ghosted entries of u.
-  template <int dim>
-  Tensor<2, dim>
-  ViscoplasticContact<dim>::displacement_gradient_at(
-    const VectorType  &displacement,
-    const unsigned int k,
-    const unsigned int q) const
-  {
-    const unsigned int    n_a  = n_cell_vertices;
-    const unsigned int   *dofs = &cell_local_dofs[std::size_t(k) * n_a * dim];
-    const Tensor<1, dim> *gradients =
-      &stress_point_gradients[(std::size_t(k) * stress_quadrature.size() + q) *
-                              n_a];
-    Tensor<2, dim> gradient;
-    for (unsigned int a = 0; a < n_a; ++a)
-      for (unsigned int c = 0; c < dim; ++c)
-        gradient[c] += displacement.local_element(dofs[a * dim + c]) * gradients[a];
-    return gradient;
-  }
-
-
-
-  // @sect4{ViscoplasticContact::add_stress_point_load}
-  //
-  // cell_vector += (tau, eps(v)) JxW at stress point q of the k-th owned
-  // cell: with eps(N_a e_c) = sym(e_c (x) grad N_a) and tau symmetric, the
-  // entry of the cell's dof (a, c) is JxW (tau grad N_a)_c.
-  template <int dim>
-  void
-  ViscoplasticContact<dim>::add_stress_point_load(
-    const SymmetricTensor<2, dim> &tau,
-    const unsigned int             k,
-    const unsigned int             q,
-    Vector<double>                &cell_vector) const
-  {
-    const std::size_t     point = std::size_t(k) * stress_quadrature.size() + q;
-    const Tensor<1, dim> *gradients =
-      &stress_point_gradients[point * n_cell_vertices];
-    const double JxW = stress_point_JxW[point];
-    for (unsigned int a = 0; a < n_cell_vertices; ++a)
-      {
-        const Tensor<1, dim> force = tau * gradients[a];
-        for (unsigned int c = 0; c < dim; ++c)
-          cell_vector[a * dim + c] += JxW * force[c];
-      }
-  }
-
-
-
-  // @sect4{ViscoplasticContact::distribute_cell_vector}
-  //
-  // target += the cell vector of the k-th owned cell (dofs ordered (vertex
-  // a, component c)). Cells without constrained dofs add straight into the
-  // local storage; the others go through the constraints (hanging nodes,
-  // the clamped Gamma_1). The caller compresses.
-  template <int dim>
-  void
-  ViscoplasticContact<dim>::distribute_cell_vector(
-    const unsigned int    k,
-    const Vector<double> &cell_vector,
-    VectorType           &target) const
-  {
-    const unsigned int  n_local = n_cell_vertices * dim;
-    const unsigned int *dofs    = &cell_local_dofs[std::size_t(k) * n_local];
-    if (!cell_is_constrained[k])
-      {
-        for (unsigned int i = 0; i < n_local; ++i)
-          target.local_element(dofs[i]) += cell_vector[i];
-        return;
-      }
-    std::vector<types::global_dof_index> global_dofs(n_local);
-    const auto &partitioner = *target.get_partitioner();
-    for (unsigned int i = 0; i < n_local; ++i)
-      global_dofs[i] = partitioner.local_to_global(dofs[i]);
-    constraints.distribute_local_to_global(cell_vector, global_dofs, target);
   }
 
 
@@ -242,14 +162,14 @@ namespace ViscoContact
     const double      a)
   {
     TimerOutput::Scope t(computing_timer, "Assemble tangent system");
-    tangent_matrix                         = 0;
-    internal_force                         = 0;
-    const SymmetricTensor<4, dim> &E       = material.elasticity_tensor();
-    const unsigned int             n_q     = stress_quadrature.size();
-    const unsigned int             n_a     = n_cell_vertices;
-    const unsigned int             n_local = n_a * dim;
-    FullMatrix<double>             cell_matrix(n_local, n_local);
-    Vector<double>                 cell_force(n_local);
+    tangent_matrix                               = 0;
+    internal_force                               = 0;
+    const SymmetricTensor<4, dim>       &E       = material.elasticity_tensor();
+    const unsigned int                   n_q     = stress_quadrature.size();
+    const unsigned int                   n_a     = n_cell_vertices;
+    const unsigned int                   n_local = n_a * dim;
+    FullMatrix<double>                   cell_matrix(n_local, n_local);
+    Vector<double>                       cell_force(n_local);
     std::vector<types::global_dof_index> global_dofs(n_local);
     const auto &partitioner = *displacement.get_partitioner();
 
@@ -260,22 +180,22 @@ namespace ViscoContact
         for (unsigned int q = 0; q < n_q; ++q)
           {
             const std::size_t     point = std::size_t(k) * n_q + q;
-            const Tensor<1, dim> *gradients =
-              &stress_point_gradients[point * n_a];
+            const Tensor<1, dim> *gradients
+              = &stress_point_gradients[point * n_a];
             const double         JxW = stress_point_JxW[point];
-            const Tensor<2, dim> displacement_gradient =
-              displacement_gradient_at(displacement, k, q);
+            const Tensor<2, dim> displacement_gradient
+              = displacement_gradient_at(displacement, k, q);
 
-            QuadraturePointHistory<dim> &state = quadrature_point_history[point];
-            SymmetricTensor<4, dim>      trial_tangent = identity_tensor<dim>();
-            const SymmetricTensor<2, dim> stress =
-              (parameters.plasticity ?
-                 material.implicit_stress_update(
+            QuadraturePointHistory<dim> &state
+              = quadrature_point_history[point];
+            SymmetricTensor<4, dim> trial_tangent = identity_tensor<dim>();
+            const SymmetricTensor<2, dim> stress
+              = (parameters.plasticity ? material.implicit_stress_update(
                    E * symmetrize(displacement_gradient) + state.history,
                    a,
                    &trial_tangent,
-                   &state.plastic_multiplier) :
-                 E * symmetrize(displacement_gradient));
+                   &state.plastic_multiplier)
+                                       : E * symmetrize(displacement_gradient));
             const SymmetricTensor<4, dim> C = trial_tangent * E;
 
             for (unsigned int i = 0; i < n_local; ++i)
@@ -288,8 +208,8 @@ namespace ViscoContact
                     double             value = 0;
                     for (unsigned int m = 0; m < dim; ++m)
                       for (unsigned int l = 0; l < dim; ++l)
-                        value += C[ci][m][cj][l] * gradients[ai][m] *
-                                 gradients[bj][l];
+                        value += C[ci][m][cj][l] * gradients[ai][m]
+                                 * gradients[bj][l];
                     cell_matrix(i, j) += JxW * value;
                   }
               }
@@ -297,8 +217,11 @@ namespace ViscoContact
         const unsigned int *dofs = &cell_local_dofs[std::size_t(k) * n_local];
         for (unsigned int i = 0; i < n_local; ++i)
           global_dofs[i] = partitioner.local_to_global(dofs[i]);
-        constraints.distribute_local_to_global(
-          cell_matrix, cell_force, global_dofs, tangent_matrix, internal_force);
+        constraints.distribute_local_to_global(cell_matrix,
+                                               cell_force,
+                                               global_dofs,
+                                               tangent_matrix,
+                                               internal_force);
       }
     tangent_matrix.compress(VectorOperation::add);
     internal_force.compress(VectorOperation::add);

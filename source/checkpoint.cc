@@ -33,15 +33,16 @@ namespace ViscoContact
     {
       const int first_error = Utilities::MPI::max(error, communicator);
       AssertThrow(first_error == MPI_SUCCESS,
-                  ExcMessage(what + " the checkpoint file " + file.string() +
-                             " failed: " + MPITools::error_string(first_error) +
-                             "."));
+                  ExcMessage(what + " the checkpoint file " + file.string()
+                             + " failed: " + MPITools::error_string(first_error)
+                             + "."));
     }
   } // namespace
 
 
 
-  ByteReader::ByteReader(const std::vector<char> &bytes, const std::string &file)
+  ByteReader::ByteReader(const std::vector<char> &bytes,
+                         const std::string       &file)
     : bytes(bytes)
     , file(file)
   {}
@@ -61,9 +62,9 @@ namespace ViscoContact
   ByteReader::check(const bool condition) const
   {
     AssertThrow(condition,
-                ExcMessage("The checkpoint file " + file +
-                           " does not belong to this scene or was written "
-                           "by another version of the program."));
+                ExcMessage("The checkpoint file " + file
+                           + " does not belong to this scene or was written "
+                             "by another version of the program."));
   }
 
 
@@ -72,9 +73,9 @@ namespace ViscoContact
   ByteReader::check_available(const std::uint64_t n_bytes) const
   {
     AssertThrow(position + n_bytes <= bytes.size(),
-                ExcMessage("The checkpoint file " + file +
-                           " is shorter than its contents say: it is damaged "
-                           "or was written by another version."));
+                ExcMessage("The checkpoint file " + file
+                           + " is shorter than its contents say: it is damaged "
+                             "or was written by another version."));
   }
 
 
@@ -100,8 +101,7 @@ namespace ViscoContact
   // @sect4{write_record_file}
   //
   // Layout: the header's size, the header, the number of records and their
-  // size, then the records. Rank 0 writes the prefix, every rank its
-  // records at the offset an exclusive prefix sum gives it.
+  // size, then the records of all ranks in rank order.
   void
   write_record_file(const std::filesystem::path &file,
                     const std::vector<char>     &header,
@@ -109,70 +109,22 @@ namespace ViscoContact
                     const std::uint64_t          record_size,
                     const MPI_Comm               communicator)
   {
-    const std::uint64_t n_local = local_records.size() / record_size;
-    const std::uint64_t n_total = Utilities::MPI::sum(n_local, communicator);
-    std::uint64_t       first   = 0;
-    int error = MPI_Exscan(&n_local, &first, 1, MPI_UINT64_T, MPI_SUM, communicator);
-    AssertThrowMPI(error);
-    const unsigned int rank = Utilities::MPI::this_mpi_process(communicator);
-    if (rank == 0)
-      first = 0;
-    const std::uint64_t header_size =
-      Utilities::MPI::broadcast(communicator, std::uint64_t(header.size()), 0);
-    const MPI_Offset records_start = 3 * sizeof(std::uint64_t) + header_size;
-
-    const std::filesystem::path temporary = file.string() + ".tmp";
-    MPI_File                    handle;
-    error = MPI_File_open(communicator,
-                          temporary.c_str(),
-                          MPI_MODE_CREATE | MPI_MODE_WRONLY,
-                          MPI_INFO_NULL,
-                          &handle);
-    agree_on_errors(error, file, "Opening", communicator);
-    error = MPI_File_set_size(handle, 0);
-    if (error == MPI_SUCCESS && rank == 0)
-      {
-        std::vector<char> prefix;
-        const auto        append = [&prefix](const std::uint64_t value) {
-          const char *bytes = reinterpret_cast<const char *>(&value);
-          prefix.insert(prefix.end(), bytes, bytes + sizeof(value));
-        };
-        append(header_size);
-        prefix.insert(prefix.end(), header.begin(), header.end());
-        append(n_total);
-        append(record_size);
-        error = MPI_File_write_at(
-          handle, 0, prefix.data(), prefix.size(), MPI_CHAR, MPI_STATUS_IGNORE);
-      }
-    error = Utilities::MPI::max(error, communicator);
-    // Blocks beyond 2 GiB are written in pieces (MPI counts are int).
-    const std::uint64_t chunk = std::uint64_t(1) << 30;
-    for (std::uint64_t done = 0;
-         error == MPI_SUCCESS &&
-         done < Utilities::MPI::max(std::uint64_t(local_records.size()),
-                                    communicator);
-         done += chunk)
-      {
-        const std::uint64_t begin = std::min<std::uint64_t>(done, local_records.size());
-        const std::uint64_t size =
-          std::min<std::uint64_t>(chunk, local_records.size() - begin);
-        error = MPI_File_write_at_all(handle,
-                                      records_start + first * record_size + begin,
-                                      local_records.data() + begin,
-                                      size,
-                                      MPI_CHAR,
-                                      MPI_STATUS_IGNORE);
-        error = Utilities::MPI::max(error, communicator);
-      }
-    const int close_error = MPI_File_close(&handle);
-    agree_on_errors(error != MPI_SUCCESS ? error : close_error,
-                    file,
-                    "Writing",
-                    communicator);
-    if (rank == 0)
-      std::filesystem::rename(temporary, file);
-    error = MPI_Barrier(communicator);
-    AssertThrowMPI(error);
+    const std::uint64_t n_records
+      = Utilities::MPI::sum(std::uint64_t(local_records.size() / record_size),
+                            communicator);
+    std::string prefix;
+    const auto  append = [&prefix](const std::uint64_t value) {
+      prefix.append(reinterpret_cast<const char *>(&value), sizeof(value));
+    };
+    append(header.size());
+    prefix.append(header.begin(), header.end());
+    append(n_records);
+    append(record_size);
+    MPITools::write_blocks_collectively(file.string(),
+                                        prefix,
+                                        local_records.data(),
+                                        local_records.size(),
+                                        communicator);
   }
 
 
@@ -184,8 +136,12 @@ namespace ViscoContact
   {
     T value{};
     if (error == MPI_SUCCESS)
-      error = MPI_File_read_at(
-        handle, offset, &value, sizeof(T), MPI_CHAR, MPI_STATUS_IGNORE);
+      error = MPI_File_read_at(handle,
+                               offset,
+                               &value,
+                               sizeof(T),
+                               MPI_CHAR,
+                               MPI_STATUS_IGNORE);
     return value;
   }
 
@@ -199,16 +155,19 @@ namespace ViscoContact
                    const MPI_Comm               communicator)
   {
     MPI_File handle;
-    int      error = MPI_File_open(
-      communicator, file.c_str(), MPI_MODE_RDONLY, MPI_INFO_NULL, &handle);
+    int      error = MPI_File_open(communicator,
+                              file.c_str(),
+                              MPI_MODE_RDONLY,
+                              MPI_INFO_NULL,
+                              &handle);
     agree_on_errors(error, file, "Opening", communicator);
     MPI_Offset file_size = 0;
     MPI_File_get_size(handle, &file_size);
 
-    const std::uint64_t header_size =
-      read_value<std::uint64_t>(handle, 0, error);
-    const bool header_fits =
-      header_size + 3 * sizeof(std::uint64_t) <= std::uint64_t(file_size);
+    const std::uint64_t header_size
+      = read_value<std::uint64_t>(handle, 0, error);
+    const bool header_fits
+      = header_size + 3 * sizeof(std::uint64_t) <= std::uint64_t(file_size);
     header.resize(header_fits ? header_size : 0);
     if (error == MPI_SUCCESS && header_fits)
       error = MPI_File_read_at(handle,
@@ -218,46 +177,49 @@ namespace ViscoContact
                                MPI_CHAR,
                                MPI_STATUS_IGNORE);
     const MPI_Offset    counts = sizeof(std::uint64_t) + header_size;
-    const std::uint64_t n_total =
-      header_fits ? read_value<std::uint64_t>(handle, counts, error) : 0;
-    const std::uint64_t stored_size =
-      header_fits ? read_value<std::uint64_t>(handle, counts + 8, error) : 0;
+    const std::uint64_t n_total
+      = header_fits ? read_value<std::uint64_t>(handle, counts, error) : 0;
+    const std::uint64_t stored_size
+      = header_fits ? read_value<std::uint64_t>(handle, counts + 8, error) : 0;
     const MPI_Offset records_start = counts + 2 * sizeof(std::uint64_t);
-    const bool       consistent =
-      header_fits && stored_size == record_size &&
-      records_start + n_total * record_size == std::uint64_t(file_size);
+    const bool       consistent
+      = Utilities::MPI::min(error == MPI_SUCCESS && header_fits
+                                && stored_size == record_size
+                                && records_start + n_total * record_size
+                                     == std::uint64_t(file_size)
+                              ? 1
+                              : 0,
+                            communicator)
+        == 1;
     if (!consistent)
       {
         MPI_File_close(&handle);
         AssertThrow(false,
-                    ExcMessage("The checkpoint file " + file.string() +
-                               " is damaged, or does not belong to this scene "
-                               "or to this version of the program."));
+                    ExcMessage(
+                      "The checkpoint file " + file.string()
+                      + " is damaged, or does not belong to this scene "
+                        "or to this version of the program."));
       }
 
     const unsigned int  n_ranks = Utilities::MPI::n_mpi_processes(communicator);
-    const unsigned int  rank    = Utilities::MPI::this_mpi_process(communicator);
-    const std::uint64_t begin   = n_total * rank / n_ranks;
-    const std::uint64_t end     = n_total * (rank + 1) / n_ranks;
+    const unsigned int  rank  = Utilities::MPI::this_mpi_process(communicator);
+    const std::uint64_t begin = n_total * rank / n_ranks;
+    const std::uint64_t end   = n_total * (rank + 1) / n_ranks;
     record_share.resize((end - begin) * record_size);
-    const std::uint64_t chunk = std::uint64_t(1) << 30;
-    for (std::uint64_t done = 0;
-         error == MPI_SUCCESS &&
-         done < Utilities::MPI::max(std::uint64_t(record_share.size()),
-                                    communicator);
-         done += chunk)
-      {
-        const std::uint64_t offset = std::min<std::uint64_t>(done, record_share.size());
-        const std::uint64_t size =
-          std::min<std::uint64_t>(chunk, record_share.size() - offset);
-        error = MPI_File_read_at_all(handle,
-                                     records_start + begin * record_size + offset,
-                                     record_share.data() + offset,
-                                     size,
-                                     MPI_CHAR,
-                                     MPI_STATUS_IGNORE);
-        error = Utilities::MPI::max(error, communicator);
-      }
+    error = Utilities::MPI::max(error, communicator);
+    if (error == MPI_SUCCESS)
+      error = MPITools::transfer_in_pieces(
+        record_share.size(),
+        communicator,
+        [&](const std::size_t start, const int n) {
+          return MPI_File_read_at_all(handle,
+                                      records_start + begin * record_size
+                                        + start,
+                                      record_share.data() + start,
+                                      n,
+                                      MPI_CHAR,
+                                      MPI_STATUS_IGNORE);
+        });
     MPI_File_close(&handle);
     agree_on_errors(error, file, "Reading", communicator);
   }
@@ -276,10 +238,11 @@ namespace ViscoContact
     std::string problem;
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       {
-        const std::filesystem::path directory =
-          checkpoint_directory(output_directory);
-        const std::filesystem::path info      = directory / "checkpoint.info";
-        const std::filesystem::path temporary = directory / "checkpoint.info.tmp";
+        const std::filesystem::path directory
+          = checkpoint_directory(output_directory);
+        const std::filesystem::path info = directory / "checkpoint.info";
+        const std::filesystem::path temporary
+          = directory / "checkpoint.info.tmp";
         {
           std::ofstream out(temporary);
           out << std::setprecision(17) << "step " << record.step << '\n'
@@ -294,10 +257,10 @@ namespace ViscoContact
         if (problem.empty())
           std::filesystem::rename(temporary, info, error);
         if (error)
-          problem = "Renaming " + temporary.string() + " failed: " +
-                    error.message() + ".";
-        if (problem.empty() && previous_step != numbers::invalid_unsigned_int &&
-            previous_step != record.step)
+          problem = "Renaming " + temporary.string()
+                    + " failed: " + error.message() + ".";
+        if (problem.empty() && previous_step != numbers::invalid_unsigned_int
+            && previous_step != record.step)
           std::filesystem::remove(checkpoint_file(output_directory,
                                                   previous_step),
                                   error);
@@ -312,29 +275,29 @@ namespace ViscoContact
   read_checkpoint_record(const std::string  &output_directory,
                          const std::uint64_t n_dofs)
   {
-    const std::filesystem::path info =
-      checkpoint_directory(output_directory) / "checkpoint.info";
+    const std::filesystem::path info
+      = checkpoint_directory(output_directory) / "checkpoint.info";
     std::ifstream    in(info);
     CheckpointRecord record;
     std::string      key_step, key_time, key_ranks, key_dofs;
-    in >> key_step >> record.step >> key_time >> record.time >> key_ranks >>
-      record.n_ranks >> key_dofs >> record.n_dofs;
-    AssertThrow(in && key_step == "step" && key_ranks == "ranks" &&
-                  key_dofs == "dofs",
+    in >> key_step >> record.step >> key_time >> record.time >> key_ranks
+      >> record.n_ranks >> key_dofs >> record.n_dofs;
+    AssertThrow(in && key_step == "step" && key_ranks == "ranks"
+                  && key_dofs == "dofs",
                 ExcMessage("Invalid parameter <Resume> in subsection "
-                           "<Checkpoint>: value <true>, but " +
-                           info.string() +
-                           " does not exist or is damaged; accepted: true "
-                           "only when the Output directory holds a complete "
-                           "checkpoint of an earlier run of this scene."));
+                           "<Checkpoint>: value <true>, but "
+                           + info.string()
+                           + " does not exist or is damaged; accepted: true "
+                             "only when the Output directory holds a complete "
+                             "checkpoint of an earlier run of this scene."));
     AssertThrow(record.n_dofs == n_dofs,
                 ExcMessage("Invalid parameter <Resume> in subsection "
-                           "<Checkpoint>: the checkpoint of step " +
-                           std::to_string(record.step) + " has " +
-                           std::to_string(record.n_dofs) +
-                           " displacement dofs, this scene " +
-                           std::to_string(n_dofs) +
-                           "; accepted: resuming the scene that wrote it."));
+                           "<Checkpoint>: the checkpoint of step "
+                           + std::to_string(record.step) + " has "
+                           + std::to_string(record.n_dofs)
+                           + " displacement dofs, this scene "
+                           + std::to_string(n_dofs)
+                           + "; accepted: resuming the scene that wrote it."));
     return record;
   }
 
@@ -354,7 +317,8 @@ namespace ViscoContact
             kept.push_back(line); // the header
             continue;
           }
-        const unsigned int row_step = std::stoul(line.substr(0, line.find(',')));
+        const unsigned int row_step
+          = std::stoul(line.substr(0, line.find(',')));
         if (row_step <= step)
           kept.push_back(line);
       }
@@ -413,20 +377,20 @@ namespace ViscoContact
     if (contact_enabled)
       for (unsigned int i = 0; i < contact_set.size(); ++i)
         {
-          contact_state.local_element(contact_set.node(i).local_dofs[0]) =
-            contact_set.piece(i) + 1.;
-          contact_state.local_element(contact_set.node(i).local_dofs[1]) =
-            contact_set.z[i];
+          contact_state.local_element(contact_set.node(i).local_dofs[0])
+            = contact_set.piece(i) + 1.;
+          contact_state.local_element(contact_set.node(i).local_dofs[1])
+            = contact_set.z[i];
         }
     contact_state.update_ghost_values();
 
     using Key                        = CellId::binary_type;
     const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
     const unsigned int n_q           = stress_quadrature.size();
-    const std::size_t  record_size =
-      sizeof(Key) + 2 * dofs_per_cell * sizeof(double) +
-      n_q * sizeof(QuadraturePointHistory<dim>);
-    std::vector<char>                    records(owned_cells.size() * record_size);
+    const std::size_t  record_size   = sizeof(Key)
+                                    + 2 * dofs_per_cell * sizeof(double)
+                                    + n_q * sizeof(QuadraturePointHistory<dim>);
+    std::vector<char> records(owned_cells.size() * record_size);
     std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
     char                                *out = records.data();
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
@@ -478,16 +442,17 @@ namespace ViscoContact
   unsigned int
   ViscoplasticContact<dim>::resume_from_checkpoint(std::vector<double> &times)
   {
-    const CheckpointRecord checkpoint =
-      read_checkpoint_record(parameters.directory, dof_handler.n_dofs());
-    const std::filesystem::path file =
-      checkpoint_file(parameters.directory, checkpoint.step);
+    const CheckpointRecord checkpoint
+      = read_checkpoint_record(parameters.directory, dof_handler.n_dofs());
+    const std::filesystem::path file
+      = checkpoint_file(parameters.directory, checkpoint.step);
 
     using Key                        = CellId::binary_type;
     const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
     const unsigned int n_q           = stress_quadrature.size();
-    const unsigned int n_doubles =
-      2 * dofs_per_cell + n_q * sizeof(QuadraturePointHistory<dim>) / sizeof(double);
+    const unsigned int n_doubles
+      = 2 * dofs_per_cell
+        + n_q * sizeof(QuadraturePointHistory<dim>) / sizeof(double);
     const std::size_t record_size = sizeof(Key) + n_doubles * sizeof(double);
     std::vector<char> header_bytes, share;
     read_record_file(file, header_bytes, share, record_size, mpi_communicator);
@@ -530,8 +495,8 @@ namespace ViscoContact
         const Key key = owned_cells[k]->id().template to_binary<dim>();
         requests[k].assign(reinterpret_cast<const char *>(&key), sizeof(Key));
       }
-    const auto found =
-      MPITools::exchange_records(records, requests, mpi_communicator);
+    const auto found
+      = MPITools::exchange_records(records, requests, mpi_communicator);
 
     VectorType contact_state(solution);
     contact_state = 0;
@@ -541,8 +506,8 @@ namespace ViscoContact
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
       {
         const auto entry = found.find(requests[k]);
-        if (entry == found.end() || entry->second.size() != 1 ||
-            entry->second[0].size() != n_doubles)
+        if (entry == found.end() || entry->second.size() != 1
+            || entry->second[0].size() != n_doubles)
           {
             complete = false;
             continue;
@@ -565,21 +530,22 @@ namespace ViscoContact
     if (contact_enabled)
       for (unsigned int i = 0; i < contact_set.size(); ++i)
         {
-          const double piece =
-            contact_state.local_element(contact_set.node(i).local_dofs[0]) - 1.;
+          const double piece
+            = contact_state.local_element(contact_set.node(i).local_dofs[0])
+              - 1.;
           header.check(piece >= 0 && piece < contact_set.law().n_pieces());
           contact_set.set_piece(i, static_cast<unsigned int>(piece + 0.5));
-          contact_set.z[i] =
-            contact_state.local_element(contact_set.node(i).local_dofs[1]);
+          contact_set.z[i]
+            = contact_state.local_element(contact_set.node(i).local_dofs[1]);
           contact_set.r[i] = contact_set.normal_component(solution, i);
         }
 
-    if (parameters.plasticity &&
-        parameters.stress_update == Parameters::StressUpdate::explicit_euler)
+    if (parameters.plasticity
+        && parameters.stress_update == Parameters::StressUpdate::explicit_euler)
       assemble_history_load();
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-      truncate_time_series(std::filesystem::path(parameters.directory) /
-                             "time_series.csv",
+      truncate_time_series(std::filesystem::path(parameters.directory)
+                             / "time_series.csv",
                            step);
     last_checkpoint_step = step;
     n_steps_done         = step;

@@ -5,6 +5,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/lapack_full_matrix.h>
 
 #include "condensed_system.h"
 #include "contact_solver.h"
@@ -20,12 +21,19 @@ namespace ViscoContact
     // rank needs of the small, node-sized vectors of the condensed problem.
     template <typename T>
     std::vector<T>
-    gather_on_all_ranks(const std::vector<T> &local, const MPI_Comm communicator)
+    gather_on_all_ranks(const std::vector<T> &local,
+                        const MPI_Comm        communicator)
     {
-      const int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
-      const int size    = local.size();
+      const int        n_ranks = Utilities::MPI::n_mpi_processes(communicator);
+      const int        size    = local.size();
       std::vector<int> sizes(n_ranks), offsets(n_ranks + 1, 0);
-      int error = MPI_Allgather(&size, 1, MPI_INT, sizes.data(), 1, MPI_INT, communicator);
+      int              error = MPI_Allgather(&size,
+                                1,
+                                MPI_INT,
+                                sizes.data(),
+                                1,
+                                MPI_INT,
+                                communicator);
       AssertThrowMPI(error);
       for (int p = 0; p < n_ranks; ++p)
         offsets[p + 1] = offsets[p] + sizes[p];
@@ -68,12 +76,17 @@ namespace ViscoContact
     CondensedContactSolver(const Parameters::AllParameters &parameters,
                            const VectorType                &layout);
 
-    std::string
-    description() const override;
+    // Set-up: the factorisation of A, and W and S from one solve per
+    // contact node.
     void
     set_operator(const MatrixType      &A,
                  const bool             symmetric,
                  const ContactSet<dim> &contact) override;
+    std::string
+    description() const override;
+    // Per step problem: A^{-1} b and d = N A^{-1} b; per active-set
+    // iteration: the dense problem on the contact nodes; at the end:
+    // u = A^{-1} b - W z.
     void
     set_right_hand_side(const VectorType      &b,
                         const ContactSet<dim> &contact) override;
@@ -81,23 +94,24 @@ namespace ViscoContact
     solve_for_pieces(ContactSet<dim> &contact, VectorType &u) override;
     void
     finish(const ContactSet<dim> &contact, VectorType &u) override;
-    LinearSolveReport
-    solve_without_contact(const VectorType &b, VectorType &u) override;
+    // S x, and a solve with the factorisation.
     void
     apply_compliance(const ContactSet<dim> &contact,
                      const Vector<double>  &x,
                      Vector<double>        &y) override;
+    LinearSolveReport
+    solve_without_contact(const VectorType &b, VectorType &u) override;
 
   private:
     const MPI_Comm         communicator;
     SparseDirectSolver     factorization;
     CondensedContactSystem condensed_system;
 
-    // W = A^{-1} N^T, the rows of the locally owned dofs (column-major),
-    // kept when it takes less than 1 GiB on this rank; otherwise finish()
-    // solves once more.
-    std::vector<double> contact_responses;
-    bool                responses_stored = false;
+    // W = A^{-1} N^T, the rows of the locally owned dofs, kept when it
+    // takes less than 1 GiB on this rank (the product W z is then one BLAS
+    // call); otherwise finish() solves once more.
+    LAPACKFullMatrix<double> contact_responses;
+    bool                     responses_stored = false;
 
     // A^{-1} b, the free normal displacements d = N A^{-1} b and the
     // forces z of all contact nodes.
@@ -112,12 +126,12 @@ namespace ViscoContact
     const Parameters::AllParameters &parameters,
     const VectorType                &layout)
     : communicator(layout.get_mpi_communicator())
-    , factorization(parameters.direct_solver ==
-                        Parameters::DirectSolver::automatic ?
-                      (Utilities::MPI::n_mpi_processes(communicator) == 1 ?
-                         Parameters::DirectSolver::cholmod :
-                         Parameters::DirectSolver::mumps) :
-                      parameters.direct_solver,
+    , factorization(parameters.direct_solver
+                        == Parameters::DirectSolver::automatic
+                      ? (Utilities::MPI::n_mpi_processes(communicator) == 1
+                           ? Parameters::DirectSolver::cholmod
+                           : Parameters::DirectSolver::mumps)
+                      : parameters.direct_solver,
                     communicator)
     , free_displacement(layout)
   {}
@@ -128,9 +142,8 @@ namespace ViscoContact
   std::string
   CondensedContactSolver<dim>::description() const
   {
-    return "condensed: the operator factorised (" +
-           factorization.description() +
-           "), the active set on the contact nodes";
+    return "condensed: the operator factorised (" + factorization.description()
+           + "), the active set on the contact nodes";
   }
 
 
@@ -157,8 +170,8 @@ namespace ViscoContact
       return;
     const types::global_dof_index first = contact.first_global_index();
     responses_stored = (8. * n_local * m < 1024. * 1024. * 1024.);
-    contact_responses.assign(responses_stored ? std::size_t(n_local) * m : 0,
-                             0.);
+    contact_responses.reinit(responses_stored ? n_local : 0,
+                             responses_stored ? m : 0);
 
     std::vector<double> own_rows(std::size_t(m_local) * m);
     const unsigned int  block = 64;
@@ -170,8 +183,9 @@ namespace ViscoContact
         for (unsigned int i = 0; i < m_local; ++i)
           if (first + i >= first_column && first + i < first_column + n_columns)
             for (unsigned int c = 0; c < dim; ++c)
-              columns[std::size_t(first + i - first_column) * n_local +
-                      contact.node(i).local_dofs[c]] = contact.node(i).normal[c];
+              columns[std::size_t(first + i - first_column) * n_local
+                      + contact.node(i).local_dofs[c]]
+                = contact.node(i).normal[c];
         factorization.solve(columns, n_columns);
         this->counts.solves += n_columns;
         for (unsigned int j = 0; j < n_columns; ++j)
@@ -179,19 +193,18 @@ namespace ViscoContact
             const double *response = &columns[std::size_t(j) * n_local];
             for (unsigned int i = 0; i < m_local; ++i)
               for (unsigned int c = 0; c < dim; ++c)
-                own_rows[std::size_t(i) * m + first_column + j] +=
-                  contact.node(i).normal[c] *
-                  response[contact.node(i).local_dofs[c]];
+                own_rows[std::size_t(i) * m + first_column + j]
+                  += contact.node(i).normal[c]
+                     * response[contact.node(i).local_dofs[c]];
             if (responses_stored)
-              std::copy_n(response,
-                          n_local,
-                          contact_responses.begin() +
-                            std::size_t(first_column + j) * n_local);
+              for (unsigned int k = 0; k < n_local; ++k)
+                contact_responses(k, first_column + j) = response[k];
           }
       }
 
-    const std::vector<double> all_rows = gather_on_all_ranks(own_rows, communicator);
-    FullMatrix<double>        S(m, m);
+    const std::vector<double> all_rows
+      = gather_on_all_ranks(own_rows, communicator);
+    FullMatrix<double> S(m, m);
     for (unsigned int i = 0; i < m; ++i)
       for (unsigned int j = 0; j < m; ++j)
         S(i, j) = all_rows[std::size_t(i) * m + j];
@@ -215,8 +228,9 @@ namespace ViscoContact
   // One solve gives A^{-1} b and with it d = N A^{-1} b.
   template <int dim>
   void
-  CondensedContactSolver<dim>::set_right_hand_side(const VectorType      &b,
-                                                   const ContactSet<dim> &contact)
+  CondensedContactSolver<dim>::set_right_hand_side(
+    const VectorType      &b,
+    const ContactSet<dim> &contact)
   {
     factorization.solve(free_displacement, b);
     ++this->counts.solves;
@@ -235,8 +249,8 @@ namespace ViscoContact
   CondensedContactSolver<dim>::solve_for_pieces(ContactSet<dim> &contact,
                                                 VectorType &)
   {
-    const std::vector<unsigned int> pieces =
-      gather_on_all_ranks(contact.pieces(), communicator);
+    const std::vector<unsigned int> pieces
+      = gather_on_all_ranks(contact.pieces(), communicator);
     LinearSolveReport report;
     report.residual = condensed_system.solve(pieces, d, r_all, z_all);
     const types::global_dof_index first = contact.first_global_index();
@@ -263,14 +277,10 @@ namespace ViscoContact
       return;
     if (responses_stored)
       {
-        for (unsigned int j = 0; j < z_all.size(); ++j)
-          if (z_all[j] != 0)
-            {
-              const double *response =
-                &contact_responses[std::size_t(j) * n_local];
-              for (unsigned int k = 0; k < n_local; ++k)
-                u.local_element(k) -= z_all[j] * response[k];
-            }
+        Vector<double> response(n_local);
+        contact_responses.vmult(response, z_all);
+        for (unsigned int k = 0; k < n_local; ++k)
+          u.local_element(k) -= response[k];
         return;
       }
     VectorType forces(free_displacement), response(free_displacement);
@@ -302,8 +312,9 @@ namespace ViscoContact
                                                 const Vector<double>  &x,
                                                 Vector<double>        &y)
   {
-    const std::vector<double> x_all = gather_on_all_ranks(
-      std::vector<double>(x.begin(), x.end()), communicator);
+    const std::vector<double> x_all
+      = gather_on_all_ranks(std::vector<double>(x.begin(), x.end()),
+                            communicator);
     const FullMatrix<double>     &S     = condensed_system.compliance();
     const types::global_dof_index first = contact.first_global_index();
     y.reinit(contact.size());

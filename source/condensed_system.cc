@@ -58,8 +58,8 @@ namespace ViscoContact
           {
             for (unsigned int b = 0; b < n; ++b)
               system_matrix(a, b) = S(unknown_nodes[a], unknown_nodes[b]);
-            const ContactLawPiece &piece =
-              contact_law->piece(pieces[unknown_nodes[a]]);
+            const ContactLawPiece &piece
+              = contact_law->piece(pieces[unknown_nodes[a]]);
             if (!piece.vertical)
               system_matrix(a, a) += 1. / (w[unknown_nodes[a]] * piece.slope);
           }
@@ -72,7 +72,8 @@ namespace ViscoContact
       }
 
     for (unsigned int i = 0; i < m; ++i)
-      z[i] = is_unknown(i) ? 0. : w[i] * contact_law->piece(pieces[i]).intercept;
+      z[i]
+        = is_unknown(i) ? 0. : w[i] * contact_law->piece(pieces[i]).intercept;
     Vector<double> rhs(unknown_nodes.size());
     for (unsigned int a = 0; a < unknown_nodes.size(); ++a)
       {
@@ -81,7 +82,8 @@ namespace ViscoContact
         double                 value = d[i];
         for (unsigned int j = 0; j < m; ++j)
           value -= S(i, j) * z[j];
-        value += (piece.vertical ? -piece.r_lower : piece.intercept / piece.slope);
+        value
+          += (piece.vertical ? -piece.r_lower : piece.intercept / piece.slope);
         rhs[a] = value;
       }
     if (rhs.size() > 0)
@@ -98,9 +100,10 @@ namespace ViscoContact
     for (const unsigned int i : unknown_nodes)
       {
         const ContactLawPiece &piece = contact_law->piece(pieces[i]);
-        const double           error =
-          (piece.vertical ? r[i] - piece.r_lower :
-                            r[i] - (z[i] / w[i] - piece.intercept) / piece.slope);
+        const double           error
+          = (piece.vertical
+               ? r[i] - piece.r_lower
+               : r[i] - (z[i] / w[i] - piece.intercept) / piece.slope);
         defect = std::max(defect, std::abs(error) / scale);
       }
     return defect;

@@ -97,7 +97,8 @@ namespace ViscoContact
                         {},
                         contact.unilateral_constraint,
                         contact.gap);
-    if (contact.law_type == Parameters::ContactLawType::nonmonotone && contact.u1 == 0)
+    if (contact.law_type == Parameters::ContactLawType::nonmonotone
+        && contact.u1 == 0)
       return ContactLaw({0.},
                         {0., contact.c2},
                         {0.},

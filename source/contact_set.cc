@@ -36,27 +36,28 @@ namespace ViscoContact
   // owners.
   template <int dim>
   void
-  assemble_lumped_weights(const Mapping<dim>                    &mapping,
-                          const DoFHandler<dim>                 &dof_handler,
-                          const Quadrature<dim - 1>             &face_quadrature,
+  assemble_lumped_weights(const Mapping<dim>        &mapping,
+                          const DoFHandler<dim>     &dof_handler,
+                          const Quadrature<dim - 1> &face_quadrature,
                           const std::vector<types::boundary_id> &boundary_ids,
                           VectorType                            &weights,
-                          VectorType                            &weighted_normals)
+                          VectorType &weighted_normals)
   {
-    const FiniteElement<dim> &fe = dof_handler.get_fe();
-    FEFaceValues<dim>         fe_face_values(mapping,
+    const FiniteElement<dim>            &fe = dof_handler.get_fe();
+    FEFaceValues<dim>                    fe_face_values(mapping,
                                      fe,
                                      face_quadrature,
-                                     update_values | update_JxW_values |
-                                       update_normal_vectors);
-    std::vector<types::global_dof_index> local_dof_indices(fe.n_dofs_per_cell());
+                                     update_values | update_JxW_values
+                                       | update_normal_vectors);
+    std::vector<types::global_dof_index> local_dof_indices(
+      fe.n_dofs_per_cell());
     weights          = 0;
     weighted_normals = 0;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary() &&
-              is_one_of(cell->face(f)->boundary_id(), boundary_ids))
+          if (cell->face(f)->at_boundary()
+              && is_one_of(cell->face(f)->boundary_id(), boundary_ids))
             {
               fe_face_values.reinit(cell, f);
               cell->get_dof_indices(local_dof_indices);
@@ -64,13 +65,14 @@ namespace ViscoContact
                    fe_face_values.quadrature_point_indices())
                 for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
                   {
-                    const unsigned int c = fe.system_to_component_index(i).first;
-                    const double phi_JxW =
-                      fe_face_values.shape_value(i, q) * fe_face_values.JxW(q);
+                    const unsigned int c
+                      = fe.system_to_component_index(i).first;
+                    const double phi_JxW = fe_face_values.shape_value(i, q)
+                                           * fe_face_values.JxW(q);
                     if (c == 0)
                       weights(local_dof_indices[i]) += phi_JxW;
-                    weighted_normals(local_dof_indices[i]) +=
-                      phi_JxW * fe_face_values.normal_vector(q)[c];
+                    weighted_normals(local_dof_indices[i])
+                      += phi_JxW * fe_face_values.normal_vector(q)[c];
                   }
             }
     weights.compress(VectorOperation::add);
@@ -86,11 +88,11 @@ namespace ViscoContact
   // vertex is found. Vertices of hanging or clamped dofs are left out.
   template <int dim>
   void
-  ContactSet<dim>::setup(const ContactLaw                      &law,
-                         const Mapping<dim>                    &mapping,
-                         const DoFHandler<dim>                 &dof_handler,
-                         const DoFHandler<dim>                 &scalar_dof_handler,
-                         const Quadrature<dim - 1>             &face_quadrature,
+  ContactSet<dim>::setup(const ContactLaw          &law,
+                         const Mapping<dim>        &mapping,
+                         const DoFHandler<dim>     &dof_handler,
+                         const DoFHandler<dim>     &scalar_dof_handler,
+                         const Quadrature<dim - 1> &face_quadrature,
                          const std::vector<types::boundary_id> &contact_ids,
                          const AffineConstraints<double>       &constraints,
                          const VectorType                      &layout)
@@ -110,15 +112,15 @@ namespace ViscoContact
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (!cell->is_artificial())
         for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary() &&
-              is_one_of(cell->face(f)->boundary_id(), contact_ids))
+          if (cell->face(f)->at_boundary()
+              && is_one_of(cell->face(f)->boundary_id(), contact_ids))
             for (const unsigned int v : cell->face(f)->vertex_indices())
               {
                 NodeGeometry node;
                 for (unsigned int c = 0; c < dim; ++c)
                   node.dofs[c] = cell->face(f)->vertex_dof_index(v, c);
-                bool usable = partitioner.in_local_range(node.dofs[0]) &&
-                              seen.insert(node.dofs[0]).second;
+                bool usable = partitioner.in_local_range(node.dofs[0])
+                              && seen.insert(node.dofs[0]).second;
                 for (unsigned int c = 0; c < dim; ++c)
                   usable = usable && !constraints.is_constrained(node.dofs[c]);
                 if (!usable)
@@ -126,15 +128,16 @@ namespace ViscoContact
                 node.location = cell->face(f)->vertex(v);
                 for (unsigned int c = 0; c < dim; ++c)
                   {
-                    node.local_dofs[c] = partitioner.global_to_local(node.dofs[c]);
-                    node.normal[c]     = weighted_normals(node.dofs[c]);
+                    node.local_dofs[c]
+                      = partitioner.global_to_local(node.dofs[c]);
+                    node.normal[c] = weighted_normals(node.dofs[c]);
                   }
                 node.normal /= node.normal.norm();
-                const typename DoFHandler<dim>::active_cell_iterator scalar_cell(
-                  &dof_handler.get_triangulation(),
-                  cell->level(),
-                  cell->index(),
-                  &scalar_dof_handler);
+                const typename DoFHandler<dim>::active_cell_iterator
+                  scalar_cell(&dof_handler.get_triangulation(),
+                              cell->level(),
+                              cell->index(),
+                              &scalar_dof_handler);
                 node.scalar_dof = scalar_cell->face(f)->vertex_dof_index(v, 0);
                 geometry.push_back(node);
               }
@@ -154,15 +157,15 @@ namespace ViscoContact
     reinit(law, node_weights);
 
     const types::global_dof_index n_local = geometry.size();
-    n_global     = Utilities::MPI::sum(n_local, communicator);
-    first_global = 0;
-    const int error = MPI_Exscan(&n_local,
-                                 &first_global,
-                                 1,
-                                 Utilities::MPI::mpi_type_id_for_type<
-                                   types::global_dof_index>,
-                                 MPI_SUM,
-                                 communicator);
+    n_global        = Utilities::MPI::sum(n_local, communicator);
+    first_global    = 0;
+    const int error = MPI_Exscan(
+      &n_local,
+      &first_global,
+      1,
+      Utilities::MPI::mpi_type_id_for_type<types::global_dof_index>,
+      MPI_SUM,
+      communicator);
     AssertThrowMPI(error);
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       first_global = 0;
@@ -184,12 +187,12 @@ namespace ViscoContact
     std::vector<double> c(size());
     for (unsigned int i = 0; i < size(); ++i)
       {
-        const NodeGeometry &n = geometry[i];
+        const NodeGeometry &n                = geometry[i];
         double              normal_stiffness = 0;
         for (unsigned int a = 0; a < dim; ++a)
           for (unsigned int b = 0; b < dim; ++b)
-            normal_stiffness +=
-              n.normal[a] * n.normal[b] * A.el(n.dofs[a], n.dofs[b]);
+            normal_stiffness
+              += n.normal[a] * n.normal[b] * A.el(n.dofs[a], n.dofs[b]);
         c[i] = std::max(normal_stiffness / weight(i), 2 * softening);
       }
     set_parameters(c);
@@ -235,12 +238,13 @@ namespace ViscoContact
 
   template <int dim>
   double
-  ContactSet<dim>::normal_component(const VectorType &u,
+  ContactSet<dim>::normal_component(const VectorType  &u,
                                     const unsigned int i) const
   {
     double value = 0;
     for (unsigned int c = 0; c < dim; ++c)
-      value += geometry[i].normal[c] * u.local_element(geometry[i].local_dofs[c]);
+      value
+        += geometry[i].normal[c] * u.local_element(geometry[i].local_dofs[c]);
     return value;
   }
 
@@ -253,7 +257,8 @@ namespace ViscoContact
                               const double       value) const
   {
     for (unsigned int c = 0; c < dim; ++c)
-      v.local_element(geometry[i].local_dofs[c]) += value * geometry[i].normal[c];
+      v.local_element(geometry[i].local_dofs[c])
+        += value * geometry[i].normal[c];
   }
 
 
@@ -308,8 +313,8 @@ namespace ViscoContact
         const types::global_dof_index dof = geometry[i].scalar_dof;
         contact_pressure_field(dof)       = contact_pressure(i);
         compliance_pressure_field(dof)    = compliance_pressure(i);
-        foundation_pressure_field(dof) =
-          contact_pressure(i) - compliance_pressure(i);
+        foundation_pressure_field(dof)
+          = contact_pressure(i) - compliance_pressure(i);
         contact_status_field(dof) = status(i);
       }
   }

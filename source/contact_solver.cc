@@ -10,15 +10,21 @@ namespace ViscoContact
 {
   // @sect4{choose_method}
   //
-  // The condensed back end costs a factorisation of the operator, one solve
-  // per contact node at set-up and m^2 doubles on every rank; afterwards a
-  // step is one solve. The full space back end costs an AMG set-up and a
-  // Krylov solve per active-set iteration. On one rank and in 2D the direct
-  // factorisation is cheap and the contact boundary is a line with few
-  // nodes, so the condensed one wins by far (doc/performance.md); in 3D
-  // the factorisation's fill and the m solves grow quickly, and on several
-  // ranks the replicated compliance does not scale. The limits below are
-  // where the measured costs of the two cross (benchmarks/).
+  // The condensed back end costs a factorisation of the operator and one
+  // solve per contact node at set-up, m^2 doubles on every rank, and n m
+  // doubles for W; afterwards a step is one solve and one dense product.
+  // The full space back end costs an AMG set-up and a Krylov solve per
+  // active-set iteration. Measured on this kind of machine (2 cores,
+  // benchmarks/ and doc/algorithm.md): in 2D the factorisation is cheap
+  // and the contact boundary is a line, and the condensed back end is
+  // faster at every size tried (up to 526k dofs, 512 contact nodes); in
+  // 3D, the 8 first steps of the cube scene on one rank took 6.7 s
+  // condensed against 38 s full space at 47k dofs (600 contact nodes), and
+  // 26 s condensed (22 s of it set-up, 0.3 s per step) at 108k dofs (1056
+  // contact nodes), where the full space back end needs about 16 s per
+  // step. Beyond that the fill of a 3D factorisation and the m solves
+  // grow fast, and on several ranks the compliance, which every rank
+  // holds, does not scale. The limits below stay within what was measured.
   MethodChoice
   choose_method(const Parameters::AllParameters &parameters,
                 const unsigned int               dim,
@@ -29,8 +35,8 @@ namespace ViscoContact
     if (parameters.method != Parameters::Method::automatic)
       return {parameters.method, "set in the parameter file"};
 
-    const types::global_dof_index max_nodes = (dim == 2 ? 4000 : 2000);
-    const types::global_dof_index max_dofs  = (dim == 2 ? 4000000 : 60000);
+    const types::global_dof_index max_nodes = (dim == 2 ? 4000 : 1500);
+    const types::global_dof_index max_dofs  = (dim == 2 ? 4000000 : 120000);
     std::ostringstream            reason;
     reason << "Method = auto: " << n_ranks << " rank(s), " << n_dofs
            << " dofs, " << n_contact_nodes << " contact nodes; ";

@@ -53,17 +53,18 @@ namespace ViscoContact
     // entries the study changed appended (later entries win), so that it
     // reproduces the run.
     std::ostringstream changes;
-    changes << std::setprecision(17)
-            << "\n# This run of the convergence study changed these entries:\n"
-            << "subsection Convergence study\n  set Enabled = false\nend\n"
-            << "subsection Geometry\n  set Subdivisions = " << subdivisions
-            << "\nend\n"
-            << "subsection Contact\n  set Check uniqueness = false\nend\n"
-            << "subsection Time\n  set Time step = " << time_step << "\nend\n"
-            << "subsection Output\n  set Output directory = "
-            << run_parameters.directory
-            << "\n  set Write vtu = false\n  set Verbose = false\n"
-            << "  set Print timing summary = false\n  set Profile times =\nend\n";
+    changes
+      << std::setprecision(17)
+      << "\n# This run of the convergence study changed these entries:\n"
+      << "subsection Convergence study\n  set Enabled = false\nend\n"
+      << "subsection Geometry\n  set Subdivisions = " << subdivisions
+      << "\nend\n"
+      << "subsection Contact\n  set Check uniqueness = false\nend\n"
+      << "subsection Time\n  set Time step = " << time_step << "\nend\n"
+      << "subsection Output\n  set Output directory = "
+      << run_parameters.directory
+      << "\n  set Write vtu = false\n  set Verbose = false\n"
+      << "  set Print timing summary = false\n  set Profile times =\nend\n";
     run_parameters.parsed_parameters += changes.str();
     return run_parameters;
   }
@@ -81,10 +82,10 @@ namespace ViscoContact
     for (int d = dim - 1; d >= 0; --d)
       {
         const double h = parameters.lengths[d] / n;
-        const int i = std::clamp(static_cast<int>(std::floor(point[d] / h)),
+        const int    i = std::clamp(static_cast<int>(std::floor(point[d] / h)),
                                  0,
                                  static_cast<int>(n) - 1);
-        index = index * n + i;
+        index          = index * n + i;
       }
     return std::string(reinterpret_cast<const char *>(&index), sizeof(index));
   }
@@ -98,8 +99,9 @@ namespace ViscoContact
   // points.
   template <int dim>
   void
-  ConvergenceStudy<dim>::record_state(Run                            &run,
-                                      const ViscoplasticContact<dim> &problem) const
+  ConvergenceStudy<dim>::record_state(
+    Run                            &run,
+    const ViscoplasticContact<dim> &problem) const
   {
     const auto        &cells = problem.get_owned_cells();
     const unsigned int n_q   = problem.get_stress_quadrature().size();
@@ -109,7 +111,8 @@ namespace ViscoContact
         run.cells.resize(cells.size());
         for (unsigned int k = 0; k < cells.size(); ++k)
           {
-            run.cells[k].first = square_key(cells[k]->center(), run.subdivisions);
+            run.cells[k].first
+              = square_key(cells[k]->center(), run.subdivisions);
             std::vector<double> &payload = run.cells[k].second;
             payload.push_back(cells[k]->n_vertices());
             for (const unsigned int v : cells[k]->vertex_indices())
@@ -120,7 +123,8 @@ namespace ViscoContact
     for (unsigned int k = 0; k < cells.size(); ++k)
       for (unsigned int q = 0; q < n_q; ++q)
         {
-          const Tensor<2, dim> gradient = problem.get_displacement_gradient(k, q);
+          const Tensor<2, dim> gradient
+            = problem.get_displacement_gradient(k, q);
           const SymmetricTensor<2, dim> &stress = problem.get_stress(k, q);
           for (unsigned int a = 0; a < dim; ++a)
             for (unsigned int b = 0; b < dim; ++b)
@@ -154,9 +158,10 @@ namespace ViscoContact
         pcout << "Convergence study: run " << r + 1 << " of " << n_runs
               << ", h = 1/" << run.subdivisions << ", k = " << run.time_step
               << std::endl;
-        ViscoplasticContact<dim> problem(
-          parameters_for(run.subdivisions, run.time_step, name.str()),
-          communicator);
+        ViscoplasticContact<dim> problem(parameters_for(run.subdivisions,
+                                                        run.time_step,
+                                                        name.str()),
+                                         communicator);
         problem.set_step_observer([&](const unsigned int, const double time) {
           run.times.push_back(time);
           record_state(run, problem);
@@ -188,24 +193,25 @@ namespace ViscoContact
                      "reference"),
       communicator);
     unsigned int reference_steps = 0;
-    reference.set_step_observer([&](const unsigned int step, const double time) {
-      if (step == 1)
+    reference.set_step_observer(
+      [&](const unsigned int step, const double time) {
+        if (step == 1)
+          for (Run &run : runs)
+            if (!run.failed)
+              locate(run, reference);
+        reference_steps = step;
         for (Run &run : runs)
-          if (!run.failed)
-            locate(run, reference);
-      reference_steps = step;
-      for (Run &run : runs)
-        {
-          if (run.failed)
-            continue;
-          const auto level =
-            std::find_if(run.times.begin(), run.times.end(), [&](double t) {
-              return std::abs(t - time) <= 1e-10 * parameters.end_time;
-            });
-          if (level != run.times.end())
-            compare(run, level - run.times.begin(), reference);
-        }
-    });
+          {
+            if (run.failed)
+              continue;
+            const auto level
+              = std::find_if(run.times.begin(), run.times.end(), [&](double t) {
+                  return std::abs(t - time) <= 1e-10 * parameters.end_time;
+                });
+            if (level != run.times.end())
+              compare(run, level - run.times.begin(), reference);
+          }
+      });
     Timer timer;
     reference.run();
     write_table(reference.get_dof_handler().n_dofs(),
@@ -228,10 +234,12 @@ namespace ViscoContact
   {
     const auto            &cells      = reference.get_owned_cells();
     const Quadrature<dim> &quadrature = reference.get_stress_quadrature();
-    const Mapping<dim>    &mapping =
-      cells.empty() ?
-        ReferenceCells::get_hypercube<dim>().template get_default_linear_mapping<dim>() :
-        cells[0]->reference_cell().template get_default_linear_mapping<dim>();
+    const Mapping<dim>    &mapping
+      = cells.empty() ? ReferenceCells::get_hypercube<dim>()
+                          .template get_default_linear_mapping<dim>()
+                      : cells[0]
+                          ->reference_cell()
+                          .template get_default_linear_mapping<dim>();
 
     std::vector<Point<dim>>  points;
     std::vector<std::string> keys;
@@ -244,8 +252,10 @@ namespace ViscoContact
         }
     std::vector<std::string> requests(keys);
     std::sort(requests.begin(), requests.end());
-    requests.erase(std::unique(requests.begin(), requests.end()), requests.end());
-    const auto found = MPITools::exchange_records(run.cells, requests, communicator);
+    requests.erase(std::unique(requests.begin(), requests.end()),
+                   requests.end());
+    const auto found
+      = MPITools::exchange_records(run.cells, requests, communicator);
     run.cells.clear();
 
     std::map<const std::vector<double> *, unsigned int> index_of;
@@ -276,8 +286,9 @@ namespace ViscoContact
                 for (unsigned int a = 1; a <= dim; ++a)
                   for (unsigned int d = 0; d < dim; ++d)
                     J[d][a - 1] = vertex(a)[d] - vertex(0)[d];
-                const Tensor<1, dim> lambda = invert(J) * (points[p] - vertex(0));
-                double               sum    = 0;
+                const Tensor<1, dim> lambda
+                  = invert(J) * (points[p] - vertex(0));
+                double sum = 0;
                 for (unsigned int d = 0; d < dim; ++d)
                   {
                     unit[d] = lambda[d];
@@ -288,8 +299,8 @@ namespace ViscoContact
               }
             else
               for (unsigned int d = 0; d < dim; ++d)
-                unit[d] = (points[p][d] - vertex(0)[d]) /
-                          (vertex(n_vertices - 1)[d] - vertex(0)[d]);
+                unit[d] = (points[p][d] - vertex(0)[d])
+                          / (vertex(n_vertices - 1)[d] - vertex(0)[d]);
             if (inside)
               {
                 containing         = &candidate;
@@ -301,8 +312,8 @@ namespace ViscoContact
                     ExcMessage("Convergence study: a point of the reference "
                                "mesh lies in no cell of the coarse mesh; the "
                                "meshes are not nested."));
-        const auto [position, inserted] =
-          index_of.emplace(containing, run.located_cells.size());
+        const auto [position, inserted]
+          = index_of.emplace(containing, run.located_cells.size());
         if (inserted)
           run.located_cells.push_back(*containing);
         run.point_cell[p] = position->second;
@@ -317,9 +328,10 @@ namespace ViscoContact
   // reference's stress-point quadrature, summed over the ranks.
   template <int dim>
   void
-  ConvergenceStudy<dim>::compare(Run                            &run,
-                                 const unsigned int              level,
-                                 const ViscoplasticContact<dim> &reference) const
+  ConvergenceStudy<dim>::compare(
+    Run                            &run,
+    const unsigned int              level,
+    const ViscoplasticContact<dim> &reference) const
   {
     const auto            &cells      = reference.get_owned_cells();
     const Quadrature<dim> &quadrature = reference.get_stress_quadrature();
@@ -328,11 +340,13 @@ namespace ViscoContact
     for (unsigned int k = 0; k < cells.size(); ++k)
       for (unsigned int q = 0; q < n_q; ++q)
         {
-          const unsigned int         p       = k * n_q + q;
-          const std::vector<double> &payload = run.located_cells[run.point_cell[p]];
-          const unsigned int         n_vertices = payload[0];
-          const double *values = &payload[1 + n_vertices * dim +
-                                          std::size_t(level) * n_q * 2 * dim * dim];
+          const unsigned int         p = k * n_q + q;
+          const std::vector<double> &payload
+            = run.located_cells[run.point_cell[p]];
+          const unsigned int n_vertices = payload[0];
+          const double      *values
+            = &payload[1 + n_vertices * dim
+                       + std::size_t(level) * n_q * 2 * dim * dim];
           // sum_j L_j(x) v_j with the Lagrange polynomials of the coarse
           // cell's stress points (a single point on simplices).
           Tensor<2, dim> gradient, stress;
@@ -349,14 +363,16 @@ namespace ViscoContact
               for (unsigned int a = 0; a < dim; ++a)
                 for (unsigned int b = 0; b < dim; ++b)
                   {
-                    gradient[a][b] += weight * values[(j * dim * dim + a * dim + b) * 2];
-                    stress[a][b] += weight * values[(j * dim * dim + a * dim + b) * 2 + 1];
+                    gradient[a][b]
+                      += weight * values[(j * dim * dim + a * dim + b) * 2];
+                    stress[a][b]
+                      += weight * values[(j * dim * dim + a * dim + b) * 2 + 1];
                   }
             }
-          const SymmetricTensor<2, dim> strain_error =
-            symmetrize(reference.get_displacement_gradient(k, q) - gradient);
-          const Tensor<2, dim> stress_error =
-            Tensor<2, dim>(reference.get_stress(k, q)) - stress;
+          const SymmetricTensor<2, dim> strain_error
+            = symmetrize(reference.get_displacement_gradient(k, q) - gradient);
+          const Tensor<2, dim> stress_error
+            = Tensor<2, dim>(reference.get_stress(k, q)) - stress;
           const double JxW = reference.get_stress_point_weight(k, q);
           error_u += (strain_error * strain_error) * JxW;
           error_sigma += scalar_product(stress_error, stress_error) * JxW;
@@ -380,15 +396,16 @@ namespace ViscoContact
   // time step) is the same.
   template <int dim>
   void
-  ConvergenceStudy<dim>::write_table(const types::global_dof_index reference_dofs,
-                                     const unsigned int reference_steps,
-                                     const double       reference_wall_time) const
+  ConvergenceStudy<dim>::write_table(
+    const types::global_dof_index reference_dofs,
+    const unsigned int            reference_steps,
+    const double                  reference_wall_time) const
   {
     if (Utilities::MPI::this_mpi_process(communicator) != 0)
       return;
     std::filesystem::create_directories(parameters.directory);
-    std::ofstream csv(std::filesystem::path(parameters.directory) /
-                      "convergence.csv");
+    std::ofstream csv(std::filesystem::path(parameters.directory)
+                      / "convergence.csv");
     csv << "h,k,subdivisions,dofs,steps,compared_levels,wall_time,error_u,"
            "error_sigma,error,order_u,order_sigma,order\n"
         << std::setprecision(10);
@@ -417,17 +434,17 @@ namespace ViscoContact
           if (r == 0 || runs[r - 1].failed)
             return std::numeric_limits<double>::quiet_NaN();
           const Run   &previous = runs[r - 1];
-          const double h_prev   = parameters.lengths[0] / previous.subdivisions;
+          const double h_prev = parameters.lengths[0] / previous.subdivisions;
           // The order in the quantity that varies: k on a fixed mesh, h at
           // a fixed step, h + k when both change.
-          const double size_prev =
-            (previous.subdivisions == run.subdivisions ? 0. : h_prev) +
-            (previous.time_step == run.time_step ? 0. : previous.time_step);
-          const double size =
-            (previous.subdivisions == run.subdivisions ? 0. : h) +
-            (previous.time_step == run.time_step ? 0. : run.time_step);
-          return std::log(previous.*member / run.*member) /
-                 std::log(size_prev / size);
+          const double size_prev
+            = (previous.subdivisions == run.subdivisions ? 0. : h_prev)
+              + (previous.time_step == run.time_step ? 0. : previous.time_step);
+          const double size
+            = (previous.subdivisions == run.subdivisions ? 0. : h)
+              + (previous.time_step == run.time_step ? 0. : run.time_step);
+          return std::log(previous.*member / run.*member)
+                 / std::log(size_prev / size);
         };
         if (run.failed)
           {

@@ -81,8 +81,8 @@ namespace ViscoContact
           row.clear();
           for (int k = 0; k < n_entries; ++k)
             {
-              const SuiteSparse_long global_column =
-                matrix.ColMap().GID64(indices[k]);
+              const SuiteSparse_long global_column
+                = matrix.ColMap().GID64(indices[k]);
               if (keep(global_row, global_column))
                 row.emplace_back(global_column, values[k]);
             }
@@ -160,11 +160,11 @@ namespace ViscoContact
     std::size_t              n      = 0; // locally owned rows
     std::string              what;
 
-    mutable cholmod_common   cholmod;
-    cholmod_factor          *cholmod_factor_     = nullptr;
-    mutable cholmod_dense   *cholmod_solution    = nullptr;
-    mutable cholmod_dense   *cholmod_workspace_y = nullptr;
-    mutable cholmod_dense   *cholmod_workspace_e = nullptr;
+    mutable cholmod_common cholmod;
+    cholmod_factor        *cholmod_factor_     = nullptr;
+    mutable cholmod_dense *cholmod_solution    = nullptr;
+    mutable cholmod_dense *cholmod_workspace_y = nullptr;
+    mutable cholmod_dense *cholmod_workspace_e = nullptr;
 
     CompressedRows umfpack_rows;
     void          *umfpack_numeric = nullptr;
@@ -181,8 +181,8 @@ namespace ViscoContact
   void
   SparseDirectSolver::Implementation::factorize_cholmod(const MatrixType &A)
   {
-    CompressedRows rows =
-      compressed_rows(A, [](const auto i, const auto j) { return j >= i; });
+    CompressedRows rows
+      = compressed_rows(A, [](const auto i, const auto j) { return j >= i; });
     cholmod_sparse matrix;
     matrix.nrow   = n;
     matrix.ncol   = n;
@@ -201,28 +201,28 @@ namespace ViscoContact
 
     cholmod_factor_ = cholmod_l_analyze(&matrix, &cholmod);
     AssertThrow(cholmod_factor_ != nullptr,
-                ExcMessage("CHOLMOD's analysis of the operator failed: " +
-                           cholmod_status_message(cholmod.status)));
+                ExcMessage("CHOLMOD's analysis of the operator failed: "
+                           + cholmod_status_message(cholmod.status)));
     const int ok = cholmod_l_factorize(&matrix, cholmod_factor_, &cholmod);
-    if (cholmod.status == CHOLMOD_NOT_POSDEF ||
-        cholmod_factor_->minor < cholmod_factor_->n)
+    if (cholmod.status == CHOLMOD_NOT_POSDEF
+        || cholmod_factor_->minor < cholmod_factor_->n)
       {
         const std::size_t step = cholmod_factor_->minor;
         clear();
         AssertThrow(false,
-                    ExcMessage("CHOLMOD: the operator is not positive "
-                               "definite (non-positive pivot in elimination "
-                               "step " +
-                               std::to_string(step) + " of " +
-                               std::to_string(n) +
-                               "); is Gamma_1 (Clamped boundary ids) empty?"));
+                    ExcMessage(
+                      "CHOLMOD: the operator is not positive "
+                      "definite (non-positive pivot in elimination "
+                      "step "
+                      + std::to_string(step) + " of " + std::to_string(n)
+                      + "); is Gamma_1 (Clamped boundary ids) empty?"));
       }
     AssertThrow(ok && cholmod.status >= CHOLMOD_OK,
-                ExcMessage("CHOLMOD's factorisation failed: " +
-                           cholmod_status_message(cholmod.status)));
-    what = "CHOLMOD supernodal Cholesky, " +
-           std::to_string(static_cast<std::size_t>(cholmod.lnz)) +
-           " nonzeros in the factor";
+                ExcMessage("CHOLMOD's factorisation failed: "
+                           + cholmod_status_message(cholmod.status)));
+    what = "CHOLMOD supernodal Cholesky, "
+           + std::to_string(static_cast<std::size_t>(cholmod.lnz))
+           + " nonzeros in the factor";
   }
 
 
@@ -232,11 +232,11 @@ namespace ViscoContact
   void
   SparseDirectSolver::Implementation::factorize_umfpack(const MatrixType &A)
   {
-    umfpack_rows =
-      compressed_rows(A, [](const auto, const auto) { return true; });
-    const SuiteSparse_long size = n;
+    umfpack_rows
+      = compressed_rows(A, [](const auto, const auto) { return true; });
+    const SuiteSparse_long size     = n;
     void                  *symbolic = nullptr;
-    int status = umfpack_dl_symbolic(size,
+    int                    status   = umfpack_dl_symbolic(size,
                                      size,
                                      umfpack_rows.row_start.data(),
                                      umfpack_rows.column.data(),
@@ -245,8 +245,8 @@ namespace ViscoContact
                                      nullptr,
                                      nullptr);
     AssertThrow(status == UMFPACK_OK,
-                ExcMessage("UMFPACK's analysis of the operator failed (status " +
-                           std::to_string(status) + ")."));
+                ExcMessage("UMFPACK's analysis of the operator failed (status "
+                           + std::to_string(status) + ")."));
     status = umfpack_dl_numeric(umfpack_rows.row_start.data(),
                                 umfpack_rows.column.data(),
                                 umfpack_rows.value.data(),
@@ -257,12 +257,12 @@ namespace ViscoContact
     umfpack_dl_free_symbolic(&symbolic);
     AssertThrow(status == UMFPACK_OK,
                 ExcMessage("UMFPACK's factorisation of the operator failed "
-                           "(status " +
-                           std::to_string(status) +
-                           (status == UMFPACK_WARNING_singular_matrix ?
-                              ", the operator is singular" :
-                              "") +
-                           ")."));
+                           "(status "
+                           + std::to_string(status)
+                           + (status == UMFPACK_WARNING_singular_matrix
+                                ? ", the operator is singular"
+                                : "")
+                           + ")."));
     what = "UMFPACK LU";
   }
 
@@ -292,11 +292,11 @@ namespace ViscoContact
       error = amesos_solver->NumericFactorization();
     AssertThrow(error == 0,
                 ExcMessage("MUMPS' factorisation of the operator failed "
-                           "(Amesos error " +
-                           std::to_string(error) + ")."));
-    what = std::string("MUMPS ") + (symmetric ? "LDL^T" : "LU") + " on " +
-           std::to_string(Utilities::MPI::n_mpi_processes(communicator)) +
-           " rank(s)";
+                           "(Amesos error "
+                           + std::to_string(error) + ")."));
+    what = std::string("MUMPS ") + (symmetric ? "LDL^T" : "LU") + " on "
+           + std::to_string(Utilities::MPI::n_mpi_processes(communicator))
+           + " rank(s)";
   }
 
 
@@ -312,15 +312,15 @@ namespace ViscoContact
         case Parameters::DirectSolver::cholmod:
           {
             cholmod_dense rhs;
-            rhs.nrow  = n;
-            rhs.ncol  = n_columns;
-            rhs.nzmax = n * n_columns;
-            rhs.d     = n;
-            rhs.x     = values;
-            rhs.z     = nullptr;
-            rhs.xtype = CHOLMOD_REAL;
-            rhs.dtype = CHOLMOD_DOUBLE;
-            const int ok  = cholmod_l_solve2(CHOLMOD_A,
+            rhs.nrow     = n;
+            rhs.ncol     = n_columns;
+            rhs.nzmax    = n * n_columns;
+            rhs.d        = n;
+            rhs.x        = values;
+            rhs.z        = nullptr;
+            rhs.xtype    = CHOLMOD_REAL;
+            rhs.dtype    = CHOLMOD_DOUBLE;
+            const int ok = cholmod_l_solve2(CHOLMOD_A,
                                             cholmod_factor_,
                                             &rhs,
                                             nullptr,
@@ -330,8 +330,8 @@ namespace ViscoContact
                                             &cholmod_workspace_e,
                                             &cholmod);
             AssertThrow(ok && cholmod_solution != nullptr,
-                        ExcMessage("CHOLMOD's solve failed: " +
-                                   cholmod_status_message(cholmod.status)));
+                        ExcMessage("CHOLMOD's solve failed: "
+                                   + cholmod_status_message(cholmod.status)));
             const double *x = static_cast<const double *>(cholmod_solution->x);
             for (std::size_t j = 0; j < n_columns; ++j)
               std::copy_n(x + j * cholmod_solution->d, n, values + j * n);
@@ -343,19 +343,19 @@ namespace ViscoContact
             for (std::size_t j = 0; j < n_columns; ++j)
               {
                 std::copy_n(values + j * n, n, rhs.begin());
-                const int status =
-                  umfpack_dl_solve(UMFPACK_At,
-                                   umfpack_rows.row_start.data(),
-                                   umfpack_rows.column.data(),
-                                   umfpack_rows.value.data(),
-                                   values + j * n,
-                                   rhs.data(),
-                                   umfpack_numeric,
-                                   nullptr,
-                                   nullptr);
+                const int status
+                  = umfpack_dl_solve(UMFPACK_At,
+                                     umfpack_rows.row_start.data(),
+                                     umfpack_rows.column.data(),
+                                     umfpack_rows.value.data(),
+                                     values + j * n,
+                                     rhs.data(),
+                                     umfpack_numeric,
+                                     nullptr,
+                                     nullptr);
                 AssertThrow(status == UMFPACK_OK,
-                            ExcMessage("UMFPACK's solve failed (status " +
-                                       std::to_string(status) + ")."));
+                            ExcMessage("UMFPACK's solve failed (status "
+                                       + std::to_string(status) + ")."));
               }
             break;
           }
@@ -370,8 +370,8 @@ namespace ViscoContact
             amesos_problem->SetLHS(nullptr);
             amesos_problem->SetRHS(nullptr);
             AssertThrow(error == 0,
-                        ExcMessage("MUMPS' solve failed (Amesos error " +
-                                   std::to_string(error) + ")."));
+                        ExcMessage("MUMPS' solve failed (Amesos error "
+                                   + std::to_string(error) + ")."));
             break;
           }
         default:
@@ -440,8 +440,7 @@ namespace ViscoContact
   SparseDirectSolver::solve(std::vector<double> &columns,
                             const unsigned int   n_columns) const
   {
-    AssertDimension(columns.size(),
-                    std::size_t(implementation->n) * n_columns);
+    AssertDimension(columns.size(), std::size_t(implementation->n) * n_columns);
     implementation->solve(columns.data(), n_columns);
   }
 

@@ -56,10 +56,21 @@ namespace ViscoContact
 
     std::string
     description() const override;
+    // Set-up: the AMG hierarchy (or the factorisation) of A.
     void
     set_operator(const MatrixType      &A,
                  const bool             symmetric,
                  const ContactSet<dim> &contact) override;
+    // A Krylov solve with A alone, and N A^{-1} N^T x through one.
+    LinearSolveReport
+    solve_without_contact(const VectorType &b, VectorType &u) override;
+    void
+    apply_compliance(const ContactSet<dim> &contact,
+                     const Vector<double>  &x,
+                     Vector<double>        &y) override;
+    // Per step problem: keep b; per active-set iteration: a Krylov solve
+    // on the projected operator, which leaves u final, so finish() has
+    // nothing to do.
     void
     set_right_hand_side(const VectorType      &b,
                         const ContactSet<dim> &contact) override;
@@ -67,12 +78,6 @@ namespace ViscoContact
     solve_for_pieces(ContactSet<dim> &contact, VectorType &u) override;
     void
     finish(const ContactSet<dim> &contact, VectorType &u) override;
-    LinearSolveReport
-    solve_without_contact(const VectorType &b, VectorType &u) override;
-    void
-    apply_compliance(const ContactSet<dim> &contact,
-                     const Vector<double>  &x,
-                     Vector<double>        &y) override;
 
   private:
     using Apply = std::function<void(VectorType &, const VectorType &)>;
@@ -96,9 +101,9 @@ namespace ViscoContact
     const Mapping<dim>              &mapping;
     const DoFHandler<dim>           &dof_handler;
 
-    const MatrixType                 *A         = nullptr;
-    bool                              symmetric = true;
-    TrilinosWrappers::PreconditionAMG amg;
+    const MatrixType                   *A         = nullptr;
+    bool                                symmetric = true;
+    TrilinosWrappers::PreconditionAMG   amg;
     std::unique_ptr<Epetra_MultiVector> rigid_body_modes;
     std::optional<SparseDirectSolver>   factorization;
     VectorType                          b;
@@ -120,13 +125,13 @@ namespace ViscoContact
     , b(layout)
   {
     if (preconditioner_type == Parameters::Preconditioner::direct)
-      factorization.emplace(parameters.direct_solver ==
-                                Parameters::DirectSolver::automatic ?
-                              (Utilities::MPI::n_mpi_processes(communicator) == 1 ?
-                                 Parameters::DirectSolver::cholmod :
-                                 Parameters::DirectSolver::mumps) :
-                              parameters.direct_solver,
-                            communicator);
+      factorization.emplace(
+        parameters.direct_solver == Parameters::DirectSolver::automatic
+          ? (Utilities::MPI::n_mpi_processes(communicator) == 1
+               ? Parameters::DirectSolver::cholmod
+               : Parameters::DirectSolver::mumps)
+          : parameters.direct_solver,
+        communicator);
   }
 
 
@@ -135,10 +140,10 @@ namespace ViscoContact
   std::string
   FullSpaceContactSolver<dim>::description() const
   {
-    return std::string("full space: ") + (symmetric ? "CG" : "GMRES") +
-           " on the projected operator, preconditioned by " +
-           (factorization ? factorization->description() :
-                            "ML AMG with the rigid-body modes");
+    return std::string("full space: CG (GMRES for the implicit update's "
+                       "tangent) on the projected operator, preconditioned by ")
+           + (factorization ? factorization->description()
+                            : "ML AMG with the rigid-body modes");
   }
 
 
@@ -159,15 +164,19 @@ namespace ViscoContact
     if (!rigid_body_modes)
       {
         std::map<types::global_dof_index, Point<dim>> support_points;
-        DoFTools::map_dofs_to_support_points(mapping, dof_handler, support_points);
+        DoFTools::map_dofs_to_support_points(mapping,
+                                             dof_handler,
+                                             support_points);
         std::vector<IndexSet> component_dofs(dim);
         for (unsigned int c = 0; c < dim; ++c)
-          component_dofs[c] = DoFTools::extract_dofs(
-            dof_handler,
-            dof_handler.get_fe().component_mask(FEValuesExtractors::Scalar(c)));
+          component_dofs[c]
+            = DoFTools::extract_dofs(dof_handler,
+                                     dof_handler.get_fe().component_mask(
+                                       FEValuesExtractors::Scalar(c)));
         const unsigned int n_modes = (dim == 2 ? 3 : 6);
         const Epetra_Map  &row_map = matrix.trilinos_matrix().RowMap();
-        rigid_body_modes = std::make_unique<Epetra_MultiVector>(row_map, n_modes);
+        rigid_body_modes
+          = std::make_unique<Epetra_MultiVector>(row_map, n_modes);
         for (int local = 0; local < row_map.NumMyElements(); ++local)
           {
             const types::global_dof_index dof = row_map.GID64(local);
@@ -184,8 +193,8 @@ namespace ViscoContact
                 // Rotations about the axes: e_d x x, component c.
                 const unsigned int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
                 for (unsigned int d = 0; d < 3; ++d)
-                  (*rigid_body_modes)[3 + d][local] =
-                    (d == c2 ? x[c1] : (d == c1 ? -x[c2] : 0.));
+                  (*rigid_body_modes)[3 + d][local]
+                    = (d == c2 ? x[c1] : (d == c1 ? -x[c2] : 0.));
               }
           }
       }
@@ -265,16 +274,21 @@ namespace ViscoContact
       }
     };
 
-    SolverControl     control(10000, tolerance * std::max(reference_norm, 1e-300));
+    SolverControl control(10000, tolerance * std::max(reference_norm, 1e-300));
     LinearSolveReport report;
     try
       {
         if (symmetric)
-          SolverCG<VectorType>(control).solve(Operator{op}, y, rhs, Operator{prec});
+          SolverCG<VectorType>(control).solve(Operator{op},
+                                              y,
+                                              rhs,
+                                              Operator{prec});
         else
-          SolverGMRES<VectorType>(control,
-                                  typename SolverGMRES<VectorType>::AdditionalData(
-                                    50, /*right_preconditioning=*/true))
+          SolverGMRES<VectorType>(
+            control,
+            typename SolverGMRES<VectorType>::AdditionalData(
+              50,
+              /*right_preconditioning=*/true))
             .solve(Operator{op}, y, rhs, Operator{prec});
       }
     catch (const SolverControl::NoConvergence &failure)
@@ -324,7 +338,9 @@ namespace ViscoContact
           contact.add_normal(u0, i, piece.r_lower);
         else
           {
-            contact.add_normal(step_rhs, i, -contact.weight(i) * piece.intercept);
+            contact.add_normal(step_rhs,
+                               i,
+                               -contact.weight(i) * piece.intercept);
             normal_stiffness[i] = contact.weight(i) * piece.slope;
           }
       }
@@ -354,7 +370,8 @@ namespace ViscoContact
         if (normal_stiffness[i] != 0)
           contact.add_normal(dst,
                              i,
-                             normal_stiffness[i] * contact.normal_component(src, i));
+                             normal_stiffness[i]
+                               * contact.normal_component(src, i));
     };
     const Apply preconditioner = [&](VectorType &dst, const VectorType &src) {
       apply_preconditioner(dst, src);
@@ -378,10 +395,10 @@ namespace ViscoContact
       {
         const ContactLawPiece &piece = contact.law().piece(contact.piece(i));
         contact.r[i]                 = contact.normal_component(u, i);
-        contact.z[i] =
-          (piece.vertical ?
-             contact.normal_component(residual, i) :
-             contact.weight(i) * (piece.intercept + piece.slope * contact.r[i]));
+        contact.z[i]                 = (piece.vertical
+                                          ? contact.normal_component(residual, i)
+                                          : contact.weight(i)
+                              * (piece.intercept + piece.slope * contact.r[i]));
       }
     return report;
   }
@@ -400,9 +417,8 @@ namespace ViscoContact
   FullSpaceContactSolver<dim>::solve_without_contact(const VectorType &rhs,
                                                      VectorType       &u)
   {
-    const Apply op = [&](VectorType &dst, const VectorType &src) {
-      A->vmult(dst, src);
-    };
+    const Apply op
+      = [&](VectorType &dst, const VectorType &src) { A->vmult(dst, src); };
     const Apply prec = [&](VectorType &dst, const VectorType &src) {
       apply_preconditioner(dst, src);
     };

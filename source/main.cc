@@ -16,17 +16,18 @@ namespace
   void
   print_usage(std::ostream &out)
   {
-    out << "Usage: viscoplastic_contact FILE.prm\n"
-        << "       viscoplastic_contact --print-parameters [FILE.prm]\n"
-        << "       viscoplastic_contact --help\n\n"
-        << "Solves the quasistatic contact problem of a viscoplastic body with "
-           "a\nnonmonotone normal compliance law for the scene FILE.prm "
-           "describes, on\none MPI rank or many (mpirun -np N ...). The model "
-           "and the scheme are\ndescribed in doc/model.md, the program in "
-           "doc/algorithm.md.\n--print-parameters writes a complete, documented "
-           "parameter file with the\ndefault values (the reference benchmark) "
-           "to standard output or to FILE.prm.\nThe default scene is "
-           "parameters/default.prm.\n";
+    out
+      << "Usage: viscoplastic_contact FILE.prm\n"
+      << "       viscoplastic_contact --print-parameters [FILE.prm]\n"
+      << "       viscoplastic_contact --help\n\n"
+      << "Solves the quasistatic contact problem of a viscoplastic body with "
+         "a\nnonmonotone normal compliance law for the scene FILE.prm "
+         "describes, on\none MPI rank or many (mpirun -np N ...). The model "
+         "and the scheme are\ndescribed in doc/model.md, the program in "
+         "doc/algorithm.md.\n--print-parameters writes a complete, documented "
+         "parameter file with the\ndefault values (the reference benchmark) "
+         "to standard output or to FILE.prm.\nThe default scene is "
+         "parameters/default.prm.\n";
   }
 } // namespace
 

@@ -70,7 +70,7 @@ namespace ViscoContact
     // orientation is positive.
     template <int dim>
     CellData<dim>
-    positive_simplex(const std::vector<Point<dim>> &points,
+    positive_simplex(const std::vector<Point<dim>>    &points,
                      std::array<unsigned int, dim + 1> vertices)
     {
       Tensor<2, dim> J;
@@ -95,8 +95,8 @@ namespace ViscoContact
                      const unsigned int               n,
                      const Parameters::SimplexPattern pattern)
   {
-    using Pattern = Parameters::SimplexPattern;
-    const double         hx = lengths[0] / n, hy = lengths[1] / n;
+    using Pattern            = Parameters::SimplexPattern;
+    const double          hx = lengths[0] / n, hy = lengths[1] / n;
     std::vector<Point<2>> points;
     for (unsigned int j = 0; j <= n; ++j)
       for (unsigned int i = 0; i <= n; ++i)
@@ -111,9 +111,9 @@ namespace ViscoContact
         {
           const unsigned int a = vertex(i, j), b = vertex(i + 1, j),
                              c = vertex(i, j + 1), d = vertex(i + 1, j + 1);
-          const bool slash =
-            pattern == Pattern::slash ||
-            (pattern == Pattern::union_jack && (i + j) % 2 == 0);
+          const bool slash
+            = pattern == Pattern::slash
+              || (pattern == Pattern::union_jack && (i + j) % 2 == 0);
           if (pattern == Pattern::crossed)
             {
               // Both diagonals: a vertex at the centre, four triangles.
@@ -123,8 +123,8 @@ namespace ViscoContact
                                        std::array<unsigned int, 2>{{b, d}},
                                        std::array<unsigned int, 2>{{d, c}},
                                        std::array<unsigned int, 2>{{c, a}}})
-                cells.push_back(positive_simplex<2>(points,
-                                                    {{edge[0], edge[1], e}}));
+                cells.push_back(
+                  positive_simplex<2>(points, {{edge[0], edge[1], e}}));
             }
           else if (slash)
             {
@@ -193,8 +193,7 @@ namespace ViscoContact
                     tetrahedron[s + 1] = vertex(corner);
                   }
                 cells.push_back(positive_simplex<3>(points, tetrahedron));
-              }
-            while (std::next_permutation(axes.begin(), axes.end()));
+            } while (std::next_permutation(axes.begin(), axes.end()));
           }
     triangulation.create_triangulation(points, cells, SubCellData());
     set_box_boundary_ids(triangulation, lengths);
@@ -218,8 +217,8 @@ namespace ViscoContact
   create_coarse_mesh(const Parameters::AllParameters &parameters,
                      Triangulation<dim>              &triangulation)
   {
-    const bool simplex =
-      (parameters.cell_type == Parameters::CellType::simplex);
+    const bool simplex
+      = (parameters.cell_type == Parameters::CellType::simplex);
     if (!parameters.mesh_file.empty())
       {
         const std::string &file = parameters.mesh_file;
@@ -316,12 +315,13 @@ namespace ViscoContact
         Triangulation<dim> serial_mesh;
         create_coarse_mesh(parameters, serial_mesh);
         refine_mesh(parameters, serial_mesh);
-        GridTools::partition_triangulation(
-          Utilities::MPI::n_mpi_processes(communicator), serial_mesh);
+        GridTools::partition_triangulation(Utilities::MPI::n_mpi_processes(
+                                             communicator),
+                                           serial_mesh);
         const auto description = TriangulationDescription::Utilities::
           create_description_from_triangulation(serial_mesh, communicator);
-        auto distributed_mesh =
-          std::make_unique<parallel::fullydistributed::Triangulation<dim>>(
+        auto distributed_mesh
+          = std::make_unique<parallel::fullydistributed::Triangulation<dim>>(
             communicator);
         distributed_mesh->create_triangulation(description);
         mesh = std::move(distributed_mesh);
@@ -338,8 +338,8 @@ namespace ViscoContact
             }
         Triangulation<dim> coarse_mesh;
         create_coarse_mesh(coarse_parameters, coarse_mesh);
-        auto distributed_mesh =
-          std::make_unique<parallel::distributed::Triangulation<dim>>(
+        auto distributed_mesh
+          = std::make_unique<parallel::distributed::Triangulation<dim>>(
             communicator);
         distributed_mesh->copy_triangulation(coarse_mesh);
         if (box_refinements > 0)

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <algorithm>
 #include <filesystem>
 
 namespace ViscoContact
@@ -26,61 +27,65 @@ namespace ViscoContact
 
 
 
-    // @sect4{write_text_collectively}
+    // @sect4{write_blocks_collectively}
     //
     // Offsets from an exclusive prefix sum of the block sizes; every rank
-    // writes its block at its offset (one collective call), then rank 0
-    // renames the complete file. Errors are agreed on by all ranks before
-    // anything is thrown, so no rank waits for another that gave up.
+    // writes its block at its offset (collectively), then rank 0 renames
+    // the complete file. Errors are agreed on by all ranks before anything
+    // is thrown, so no rank waits for another that gave up.
     void
-    write_text_collectively(const std::string &file,
-                            const std::string &local_text,
-                            const MPI_Comm     communicator)
+    write_blocks_collectively(const std::string &file,
+                              const std::string &prefix,
+                              const char        *local_block,
+                              const std::size_t  local_size,
+                              const MPI_Comm     communicator)
     {
+      const bool root = (Utilities::MPI::this_mpi_process(communicator) == 0);
       const std::string temporary = file + ".tmp";
-      std::uint64_t     size      = local_text.size(), offset = 0;
-      int error = MPI_Exscan(
-        &size, &offset, 1, MPI_UINT64_T, MPI_SUM, communicator);
+      std::uint64_t     size      = local_size + (root ? prefix.size() : 0);
+      std::uint64_t     offset    = 0;
+      int               error
+        = MPI_Exscan(&size, &offset, 1, MPI_UINT64_T, MPI_SUM, communicator);
       AssertThrowMPI(error);
-      if (Utilities::MPI::this_mpi_process(communicator) == 0)
-        offset = 0;
+      if (root)
+        offset = prefix.size();
 
-      std::string problem;
-      MPI_File    handle;
+      MPI_File handle;
       error = MPI_File_open(communicator,
                             temporary.c_str(),
                             MPI_MODE_CREATE | MPI_MODE_WRONLY,
                             MPI_INFO_NULL,
                             &handle);
-      if (error == MPI_SUCCESS)
+      if (Utilities::MPI::max(error, communicator) == MPI_SUCCESS)
         {
           error = MPI_File_set_size(handle, 0);
+          if (error == MPI_SUCCESS && root && !prefix.empty())
+            error = MPI_File_write_at(handle,
+                                      0,
+                                      prefix.data(),
+                                      prefix.size(),
+                                      MPI_CHAR,
+                                      MPI_STATUS_IGNORE);
+          error = Utilities::MPI::max(error, communicator);
           if (error == MPI_SUCCESS)
-            error = MPI_File_write_at_all(handle,
-                                          offset,
-                                          local_text.data(),
-                                          local_text.size(),
-                                          MPI_CHAR,
-                                          MPI_STATUS_IGNORE);
+            error = transfer_in_pieces(
+              local_size,
+              communicator,
+              [&](const std::size_t start, const int n) {
+                return MPI_File_write_at_all(handle,
+                                             offset + start,
+                                             local_block + start,
+                                             n,
+                                             MPI_CHAR,
+                                             MPI_STATUS_IGNORE);
+              });
           const int close_error = MPI_File_close(&handle);
           if (error == MPI_SUCCESS)
             error = close_error;
         }
-      if (error != MPI_SUCCESS)
-        problem = error_string(error);
-      // Every rank learns the first problem any rank had.
-      const bool failed =
-        Utilities::MPI::max(problem.empty() ? 0 : 1, communicator) > 0;
-      if (failed)
-        {
-          const unsigned int failing_rank = Utilities::MPI::min(
-            problem.empty() ? Utilities::MPI::n_mpi_processes(communicator) :
-                              Utilities::MPI::this_mpi_process(communicator),
-            communicator);
-          problem =
-            Utilities::MPI::broadcast(communicator, problem, failing_rank);
-        }
-      else if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      error               = Utilities::MPI::max(error, communicator);
+      std::string problem = (error == MPI_SUCCESS ? "" : error_string(error));
+      if (problem.empty() && root)
         {
           std::error_code rename_error;
           std::filesystem::rename(temporary, file, rename_error);
@@ -89,8 +94,44 @@ namespace ViscoContact
         }
       problem = Utilities::MPI::broadcast(communicator, problem, 0);
       AssertThrow(problem.empty(),
-                  ExcMessage("Writing the file " + file +
-                             " failed: " + problem + "."));
+                  ExcMessage("Writing the file " + file + " failed: " + problem
+                             + "."));
+    }
+
+
+
+    void
+    write_text_collectively(const std::string &file,
+                            const std::string &local_text,
+                            const MPI_Comm     communicator)
+    {
+      write_blocks_collectively(file,
+                                "",
+                                local_text.data(),
+                                local_text.size(),
+                                communicator);
+    }
+
+
+
+    int
+    transfer_in_pieces(
+      const std::size_t                                       local_size,
+      const MPI_Comm                                          communicator,
+      const std::function<int(const std::size_t, const int)> &io)
+    {
+      const std::size_t piece = std::size_t(1) << 30;
+      const std::size_t most  = Utilities::MPI::max(local_size, communicator);
+      int               error = MPI_SUCCESS;
+      for (std::size_t start = 0; start < most && error == MPI_SUCCESS;
+           start += piece)
+        {
+          const std::size_t begin = std::min(start, local_size);
+          error
+            = io(begin, static_cast<int>(std::min(piece, local_size - begin)));
+          error = Utilities::MPI::max(error, communicator);
+        }
+      return error;
     }
 
 
@@ -120,8 +161,8 @@ namespace ViscoContact
         const std::uint64_t key_size = key.size();
         const std::uint64_t n_values = payload ? payload->size() : 0;
         const std::size_t   start    = buffer.size();
-        buffer.resize(start + 2 * sizeof(std::uint64_t) + key_size +
-                      n_values * sizeof(double));
+        buffer.resize(start + 2 * sizeof(std::uint64_t) + key_size
+                      + n_values * sizeof(double));
         char *out = buffer.data() + start;
         std::memcpy(out, &key_size, sizeof(key_size));
         out += sizeof(key_size);
@@ -170,7 +211,8 @@ namespace ViscoContact
                      const std::vector<std::string> &requests,
                      const MPI_Comm                  communicator)
     {
-      const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
+      const unsigned int n_ranks
+        = Utilities::MPI::n_mpi_processes(communicator);
 
       std::map<unsigned int, std::vector<char>> outgoing;
       for (const Record &record : records)
@@ -181,7 +223,8 @@ namespace ViscoContact
       for (const auto &[rank, buffer] :
            Utilities::MPI::some_to_some(communicator, outgoing))
         for_each_entry(buffer,
-                       [&](const std::string &key, std::vector<double> &payload) {
+                       [&](const std::string   &key,
+                           std::vector<double> &payload) {
                          held[key].push_back(std::move(payload));
                        });
 
@@ -193,19 +236,22 @@ namespace ViscoContact
            Utilities::MPI::some_to_some(communicator, outgoing))
         {
           std::vector<char> &answer = answers[rank];
-          for_each_entry(buffer, [&](const std::string &key, std::vector<double> &) {
-            const auto entry = held.find(key);
-            if (entry != held.end())
-              for (const std::vector<double> &payload : entry->second)
-                append(answer, key, &payload);
-          });
+          for_each_entry(buffer,
+                         [&](const std::string &key, std::vector<double> &) {
+                           const auto entry = held.find(key);
+                           if (entry != held.end())
+                             for (const std::vector<double> &payload :
+                                  entry->second)
+                               append(answer, key, &payload);
+                         });
         }
 
       std::map<std::string, std::vector<std::vector<double>>> result;
       for (const auto &[rank, buffer] :
            Utilities::MPI::some_to_some(communicator, answers))
         for_each_entry(buffer,
-                       [&](const std::string &key, std::vector<double> &payload) {
+                       [&](const std::string   &key,
+                           std::vector<double> &payload) {
                          result[key].push_back(std::move(payload));
                        });
       return result;

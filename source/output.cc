@@ -45,8 +45,8 @@ namespace ViscoContact
             prm_copy << parameters.parsed_parameters;
             // A resumed run continues the series of the run it resumes.
             time_series.open(directory / "time_series.csv",
-                             parameters.resume ? std::ios::app :
-                                                 std::ios::trunc);
+                             parameters.resume ? std::ios::app
+                                               : std::ios::trunc);
             if (!prm_copy || !time_series)
               problem = "it is not writable";
             if (!parameters.resume)
@@ -60,8 +60,8 @@ namespace ViscoContact
     problem = Utilities::MPI::broadcast(mpi_communicator, problem, 0);
     AssertThrow(problem.empty(),
                 ExcMessage("Invalid parameter <Output directory> in subsection "
-                           "<Output>: value <" +
-                           parameters.directory + ">; " + problem + "."));
+                           "<Output>: value <"
+                           + parameters.directory + ">; " + problem + "."));
   }
 
 
@@ -70,8 +70,8 @@ namespace ViscoContact
   // written by rank 0.
   template <int dim>
   void
-  ViscoplasticContact<dim>::write_time_series_row(const unsigned int step,
-                                                  const double       time,
+  ViscoplasticContact<dim>::write_time_series_row(const unsigned int     step,
+                                                  const double           time,
                                                   const ActiveSetResult &result,
                                                   const double wall_time)
   {
@@ -95,7 +95,7 @@ namespace ViscoContact
   template <int dim>
   void
   ViscoplasticContact<dim>::write_contact_profile(const unsigned int step,
-                                                  const double time) const
+                                                  const double       time) const
   {
     std::ostringstream name;
     name << "contact_profile_" << std::setw(4) << std::setfill('0') << step
@@ -128,14 +128,14 @@ namespace ViscoContact
                                            const double       time,
                                            const std::string &stem)
   {
-    TimerOutput::Scope t(computing_timer, "Output");
-    const unsigned int n_components = dim * (dim + 1) / 2;
-    const unsigned int n_q          = stress_quadrature.size();
-    const unsigned int n_cells      = triangulation->n_active_cells();
-    std::vector<Vector<float>> stress(n_components, Vector<float>(n_cells));
-    std::vector<Vector<float>> viscoplastic(n_components,
+    TimerOutput::Scope             t(computing_timer, "Output");
+    const unsigned int             n_components = dim * (dim + 1) / 2;
+    const unsigned int             n_q          = stress_quadrature.size();
+    const unsigned int             n_cells = triangulation->n_active_cells();
+    std::vector<Vector<float>>     stress(n_components, Vector<float>(n_cells));
+    std::vector<Vector<float>>     viscoplastic(n_components,
                                             Vector<float>(n_cells));
-    Vector<float>              von_mises(n_cells), subdomain(n_cells);
+    Vector<float>                  von_mises(n_cells), subdomain(n_cells);
     const SymmetricTensor<4, dim> &E = material.elasticity_tensor();
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
       {
@@ -143,10 +143,11 @@ namespace ViscoContact
         subdomain[c]         = owned_cells[k]->subdomain_id();
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            const SymmetricTensor<2, dim> &sigma =
-              quadrature_point_history[std::size_t(k) * n_q + q].stress;
-            const SymmetricTensor<2, dim> vp =
-              sigma - E * symmetrize(displacement_gradient_at(solution, k, q));
+            const SymmetricTensor<2, dim> &sigma
+              = quadrature_point_history[std::size_t(k) * n_q + q].stress;
+            const SymmetricTensor<2, dim> vp
+              = sigma
+                - E * symmetrize(displacement_gradient_at(solution, k, q));
             for (unsigned int i = 0; i < n_components; ++i)
               {
                 const auto index = sigma.unrolled_to_component_indices(i);
@@ -158,7 +159,8 @@ namespace ViscoContact
       }
 
     IndexSet scalar_relevant;
-    DoFTools::extract_locally_relevant_dofs(scalar_dof_handler, scalar_relevant);
+    DoFTools::extract_locally_relevant_dofs(scalar_dof_handler,
+                                            scalar_relevant);
     std::vector<VectorType> contact_fields(
       4,
       VectorType(scalar_dof_handler.locally_owned_dofs(),
@@ -179,12 +181,13 @@ namespace ViscoContact
       solution,
       std::vector<std::string>(dim, "displacement"),
       std::vector<DataComponentInterpretation::DataComponentInterpretation>(
-        dim, DataComponentInterpretation::component_is_part_of_vector));
+        dim,
+        DataComponentInterpretation::component_is_part_of_vector));
     const char *axes = "xyz";
     for (unsigned int i = 0; i < n_components; ++i)
       {
-        const auto index =
-          SymmetricTensor<2, dim>::unrolled_to_component_indices(i);
+        const auto index
+          = SymmetricTensor<2, dim>::unrolled_to_component_indices(i);
         const std::string suffix = {axes[index[0]], axes[index[1]]};
         data_out.add_data_vector(stress[i],
                                  "stress_" + suffix,
@@ -219,12 +222,12 @@ namespace ViscoContact
       mpi_communicator,
       4,
       std::min(8u, Utilities::MPI::n_mpi_processes(mpi_communicator)));
-    if (stem != "solution" ||
-        Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+    if (stem != "solution"
+        || Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
     times_and_names.emplace_back(time, record);
-    std::ofstream pvd(std::filesystem::path(parameters.directory) /
-                      "solution.pvd");
+    std::ofstream pvd(std::filesystem::path(parameters.directory)
+                      / "solution.pvd");
     DataOutBase::write_pvd_record(pvd, times_and_names);
   }
 
@@ -248,10 +251,10 @@ namespace ViscoContact
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
       for (unsigned int q = 0; q < n_q; ++q)
         {
-          const SymmetricTensor<2, dim> strain =
-            symmetrize(displacement_gradient_at(solution, k, q));
-          const SymmetricTensor<2, dim> &sigma =
-            quadrature_point_history[std::size_t(k) * n_q + q].stress;
+          const SymmetricTensor<2, dim> strain
+            = symmetrize(displacement_gradient_at(solution, k, q));
+          const SymmetricTensor<2, dim> &sigma
+            = quadrature_point_history[std::size_t(k) * n_q + q].stress;
           const double JxW = stress_point_JxW[std::size_t(k) * n_q + q];
           strain_norm += (strain * strain) * JxW;
           stress_norm += (sigma * sigma) * JxW;
@@ -297,31 +300,31 @@ namespace ViscoContact
     Timer              timer;
     unsigned int       krylov_iterations = 0;
     for (unsigned int r = 0; r < repetitions; ++r)
-      krylov_iterations +=
-        contact_solver->solve_without_contact(external_load, reference)
-          .inner_iterations;
-    const double solve_time = Utilities::MPI::max(timer.wall_time() / repetitions,
-                                                  mpi_communicator);
+      krylov_iterations
+        += contact_solver->solve_without_contact(external_load, reference)
+             .inner_iterations;
+    const double solve_time
+      = Utilities::MPI::max(timer.wall_time() / repetitions, mpi_communicator);
     timer.restart();
     for (unsigned int r = 0; r < repetitions; ++r)
       update_stresses(parameters.time_step, parameters.time_step);
-    const double update_time = Utilities::MPI::max(timer.wall_time() / repetitions,
-                                                   mpi_communicator);
-    const double step_time =
-      Utilities::MPI::max(time_loop_compute_time, mpi_communicator) /
-      std::max(1u, n_steps_done);
+    const double update_time
+      = Utilities::MPI::max(timer.wall_time() / repetitions, mpi_communicator);
+    const double step_time
+      = Utilities::MPI::max(time_loop_compute_time, mpi_communicator)
+        / std::max(1u, n_steps_done);
 
     Utilities::System::MemoryStats memory;
     Utilities::System::get_memory_stats(memory);
-    const double peak_memory =
-      Utilities::MPI::sum(double(memory.VmHWM) / 1024., mpi_communicator);
+    const double peak_memory
+      = Utilities::MPI::sum(double(memory.VmHWM) / 1024., mpi_communicator);
     pcout << std::setprecision(4)
           << "Cost measurement (wall time, maximum over the ranks):\n"
           << "  average time step (without output): " << step_time * 1e3
           << " ms\n"
           << "  one solve with the step operator, no contact: "
-          << solve_time * 1e3 << " ms ("
-          << krylov_iterations / repetitions << " Krylov iterations)\n"
+          << solve_time * 1e3 << " ms (" << krylov_iterations / repetitions
+          << " Krylov iterations)\n"
           << "  one stress update with the history load: " << update_time * 1e3
           << " ms\n"
           << "  ratio step / solve: " << step_time / solve_time << '\n'

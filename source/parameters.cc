@@ -137,26 +137,25 @@ namespace ViscoContact
                   prm.get("Lengths"),
                   "strictly positive lengths");
         subdivisions = prm.get_integer("Subdivisions");
-        cell_type    = (prm.get("Cell type") == "simplex" ? CellType::simplex :
-                                                            CellType::hypercube);
+        cell_type    = (prm.get("Cell type") == "simplex" ? CellType::simplex
+                                                          : CellType::hypercube);
         const std::string pattern = prm.get("Simplex pattern");
         simplex_pattern
-          = (pattern == "/"            ? SimplexPattern::slash :
-             pattern == "backslash"    ? SimplexPattern::backslash :
-             pattern == "union jack"   ? SimplexPattern::union_jack :
-             pattern == "crossed"      ? SimplexPattern::crossed :
-                                         SimplexPattern::five_tetrahedra);
+          = (pattern == "/"            ? SimplexPattern::slash
+             : pattern == "backslash"  ? SimplexPattern::backslash
+             : pattern == "union jack" ? SimplexPattern::union_jack
+             : pattern == "crossed"    ? SimplexPattern::crossed
+                                       : SimplexPattern::five_tetrahedra);
         if (cell_type == CellType::simplex)
-          require(dimension == 2 ?
-                    simplex_pattern != SimplexPattern::five_tetrahedra :
-                    (simplex_pattern == SimplexPattern::slash ||
-                     simplex_pattern == SimplexPattern::five_tetrahedra),
+          require(dimension == 2
+                    ? simplex_pattern != SimplexPattern::five_tetrahedra
+                    : (simplex_pattern == SimplexPattern::slash
+                       || simplex_pattern == SimplexPattern::five_tetrahedra),
                   "Geometry",
                   "Simplex pattern",
                   pattern,
-                  dimension == 2 ?
-                    "/, backslash, union jack or crossed in 2D" :
-                    "/ or five tetrahedra in 3D");
+                  dimension == 2 ? "/, backslash, union jack or crossed in 2D"
+                                 : "/ or five tetrahedra in 3D");
         mesh_file           = prm.get("Mesh file");
         global_refinements  = prm.get_integer("Global refinements");
         contact_refinements = prm.get_integer("Contact refinement levels");
@@ -410,9 +409,9 @@ namespace ViscoContact
         unilateral_constraint = prm.get_bool("Unilateral constraint");
         normal_compliance     = prm.get_bool("Normal compliance");
         gap                   = prm.get_double("Layer thickness");
-        law_type              = (prm.get("Law") == "nonmonotone" ?
-                                   ContactLawType::nonmonotone :
-                                   ContactLawType::piecewise_linear);
+        law_type              = (prm.get("Law") == "nonmonotone"
+                                   ? ContactLawType::nonmonotone
+                                   : ContactLawType::piecewise_linear);
         check_uniqueness      = prm.get_bool("Check uniqueness");
         c1                    = prm.get_double("c1");
         c2                    = prm.get_double("c2");
@@ -528,18 +527,18 @@ namespace ViscoContact
       {
         end_time      = prm.get_double("End time");
         time_step     = prm.get_double("Time step");
-        stress_update = (prm.get("Stress update") == "explicit" ?
-                           StressUpdate::explicit_euler :
-                           StressUpdate::implicit_euler);
+        stress_update = (prm.get("Stress update") == "explicit"
+                           ? StressUpdate::explicit_euler
+                           : StressUpdate::implicit_euler);
         require(end_time > 0, "Time", "End time", to_string(end_time), "T > 0");
         require(time_step > 0 && time_step <= end_time,
                 "Time",
                 "Time step",
                 to_string(time_step),
                 "0 < k <= T = " + to_string(end_time));
-        on_failure        = (prm.get("On solver failure") == "stop" ?
-                               FailurePolicy::stop :
-                               FailurePolicy::cut_time_step);
+        on_failure        = (prm.get("On solver failure") == "stop"
+                               ? FailurePolicy::stop
+                               : FailurePolicy::cut_time_step);
         minimum_time_step = prm.get_double("Minimum time step");
         require(minimum_time_step > 0 && minimum_time_step <= time_step,
                 "Time",
@@ -683,17 +682,17 @@ namespace ViscoContact
       prm.enter_subsection("Linear solver");
       {
         const std::string method_name = prm.get("Method");
-        method = (method_name == "auto"      ? Method::automatic :
-                  method_name == "condensed" ? Method::condensed :
-                                               Method::full_space);
-        preconditioner = (prm.get("Preconditioner") == "amg" ?
-                            Preconditioner::amg :
-                            Preconditioner::direct);
+        method = (method_name == "auto"        ? Method::automatic
+                  : method_name == "condensed" ? Method::condensed
+                                               : Method::full_space);
+        preconditioner
+          = (prm.get("Preconditioner") == "amg" ? Preconditioner::amg
+                                                : Preconditioner::direct);
         const std::string solver_name = prm.get("Direct solver");
-        direct_solver = (solver_name == "auto"    ? DirectSolver::automatic :
-                         solver_name == "cholmod" ? DirectSolver::cholmod :
-                         solver_name == "umfpack" ? DirectSolver::umfpack :
-                                                    DirectSolver::mumps);
+        direct_solver = (solver_name == "auto"      ? DirectSolver::automatic
+                         : solver_name == "cholmod" ? DirectSolver::cholmod
+                         : solver_name == "umfpack" ? DirectSolver::umfpack
+                                                    : DirectSolver::mumps);
       }
       prm.leave_subsection();
     }
@@ -946,14 +945,15 @@ namespace ViscoContact
     void
     AllParameters::check_run_configuration(const unsigned int n_ranks) const
     {
-      require(n_ranks == 1 || (direct_solver != DirectSolver::cholmod &&
-                               direct_solver != DirectSolver::umfpack),
+      require(n_ranks == 1
+                || (direct_solver != DirectSolver::cholmod
+                    && direct_solver != DirectSolver::umfpack),
               "Linear solver",
               "Direct solver",
               direct_solver == DirectSolver::cholmod ? "cholmod" : "umfpack",
-              "auto or mumps when the program runs on more than one MPI rank (" +
-                std::to_string(n_ranks) +
-                " here); cholmod and umfpack factorise on one rank");
+              "auto or mumps when the program runs on more than one MPI rank ("
+                + std::to_string(n_ranks)
+                + " here); cholmod and umfpack factorise on one rank");
     }
   } // namespace Parameters
 } // namespace ViscoContact

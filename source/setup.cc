@@ -63,12 +63,12 @@ namespace ViscoContact
       constraints.reinit(locally_relevant_dofs);
       DoFTools::make_hanging_node_constraints(dof_handler, constraints);
       for (const auto id : parameters.clamped_ids)
-        VectorTools::interpolate_boundary_values(
-          mapping,
-          dof_handler,
-          id,
-          Functions::ZeroFunction<dim>(dim),
-          constraints);
+        VectorTools::interpolate_boundary_values(mapping,
+                                                 dof_handler,
+                                                 id,
+                                                 Functions::ZeroFunction<dim>(
+                                                   dim),
+                                                 constraints);
       constraints.close();
 
       DynamicSparsityPattern dsp(locally_relevant_dofs);
@@ -84,8 +84,7 @@ namespace ViscoContact
                               locally_owned_dofs,
                               dsp,
                               mpi_communicator);
-      if (parameters.stress_update ==
-          Parameters::StressUpdate::implicit_euler)
+      if (parameters.stress_update == Parameters::StressUpdate::implicit_euler)
         tangent_matrix.reinit(locally_owned_dofs,
                               locally_owned_dofs,
                               dsp,
@@ -99,6 +98,7 @@ namespace ViscoContact
       for (VectorType *vector :
            {&external_load, &history_load, &system_rhs, &internal_force})
         vector->reinit(solution);
+      solution.update_ghost_values(); // u_0 = 0, readable at the ghosts
     }
     assemble_elastic_operator();
   }
@@ -120,9 +120,9 @@ namespace ViscoContact
                             *fe,
                             stress_quadrature,
                             update_gradients | update_JxW_values);
-    const FEValuesExtractors::Vector     displacement(0);
-    const unsigned int                   dofs_per_cell = fe->n_dofs_per_cell();
-    FullMatrix<double>                   cell_matrix(dofs_per_cell, dofs_per_cell);
+    const FEValuesExtractors::Vector displacement(0);
+    const unsigned int               dofs_per_cell = fe->n_dofs_per_cell();
+    FullMatrix<double>               cell_matrix(dofs_per_cell, dofs_per_cell);
     std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
     std::vector<SymmetricTensor<2, dim>> strains(dofs_per_cell);
     const SymmetricTensor<4, dim>       &E = material.elasticity_tensor();
@@ -138,8 +138,8 @@ namespace ViscoContact
                 strains[i] = fe_values[displacement].symmetric_gradient(i, q);
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
-                  const SymmetricTensor<2, dim> stress_i =
-                    E * strains[i] * fe_values.JxW(q);
+                  const SymmetricTensor<2, dim> stress_i
+                    = E * strains[i] * fe_values.JxW(q);
                   for (unsigned int j = 0; j <= i; ++j)
                     cell_matrix(i, j) += stress_i * strains[j];
                 }
@@ -198,10 +198,10 @@ namespace ViscoContact
         for (unsigned int a = 0; a < n_cell_vertices; ++a)
           for (unsigned int d = 0; d < dim; ++d)
             {
-              const types::global_dof_index dof =
-                dof_indices[fe->component_to_system_index(d, a)];
-              cell_local_dofs[(k * n_cell_vertices + a) * dim + d] =
-                partitioner.global_to_local(dof);
+              const types::global_dof_index dof
+                = dof_indices[fe->component_to_system_index(d, a)];
+              cell_local_dofs[(k * n_cell_vertices + a) * dim + d]
+                = partitioner.global_to_local(dof);
               if (constraints.is_constrained(dof))
                 cell_is_constrained[k] = true;
             }
@@ -209,11 +209,11 @@ namespace ViscoContact
           {
             stress_point_JxW[k * n_q + q] = fe_values.JxW(q);
             for (unsigned int a = 0; a < n_cell_vertices; ++a)
-              stress_point_gradients[(k * n_q + q) * n_cell_vertices + a] =
-                fe_values.shape_grad_component(fe->component_to_system_index(0,
-                                                                             a),
-                                               q,
-                                               0);
+              stress_point_gradients[(k * n_q + q) * n_cell_vertices + a]
+                = fe_values.shape_grad_component(
+                  fe->component_to_system_index(0, a),
+                  q,
+                  0);
           }
       }
   }
@@ -256,16 +256,19 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::setup_back_end()
   {
-    const MethodChoice choice =
-      choose_method(parameters,
-                    dim,
-                    Utilities::MPI::n_mpi_processes(mpi_communicator),
-                    dof_handler.n_dofs(),
-                    contact_enabled ? contact_set.n_global_nodes() : 0);
+    const MethodChoice choice
+      = choose_method(parameters,
+                      dim,
+                      Utilities::MPI::n_mpi_processes(mpi_communicator),
+                      dof_handler.n_dofs(),
+                      contact_enabled ? contact_set.n_global_nodes() : 0);
     method         = choice.method;
     method_reason  = choice.reason;
-    contact_solver = create_contact_solver<dim>(
-      method, parameters, mapping, dof_handler, solution);
+    contact_solver = create_contact_solver<dim>(method,
+                                                parameters,
+                                                mapping,
+                                                dof_handler,
+                                                solution);
     TimerOutput::Scope t(computing_timer, "Setup: back end for K");
     contact_solver->set_operator(stiffness_matrix, true, contact_set);
   }
@@ -284,10 +287,10 @@ namespace ViscoContact
           << " contact nodes, " << n_steps << " time steps\n"
           << "Model: " << (parameters.plasticity ? "viscoplastic" : "elastic")
           << ", contact " << (contact_enabled ? "on" : "off") << ", "
-          << (parameters.stress_update ==
-                  Parameters::StressUpdate::explicit_euler ?
-                "explicit" :
-                "implicit")
+          << (parameters.stress_update
+                  == Parameters::StressUpdate::explicit_euler
+                ? "explicit"
+                : "implicit")
           << " stress update\n"
           << "Back end: " << contact_solver->description() << " ("
           << method_reason << ")\n"
@@ -312,15 +315,15 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::report_scheme_limits()
   {
-    if (parameters.plasticity &&
-        parameters.stress_update == Parameters::StressUpdate::implicit_euler)
+    if (parameters.plasticity
+        && parameters.stress_update == Parameters::StressUpdate::implicit_euler)
       pcout << "Implicit (backward-Euler) history update: no stability limit "
                "on k (doc/model.md, section 3); k = "
             << parameters.time_step << " s\n";
     else if (parameters.plasticity)
       {
-        const double bound =
-          4 * material.viscosity() / material.largest_elastic_eigenvalue();
+        const double bound
+          = 4 * material.viscosity() / material.largest_elastic_eigenvalue();
         pcout << "Explicit history update: stable for k < 4 lambda / "
                  "lambda_max(E) = "
               << bound << " s; k = " << parameters.time_step << " s\n";
@@ -332,8 +335,8 @@ namespace ViscoContact
     if (contact_enabled && parameters.check_uniqueness)
       {
         TimerOutput::Scope t(computing_timer, "Setup: uniqueness margin");
-        const double eigenvalue = smallest_uniqueness_eigenvalue();
-        const double softening  = contact_set.law().steepest_softening();
+        const double       eigenvalue = smallest_uniqueness_eigenvalue();
+        const double       softening  = contact_set.law().steepest_softening();
         pcout << "Uniqueness: smallest eigenvalue of (stiffness, lumped "
                  "normal boundary mass) = "
               << eigenvalue
@@ -365,10 +368,13 @@ namespace ViscoContact
   {
     const unsigned int m_local = contact_set.size();
     const unsigned int m       = contact_set.n_global_nodes();
-    const auto         dot     = [&](const Vector<double> &a,
-                             const Vector<double> &b) {
-      return Utilities::MPI::sum(a * b, mpi_communicator);
+    const auto dot = [&](const Vector<double> &a, const Vector<double> &b) {
+      double sum = 0;
+      for (unsigned int i = 0; i < m_local; ++i)
+        sum += a[i] * b[i];
+      return Utilities::MPI::sum(sum, mpi_communicator);
     };
+    // x -> D^{1/2} S D^{1/2} x.
     const auto apply = [&](const Vector<double> &x, Vector<double> &y) {
       Vector<double> scaled(x);
       for (unsigned int i = 0; i < m_local; ++i)
@@ -381,8 +387,8 @@ namespace ViscoContact
     std::vector<Vector<double>> basis;
     std::vector<double>         alpha, beta;
     Vector<double>              v(m_local), w(m_local);
-    v = 1.;
-    v /= std::sqrt(dot(v, v));
+    for (unsigned int i = 0; i < m_local; ++i)
+      v[i] = 1. / std::sqrt(double(m));
     double largest = 0;
     for (unsigned int k = 0; k < std::min(m, 60u); ++k)
       {
@@ -390,7 +396,11 @@ namespace ViscoContact
         apply(v, w);
         alpha.push_back(dot(w, v));
         for (const Vector<double> &b : basis) // full reorthogonalisation
-          w.add(-dot(w, b), b);
+          {
+            const double projection = dot(w, b);
+            for (unsigned int i = 0; i < m_local; ++i)
+              w[i] -= projection * b[i];
+          }
         const double norm = std::sqrt(dot(w, w));
 
         TridiagonalMatrix<double> T(alpha.size(), true);
@@ -402,14 +412,14 @@ namespace ViscoContact
           }
         T.compute_eigenvalues();
         const double ritz = T.eigenvalue(alpha.size() - 1);
-        const bool   converged =
-          k > 0 && std::abs(ritz - largest) <= 1e-12 * std::abs(ritz);
+        const bool   converged
+          = k > 0 && std::abs(ritz - largest) <= 1e-12 * std::abs(ritz);
         largest = ritz;
         if (converged || norm <= 1e-14 * std::abs(ritz))
           break;
         beta.push_back(norm);
-        v = w;
-        v /= norm;
+        for (unsigned int i = 0; i < m_local; ++i)
+          v[i] = w[i] / norm;
       }
     return 1. / largest;
   }

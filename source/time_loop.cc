@@ -76,13 +76,13 @@ namespace ViscoContact
 
 
   std::string
-  failure_report(const Parameters::AllParameters      &parameters,
-                 const unsigned int                    step,
-                 const double                          time,
-                 const double                          time_step,
-                 const ActiveSetResult                &result,
-                 const std::array<unsigned int, 3>    &contact_states,
-                 const std::string                    &state_file)
+  failure_report(const Parameters::AllParameters   &parameters,
+                 const unsigned int                 step,
+                 const double                       time,
+                 const double                       time_step,
+                 const ActiveSetResult             &result,
+                 const std::array<unsigned int, 3> &contact_states,
+                 const std::string                 &state_file)
   {
     std::ostringstream message;
     message << "Time step " << step << " (t = " << time << ", k = " << time_step

@@ -33,23 +33,25 @@ namespace ViscoContact
   {
     const VectorType          start_solution = solution;
     const ContactNodes::State start_contact  = contact_set.state();
-    const bool                explicit_history =
-      parameters.plasticity &&
-      parameters.stress_update == Parameters::StressUpdate::explicit_euler;
+    const bool                explicit_history
+      = parameters.plasticity
+        && parameters.stress_update == Parameters::StressUpdate::explicit_euler;
 
     while (true)
       {
         const double k = times[n] - times[n - 1];
         assemble_right_hand_side(times[n]);
-        const ActiveSetResult result =
-          (parameters.stress_update == Parameters::StressUpdate::implicit_euler ?
-             solve_implicit_step(k) :
-             solve_explicit_step());
+        const ActiveSetResult result
+          = (parameters.stress_update
+                 == Parameters::StressUpdate::implicit_euler
+               ? solve_implicit_step(k)
+               : solve_explicit_step());
         if (result.converged)
           return result;
 
         const std::array<unsigned int, 3> states = count_contact_states();
         solution                                 = start_solution;
+        solution.update_ghost_values();
         contact_set.set_state(start_contact);
         if (cut_failed_step(parameters, pcout, n, times, result.failure))
           {
@@ -61,8 +63,13 @@ namespace ViscoContact
         const std::string state_file = failed_state_file(n, "pvtu");
         output_results(n, times[n - 1], "failed_step");
         AssertThrow(false,
-                    ExcMessage(failure_report(
-                      parameters, n, times[n], k, result, states, state_file)));
+                    ExcMessage(failure_report(parameters,
+                                              n,
+                                              times[n],
+                                              k,
+                                              result,
+                                              states,
+                                              state_file)));
       }
   }
 
@@ -81,10 +88,13 @@ namespace ViscoContact
   {
     TimerOutput::Scope t(computing_timer, "Solve: contact problem");
     ActiveSetResult    result;
+    // The back ends work on the locally owned entries; the ghosts are
+    // imported again once the displacement is final.
+    solution.zero_out_ghost_values();
     if (!contact_enabled)
       {
-        const LinearSolveReport report =
-          contact_solver->solve_without_contact(rhs, solution);
+        const LinearSolveReport report
+          = contact_solver->solve_without_contact(rhs, solution);
         result.converged                = report.converged;
         result.failure                  = report.failure;
         result.earlier_inner_iterations = report.inner_iterations;
@@ -93,7 +103,9 @@ namespace ViscoContact
       {
         contact_solver->set_right_hand_side(rhs, contact_set);
         result = contact_set.solve(
-          [&]() { return contact_solver->solve_for_pieces(contact_set, solution); },
+          [&]() {
+            return contact_solver->solve_for_pieces(contact_set, solution);
+          },
           parameters.max_iterations,
           parameters.tolerance,
           mpi_communicator);
@@ -162,9 +174,9 @@ namespace ViscoContact
             contact_set.set_operator(tangent_matrix);
           contact_solver->set_operator(tangent_matrix, false, contact_set);
         }
-        solution = iterate;
+        solution                         = iterate;
         const ActiveSetResult linearised = solve_contact_problem(rhs);
-        result.earlier_inner_iterations = result.inner_iterations();
+        result.earlier_inner_iterations  = result.inner_iterations();
         result.earlier_iterations += result.history.size();
         result.earlier_inner_iterations += linearised.earlier_inner_iterations;
         result.history   = linearised.history;
@@ -180,8 +192,8 @@ namespace ViscoContact
           }
         VectorType change(solution);
         change -= iterate;
-        const double relative_change =
-          change.linfty_norm() / std::max(solution.linfty_norm(), 1e-300);
+        const double relative_change
+          = change.linfty_norm() / std::max(solution.linfty_norm(), 1e-300);
         iterate = solution;
         if (parameters.verbose)
           pcout << "    Newton iteration " << newton
@@ -242,13 +254,13 @@ namespace ViscoContact
           }
       }
     result.converged = false;
-    result.failure =
-      "The Newton iteration of the implicit scheme did not converge, not "
-      "even with continuation in a = k/(2 lambda) over 64 stages (Maximum "
-      "iterations = " +
-      std::to_string(parameters.max_iterations) +
-      " per Newton iteration and per active-set iteration, subsection "
-      "<Active set solver>).";
+    result.failure
+      = "The Newton iteration of the implicit scheme did not converge, not "
+        "even with continuation in a = k/(2 lambda) over 64 stages (Maximum "
+        "iterations = "
+        + std::to_string(parameters.max_iterations)
+        + " per Newton iteration and per active-set iteration, subsection "
+          "<Active set solver>).";
     return result;
   }
 
@@ -265,9 +277,9 @@ namespace ViscoContact
                                                       const double new_step)
   {
     for (QuadraturePointHistory<dim> &state : quadrature_point_history)
-      state.history +=
-        (new_step - old_step) *
-        material.viscoplastic_rate(state.stress, &state.plastic_multiplier);
+      state.history += (new_step - old_step)
+                       * material.viscoplastic_rate(state.stress,
+                                                    &state.plastic_multiplier);
     assemble_history_load();
   }
 

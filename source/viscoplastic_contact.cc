@@ -21,9 +21,9 @@ namespace ViscoContact
     ReferenceCell
     reference_cell_of(const Parameters::AllParameters &parameters)
     {
-      return parameters.cell_type == Parameters::CellType::simplex ?
-               ReferenceCells::get_simplex<dim>() :
-               ReferenceCells::get_hypercube<dim>();
+      return parameters.cell_type == Parameters::CellType::simplex
+               ? ReferenceCells::get_simplex<dim>()
+               : ReferenceCells::get_hypercube<dim>();
     }
 
     template <int dim>
@@ -84,8 +84,8 @@ namespace ViscoContact
                     parameters.surface_traction,
                     parameters.lengths);
     body_force_is_zero   = is_zero_expression(parameters.body_force);
-    loads_depend_on_time = mentions_time(parameters.body_force) ||
-                           mentions_time(parameters.surface_traction);
+    loads_depend_on_time = mentions_time(parameters.body_force)
+                           || mentions_time(parameters.surface_traction);
   }
 
 
@@ -120,8 +120,8 @@ namespace ViscoContact
     setup_contact();
     setup_back_end();
 
-    std::vector<double> times =
-      time_levels(parameters.end_time, parameters.time_step);
+    std::vector<double> times
+      = time_levels(parameters.end_time, parameters.time_step);
     unsigned int first_step = 1;
     if (parameters.resume)
       first_step = resume_from_checkpoint(times) + 1;
@@ -172,11 +172,11 @@ namespace ViscoContact
                           total_contact_force());
         if (contact_enabled && is_profile_step(n))
           write_contact_profile(n, times[n]);
-        if (parameters.write_vtu &&
-            (n % parameters.interval == 0 || n + 1 == times.size()))
+        if (parameters.write_vtu
+            && (n % parameters.interval == 0 || n + 1 == times.size()))
           output_results(n, times[n]);
-        if (parameters.checkpoint_interval > 0 &&
-            n % parameters.checkpoint_interval == 0)
+        if (parameters.checkpoint_interval > 0
+            && n % parameters.checkpoint_interval == 0)
           write_checkpoint(n, times, wall_time);
         if (n == parameters.stop_after_step)
           {
@@ -235,8 +235,8 @@ namespace ViscoContact
   ViscoplasticContact<dim>::get_stress(const unsigned int k,
                                        const unsigned int q) const
   {
-    return quadrature_point_history[std::size_t(k) * stress_quadrature.size() +
-                                    q]
+    return quadrature_point_history[std::size_t(k) * stress_quadrature.size()
+                                    + q]
       .stress;
   }
 
@@ -244,8 +244,9 @@ namespace ViscoContact
 
   template <int dim>
   Tensor<2, dim>
-  ViscoplasticContact<dim>::get_displacement_gradient(const unsigned int k,
-                                                      const unsigned int q) const
+  ViscoplasticContact<dim>::get_displacement_gradient(
+    const unsigned int k,
+    const unsigned int q) const
   {
     return displacement_gradient_at(solution, k, q);
   }

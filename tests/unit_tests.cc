@@ -380,8 +380,8 @@ check_lumped_weights(const bool simplex, const double angle)
   if (angle != 0)
     GridTools::rotate(angle, triangulation);
 
-  const ReferenceCell cell = (simplex ? ReferenceCells::get_simplex<dim>() :
-                                        ReferenceCells::get_hypercube<dim>());
+  const ReferenceCell cell = (simplex ? ReferenceCells::get_simplex<dim>()
+                                      : ReferenceCells::get_hypercube<dim>());
   DoFHandler<dim>     dof_handler(triangulation);
   if (simplex)
     dof_handler.distribute_dofs(FESystem<dim>(FE_SimplexP<dim>(1), dim));
@@ -404,8 +404,8 @@ check_lumped_weights(const bool simplex, const double angle)
     for (const unsigned int f : c->face_indices())
       if (c->face(f)->at_boundary() && c->face(f)->boundary_id() == 7)
         for (const unsigned int v : c->face(f)->vertex_indices())
-          vertices[c->face(f)->vertex_index(v)] = {c->face(f)->vertex(v),
-                                                   c->face(f)->vertex_dof_index(v, 0)};
+          vertices[c->face(f)->vertex_index(v)]
+            = {c->face(f)->vertex(v), c->face(f)->vertex_dof_index(v, 0)};
   EXPECT_EQ(vertices.size(), (dim == 2 ? N + 1 : (N + 1) * (N + 1)));
   double sum = 0;
   for (const auto &[vertex, data] : vertices)
@@ -540,9 +540,7 @@ TEST(ActiveSetSolver, DecoupledNodesMatchClosedForm)
   const auto     result = solver.solve(d_vector, 50, 1e-12);
   ASSERT_TRUE(result.converged);
   for (unsigned int i = 0; i < m; ++i)
-    EXPECT_NEAR(solver.nodes.z[i],
-                decoupled_force(d[i], S(i, i), w[i]),
-                1e-13);
+    EXPECT_NEAR(solver.nodes.z[i], decoupled_force(d[i], S(i, i), w[i]), 1e-13);
   EXPECT_NEAR(solver.nodes.r[4], 0.01, 1e-15);
 
   // Warm start: the same data again is solved in one iteration, with the
@@ -715,16 +713,20 @@ TEST(ActiveSetSolver, CondensationMatchesFullSpaceSolveAndKKT)
 
   // The free contact nodes (normal (0,-1): r = -u_y) and their weights.
   VectorType weights(complete_index_set(n), MPI_COMM_SELF), normals(weights);
-  assemble_lumped_weights<dim>(
-    mapping, dof_handler, face_quadrature, {2}, weights, normals);
+  assemble_lumped_weights<dim>(mapping,
+                               dof_handler,
+                               face_quadrature,
+                               {2},
+                               weights,
+                               normals);
   std::vector<types::global_dof_index> y_dof;
   std::vector<double>                  w;
   for (const auto &cell : dof_handler.active_cell_iterators())
     for (const unsigned int v : cell->vertex_indices())
-      if (weights(cell->vertex_dof_index(v, 0)) > 0 &&
-          !constraints.is_constrained(cell->vertex_dof_index(v, 1)) &&
-          std::find(y_dof.begin(), y_dof.end(), cell->vertex_dof_index(v, 1)) ==
-            y_dof.end())
+      if (weights(cell->vertex_dof_index(v, 0)) > 0
+          && !constraints.is_constrained(cell->vertex_dof_index(v, 1))
+          && std::find(y_dof.begin(), y_dof.end(), cell->vertex_dof_index(v, 1))
+               == y_dof.end())
         {
           y_dof.push_back(cell->vertex_dof_index(v, 1));
           w.push_back(weights(cell->vertex_dof_index(v, 0)));
@@ -936,7 +938,8 @@ TEST(SimplexPatterns, TwoDimensional)
   check_pattern<2>(Pattern::crossed, 4, true);
   // 16 squares: "/" has 16 diagonals along (1,1), "\" 16 along (1,-1),
   // the union jack 8 of each, crossed 32 half-diagonals of each.
-  EXPECT_EQ(count_diagonals(Pattern::slash), (std::array<unsigned int, 2>{{16, 0}}));
+  EXPECT_EQ(count_diagonals(Pattern::slash),
+            (std::array<unsigned int, 2>{{16, 0}}));
   EXPECT_EQ(count_diagonals(Pattern::backslash),
             (std::array<unsigned int, 2>{{0, 16}}));
   EXPECT_EQ(count_diagonals(Pattern::union_jack),
@@ -971,7 +974,8 @@ namespace
     owned.add_range(n * rank / n_ranks, n * (rank + 1) / n_ranks);
     DynamicSparsityPattern dsp(n, n, owned);
     for (const auto i : owned)
-      for (unsigned int j = (i > 0 ? i - 1 : 0); j <= std::min(i + 1, n - 1); ++j)
+      for (unsigned int j = (i > 0 ? i - 1 : 0); j <= std::min(i + 1, n - 1);
+           ++j)
         dsp.add(i, j);
     MatrixType A;
     A.reinit(owned, owned, dsp, comm);
@@ -1009,10 +1013,11 @@ namespace
     solver.solve(columns, 3);
     double error = 0;
     for (unsigned int k = 0; k < n_local; ++k)
-      error = std::max({error,
-                        std::abs(columns[k] - x_true.local_element(k)),
-                        std::abs(columns[n_local + k] - 2 * x_true.local_element(k)),
-                        std::abs(columns[2 * n_local + k] + x_true.local_element(k))});
+      error = std::max(
+        {error,
+         std::abs(columns[k] - x_true.local_element(k)),
+         std::abs(columns[n_local + k] - 2 * x_true.local_element(k)),
+         std::abs(columns[2 * n_local + k] + x_true.local_element(k))});
     EXPECT_LE(Utilities::MPI::max(error, comm), 1e-11 * x_true.linfty_norm());
   }
 } // namespace
@@ -1073,9 +1078,9 @@ TEST(MPITools, TextFileInRankOrder)
 {
   const MPI_Comm     comm = MPI_COMM_WORLD;
   const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
-  const std::string  file = "mpi_tools_test_" +
-                           std::to_string(Utilities::MPI::n_mpi_processes(comm)) +
-                           ".txt";
+  const std::string  file
+    = "mpi_tools_test_" + std::to_string(Utilities::MPI::n_mpi_processes(comm))
+      + ".txt";
   MPITools::write_text_collectively(file,
                                     std::string(rank + 1, 'a' + rank) + "\n",
                                     comm);
@@ -1090,8 +1095,9 @@ TEST(MPITools, TextFileInRankOrder)
       EXPECT_EQ(content, expected);
       EXPECT_FALSE(std::filesystem::exists(file + ".tmp"));
     }
-  EXPECT_THROW(MPITools::write_text_collectively(
-                 "no such directory/file.txt", "x", comm),
+  EXPECT_THROW(MPITools::write_text_collectively("no such directory/file.txt",
+                                                 "x",
+                                                 comm),
                ExceptionBase);
 }
 

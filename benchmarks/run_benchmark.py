@@ -46,7 +46,7 @@ import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(
     os.path.abspath(__file__))), "scripts"))
-from vc_scripts import resolve_executable, set_prm_entries  # noqa: E402
+from vc_scripts import add_executable_argument, resolve_executable, set_prm_entries  # noqa: E402
 
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BASE_PRM = os.path.join(REPO_ROOT, "parameters", "default.prm")
@@ -415,9 +415,7 @@ def markdown_report(rows, header_lines):
 # --------------------------------------------------------------------------
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--executable", default=None,
-                        help="program to run (default: $VC_EXECUTABLE or "
-                             "build/viscoplastic_contact in the repo root)")
+    add_executable_argument(parser)
     parser.add_argument("--sizes", default="32,64,128,256",
                         help="comma separated N, h = k = 1/N (default %(default)s)")
     parser.add_argument("--output-dir", default=None,

@@ -5,7 +5,8 @@ Runs parameters/cube_3d.prm (hexahedra, p4est) and
 parameters/cube_3d_tetrahedra.prm (tetrahedra with the parameter file's
 Simplex pattern, fully distributed mesh) at increasing resolution, each on 1
 and on 2 MPI ranks, one run at a time, with file output off, Linear solver /
-Method = full space, and a fixed number of time steps (default 4 steps of
+Method = full space (option --method, whatever the parameter files say), and a
+fixed number of time steps (default 4 steps of
 k = 1/32: the cost per step does not depend on how many steps follow). Per
 run it records what the program prints:
 
@@ -29,7 +30,8 @@ cube_benchmark.png (time per step and its phases against dofs).
 
     benchmarks/run_cube_benchmark.py [--executable build/viscoplastic_contact]
         [--subdivisions 8,16,32,48,64,72] [--cell-types hypercube,simplex]
-        [--tet-subdivisions 8,16,32,48] [--steps 4] [--output-dir doc/benchmark_3d]
+        [--tet-subdivisions 8,16,32,48] [--steps 4] [--method "full space"]
+        [--output-dir doc/benchmark_3d]
 
 Subdivisions n gives 3 (n+1)^3 dofs on both cell types (n = 72: 1.20e6).
 Build in Release mode. Runs as root need no flag: the script sets Open MPI's
@@ -104,7 +106,7 @@ def parse_output(text):
     return values
 
 
-def make_prm(cell_type, subdivisions, steps):
+def make_prm(cell_type, subdivisions, steps, method="full space"):
     with open(os.path.join(REPO_ROOT, SCENES[cell_type])) as f:
         text = f.read()
     return set_prm_entries(text, {
@@ -115,15 +117,15 @@ def make_prm(cell_type, subdivisions, steps):
         (("Output",), "Write vtu"): "false",
         (("Output",), "Verbose"): "false",
         (("Output",), "Print timing summary"): "true",
-        (("Linear solver",), "Method"): "full space",
+        (("Linear solver",), "Method"): method,
     })
 
 
-def run_case(executable, cell_type, subdivisions, ranks, steps):
+def run_case(executable, cell_type, subdivisions, ranks, steps, method="full space"):
     with tempfile.TemporaryDirectory() as workdir:
         prm = os.path.join(workdir, "cube.prm")
         with open(prm, "w") as f:
-            f.write(make_prm(cell_type, subdivisions, steps))
+            f.write(make_prm(cell_type, subdivisions, steps, method))
         command = [executable, prm]
         if ranks > 1:
             command = ["mpirun", "-np", str(ranks), "--oversubscribe"] + command
@@ -141,7 +143,7 @@ def run_case(executable, cell_type, subdivisions, ranks, steps):
 PHASES = ["Solve: contact problem", "Stress update", "Assemble right-hand side"]
 
 
-def write_outputs(rows, output_dir, command_line):
+def write_outputs(rows, output_dir, command_line, method="full space"):
     os.makedirs(output_dir, exist_ok=True)
     columns = ["cell_type", "subdivisions", "ranks", "cells", "dofs",
                "contact_nodes", "steps", "back_end", "active_set_per_step",
@@ -169,13 +171,17 @@ def write_outputs(rows, output_dir, command_line):
                                  os.cpu_count(), command_line), "",
              "Scene: `parameters/cube_3d.prm` (hexahedra, p4est) and "
              "`parameters/cube_3d_tetrahedra.prm` (tetrahedra with that file's "
-             "Simplex pattern, fully distributed mesh), Method = full space, "
+             "Simplex pattern, fully distributed mesh), Method = %s, "
              "k = 1/32, %d time steps per run, no file output. One run at a "
-             "time; all ratios come from this one invocation." % rows[0]["steps"],
+             "time; all ratios come from this one invocation."
+             % (method, rows[0]["steps"]),
              "",
              "* *solve*: one solve with the step operator and no contact (CG "
-             "with the run's preconditioner), timed by the program in the same "
-             "run after the time loop (its \"Cost measurement\" block).",
+             "with the run's preconditioner on the full space back end, the "
+             "factorisation on the condensed one), timed by the program in the "
+             "same run after the time loop (its \"Cost measurement\" block).",
+             "* *back end*: the one the run used (its \"Back end:\" line; in "
+             "cube_benchmark.csv).",
              "* *figure of merit*: time per step / one solve (the program's "
              "\"ratio step / solve\").",
              "* *speed-up*: time per step on 1 rank / on 2 ranks.",
@@ -234,8 +240,8 @@ def write_outputs(rows, output_dir, command_line):
     axes[1].set_ylabel("time per step / one solve")
     axes[1].grid(True, which="both", alpha=0.3)
     axes[1].legend()
-    fig.suptitle("3D cube scene, full space back end (ML AMG), %d steps of k = 1/32"
-                 % rows[0]["steps"])
+    fig.suptitle("3D cube scene, Method = %s (ML AMG), %d steps of k = 1/32"
+                 % (method, rows[0]["steps"]))
     fig.tight_layout()
     fig.savefig(os.path.join(output_dir, "cube_benchmark.png"), dpi=110)
 
@@ -249,6 +255,9 @@ def main():
     parser.add_argument("--cell-types", default="hypercube,simplex")
     parser.add_argument("--ranks", default="1,2")
     parser.add_argument("--steps", type=int, default=4)
+    parser.add_argument("--method", default="full space",
+                        help="Linear solver / Method of every run (default: "
+                             "%(default)s, whatever the parameter files say)")
     parser.add_argument("--output-dir", default=os.path.join(REPO_ROOT, "doc", "benchmark_3d"))
     args = parser.parse_args()
     executable = resolve_executable(args.executable)
@@ -262,7 +271,8 @@ def main():
             for ranks in [int(v) for v in args.ranks.split(",")]:
                 print("running %s n = %d on %d rank(s) ..." % (cell_type, n, ranks),
                       flush=True)
-                row = run_case(executable, cell_type, n, ranks, args.steps)
+                row = run_case(executable, cell_type, n, ranks, args.steps,
+                               args.method)
                 row.update(cell_type=cell_type, subdivisions=n, ranks=ranks)
                 by_ranks[ranks] = row
                 rows.append(row)
@@ -271,7 +281,7 @@ def main():
                                                    / by_ranks[2]["time_per_step"])
             # Written after every resolution, so that an interrupted
             # benchmark keeps what it measured.
-            write_outputs(rows, args.output_dir, " ".join(sys.argv))
+            write_outputs(rows, args.output_dir, " ".join(sys.argv), args.method)
 
 
 if __name__ == "__main__":

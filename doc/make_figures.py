@@ -53,7 +53,7 @@ from fractions import Fraction
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(
     os.path.abspath(__file__))), "scripts"))
-from vc_scripts import resolve_executable, set_prm_entries  # noqa: E402
+from vc_scripts import add_executable_argument, resolve_executable, set_prm_entries  # noqa: E402
 
 try:
     import matplotlib
@@ -492,9 +492,7 @@ def write_default_timing(path):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--executable", default=None,
-                        help="program to run (default: $VC_EXECUTABLE or "
-                             "build/viscoplastic_contact in the repo root)")
+    add_executable_argument(parser)
     parser.add_argument("--skip-runs", action="store_true",
                         help="reuse the existing output in output/doc/<case>")
     parser.add_argument("--magnification", type=float, default=10.0,

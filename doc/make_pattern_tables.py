@@ -44,7 +44,7 @@ import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(
     os.path.abspath(__file__))), "scripts"))
-from vc_scripts import REPO_ROOT, resolve_executable, set_prm_entries  # noqa: E402
+from vc_scripts import add_executable_argument, REPO_ROOT, resolve_executable, set_prm_entries  # noqa: E402
 
 DOC_DIR = os.path.join(REPO_ROOT, "doc")
 OUTPUT_ROOT = os.path.join(REPO_ROOT, "output", "patterns")
@@ -422,9 +422,7 @@ def write_tables(studies, benchmarks, walls):
 # --------------------------------------------------------------------------
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--executable", default=None,
-                        help="program to run (default: $VC_EXECUTABLE or "
-                             "build/viscoplastic_contact in the repo root)")
+    add_executable_argument(parser)
     parser.add_argument("--skip-runs", action="store_true",
                         help="reuse the existing output in output/patterns/")
     args = parser.parse_args(argv)

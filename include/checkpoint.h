@@ -33,8 +33,20 @@ namespace ViscoContact
   // checkpoint.info is renamed only after that, and the file of the
   // previous checkpoint is deleted only after that. A run killed at any
   // moment therefore leaves a checkpoint.info that names a complete file.
+  //
+  // Why records per cell, and not per dof or per rank: dof numbers and the
+  // assignment of cells to ranks change with the number of ranks, cell ids do
+  // not, and every piece of the state (u at the cell's dofs, the contact state
+  // at its vertices, the stress points) belongs to a cell. The mesh itself is
+  // not stored; it is rebuilt from the parameter file (see write_checkpoint()).
+  // Every rank's work and memory stay proportional to its share of the cells,
+  // on writing and on reading.
 
-  // The header's bytes, built and read in memory.
+  // The header's bytes, built and read in memory. Only trivially copyable
+  // values are written, byte for byte in the machine's representation (vectors
+  // and strings with their length first), so a checkpoint is meant to be read
+  // by the same program on the same kind of machine; the version number and the
+  // checks of the reader catch files of another layout.
   class ByteWriter
   {
   public:
@@ -64,6 +76,9 @@ namespace ViscoContact
     std::vector<char> bytes;
   };
 
+  // Reads what a ByteWriter wrote, value by value in the same order. Every read
+  // first checks that the bytes are there, so a short or damaged header throws
+  // with the file's name instead of reading past the end.
   class ByteReader
   {
   public:
@@ -120,6 +135,7 @@ namespace ViscoContact
     std::uint64_t n_dofs  = 0;
   };
 
+  // <Output directory>/checkpoint, and the file of a step in it.
   std::filesystem::path
   checkpoint_directory(const std::string &output_directory);
   std::filesystem::path

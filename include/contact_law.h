@@ -21,7 +21,7 @@ namespace ViscoContact
   //  - sloped pieces: p = intercept + slope * r for r in [r_lower, r_upper];
   //  - vertical pieces: r = breakpoint, p in [p_lower, p_upper]; the rigid
   //    foundation is the last one, [p(g-), +infinity) at r = g.
-  // The active-set method (model.md, section 5) assigns every contact node
+  // The active-set method (doc/model.md, section 5) assigns every contact node
   // to one piece; Signorini's condition, the benchmark's nonmonotone law and
   // laws with jumps are then one mechanism.
   //

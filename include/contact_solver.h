@@ -44,10 +44,21 @@ namespace ViscoContact
   //    S = N A^{-1} N^T computed with one solve per contact node);
   //  - FullSpaceContactSolver: a Krylov method in the full space on the
   //    projected operator, preconditioned by AMG or a factorisation of A.
+  //
+  // All calls but description() and statistics() are collective over the
+  // communicator of the displacement vectors: ContactNodes::solve() makes
+  // every rank call solve_for_pieces() the same number of times, and the
+  // back ends rely on it (a factorised solve with MUMPS, a Krylov method's
+  // inner products, the gathers of the condensed back end). In one step
+  // problem the calls come in this order: set_right_hand_side() once,
+  // solve_for_pieces() once per active-set iteration, finish() once after
+  // the iteration has converged.
   template <int dim>
   class ContactSolver
   {
   public:
+    // What the run summary reports about the linear algebra of a run; each
+    // back end counts into it.
     struct Statistics
     {
       unsigned int operator_setups  = 0; // factorisations or AMG set-ups
@@ -61,38 +72,62 @@ namespace ViscoContact
     virtual std::string
     description() const = 0;
 
+    // A becomes the operator of every following step problem, until the next
+    // call: K once per run, the tangent once per Newton iteration of the
+    // implicit update. symmetric is true for K and false for a tangent
+    // (which is unsymmetric in 2D plane stress, doc/model.md, section 3); it
+    // selects Cholesky or LU, CG or GMRES. A back end may keep a reference
+    // to A, so A must not change until the next call. contact gives the
+    // contact nodes (numbering, normals, weights, law) whose compliance the
+    // condensed back end computes.
     virtual void
     set_operator(const MatrixType      &A,
                  const bool             symmetric,
                  const ContactSet<dim> &contact)
       = 0;
 
+    // The right-hand side b of the next step problem: the condensed back end
+    // solves with it here, once per step problem; the full space back end
+    // keeps it for its Krylov solves.
     virtual void
     set_right_hand_side(const VectorType &b, const ContactSet<dim> &contact)
       = 0;
 
-    // u holds the previous iterate on entry (the full space back end starts
-    // from it) and, for the full space back end, the solution on exit.
+    // For the current pieces of the contact nodes, write r_i = u.nu_i and
+    // the nodal forces z_i of this rank's nodes into contact.r and
+    // contact.z. The report says whether the linear solve met its tolerance;
+    // if it did not, the active-set iteration stops with the report's
+    // failure. u holds the previous iterate on entry (the full space back
+    // end starts from it) and, for the full space back end, the solution on
+    // exit.
     virtual LinearSolveReport
     solve_for_pieces(ContactSet<dim> &contact, VectorType &u)
       = 0;
 
+    // After the active-set iteration has converged: the displacement of the
+    // final pieces, in the locally owned entries of u (the caller
+    // distributes the constraints and updates the ghosts).
     virtual void
     finish(const ContactSet<dim> &contact, VectorType &u)
       = 0;
 
+    // u = A^{-1} b without any contact: the step problem of a scene without
+    // contact, and the reference solve of the run summary's cost
+    // measurements.
     virtual LinearSolveReport
     solve_without_contact(const VectorType &b, VectorType &u)
       = 0;
 
-    // y = N A^{-1} N^T x, x and y indexed by this rank's contact nodes.
-    // Collective.
+    // y = N A^{-1} N^T x, x and y indexed by this rank's contact nodes: the
+    // product with the contact compliance S that the Lanczos iteration of
+    // the uniqueness test needs (doc/model.md, section 4). Collective.
     virtual void
     apply_compliance(const ContactSet<dim> &contact,
                      const Vector<double>  &x,
                      Vector<double>        &y)
       = 0;
 
+    // The counts so far, for the run summary.
     const Statistics &
     statistics() const
     {
@@ -112,6 +147,10 @@ namespace ViscoContact
     std::string        reason;
   };
 
+  // Resolves Method = auto from the scene: the space dimension, the number
+  // of ranks, of dofs and of contact nodes (the limits and the measurements
+  // behind them are in contact_solver.cc). A Method set in the parameter
+  // file is returned as it is.
   MethodChoice
   choose_method(const Parameters::AllParameters &parameters,
                 const unsigned int               dim,

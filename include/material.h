@@ -25,7 +25,7 @@ namespace ViscoContact
   // (plane stress in 2D, isotropic in 3D), the von Mises set K, the
   // orthogonal projection onto K in the energy inner product (E tau, tau) and
   // the Perzyna rate G(sigma) = -(1/(2 lambda)) E (sigma - P_K sigma) of
-  // model.md, section 1.
+  // doc/model.md, section 1.
   //
   // In 2D the projection is the solution of one scalar monotone equation for
   // a Lagrange multiplier, solved to machine precision; in 3D, for isotropic
@@ -60,7 +60,7 @@ namespace ViscoContact
     viscoplastic_rate(const SymmetricTensor<2, dim> &sigma,
                       double *multiplier = nullptr) const;
 
-    // The backward-Euler (implicit) stress update of model.md, section 3:
+    // The backward-Euler (implicit) stress update of doc/model.md, section 3:
     // the sigma with sigma + a E (sigma - P_K sigma) = trial, a = k/(2 lambda),
     // solved to machine precision. If tangent is given it receives
     // d sigma / d trial (multiply by E for the consistent tangent

@@ -38,26 +38,49 @@ namespace ViscoContact
   // @sect3{The ViscoplasticContact class}
   //
   // The program, in the structure of step-18 (a quasistatic time loop with
-  // history at the stress points), step-40 (one code for one or many MPI
-  // ranks: distributed meshes, locally owned cells and dofs, Trilinos) and
-  // step-41/42 (an active set on the contact nodes). run() reads as the
-  // algorithm of doc/model.md, section 2:
+  // history at the stress points), step-40 (one code for one or many MPI ranks:
+  // distributed meshes, locally owned cells and dofs, Trilinos) and step-41/42
+  // (an active set on the contact nodes). run() reads as the algorithm of
+  // doc/model.md, section 2:
   //   set up; for n = 1..N: assemble the right-hand side, solve the step's
   //   contact problem by the active-set method, update the stresses and
   //   the history, write the results.
-  // How the linear problem of fixed pieces is solved is the business of a
-  // back end (contact_solver.h): condensed to the contact nodes through a
-  // factorised operator, or in the full space by a preconditioned Krylov
-  // method. The explicit (the paper's) and the implicit (backward Euler)
-  // stress updates run on either.
+  //
+  // One class runs every scene: dim = 2 and 3, simplices (P1) and hypercubes
+  // (Q1), the explicit and the implicit stress update, one MPI rank or many.
+  // The cell type is decided once, in the constructor; a one-rank run is the
+  // one-rank case of the distributed data structures, not a separate code path.
+  //
+  // How the linear problem of fixed pieces is solved is the business of a back
+  // end (contact_solver.h): condensed to the contact nodes through a factorised
+  // operator, or in the full space by a preconditioned Krylov method. The class
+  // owns one back end through that interface and never asks which one it is;
+  // the active-set iteration around it (active_set.h) is the same for both. The
+  // explicit (the paper's) and the implicit (backward Euler) stress updates run
+  // on either: the explicit one keeps the elastic operator K for the whole run
+  // and moves all of the plasticity into the right-hand side, the implicit one
+  // solves each step by Newton's method, with a new tangent (and a new set-up
+  // of the back end) per Newton iteration.
+  //
+  // The parallel data layout: every rank works on its locally owned cells and
+  // on the contact nodes it owns; displacement-sized vectors hold the owned
+  // entries and, as ghosts, the other locally relevant dofs (those of the owned
+  // cells and of the layer of ghost cells around them, as in step-40). Nothing
+  // global is gathered on one rank: only scalars (iteration decisions, counts,
+  // forces, norms) are reduced over the ranks.
   template <int dim>
   class ViscoplasticContact
   {
   public:
+    // The constructor stores the parameters and makes the choices that depend
+    // on the cell type (mapping, element, quadratures); everything that needs
+    // the mesh happens in run().
     ViscoplasticContact(const Parameters::AllParameters &parameters,
                         const MPI_Comm communicator = MPI_COMM_WORLD);
+    // Releases the DoFHandlers before the triangulation they point to.
     ~ViscoplasticContact();
 
+    // Set-up, the time loop and the run summary (viscoplastic_contact.cc).
     void
     run();
 
@@ -85,6 +108,11 @@ namespace ViscoContact
 
   private:
     // @sect4{Set-up}
+    //
+    // Called once, in this order, by run(): the mesh; dofs, constraints and
+    // vectors, with K; the stress points and their geometry; the contact nodes;
+    // the back end with K. Then the header and the limits of the scheme
+    // (stability of the explicit update, the uniqueness margin) are printed.
     void
     make_grid();
     void
@@ -101,37 +129,56 @@ namespace ViscoContact
     print_header(const unsigned int n_steps) const;
     void
     report_scheme_limits();
+    // The smallest generalised eigenvalue of (K, lumped normal boundary mass),
+    // doc/model.md, section 4.
     double
     smallest_uniqueness_eigenvalue();
 
     // @sect4{One time step}
+    //
+    // solve_step_with_recovery() is the time step as run() sees it: the
+    // right-hand side, the step problem by the explicit or the implicit route,
+    // and the restart with a cut step if a solve fails. The other functions are
+    // its parts.
     ActiveSetResult
     solve_step_with_recovery(const unsigned int n, std::vector<double> &times);
+    // b_n = (f_n, v) - (H_n, eps(v)), from its two parts.
     void
     assemble_right_hand_side(const double time);
     void
     assemble_external_load(const double time);
     void
     assemble_history_load();
+    // The active set around the back end's solves, for the operator it holds.
     ActiveSetResult
     solve_contact_problem(const VectorType &rhs);
     ActiveSetResult
     solve_explicit_step();
     ActiveSetResult
     solve_implicit_step(const double time_step);
+    // Newton's method for the implicit step at the viscous parameter a; the
+    // continuation of solve_implicit_step() calls it with a/J, 2a/J, ..., a.
     bool
     implicit_newton(const double     a,
                     VectorType      &iterate,
                     ActiveSetResult &result);
     void
     assemble_tangent_system(const VectorType &displacement, const double a);
+    // After a cut step: H_n with the new step length (explicit update only).
     void
     rescale_history_increment(const double old_step, const double new_step);
+    // sigma_n from u_n at every stress point, and the history of the next step
+    // with its load.
     void
     update_stresses(const double current_time_step,
                     const double next_time_step);
 
     // @sect4{Output}
+    //
+    // .pvtu records with their .pvd list, one CSV row per step, contact
+    // profiles, and the run summary with its cost measurements. What is written
+    // is either reduced over the ranks (counts, forces, norms: written by rank
+    // 0) or each rank's own part of one file (written collectively).
     void
     prepare_output_directory();
     void
@@ -149,6 +196,9 @@ namespace ViscoContact
     print_run_summary();
 
     // @sect4{Checkpoints}
+    //
+    // One file per checkpoint with one record per cell, keyed by the cell's id,
+    // so that a run can be resumed on any number of ranks (checkpoint.h).
     void
     write_checkpoint(const unsigned int         step,
                      const std::vector<double> &times,
@@ -157,6 +207,11 @@ namespace ViscoContact
     resume_from_checkpoint(std::vector<double> &times);
 
     // @sect4{Stress-point helpers}
+    //
+    // The cell loops of the time loop (stress update, history load, tangent)
+    // use the geometry stored by setup_stress_points() instead of FEValues; k
+    // numbers the locally owned cells (owned_cells), q the stress points of a
+    // cell.
     Tensor<2, dim>
     displacement_gradient_at(const VectorType  &displacement,
                              const unsigned int k,
@@ -170,18 +225,25 @@ namespace ViscoContact
     distribute_cell_vector(const unsigned int    k,
                            const Vector<double> &cell_vector,
                            VectorType           &target) const;
+    // Collective: the counts and the force are sums over all ranks.
     std::array<unsigned int, 3>
     count_contact_states() const;
     double
     total_contact_force() const;
 
-    // Run control, console and timing.
+    // Run control, console (pcout prints on rank 0 only) and timing.
     const Parameters::AllParameters parameters;
     const MPI_Comm                  mpi_communicator;
     ConditionalOStream              pcout;
     TimerOutput                     computing_timer;
 
-    // Mesh, finite elements, quadratures, degrees of freedom.
+    // Mesh, finite elements, quadratures, degrees of freedom. The reference
+    // cell (simplex or hypercube) decides the mapping, the element (P1 or Q1)
+    // and the quadratures; fe is the vector-valued element of the displacement.
+    // The stress quadrature holds the stress points (one per simplex, 2^dim
+    // Gauss points per hypercube), the load quadrature integrates the external
+    // loads. locally_relevant_dofs are those of the owned and the ghost cells:
+    // the owned ones and the ghosts of every displacement vector.
     std::unique_ptr<parallel::DistributedTriangulationBase<dim>> triangulation;
     const ReferenceCell                                          reference_cell;
     const Mapping<dim>                                          &mapping;
@@ -197,7 +259,9 @@ namespace ViscoContact
     AffineConstraints<double>                 constraints;
 
     // The elastic operator K (assembled once per run) and, for the implicit
-    // update, the tangent and internal force of the current Newton iterate.
+    // update, the tangent and internal force of the current Newton iterate. The
+    // counters appear in the run summary, where a change that re-assembles more
+    // often than intended shows up.
     MatrixType   stiffness_matrix;
     MatrixType   tangent_matrix;
     VectorType   internal_force;
@@ -205,19 +269,26 @@ namespace ViscoContact
     unsigned int n_external_load_assemblies = 0;
     unsigned int total_newton_iterations    = 0;
 
-    // How the step problems are solved.
+    // How the step problems are solved: the method chosen (and why, for the
+    // header) and the back end that implements it.
     Parameters::Method                  method;
     std::string                         method_reason;
     std::unique_ptr<ContactSolver<dim>> contact_solver;
 
-    // u_n (with ghost entries), f_n, -(H_n, eps(v)), their sum.
+    // u_n (with ghost entries), f_n, -(H_n, eps(v)), their sum. All four share
+    // the partition of solution; the three loads are assembled on the owned
+    // cells and compressed, so they hold owned entries only.
     VectorType solution;
     VectorType external_load;
     VectorType history_load;
     VectorType system_rhs;
 
-    // Material, loads, and the state at the stress points of the locally
-    // owned cells.
+    // Material, loads, and the state at the stress points of the locally owned
+    // cells. quadrature_point_history is a flat array: the record of stress
+    // point q of the k-th owned cell is entry k * n_q + q, with n_q =
+    // stress_quadrature.size(), holding sigma_n, the history H_{n+1} of the
+    // next step and the last plastic multiplier. max_von_mises is the maximum
+    // over all ranks of the last stress update.
     PerzynaMaterial<dim>                     material;
     FunctionParser<dim>                      body_force;
     FunctionParser<dim>                      surface_traction;
@@ -228,10 +299,13 @@ namespace ViscoContact
 
     // The geometry of the stress points, computed once (the mesh does not
     // move), so that the cell loops of the time loop need no FEValues: per
-    // locally owned cell k its dofs (vertex a, component c) as indices into
-    // the vectors' local storage, whether any of them is constrained, and
-    // per stress point JxW and the gradients of the scalar shape functions
-    // N_a; the strain is sym(sum_a u_a (x) grad N_a).
+    // locally owned cell k its dofs (vertex a, component c) as indices into the
+    // vectors' local storage, whether any of them is constrained, and per
+    // stress point JxW and the gradients of the scalar shape functions N_a; the
+    // strain is sym(sum_a u_a (x) grad N_a). The indexing:
+    //   cell_local_dofs[(k * n_cell_vertices + a) * dim + c],
+    //   stress_point_JxW[k * n_q + q],
+    //   stress_point_gradients[(k * n_q + q) * n_cell_vertices + a].
     std::vector<typename DoFHandler<dim>::active_cell_iterator> owned_cells;
     unsigned int                n_cell_vertices = 0;
     std::vector<unsigned int>   cell_local_dofs;
@@ -239,15 +313,21 @@ namespace ViscoContact
     std::vector<Tensor<1, dim>> stress_point_gradients;
     std::vector<double>         stress_point_JxW;
 
-    // Contact: the nodes of Gamma_3 this rank owns, with their pieces.
+    // Contact: the nodes of Gamma_3 this rank owns, with their pieces, their
+    // last (r, z) and their active-set parameters c_i. contact_enabled is false
+    // without Gamma_3 or with a law that is void (zero and no rigid limit);
+    // then the step problem is a single linear solve.
     bool            contact_enabled = false;
     ContactSet<dim> contact_set;
     unsigned int    total_active_set_iterations = 0;
     unsigned int    total_inner_iterations      = 0;
 
+    // Called after every accepted step (set_step_observer()).
     std::function<void(const unsigned int, const double)> step_observer;
 
-    // Output records.
+    // Output records: the .pvd list (kept on rank 0), the time series (open on
+    // rank 0 only), the time spent in the time loop without output, and the
+    // step counters a checkpoint stores and a resumed run restores.
     std::vector<std::pair<double, std::string>> times_and_names;
     std::ofstream                               time_series; // rank 0
     double                                      time_loop_compute_time = 0;

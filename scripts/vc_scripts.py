@@ -66,3 +66,10 @@ def resolve_executable(arg):
     if env:
         return os.path.abspath(env)
     return os.path.join(REPO_ROOT, DEFAULT_EXECUTABLE)
+
+
+def add_executable_argument(parser):
+    """The --executable option every script has (see resolve_executable)."""
+    parser.add_argument("--executable", default=None,
+                        help="program to run (default: $VC_EXECUTABLE or "
+                             "build/viscoplastic_contact in the repo root)")

@@ -1,5 +1,12 @@
 // The active-set iteration on the pieces of the contact law, and the state
 // of the contact nodes it moves.
+//
+// This is the semismooth Newton method of doc/model.md, section 2 ("Moving
+// between pieces"), written once for every back end and every number of
+// ranks: the back end only solves the linear problem of the current pieces
+// and writes r and z; everything this file does is local to the nodes of a
+// rank, except for a few sums of counts over the ranks, which make every
+// rank take the same decisions.
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
@@ -14,6 +21,8 @@ namespace ViscoContact
 {
   namespace
   {
+    // Element-wise sums of a few counters over all ranks, in one reduction.
+    // Every rank receives the same sums, so decisions based on them agree.
     template <std::size_t N>
     std::array<unsigned int, N>
     sum_over_ranks(const std::array<unsigned int, N> &local,
@@ -33,6 +42,11 @@ namespace ViscoContact
 
 
 
+  // @sect4{ActiveSetResult}
+  //
+  // The number of iterations of a time step: those of earlier active-set
+  // runs of the step (the implicit scheme runs one per Newton iteration)
+  // plus those of the last run, one record each.
   unsigned int
   ActiveSetResult::iterations() const
   {
@@ -41,6 +55,8 @@ namespace ViscoContact
 
 
 
+  // Krylov iterations, likewise (0 for the condensed back end, whose solves
+  // are direct).
   unsigned int
   ActiveSetResult::inner_iterations() const
   {
@@ -52,6 +68,9 @@ namespace ViscoContact
 
 
 
+  // The iteration history of the last run, one line per iteration, for the
+  // report of a failed step (time_loop.cc): how many nodes moved, how many
+  // sit at the rigid limit, and how well the linear solve did.
   std::string
   ActiveSetResult::describe() const
   {
@@ -71,6 +90,11 @@ namespace ViscoContact
 
 
 
+  // @sect4{ContactNodes::reinit}
+  //
+  // Every node starts at r = z = 0 with no parameter yet; its piece is
+  // chosen by the first set_parameters(), since finding the piece of a state
+  // needs c.
   void
   ContactNodes::reinit(const ContactLaw          &law,
                        const std::vector<double> &weights)
@@ -89,8 +113,13 @@ namespace ViscoContact
   // @sect4{ContactNodes::set_parameters}
   //
   // The parameter c_i scales the normal displacement into a pressure; it
-  // changes with the operator (the implicit scheme's tangent), the pieces
-  // do not: they are the warm start of the next solve.
+  // changes with the operator (the implicit scheme's tangent), the pieces do
+  // not: they are the warm start of the next solve.
+  //
+  // c_i must exceed the steepest softening, or q = p + c r would not grow
+  // strictly along the graph and the update rule could name no piece or
+  // several. ContactSet::set_operator() guarantees this with its factor 2,
+  // so a violation is an internal error, not a user's.
   void
   ContactNodes::set_parameters(const std::vector<double> &parameters)
   {
@@ -99,6 +128,8 @@ namespace ViscoContact
       AssertThrow(value > contact_law->steepest_softening(),
                   ExcInternalError());
     c = parameters;
+    // The first call places every node on the piece of its state r = z = 0
+    // (q = 0), the state before the first load. Later calls keep the pieces.
     if (!placed)
       for (unsigned int i = 0; i < size(); ++i)
         node_pieces[i] = contact_law->find_piece(0., c[i]);
@@ -107,6 +138,11 @@ namespace ViscoContact
 
 
 
+  // @sect4{ContactNodes::update_pieces}
+  //
+  // The update rule at every node of this rank: q_i = z_i / w_i + c_i r_i
+  // from the last solve names the next piece (ContactLaw::next_piece). The
+  // counts are this rank's only; ContactNodes::solve() sums them.
   std::array<unsigned int, 2>
   ContactNodes::update_pieces()
   {
@@ -122,6 +158,8 @@ namespace ViscoContact
             node_pieces[i] = next;
             ++changed;
           }
+        // After the move: the nodes now at the rigid limit, for the
+        // iteration history.
         if (contact_law->piece(node_pieces[i]).rigid)
           ++rigid;
       }
@@ -135,6 +173,15 @@ namespace ViscoContact
   // The iteration itself, the same for every back end and rank count: the
   // decision to stop depends on sums over all ranks only, so every rank
   // takes it at the same iteration.
+  //
+  // Each iteration solves the linear problem of the current pieces (the back
+  // end writes r and z), moves every node to the piece that its q names, and
+  // stops when no node has moved on any rank and the linear solve met the
+  // tolerance. The second condition matters for the condensed back end,
+  // whose report carries the defect of its dense solve; a Krylov solve that
+  // missed its tolerance has already ended the iteration with a failure.
+  // Since the step problem has the same fixed points whatever the c_i, a
+  // converged iteration has solved the step problem of the current operator.
   ActiveSetResult
   ContactNodes::solve(
     const std::function<LinearSolveReport()> &solve_for_pieces,
@@ -145,22 +192,32 @@ namespace ViscoContact
     ActiveSetResult result;
     for (unsigned int iteration = 0; iteration < max_iterations; ++iteration)
       {
+        // The linear problem of the current pieces. A failed solve (a Krylov
+        // method that did not converge) fails on every rank alike, because
+        // the Krylov methods decide with global norms; the iteration ends
+        // with the back end's reason.
         const LinearSolveReport report = solve_for_pieces();
         if (!report.converged)
           {
             result.failure = report.failure;
             return result;
           }
+        // Every node moves (or stays), and all ranks learn how many moved
+        // and how many are at the rigid limit.
         const std::array<unsigned int, 2> moved
           = sum_over_ranks(update_pieces(), communicator);
         result.history.push_back(
           {moved[0], moved[1], report.residual, report.inner_iterations});
+        // Converged: the pieces the last solve used are the ones the nodes
+        // sit on now, so (r, z) lies on the graph of the law at every node.
         if (moved[0] == 0 && report.residual <= tolerance)
           {
             result.converged = true;
             return result;
           }
       }
+    // Out of iterations: the caller cuts the time step or stops the run with
+    // this reason, which names the parameters that bound the iteration.
     std::ostringstream reason;
     reason << "The active-set iteration did not converge within "
            << max_iterations
@@ -173,6 +230,10 @@ namespace ViscoContact
 
 
 
+  // @sect4{ContactNodes::state and set_state}
+  //
+  // The pieces and the last (r, z): what a time step that has to be retried
+  // restores before it starts again (time_step.cc).
   ContactNodes::State
   ContactNodes::state() const
   {
@@ -192,6 +253,11 @@ namespace ViscoContact
 
 
 
+  // @sect4{Access to the nodes}
+  //
+  // Plain access: the number of nodes of this rank, the law, and per node
+  // the weight w_i, the parameter c_i and the piece. set_piece() is for
+  // restoring a state node by node (a resumed checkpoint).
   unsigned int
   ContactNodes::size() const
   {
@@ -249,6 +315,11 @@ namespace ViscoContact
 
 
 
+  // @sect4{ContactNodes::status}
+  //
+  // The contact state of a node as the output reports it: 2 at the rigid
+  // limit (on the rigid piece), 1 in normal-compliance contact (penetrating
+  // the layer, r > 0, or pressed by it, z > 0), 0 out of contact.
   unsigned int
   ContactNodes::status(const unsigned int i) const
   {
@@ -261,6 +332,11 @@ namespace ViscoContact
 
 
 
+  // @sect4{Contact pressures}
+  //
+  // The total pressure z_i / w_i, and the part the layer carries: p(g-) at
+  // the rigid limit, where the foundation carries the rest, and the whole
+  // pressure on every other piece, where the foundation carries nothing.
   double
   ContactNodes::contact_pressure(const unsigned int i) const
   {
@@ -278,6 +354,12 @@ namespace ViscoContact
 
 
 
+  // @sect4{ContactNodes::count_states and total_force}
+  //
+  // Over all ranks: the nodes at the rigid limit, in normal-compliance
+  // contact and out of contact (in this order, status 2, 1, 0), and the
+  // total contact force sum_i z_i (per unit thickness in 2D). Both are
+  // collective.
   std::array<unsigned int, 3>
   ContactNodes::count_states(const MPI_Comm communicator) const
   {

@@ -19,14 +19,23 @@ namespace ViscoContact
   // previous stress update; the external part is assembled once if the
   // loads do not depend on time. The implicit update has the history
   // inside its internal force, so its right-hand side is the external load.
+  //
+  // So in the common case of constant loads a step costs no assembly at all
+  // here: one copy and one vector addition, on the owned entries of each rank,
+  // with no communication.
   template <int dim>
   void
   ViscoplasticContact<dim>::assemble_right_hand_side(const double time)
   {
     TimerOutput::Scope t(computing_timer, "Assemble right-hand side");
+    // The first call always assembles (the counter is still 0); later calls
+    // only if f_0 or f_2 mention t.
     if (loads_depend_on_time || n_external_load_assemblies == 0)
       assemble_external_load(time);
     system_rhs = external_load;
+    // Without plasticity H_n = sigma_0 - E eps(u_0) = 0 for all n, and
+    // history_load stays zero; with the implicit update the history enters
+    // through the internal force of implicit_newton().
     if (parameters.plasticity
         && parameters.stress_update == Parameters::StressUpdate::explicit_euler)
       system_rhs += history_load;
@@ -38,10 +47,16 @@ namespace ViscoContact
   //
   // (f_0, v) + (f_2, v)_Gamma2 on the locally owned cells; a zero body
   // force is not integrated at all.
+  //
+  // This loop uses FEValues: the loads are evaluated at the points of their own
+  // quadrature (and of the face quadrature on the loaded boundary), not at the
+  // stress points, and with time-independent loads it runs only once per run.
   template <int dim>
   void
   ViscoplasticContact<dim>::assemble_external_load(const double time)
   {
+    // external_load = 0 also clears the ghost entries, into which the cells add
+    // the contributions to dofs other ranks own.
     external_load = 0;
     body_force.set_time(time);
     surface_traction.set_time(time);
@@ -59,6 +74,9 @@ namespace ViscoContact
                                      face_quadrature,
                                      update_values | update_quadrature_points
                                        | update_JxW_values);
+    // Gamma_2 is given as a list of boundary ids (Loaded boundary ids); the
+    // rest of the boundary that is neither clamped nor in contact is traction
+    // free.
     const auto is_loaded = [&](const types::boundary_id id) {
       return std::find(parameters.loaded_ids.begin(),
                        parameters.loaded_ids.end(),
@@ -70,6 +88,8 @@ namespace ViscoContact
       {
         cell_rhs       = 0;
         bool has_loads = false;
+        // The body force at the load quadrature points; the component of shape
+        // function i picks the component of f_0 it is tested with.
         if (!body_force_is_zero)
           {
             fe_values.reinit(cell);
@@ -84,6 +104,8 @@ namespace ViscoContact
               }
             has_loads = true;
           }
+        // The surface traction on the faces of the owned cells that lie on a
+        // loaded part of the boundary.
         for (const unsigned int f : cell->face_indices())
           if (cell->face(f)->at_boundary()
               && is_loaded(cell->face(f)->boundary_id()))
@@ -103,6 +125,9 @@ namespace ViscoContact
                 }
               has_loads = true;
             }
+        // Cells without any load contribute nothing and are skipped. The
+        // constraints drop the entries of clamped dofs and distribute those of
+        // hanging nodes.
         if (has_loads)
           {
             cell->get_dof_indices(local_dof_indices);
@@ -111,6 +136,8 @@ namespace ViscoContact
                                                    external_load);
           }
       }
+    // Contributions to ghost dofs are sent to and added by their owners; the
+    // vector then holds owned entries only.
     external_load.compress(VectorOperation::add);
     ++n_external_load_assemblies;
   }
@@ -124,13 +151,22 @@ namespace ViscoContact
   // it computes H; this stand-alone version serves a cut step (whose
   // history increment was rescaled), a resumed run, and the cost
   // measurement of the run summary.
+  //
+  // It works on the stored stress-point geometry, like update_stresses(): per
+  // owned cell k the contributions of its stress points are summed into a cell
+  // vector ordered (vertex a, component c), which is then added to the global
+  // vector.
   template <int dim>
   void
   ViscoplasticContact<dim>::assemble_history_load()
   {
+    // Zero also in the ghost entries, which collect the contributions to dofs
+    // of other ranks until compress().
     history_load           = 0;
     const unsigned int n_q = stress_quadrature.size();
     Vector<double>     cell_vector(n_cell_vertices * dim);
+    // The history of stress point q of the k-th owned cell is record
+    // k * n_q + q.
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
       {
         std::fill(cell_vector.begin(), cell_vector.end(), 0.);
@@ -142,6 +178,7 @@ namespace ViscoContact
             cell_vector);
         distribute_cell_vector(k, cell_vector, history_load);
       }
+    // Send the ghost contributions to their owners.
     history_load.compress(VectorOperation::add);
   }
 
@@ -155,6 +192,14 @@ namespace ViscoContact
   // (C_alg eps(w), eps(v)) with the consistent tangent
   // C_alg = (d sigma / d trial) E (doc/model.md, section 3). The state at
   // the stress points is not changed (only the multiplier guesses).
+  //
+  // This is one Newton linearisation of the step problem: with F_int(u) the
+  // internal force and K_T = dF_int/du, the next iterate solves
+  // K_T u = f - F_int(u_k) + K_T u_k - N^T z. In 2D plane stress K_T is
+  // unsymmetric (the projection is orthogonal in the energy inner product, not
+  // the Euclidean one), so the full matrix is assembled, not a triangle. The
+  // argument a = k/(2 lambda) may be smaller than the step's own while the
+  // continuation of solve_implicit_step() runs.
   template <int dim>
   void
   ViscoplasticContact<dim>::assemble_tangent_system(
@@ -162,6 +207,7 @@ namespace ViscoContact
     const double      a)
   {
     TimerOutput::Scope t(computing_timer, "Assemble tangent system");
+    // Reset values only; the sparsity pattern of K is kept.
     tangent_matrix                               = 0;
     internal_force                               = 0;
     const SymmetricTensor<4, dim>       &E       = material.elasticity_tensor();
@@ -171,6 +217,10 @@ namespace ViscoContact
     FullMatrix<double>                   cell_matrix(n_local, n_local);
     Vector<double>                       cell_force(n_local);
     std::vector<types::global_dof_index> global_dofs(n_local);
+    // The partitioner turns the stored local dof indices back into global ones,
+    // below. The displacement must hold its ghost values (the caller updates
+    // them), since displacement_gradient_at() reads every dof of the owned
+    // cells.
     const auto &partitioner = *displacement.get_partitioner();
 
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
@@ -179,6 +229,8 @@ namespace ViscoContact
         cell_force  = 0;
         for (unsigned int q = 0; q < n_q; ++q)
           {
+            // The stored geometry of stress point q of cell k: JxW and the
+            // gradients of the scalar shape functions of the cell's vertices.
             const std::size_t     point = std::size_t(k) * n_q + q;
             const Tensor<1, dim> *gradients
               = &stress_point_gradients[point * n_a];
@@ -186,6 +238,14 @@ namespace ViscoContact
             const Tensor<2, dim> displacement_gradient
               = displacement_gradient_at(displacement, k, q);
 
+            // The trial stress is E eps(u) plus the history
+            // sigma_{n-1} - E eps(u_{n-1}) stored at the point, and the
+            // backward-Euler update returns sigma and its derivative with
+            // respect to the trial stress. The multiplier of this projection is
+            // written back only as the starting guess of the next one; sigma_n
+            // itself is stored by update_stresses() once the step has
+            // converged. Without plasticity the stress is elastic and the
+            // tangent is E, so K_T = K.
             QuadraturePointHistory<dim> &state
               = quadrature_point_history[point];
             SymmetricTensor<4, dim> trial_tangent = identity_tensor<dim>();
@@ -198,6 +258,11 @@ namespace ViscoContact
                                        : E * symmetrize(displacement_gradient));
             const SymmetricTensor<4, dim> C = trial_tangent * E;
 
+            // The cell dof i is (vertex ai, component ci), in the order of
+            // cell_local_dofs. With eps(N_a e_c) = sym(e_c (x) grad N_a) and
+            // the minor symmetries of sigma and C, the internal force is
+            // JxW (sigma grad N_a)_c, and the tangent entry is JxW sum_{m,l}
+            // C_{ci m cj l} (grad N_ai)_m (grad N_bj)_l.
             for (unsigned int i = 0; i < n_local; ++i)
               {
                 const unsigned int ai = i / dim, ci = i % dim;
@@ -214,6 +279,9 @@ namespace ViscoContact
                   }
               }
           }
+        // The local indices back to global dof numbers, since the matrix (a
+        // Trilinos matrix) is addressed globally, and every cell goes through
+        // the constraints here.
         const unsigned int *dofs = &cell_local_dofs[std::size_t(k) * n_local];
         for (unsigned int i = 0; i < n_local; ++i)
           global_dofs[i] = partitioner.local_to_global(dofs[i]);
@@ -223,6 +291,8 @@ namespace ViscoContact
                                                tangent_matrix,
                                                internal_force);
       }
+    // The rows of ghost dofs and the ghost entries of the internal force go to
+    // their owners.
     tangent_matrix.compress(VectorOperation::add);
     internal_force.compress(VectorOperation::add);
     ++n_operator_assemblies;

@@ -20,11 +20,17 @@ namespace ViscoContact
 {
   namespace
   {
+    // The version of the file layout, the first value of every header: a
+    // resumed run refuses a checkpoint of another version rather than misread
+    // it. Bumped whenever the layout of the files changes.
     // Bumped whenever the layout of the files changes.
     constexpr std::uint32_t checkpoint_version = 2;
 
-    // Every rank learns whether any rank saw an MPI error, and which, and
-    // all throw the same message.
+    // Every rank learns whether any rank saw an MPI error, and which, and all
+    // throw the same message. MPI_SUCCESS is 0 and error codes are positive, so
+    // the maximum over the ranks is an error code as soon as one rank has one.
+    // Without this, a rank that failed alone would throw while the others wait
+    // in the next collective call.
     void
     agree_on_errors(const int                    error,
                     const std::filesystem::path &file,
@@ -41,6 +47,12 @@ namespace ViscoContact
 
 
 
+  // @sect4{ByteReader}
+  //
+  // The reader keeps a reference to the bytes (read_record_file() filled them)
+  // and a position; the file name only serves the messages. Its checks throw on
+  // the rank that finds the problem; since every rank reads the same header, a
+  // bad header stops all ranks alike.
   ByteReader::ByteReader(const std::vector<char> &bytes,
                          const std::string       &file)
     : bytes(bytes)
@@ -80,6 +92,11 @@ namespace ViscoContact
 
 
 
+  // @sect4{File names}
+  //
+  // All checkpoints of a run live in the subdirectory checkpoint/ of its output
+  // directory; a step's file has a six-digit number, so that the files sort by
+  // step.
   std::filesystem::path
   checkpoint_directory(const std::string &output_directory)
   {
@@ -102,6 +119,13 @@ namespace ViscoContact
   //
   // Layout: the header's size, the header, the number of records and their
   // size, then the records of all ranks in rank order.
+  //
+  // Every size is a 64-bit integer, so that the reader can check the layout
+  // before trusting it. The total number of records is a sum over the ranks;
+  // the prefix with the header is built on every rank but only rank 0's is
+  // written. Where each rank's records go (the sum of the sizes of the lower
+  // ranks' blocks) and the writing under a temporary name are the business of
+  // MPITools::write_blocks_collectively().
   void
   write_record_file(const std::filesystem::path &file,
                     const std::vector<char>     &header,
@@ -130,6 +154,10 @@ namespace ViscoContact
 
 
   // @sect4{read_record_file}
+  //
+  // A value of type T at the given offset, read by this rank alone. The error
+  // is sticky: after the first failure nothing more is read, and the caller
+  // decides once, collectively, what to do with it.
   template <typename T>
   T
   read_value(MPI_File handle, const MPI_Offset offset, int &error)
@@ -147,6 +175,11 @@ namespace ViscoContact
 
 
 
+  // The reader of write_record_file(): every rank opens the file, reads and
+  // checks the header and the counts, and then reads its own equal share of the
+  // records, records [n_total rank / n_ranks, n_total (rank + 1) / n_ranks).
+  // How many ranks wrote the file does not matter: the records are of fixed
+  // size, and which rank ends up owning which cell is sorted out by the caller.
   void
   read_record_file(const std::filesystem::path &file,
                    std::vector<char>           &header,
@@ -154,6 +187,8 @@ namespace ViscoContact
                    const std::uint64_t          record_size,
                    const MPI_Comm               communicator)
   {
+    // The file is opened by all ranks together (MPI_File_open is collective);
+    // if it cannot be opened, all ranks throw.
     MPI_File handle;
     int      error = MPI_File_open(communicator,
                               file.c_str(),
@@ -164,6 +199,8 @@ namespace ViscoContact
     MPI_Offset file_size = 0;
     MPI_File_get_size(handle, &file_size);
 
+    // The header size comes first. Before anything else is trusted, the header
+    // must fit into the file with the three 64-bit sizes.
     const std::uint64_t header_size
       = read_value<std::uint64_t>(handle, 0, error);
     const bool header_fits
@@ -176,13 +213,19 @@ namespace ViscoContact
                                header_size,
                                MPI_CHAR,
                                MPI_STATUS_IGNORE);
+    // After the header: the number of records and the record size.
     const MPI_Offset    counts = sizeof(std::uint64_t) + header_size;
     const std::uint64_t n_total
       = header_fits ? read_value<std::uint64_t>(handle, counts, error) : 0;
     const std::uint64_t stored_size
       = header_fits ? read_value<std::uint64_t>(handle, counts + 8, error) : 0;
     const MPI_Offset records_start = counts + 2 * sizeof(std::uint64_t);
-    const bool       consistent
+    // The file is consistent if it was read without error, its records have the
+    // size this program expects (it depends on dim, the element and the stress
+    // points of the cell type), and the file is exactly as long as the header
+    // says. This is reduced over the ranks (all read the same bytes, but an I/O
+    // error may hit one rank only), so that all ranks throw together.
+    const bool consistent
       = Utilities::MPI::min(error == MPI_SUCCESS && header_fits
                                 && stored_size == record_size
                                 && records_start + n_total * record_size
@@ -201,11 +244,17 @@ namespace ViscoContact
                         "or to this version of the program."));
       }
 
+    // This rank's share of the records: an equal split of n_total, whatever the
+    // number of ranks that wrote them.
     const unsigned int  n_ranks = Utilities::MPI::n_mpi_processes(communicator);
     const unsigned int  rank  = Utilities::MPI::this_mpi_process(communicator);
     const std::uint64_t begin = n_total * rank / n_ranks;
     const std::uint64_t end   = n_total * (rank + 1) / n_ranks;
     record_share.resize((end - begin) * record_size);
+    // The collective read needs every rank, with the same number of calls:
+    // either all read or none. transfer_in_pieces() splits the read into pieces
+    // below the int range of MPI counts and makes every rank call
+    // MPI_File_read_at_all equally often, also a rank with an empty share.
     error = Utilities::MPI::max(error, communicator);
     if (error == MPI_SUCCESS)
       error = MPITools::transfer_in_pieces(
@@ -229,6 +278,15 @@ namespace ViscoContact
   // @sect4{publish_checkpoint}
   //
   // The rename of checkpoint.info is atomic on POSIX file systems.
+  //
+  // Rank 0 alone writes checkpoint.info: a few lines of text (step, time,
+  // ranks, dofs) under a temporary name, then renamed over the old one, so a
+  // reader sees either the old or the new record, never a partial one. Only
+  // once the new record is in place is the previous checkpoint's file removed;
+  // a failure to remove it leaves a stale file behind and is not an error. The
+  // file just published is never removed, even if the previous step has the
+  // same number. Rank 0's outcome is broadcast so that all ranks throw together
+  // if publishing failed.
   void
   publish_checkpoint(const std::string      &output_directory,
                      const CheckpointRecord &record,
@@ -271,6 +329,13 @@ namespace ViscoContact
 
 
 
+  // @sect4{read_checkpoint_record}
+  //
+  // Every rank reads checkpoint.info itself (a small text file), so no
+  // communication is needed. Missing or damaged, or written for a problem of
+  // another size (the number of displacement dofs differs), it stops the run
+  // with a message about the Resume entry; the dof count is a cheap check that
+  // the parameter file describes the scene that wrote the checkpoint.
   CheckpointRecord
   read_checkpoint_record(const std::string  &output_directory,
                          const std::uint64_t n_dofs)
@@ -303,6 +368,12 @@ namespace ViscoContact
 
 
 
+  // @sect4{truncate_time_series}
+  //
+  // Called on rank 0 by a resumed run: the rows the interrupted run wrote after
+  // its checkpoint are dropped, since the resumed run computes those steps
+  // again and appends their rows. The file is small (one row per step) and is
+  // read and rewritten as a whole.
   void
   truncate_time_series(const std::filesystem::path &file,
                        const unsigned int           step)
@@ -343,6 +414,14 @@ namespace ViscoContact
   // that its iterations are those of the uninterrupted run), and the state
   // of every stress point (sigma_n, the history of the next step, the
   // plastic multiplier).
+  //
+  // Storing values per cell means that a dof shared by several cells is stored
+  // several times. In exchange, everything a cell needs travels with the cell's
+  // id, and no global dof numbering, which changes with the number of ranks,
+  // appears in the file. The contact state is stored the same way, as values at
+  // the dofs of a contact node's vertex, for the same reason: the contact nodes
+  // are numbered rank by rank, and their numbers mean nothing on another
+  // partition.
   template <int dim>
   void
   ViscoplasticContact<dim>::write_checkpoint(const unsigned int         step,
@@ -350,10 +429,17 @@ namespace ViscoContact
                                              const double wall_time)
   {
     TimerOutput::Scope t(computing_timer, "Checkpoint");
+    // Rank 0 creates the directory; the collective write below opens the file
+    // in it.
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       std::filesystem::create_directories(
         checkpoint_directory(parameters.directory));
 
+    // The header: what identifies the file (version, dim, step), the schedule,
+    // the run's wall time and compute time so far, the iteration counters, the
+    // largest von Mises stress, and the list of .pvtu records for solution.pvd.
+    // That list is kept on rank 0 only (output_results()), and rank 0's header
+    // is the one written.
     ByteWriter header;
     header.write(checkpoint_version);
     header.write<std::uint32_t>(dim);
@@ -372,6 +458,10 @@ namespace ViscoContact
         header.write_string(name);
       }
 
+    // The contact state as a displacement-sized vector: each owned contact node
+    // writes into the owned entries of its own dofs. The ghost import then
+    // makes these values visible in every cell that has the node as a vertex,
+    // also on the ranks that do not own the node.
     VectorType contact_state(solution);
     contact_state = 0;
     if (contact_enabled)
@@ -384,6 +474,10 @@ namespace ViscoContact
         }
     contact_state.update_ghost_values();
 
+    // A record: the cell id in binary form, the dofs_per_cell values of u and
+    // of the contact state, in the cell's dof order, and the n_q stress-point
+    // records of the cell, copied as raw bytes (QuadraturePointHistory is plain
+    // data: two symmetric tensors and a double).
     using Key                        = CellId::binary_type;
     const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
     const unsigned int n_q           = stress_quadrature.size();
@@ -393,6 +487,9 @@ namespace ViscoContact
     std::vector<char> records(owned_cells.size() * record_size);
     std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
     char                                *out = records.data();
+    // The cells in the order of owned_cells; (*vector)(dof) reads owned and
+    // ghost entries alike, which is why both vectors must have their ghost
+    // values here.
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
       {
         const Key key = owned_cells[k]->id().template to_binary<dim>();
@@ -406,11 +503,16 @@ namespace ViscoContact
               std::memcpy(out, &value, sizeof(double));
               out += sizeof(double);
             }
+        // The stress-point records of cell k are contiguous in the flat array:
+        // entries k * n_q to k * n_q + n_q - 1.
         std::memcpy(out,
                     &quadrature_point_history[std::size_t(k) * n_q],
                     n_q * sizeof(QuadraturePointHistory<dim>));
         out += n_q * sizeof(QuadraturePointHistory<dim>);
       }
+    // Collective: the file is complete (and renamed) before the record of the
+    // checkpoint is published, and only then is the previous checkpoint's file
+    // removed.
     write_record_file(checkpoint_file(parameters.directory, step),
                       header.bytes,
                       records,
@@ -438,6 +540,14 @@ namespace ViscoContact
   // their cells, and every owned cell must be found. Then what the time
   // loop derives from the state is rebuilt (the ghosts, the history load of
   // the next step) and the time series is cut back to the checkpoint.
+  //
+  // It runs after set-up, on the mesh rebuilt from the parameter file, and it
+  // returns the step of the checkpoint; run() continues with the step after it.
+  // Everything the loop needs is restored: u_n with its ghosts, the pieces and
+  // (r, z) of the contact nodes, every stress-point record, the schedule, the
+  // counters and the .pvd list. What the run's summary counts per process
+  // (assemblies, set-ups of the back end) starts again from the set-up of the
+  // resumed run.
   template <int dim>
   unsigned int
   ViscoplasticContact<dim>::resume_from_checkpoint(std::vector<double> &times)
@@ -447,6 +557,9 @@ namespace ViscoContact
     const std::filesystem::path file
       = checkpoint_file(parameters.directory, checkpoint.step);
 
+    // The record size follows from dim, the element and the stress quadrature,
+    // exactly as write_checkpoint() computed it; QuadraturePointHistory holds
+    // only doubles, so a record's payload after the key is n_doubles doubles.
     using Key                        = CellId::binary_type;
     const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
     const unsigned int n_q           = stress_quadrature.size();
@@ -457,6 +570,9 @@ namespace ViscoContact
     std::vector<char> header_bytes, share;
     read_record_file(file, header_bytes, share, record_size, mpi_communicator);
 
+    // The header is checked field by field against this run: version, dimension
+    // and step. The schedule replaces the one computed from the parameter file,
+    // since the interrupted run may have cut steps.
     ByteReader header(header_bytes, file.string());
     header.check(header.read<std::uint32_t>() == checkpoint_version);
     header.check(header.read<std::uint32_t>() == dim);
@@ -478,7 +594,12 @@ namespace ViscoContact
         times_and_names.emplace_back(time, header.read_string());
       }
 
-    // The records of this rank's share go to the owners of their cells.
+    // The records of this rank's share go to the owners of their cells. Each
+    // becomes a (key, payload) pair: the key is the binary cell id, the payload
+    // the doubles of u, of the contact state and of the stress points. Each
+    // rank then asks for the keys of its own cells; exchange_records() meets
+    // the holders and the askers at a rendezvous rank chosen by a hash of the
+    // key, so no rank needs to know who holds which cell.
     std::vector<MPITools::Record> records(share.size() / record_size);
     for (std::size_t r = 0; r < records.size(); ++r)
       {
@@ -498,6 +619,11 @@ namespace ViscoContact
     const auto found
       = MPITools::exchange_records(records, requests, mpi_communicator);
 
+    // Write the received values into the owned entries only: a dof of an owned
+    // cell that another rank owns is set there, by the rank that owns it (every
+    // owned dof lies on at least one owned cell). A cell whose record is
+    // missing, duplicated or of the wrong size marks the checkpoint as
+    // incomplete.
     VectorType contact_state(solution);
     contact_state = 0;
     solution      = 0;
@@ -520,13 +646,23 @@ namespace ViscoContact
               solution(dof_indices[i])      = values[i];
               contact_state(dof_indices[i]) = values[dofs_per_cell + i];
             }
+        // The stress-point records go back to their place k * n_q + q, byte for
+        // byte.
         std::memcpy(&quadrature_point_history[std::size_t(k) * n_q],
                     values.data() + 2 * dofs_per_cell,
                     n_q * sizeof(QuadraturePointHistory<dim>));
       }
+    // The decision is reduced over the ranks, so that all throw if any cell was
+    // not found. Then the ghosts of u are imported, as the stress update and
+    // the output expect.
     header.check(Utilities::MPI::min(complete ? 1 : 0, mpi_communicator) == 1);
     solution.update_ghost_values();
 
+    // The contact nodes, on the rank that owns them now: the piece and the
+    // force from the values at their own dofs (the piece was stored + 1, so
+    // that 0 means "no contact node"), r = u.nu_i from the restored
+    // displacement. The next active set then starts from the pieces of the
+    // interrupted run.
     if (contact_enabled)
       for (unsigned int i = 0; i < contact_set.size(); ++i)
         {
@@ -540,9 +676,15 @@ namespace ViscoContact
           contact_set.r[i] = contact_set.normal_component(solution, i);
         }
 
+    // The explicit update's history load is not stored: it is assembled from
+    // the restored histories, as update_stresses() would have left it. The
+    // implicit update needs nothing more; its history enters through the
+    // internal force.
     if (parameters.plasticity
         && parameters.stress_update == Parameters::StressUpdate::explicit_euler)
       assemble_history_load();
+    // Rank 0 removes the rows after the checkpoint from time_series.csv, which
+    // the resumed run then appends to.
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       truncate_time_series(std::filesystem::path(parameters.directory)
                              / "time_series.csv",

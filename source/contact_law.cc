@@ -1,3 +1,8 @@
+// The contact law as a graph made of pieces (contact_law.h, doc/model.md,
+// sections 2 and 5): its construction from the parameters, and the two
+// queries of the active-set method, the piece that q = p + c r names and the
+// update rule that keeps a node at a breakpoint from flipping back and
+// forth.
 #include <deal.II/base/exceptions.h>
 
 #include "contact_law.h"
@@ -23,6 +28,8 @@ namespace ViscoContact
                          const double               gap)
     : gap_value(gap)
   {
+    // The data must describe a law: one slope per interval, one jump per
+    // breakpoint (no jumps given means none).
     AssertThrow(slopes.size() == breakpoints.size() + 1,
                 ExcMessage("A contact law needs one more slope than "
                            "breakpoints."));
@@ -32,6 +39,8 @@ namespace ViscoContact
     AssertThrow(jumps.size() == breakpoints.size(),
                 ExcMessage("A contact law needs one jump per breakpoint."));
 
+    // With the rigid foundation, the graph ends at r = g; without it, it
+    // goes on to +infinity.
     const double infinity = std::numeric_limits<double>::infinity();
     const double limit    = (unilateral_constraint ? gap : infinity);
 
@@ -41,12 +50,17 @@ namespace ViscoContact
     double left_value = 0;
     for (unsigned int k = 0; k <= breakpoints.size(); ++k)
       {
+        // The interval (b_k, b_{k+1}) of sloped piece k, cut at the limit; a
+        // piece that would start at or beyond g is not part of the graph.
         const double r_lower = (k == 0 ? -infinity : breakpoints[k - 1]);
         double r_upper = (k == breakpoints.size() ? infinity : breakpoints[k]);
         if (r_lower >= limit)
           break;
         r_upper = std::min(r_upper, limit);
 
+        // The sloped piece through (left_point, left_value) with the
+        // interval's slope, so that p is continuous from the right at every
+        // breakpoint.
         ContactLawPiece sloped;
         sloped.r_lower   = r_lower;
         sloped.r_upper   = r_upper;
@@ -54,6 +68,9 @@ namespace ViscoContact
         sloped.intercept = left_value - slopes[k] * left_point;
         pieces.push_back(sloped);
 
+        // At a breakpoint below the limit: the value of p just before it, a
+        // vertical piece if p jumps there (upward jumps only, doc/model.md,
+        // section 5), and the point the next sloped piece starts from.
         if (k < breakpoints.size() && breakpoints[k] < limit)
           {
             const double value_before
@@ -74,6 +91,8 @@ namespace ViscoContact
           }
       }
 
+    // The rigid foundation: the vertical piece at r = g from p(g-), the
+    // layer's pressure when it is crushed, to +infinity.
     if (unilateral_constraint)
       {
         const ContactLawPiece &last = pieces.back();
@@ -88,6 +107,13 @@ namespace ViscoContact
 
 
 
+  // @sect4{ContactLaw::from_parameters}
+  //
+  // The three ways subsection Contact describes a law, as breakpoints,
+  // slopes and jumps: no normal compliance (p = 0, Signorini's condition if
+  // the rigid limit is on); the benchmark's nonmonotone law, slope c1 on
+  // [0, u1] and c2 beyond (just c2 from 0 on if u1 = 0); or a general
+  // piecewise-linear law given as it is.
   ContactLaw
   ContactLaw::from_parameters(const Parameters::Contact &contact)
   {
@@ -119,6 +145,7 @@ namespace ViscoContact
 
 
 
+  // The pieces, in order from r = -infinity.
   unsigned int
   ContactLaw::n_pieces() const
   {
@@ -139,9 +166,10 @@ namespace ViscoContact
   // @sect4{ContactLaw::find_piece}
   //
   // The upper end of each piece in the monotone parameter q = p + c r; the
-  // first piece whose upper end is not below q contains the point. Ties go to
-  // the left piece, so a node exactly at a breakpoint stays on the piece it
-  // came from when it moves right.
+  // first piece whose upper end is not below q contains the point. Ties go
+  // to the left piece, so a node exactly at a breakpoint stays on the piece
+  // it came from when it moves right. The last piece extends to
+  // q = +infinity, so every q names a piece.
   unsigned int
   ContactLaw::find_piece(const double q, const double c) const
   {
@@ -163,6 +191,14 @@ namespace ViscoContact
 
 
 
+  // @sect4{ContactLaw::next_piece}
+  //
+  // The update rule of one node: stay on the current piece if q lies in its
+  // range [q_lower, q_upper] up to a small slack, else find the piece q
+  // names. The slack is relative to q and to c g, the size of q at the rigid
+  // limit, and only absorbs rounding: without it a node that sits exactly at
+  // a breakpoint could jump between the two pieces that meet there from one
+  // iteration to the next, and the active set would never settle.
   unsigned int
   ContactLaw::next_piece(const unsigned int current,
                          const double       q,
@@ -183,6 +219,11 @@ namespace ViscoContact
 
 
 
+  // @sect4{ContactLaw::compliance_pressure}
+  //
+  // p(r) of the layer from the sloped pieces: the first whose interval
+  // reaches r. Vertical pieces are skipped, so at a breakpoint this is the
+  // left limit.
   double
   ContactLaw::compliance_pressure(const double r) const
   {
@@ -198,6 +239,12 @@ namespace ViscoContact
 
 
 
+  // @sect4{Properties of the law}
+  //
+  // The steepest softening max(0, -smallest slope), which the parameters c_i
+  // and the uniqueness margin must exceed; whether the law does nothing at
+  // all (one flat piece p = 0 and no rigid limit, so contact is skipped);
+  // whether it has the rigid limit; and the gap g.
   double
   ContactLaw::steepest_softening() const
   {

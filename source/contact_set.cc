@@ -1,5 +1,12 @@
 // The contact nodes of Gamma_3: where they are, their weights, normals and
 // active-set parameters, and their output (profiles and nodal fields).
+//
+// The contact integral is lumped to the vertices of Gamma_3 (doc/model.md,
+// section 2, "Lumping"): node i carries the weight w_i = int_Gamma3 phi_i
+// and the normal nu_i, the normalised int_Gamma3 phi_i nu. Both are
+// assembled like a right-hand side, so they do not depend on how the mesh is
+// partitioned, and the normal is the mesh's own, so a contact boundary need
+// not be axis-aligned.
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
@@ -18,6 +25,7 @@ namespace ViscoContact
 {
   namespace
   {
+    // Whether a boundary id is one of the given ones.
     bool
     is_one_of(const types::boundary_id               id,
               const std::vector<types::boundary_id> &ids)
@@ -30,10 +38,17 @@ namespace ViscoContact
 
   // @sect4{assemble_lumped_weights}
   //
-  // Like a right-hand side: each rank integrates phi_i and phi_i nu over
-  // its own faces of the boundary parts, adds into the (ghosted) entries of
-  // the cell's dofs, and compress() sends the ghost contributions to the
-  // owners.
+  // Like a right-hand side: each rank integrates phi_i and phi_i nu over its
+  // own faces of the boundary parts, adds into the (ghosted) entries of the
+  // cell's dofs, and compress() sends the ghost contributions to the owners.
+  // Every face is integrated by exactly one rank, the owner of its cell, so
+  // the sums do not depend on the partition (up to the order of the
+  // additions).
+  //
+  // The displacement element is a system of dim equal scalar elements, so
+  // the shape function of component c at a vertex is the scalar hat function
+  // phi times e_c: the weight is collected at the vertex's x-dof only, the
+  // weighted normal component by component at its dim dofs.
   template <int dim>
   void
   assemble_lumped_weights(const Mapping<dim>        &mapping,
@@ -43,6 +58,8 @@ namespace ViscoContact
                           VectorType                            &weights,
                           VectorType &weighted_normals)
   {
+    // Values, JxW and normals on the faces; the mapping is the run's
+    // (linear) one.
     const FiniteElement<dim>            &fe = dof_handler.get_fe();
     FEFaceValues<dim>                    fe_face_values(mapping,
                                      fe,
@@ -53,6 +70,7 @@ namespace ViscoContact
       fe.n_dofs_per_cell());
     weights          = 0;
     weighted_normals = 0;
+    // Only faces on the named boundary parts of locally owned cells.
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const unsigned int f : cell->face_indices())
@@ -61,6 +79,8 @@ namespace ViscoContact
             {
               fe_face_values.reinit(cell, f);
               cell->get_dof_indices(local_dof_indices);
+              // phi_i(x_q) JxW_q, for the weight (component 0) and for each
+              // component of the weighted normal.
               for (const unsigned int q :
                    fe_face_values.quadrature_point_indices())
                 for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
@@ -75,6 +95,7 @@ namespace ViscoContact
                       += phi_JxW * fe_face_values.normal_vector(q)[c];
                   }
             }
+    // Contributions to ghost entries go to the owners of those dofs.
     weights.compress(VectorOperation::add);
     weighted_normals.compress(VectorOperation::add);
   }
@@ -83,9 +104,15 @@ namespace ViscoContact
 
   // @sect4{ContactSet::setup}
   //
+  // Finds the contact nodes this rank owns, with their geometry, weights and
+  // numbering across the ranks.
+  //
   // A vertex of Gamma_3 whose faces all belong to other ranks' cells is
   // still seen through the ghost cells, so every locally owned contact
-  // vertex is found. Vertices of hanging or clamped dofs are left out.
+  // vertex is found. Vertices of hanging or clamped dofs are left out: their
+  // displacement is not free, so they cannot carry a contact condition of
+  // their own (the corner of Gamma_3 on Gamma_1; hanging nodes, which the
+  // refinement toward Gamma_3 in refine_mesh() keeps off it).
   template <int dim>
   void
   ContactSet<dim>::setup(const ContactLaw          &law,
@@ -97,6 +124,8 @@ namespace ViscoContact
                          const AffineConstraints<double>       &constraints,
                          const VectorType                      &layout)
   {
+    // The lumped weights and weighted normals of all vertices of Gamma_3, in
+    // the displacement layout.
     communicator = layout.get_mpi_communicator();
     VectorType weights(layout), weighted_normals(layout);
     assemble_lumped_weights(mapping,
@@ -106,9 +135,13 @@ namespace ViscoContact
                             weights,
                             weighted_normals);
 
+    // The partitioner tells which dofs this rank owns and where they sit in
+    // the local storage of the vectors.
     const auto &partitioner = *layout.get_partitioner();
     geometry.clear();
     std::set<types::global_dof_index> seen;
+    // Every vertex of every contact face of the owned and ghost cells, once
+    // (the set seen remembers the x-dofs taken).
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (!cell->is_artificial())
         for (const unsigned int f : cell->face_indices())
@@ -119,12 +152,19 @@ namespace ViscoContact
                 NodeGeometry node;
                 for (unsigned int c = 0; c < dim; ++c)
                   node.dofs[c] = cell->face(f)->vertex_dof_index(v, c);
+                // A vertex becomes a node of this rank if this rank owns it
+                // (its dim dofs have the same owner, so the x-dof decides),
+                // it has not been taken already, and none of its components
+                // is constrained.
                 bool usable = partitioner.in_local_range(node.dofs[0])
                               && seen.insert(node.dofs[0]).second;
                 for (unsigned int c = 0; c < dim; ++c)
                   usable = usable && !constraints.is_constrained(node.dofs[c]);
                 if (!usable)
                   continue;
+                // Its location, the local indices of its dofs (owned
+                // entries, so no ghost lookup is ever needed), and the
+                // normal: the weighted normal assembled above, normalised.
                 node.location = cell->face(f)->vertex(v);
                 for (unsigned int c = 0; c < dim; ++c)
                   {
@@ -133,6 +173,9 @@ namespace ViscoContact
                     node.normal[c] = weighted_normals(node.dofs[c]);
                   }
                 node.normal /= node.normal.norm();
+                // The same vertex's dof in the scalar dof handler of the
+                // output fields, through the same cell of the common
+                // triangulation.
                 const typename DoFHandler<dim>::active_cell_iterator
                   scalar_cell(&dof_handler.get_triangulation(),
                               cell->level(),
@@ -142,7 +185,10 @@ namespace ViscoContact
                 geometry.push_back(node);
               }
 
-    // Along Gamma_3: the order of the contact profiles.
+    // Along Gamma_3: the order of the contact profiles. The order is
+    // lexicographic in the coordinates (x first), with a tolerance for
+    // coordinates that differ by rounding only; on the benchmark's bottom
+    // edge it is the order in x.
     std::sort(geometry.begin(),
               geometry.end(),
               [](const NodeGeometry &a, const NodeGeometry &b) {
@@ -151,11 +197,17 @@ namespace ViscoContact
                     return a.location[d] < b.location[d];
                 return false;
               });
+    // The weight of a node sits at its x-dof; the nodes start at r = z = 0.
     std::vector<double> node_weights(geometry.size());
     for (unsigned int i = 0; i < geometry.size(); ++i)
       node_weights[i] = weights(geometry[i].dofs[0]);
     reinit(law, node_weights);
 
+    // Numbering across ranks: rank p's nodes come after those of ranks
+    // 0, ..., p - 1, so a prefix sum of the node counts gives each rank its
+    // first global number. (MPI_Exscan leaves the result on rank 0
+    // undefined; it is 0.) The condensed back end relies on this numbering:
+    // gathering node vectors in rank order yields them in global order.
     const types::global_dof_index n_local = geometry.size();
     n_global        = Utilities::MPI::sum(n_local, communicator);
     first_global    = 0;
@@ -169,6 +221,8 @@ namespace ViscoContact
     AssertThrowMPI(error);
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       first_global = 0;
+    // A contact boundary whose nodes are all clamped has nothing to solve;
+    // say so in the terms of the parameter file.
     AssertThrow(n_global > 0,
                 ExcMessage("Invalid parameter <Contact boundary ids> in "
                            "subsection <Boundary>: Gamma_3 has no node that "
@@ -179,6 +233,13 @@ namespace ViscoContact
 
 
 
+  // @sect4{ContactSet::set_operator}
+  //
+  // The parameter c_i of every node from the operator A of the step problem
+  // (doc/model.md, section 2, "The parameter c_i"): the node's normal
+  // stiffness nu_i^T A_ii nu_i per unit weight, at least twice the steepest
+  // softening of the law. Called for K at set-up and for every tangent of
+  // the implicit update. The entries A_ii are read from rows this rank owns.
   template <int dim>
   void
   ContactSet<dim>::set_operator(const MatrixType &A)
@@ -193,6 +254,8 @@ namespace ViscoContact
           for (unsigned int b = 0; b < dim; ++b)
             normal_stiffness
               += n.normal[a] * n.normal[b] * A.el(n.dofs[a], n.dofs[b]);
+        // The factor 2 keeps the growth of q along the softest piece at
+        // least c_i / 2, even where the node's own stiffness is small.
         c[i] = std::max(normal_stiffness / weight(i), 2 * softening);
       }
     set_parameters(c);
@@ -200,6 +263,10 @@ namespace ViscoContact
 
 
 
+  // @sect4{Access to the nodes}
+  //
+  // The geometry of node i, the number of nodes of all ranks, this rank's
+  // first global node number, and the communicator the nodes live on.
   template <int dim>
   const typename ContactSet<dim>::NodeGeometry &
   ContactSet<dim>::node(const unsigned int i) const
@@ -236,6 +303,12 @@ namespace ViscoContact
 
 
 
+  // @sect4{ContactSet::normal_component and add_normal}
+  //
+  // The two operations that connect a node to the displacement vectors:
+  // r_i = nu_i . u_i, and v_i += value nu_i (with value = z_i this assembles
+  // N^T z). Both use the node's local indices, i.e. the owned entries of the
+  // vector; no communication is involved.
   template <int dim>
   double
   ContactSet<dim>::normal_component(const VectorType  &u,
@@ -265,8 +338,12 @@ namespace ViscoContact
 
   // @sect4{ContactSet::write_profile}
   //
-  // Each rank formats its own nodes; rank 0 adds the header. On one rank
-  // the lines follow Gamma_3; on several, each rank's block does.
+  // Each rank formats its own nodes; rank 0 adds the header. On one rank the
+  // lines follow Gamma_3; on several, each rank's block does. One line per
+  // node: its coordinates, the time, u_nu, the pressures of the layer, of
+  // the foundation and in all, the nodal force, the weight and the status.
+  // The file is written collectively (mpi_tools.cc), so no rank collects the
+  // others' lines.
   template <int dim>
   void
   ContactSet<dim>::write_profile(const std::string &file,
@@ -282,6 +359,7 @@ namespace ViscoContact
         out << "time,u_nu,compliance_pressure,foundation_pressure,"
                "contact_pressure,nodal_force,weight,status\n";
       }
+    // The foundation's pressure is what the layer does not carry.
     for (unsigned int i = 0; i < size(); ++i)
       {
         for (unsigned int d = 0; d < dim; ++d)
@@ -296,6 +374,11 @@ namespace ViscoContact
 
 
 
+  // @sect4{ContactSet::fill_output_fields}
+  //
+  // The nodal contact fields of the graphical output, in the layout of the
+  // scalar dof handler: zero everywhere, the values of the nodes at their
+  // scalar dofs. The caller updates the ghost entries before writing.
   template <int dim>
   void
   ContactSet<dim>::fill_output_fields(VectorType &contact_pressure_field,
@@ -321,6 +404,7 @@ namespace ViscoContact
 
 
 
+  // The instantiations for 2D and 3D.
   template void
   assemble_lumped_weights(const Mapping<2> &,
                           const DoFHandler<2> &,

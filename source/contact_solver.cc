@@ -1,4 +1,5 @@
-// The choice of the back end.
+// The choice of the back end, and the one place where the program turns a
+// choice of method into a back-end object.
 
 #include <deal.II/base/exceptions.h>
 
@@ -32,14 +33,23 @@ namespace ViscoContact
                 const types::global_dof_index    n_dofs,
                 const types::global_dof_index    n_contact_nodes)
   {
+    // A method named in the parameter file is taken as it is, on any number
+    // of ranks and for any size: the user may want the condensed back end on
+    // several ranks, or the full space one on a small 2D scene.
     if (parameters.method != Parameters::Method::automatic)
       return {parameters.method, "set in the parameter file"};
 
+    // The limits of the automatic choice, by space dimension: 4000 contact
+    // nodes and 4M dofs in 2D, 1500 contact nodes and 120k dofs in 3D.
     const types::global_dof_index max_nodes = (dim == 2 ? 4000 : 1500);
     const types::global_dof_index max_dofs  = (dim == 2 ? 4000000 : 120000);
-    std::ostringstream            reason;
+    // The reason names the scene's numbers, so that the run's header shows
+    // which limit decided.
+    std::ostringstream reason;
     reason << "Method = auto: " << n_ranks << " rank(s), " << n_dofs
            << " dofs, " << n_contact_nodes << " contact nodes; ";
+    // The condensed back end only on one rank: on several, its compliance S
+    // would be replicated on every rank.
     if (n_ranks == 1 && n_contact_nodes <= max_nodes && n_dofs <= max_dofs)
       {
         reason << "condensed on one rank up to " << max_nodes
@@ -47,6 +57,8 @@ namespace ViscoContact
                << "D";
         return {Parameters::Method::condensed, reason.str()};
       }
+    // Anything else, the full space back end, whose cost grows with the
+    // number of unknowns only.
     reason << "full space beyond one rank, " << max_nodes
            << " contact nodes or " << max_dofs << " dofs in " << dim << "D";
     return {Parameters::Method::full_space, reason.str()};
@@ -54,6 +66,14 @@ namespace ViscoContact
 
 
 
+  // @sect4{create_contact_solver}
+  //
+  // The back end of a resolved method (never automatic). The two back-end
+  // classes are only known in their own files; this function reaches them
+  // through their factory functions, so the rest of the program sees the
+  // ContactSolver interface alone. The mapping and the dof handler are only
+  // used by the full space back end, to build the rigid-body modes of its
+  // AMG.
   template <int dim>
   std::unique_ptr<ContactSolver<dim>>
   create_contact_solver(const Parameters::Method         method,
@@ -73,6 +93,7 @@ namespace ViscoContact
 
 
 
+  // The program runs in 2D and 3D; both instances are compiled here.
   template std::unique_ptr<ContactSolver<2>>
   create_contact_solver(const Parameters::Method,
                         const Parameters::AllParameters &,

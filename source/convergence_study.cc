@@ -1,5 +1,13 @@
-// The convergence study: runs at several resolutions compared exactly with
-// a reference run on the reference mesh, on any number of ranks.
+// The convergence study: runs at several resolutions compared exactly with a
+// reference run on the reference mesh, on any number of ranks.
+//
+// The study drives ordinary ViscoplasticContact objects, one after the
+// other, and watches them through their step observer. Nothing is
+// interpolated between unrelated meshes: the meshes are nested boxes
+// (mesh.cc), so every reference stress point lies in one coarse cell, on
+// which the coarse solution is a known polynomial. The coarse data travel to
+// where the reference mesh needs them through MPITools::exchange_records(),
+// so no rank ever holds a whole run.
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
@@ -18,6 +26,9 @@
 
 namespace ViscoContact
 {
+  // @sect4{ConvergenceStudy::ConvergenceStudy}
+  //
+  // Only rank 0 prints (pcout).
   template <int dim>
   ConvergenceStudy<dim>::ConvergenceStudy(
     const Parameters::AllParameters &parameters,
@@ -29,9 +40,12 @@ namespace ViscoContact
 
 
 
+  // @sect4{ConvergenceStudy::parameters_for}
+  //
   // Each run is the scene of the parameter file at its own resolution,
   // without graphical output and terminal chatter, writing its time series
-  // into a subdirectory of the study's output directory.
+  // into a subdirectory of the study's output directory. The uniqueness
+  // check and the contact profiles are skipped: the study uses neither.
   template <int dim>
   Parameters::AllParameters
   ConvergenceStudy<dim>::parameters_for(const unsigned int subdivisions,
@@ -71,13 +85,23 @@ namespace ViscoContact
 
 
 
+  // @sect4{ConvergenceStudy::square_key}
+  //
   // The square (cube) of the box with n subdivisions that contains the
-  // point, as a key.
+  // point, as a key. Coarse cells are keyed by their centre, which lies
+  // inside the cell and thus inside the one square that holds the cell;
+  // reference stress points by their location, which is inside a reference
+  // cell and thus, the meshes being nested, inside one coarse cell and one
+  // square. Neither ever sits on a square's boundary, so the key is
+  // unambiguous.
   template <int dim>
   std::string
   ConvergenceStudy<dim>::square_key(const Point<dim>  &point,
                                     const unsigned int n) const
   {
+    // The square's multi-index (i_1, ..., i_dim), x fastest, as one integer.
+    // A point on the far side of the box (x_d = L_d) belongs to the last
+    // square, hence the clamp.
     std::uint64_t index = 0;
     for (int d = dim - 1; d >= 0; --d)
       {
@@ -87,6 +111,7 @@ namespace ViscoContact
                                  static_cast<int>(n) - 1);
         index          = index * n + i;
       }
+    // The key is the integer's bytes: exchange_records() takes byte strings.
     return std::string(reinterpret_cast<const char *>(&index), sizeof(index));
   }
 
@@ -97,6 +122,12 @@ namespace ViscoContact
   // Per locally owned cell: at the first step its square and vertices, at
   // every step grad u and sigma (as full dim x dim tensors) at its stress
   // points.
+  //
+  // The record of a cell is one vector of doubles: the number of vertices,
+  // their coordinates, and then, per time level, per stress point q and per
+  // entry (a, b), the pair (grad u)_ab, sigma_ab. compare() reads it with
+  // the same layout. The records stay on the rank of the coarse run's cell
+  // until the reference run needs them.
   template <int dim>
   void
   ConvergenceStudy<dim>::record_state(
@@ -105,6 +136,8 @@ namespace ViscoContact
   {
     const auto        &cells = problem.get_owned_cells();
     const unsigned int n_q   = problem.get_stress_quadrature().size();
+    // The first call (after step 1) also creates the records and fills in
+    // what does not change: the key, the number of vertices, the vertices.
     if (run.cells.empty())
       {
         run.n_dofs = problem.get_dof_handler().n_dofs();
@@ -120,6 +153,7 @@ namespace ViscoContact
                 payload.push_back(cells[k]->vertex(v)[d]);
           }
       }
+    // Every call appends one time level to every record.
     for (unsigned int k = 0; k < cells.size(); ++k)
       for (unsigned int q = 0; q < n_q; ++q)
         {
@@ -139,15 +173,21 @@ namespace ViscoContact
 
   // @sect4{ConvergenceStudy::run}
   //
-  // The coarse runs first, each recording its states at all its time
-  // levels; then the reference run, which compares with them at every
-  // common time level while it goes.
+  // The coarse runs first, each recording its states at all its time levels;
+  // then the reference run, which compares with them at every common time
+  // level while it goes.
+  //
+  // So the reference solution is never stored: at each of its steps the
+  // errors of every coarse run at that time are computed and only their
+  // maxima kept. Its memory is one run's, plus the records of the coarse
+  // cells this rank needs.
   template <int dim>
   void
   ConvergenceStudy<dim>::run()
   {
     const unsigned int n_runs = parameters.study_subdivisions.size();
     runs.resize(n_runs);
+    // The coarse runs, one after the other on all ranks.
     for (unsigned int r = 0; r < n_runs; ++r)
       {
         Run &run         = runs[r];
@@ -162,6 +202,10 @@ namespace ViscoContact
                                                         run.time_step,
                                                         name.str()),
                                          communicator);
+        // After every step the observer notes the time level and records the
+        // state. If a step of the run was cut, the run has extra time
+        // levels; only the levels that equal a reference time level are
+        // compared.
         problem.set_step_observer([&](const unsigned int, const double time) {
           run.times.push_back(time);
           record_state(run, problem);
@@ -173,6 +217,11 @@ namespace ViscoContact
           }
         catch (const ExceptionBase &exc)
           {
+            // A run that stops with an error (iteration limit, blow-up)
+            // stays in the table as failed instead of ending the study. A
+            // failed step is decided collectively (time_step.cc reduces its
+            // criteria over the ranks), so every rank catches the exception
+            // and marks the run.
             std::ostringstream info;
             exc.print_info(info);
             run.failed  = true;
@@ -181,12 +230,14 @@ namespace ViscoContact
                   << ", k = " << run.time_step << " failed:\n"
                   << run.failure;
           }
+        // The slowest rank's time is the run's time.
         run.wall_time = Utilities::MPI::max(timer.wall_time(), communicator);
       }
 
     pcout << "Convergence study: reference run, h = 1/"
           << parameters.reference_subdivisions
           << ", k = " << parameters.reference_time_step << std::endl;
+    // The reference run, with its own observer.
     ViscoplasticContact<dim> reference(
       parameters_for(parameters.reference_subdivisions,
                      parameters.reference_time_step,
@@ -195,11 +246,17 @@ namespace ViscoContact
     unsigned int reference_steps = 0;
     reference.set_step_observer(
       [&](const unsigned int step, const double time) {
+        // After its first step, when the reference mesh and its stress
+        // points exist, every coarse run's cells are brought to the ranks of
+        // the reference points they contain.
         if (step == 1)
           for (Run &run : runs)
             if (!run.failed)
               locate(run, reference);
         reference_steps = step;
+        // Then, at every step, compare each coarse run that has a time level
+        // equal to the reference's current time (to a tolerance relative to
+        // T).
         for (Run &run : runs)
           {
             if (run.failed)
@@ -212,6 +269,7 @@ namespace ViscoContact
               compare(run, level - run.times.begin(), reference);
           }
       });
+    // A failure of the reference run itself ends the study with its error.
     Timer timer;
     reference.run();
     write_table(reference.get_dof_handler().n_dofs(),
@@ -227,6 +285,14 @@ namespace ViscoContact
   // points come to this rank; each point is located in one of them
   // (barycentric coordinates on simplices; on the axis-aligned boxes of a
   // hypercube mesh the square holds one cell).
+  //
+  // The result, per reference stress point p = k n_q + q (cell k, point q):
+  // the coarse cell containing it (point_cell, an index into the records of
+  // located_cells, each record copied once however many points it holds) and
+  // its coordinates in that cell (unit_points): the barycentric coordinates
+  // on a simplex, the coordinates relative to the box's corner and edge
+  // lengths on a hypercube. Both are computed once; compare() then only
+  // evaluates.
   template <int dim>
   void
   ConvergenceStudy<dim>::locate(Run                            &run,
@@ -234,13 +300,18 @@ namespace ViscoContact
   {
     const auto            &cells      = reference.get_owned_cells();
     const Quadrature<dim> &quadrature = reference.get_stress_quadrature();
-    const Mapping<dim>    &mapping
+    // Stress points are given on the reference cell; the linear mapping of
+    // the cell type (the program's own) places them in the real cell. A rank
+    // without cells takes any mapping; it is not used.
+    const Mapping<dim> &mapping
       = cells.empty() ? ReferenceCells::get_hypercube<dim>()
                           .template get_default_linear_mapping<dim>()
                       : cells[0]
                           ->reference_cell()
                           .template get_default_linear_mapping<dim>();
 
+    // The real location and the square key of every reference stress point
+    // of this rank.
     std::vector<Point<dim>>  points;
     std::vector<std::string> keys;
     for (const auto &cell : cells)
@@ -250,10 +321,14 @@ namespace ViscoContact
             mapping.transform_unit_to_real_cell(cell, quadrature.point(q)));
           keys.push_back(square_key(points.back(), run.subdivisions));
         }
+    // Ask for each square once.
     std::vector<std::string> requests(keys);
     std::sort(requests.begin(), requests.end());
     requests.erase(std::unique(requests.begin(), requests.end()),
                    requests.end());
+    // The coarse cells of the requested squares, from whichever ranks hold
+    // them. The records of this rank's coarse cells are no longer needed
+    // here afterwards; those that are needed now live in the answers.
     const auto found
       = MPITools::exchange_records(run.cells, requests, communicator);
     run.cells.clear();
@@ -263,6 +338,8 @@ namespace ViscoContact
     run.unit_points.resize(points.size());
     for (unsigned int p = 0; p < points.size(); ++p)
       {
+        // No coarse cell in the point's square: the meshes are not nested
+        // boxes.
         const auto entry = found.find(keys[p]);
         AssertThrow(entry != found.end(),
                     ExcMessage("Convergence study: a point of the reference "
@@ -271,6 +348,7 @@ namespace ViscoContact
         const std::vector<double> *containing = nullptr;
         for (const std::vector<double> &candidate : entry->second)
           {
+            // The vertices of the candidate cell, from its record.
             const unsigned int n_vertices = candidate[0];
             const auto         vertex     = [&](const unsigned int v) {
               Point<dim> x;
@@ -282,6 +360,10 @@ namespace ViscoContact
             bool       inside = true;
             if (n_vertices == dim + 1)
               {
+                // A simplex: solve x = v_0 + J lambda for the barycentric
+                // coordinates lambda (the columns of J are the edges from
+                // v_0). The point is inside if all of them and 1 - their sum
+                // are nonnegative, up to rounding.
                 Tensor<2, dim> J;
                 for (unsigned int a = 1; a <= dim; ++a)
                   for (unsigned int d = 0; d < dim; ++d)
@@ -298,6 +380,10 @@ namespace ViscoContact
                 inside = inside && sum <= 1 + 1e-10;
               }
             else
+              // A hypercube of the box: an axis-aligned box whose last
+              // vertex (in deal.II's numbering) is the corner opposite v_0,
+              // so the unit coordinates follow axis by axis. It is the only
+              // cell of its square, so it contains the point.
               for (unsigned int d = 0; d < dim; ++d)
                 unit[d] = (points[p][d] - vertex(0)[d])
                           / (vertex(n_vertices - 1)[d] - vertex(0)[d]);
@@ -312,6 +398,8 @@ namespace ViscoContact
                     ExcMessage("Convergence study: a point of the reference "
                                "mesh lies in no cell of the coarse mesh; the "
                                "meshes are not nested."));
+        // Keep one copy of each containing cell, and remember which one
+        // holds this point.
         const auto [position, inserted]
           = index_of.emplace(containing, run.located_cells.size());
         if (inserted)
@@ -324,8 +412,16 @@ namespace ViscoContact
 
   // @sect4{ConvergenceStudy::compare}
   //
-  // ||eps(u_ref - u_h)||_L2 and ||sigma_ref - sigma_h||_L2 with the
+  // |eps(u_ref - u_h)||_L2 and ||sigma_ref - sigma_h||_L2 with the
   // reference's stress-point quadrature, summed over the ranks.
+  //
+  // This is the error of doc/model.md, section 1, at one time level: the
+  // coarse run's grad u_h and sigma_h are evaluated at every reference
+  // stress point from the located coarse cell, and the squared differences
+  // are integrated with the reference's weights JxW. On simplices both
+  // fields are constant on each reference cell and the one-point rule is
+  // exact; on hypercubes the rule is the reference's own Gauss rule. The
+  // maximum over the time levels is taken as the levels come.
   template <int dim>
   void
   ConvergenceStudy<dim>::compare(
@@ -343,12 +439,20 @@ namespace ViscoContact
           const unsigned int         p = k * n_q + q;
           const std::vector<double> &payload
             = run.located_cells[run.point_cell[p]];
+          // The values of the coarse cell at this time level: they start
+          // after the vertex data, at level times n_q x 2 x dim^2 doubles.
           const unsigned int n_vertices = payload[0];
           const double      *values
             = &payload[1 + n_vertices * dim
                        + std::size_t(level) * n_q * 2 * dim * dim];
           // sum_j L_j(x) v_j with the Lagrange polynomials of the coarse
-          // cell's stress points (a single point on simplices).
+          // cell's stress points (a single point on simplices). On
+          // hypercubes the stress points are the tensor-product Gauss
+          // points, two per direction at coordinates symmetric about 1/2, so
+          // the one-dimensional Lagrange polynomial of a point is
+          // (x - other) / (node - other); the product over the directions is
+          // the polynomial of degree one in each variable through the 2^dim
+          // values, which reproduces the Q1 gradient exactly.
           Tensor<2, dim> gradient, stress;
           for (unsigned int j = 0; j < n_q; ++j)
             {
@@ -360,6 +464,7 @@ namespace ViscoContact
                     const double other = 1 - node; // the other Gauss point
                     weight *= (run.unit_points[p][d] - other) / (node - other);
                   }
+              // Interpolate both fields with the same weights.
               for (unsigned int a = 0; a < dim; ++a)
                 for (unsigned int b = 0; b < dim; ++b)
                   {
@@ -369,6 +474,8 @@ namespace ViscoContact
                       += weight * values[(j * dim * dim + a * dim + b) * 2 + 1];
                   }
             }
+          // The differences at the point: the strain of the displacement
+          // error and the stress error, squared and weighted.
           const SymmetricTensor<2, dim> strain_error
             = symmetrize(reference.get_displacement_gradient(k, q) - gradient);
           const Tensor<2, dim> stress_error
@@ -377,9 +484,13 @@ namespace ViscoContact
           error_u += (strain_error * strain_error) * JxW;
           error_sigma += scalar_product(stress_error, stress_error) * JxW;
         }
+    // Sum over the ranks; every rank gets the same norms and keeps the same
+    // maxima.
     error_u     = std::sqrt(Utilities::MPI::sum(error_u, communicator));
     error_sigma = std::sqrt(Utilities::MPI::sum(error_sigma, communicator));
 
+    // The maxima over the time levels: of each part separately, and of their
+    // sum (which is not the sum of the maxima).
     run.max_error_u     = std::max(run.max_error_u, error_u);
     run.max_error_sigma = std::max(run.max_error_sigma, error_sigma);
     run.max_error       = std::max(run.max_error, error_u + error_sigma);
@@ -394,6 +505,10 @@ namespace ViscoContact
   // observed order between consecutive runs is log(e_{i-1}/e_i) /
   // log(s_{i-1}/s_i) with s = h + k, or s = k (s = h) when the mesh (the
   // time step) is the same.
+  //
+  // A failed run keeps its row, with infinite errors and no orders, and the
+  // run after it gets no orders either (there is no error to compare with).
+  // h is measured along the first edge, L1 / Subdivisions.
   template <int dim>
   void
   ConvergenceStudy<dim>::write_table(
@@ -403,6 +518,7 @@ namespace ViscoContact
   {
     if (Utilities::MPI::this_mpi_process(communicator) != 0)
       return;
+    // The table goes into the study's output directory, created if need be.
     std::filesystem::create_directories(parameters.directory);
     std::ofstream csv(std::filesystem::path(parameters.directory)
                       / "convergence.csv");
@@ -419,6 +535,7 @@ namespace ViscoContact
         text << '-';
       return text.str();
     };
+    // The terminal header names the reference resolution and its cost.
     std::cout << "\nConvergence study against h = 1/"
               << parameters.reference_subdivisions
               << ", k = " << parameters.reference_time_step << " ("
@@ -428,13 +545,15 @@ namespace ViscoContact
                  "err_u    order  err_sigma  order      error  order\n";
     for (unsigned int r = 0; r < runs.size(); ++r)
       {
-        const Run   &run   = runs[r];
-        const double h     = parameters.lengths[0] / run.subdivisions;
-        const auto   order = [&](const double Run::*member) -> double {
+        const Run   &run = runs[r];
+        const double h   = parameters.lengths[0] / run.subdivisions;
+        // The observed order of one error column (a pointer to the member of
+        // Run that holds it); NaN where it is not defined.
+        const auto order = [&](const double Run::*member) -> double {
           if (r == 0 || runs[r - 1].failed)
             return std::numeric_limits<double>::quiet_NaN();
           const Run   &previous = runs[r - 1];
-          const double h_prev = parameters.lengths[0] / previous.subdivisions;
+          const double h_prev   = parameters.lengths[0] / previous.subdivisions;
           // The order in the quantity that varies: k on a fixed mesh, h at
           // a fixed step, h + k when both change.
           const double size_prev
@@ -446,6 +565,7 @@ namespace ViscoContact
           return std::log(previous.*member / run.*member)
                  / std::log(size_prev / size);
         };
+        // A failed run: its resolution, and infinite errors.
         if (run.failed)
           {
             csv << h << ',' << run.time_step << ',' << run.subdivisions
@@ -455,16 +575,20 @@ namespace ViscoContact
                       << "   failed: see above\n";
             continue;
           }
+        // The orders of the displacement part, the stress part and the
+        // total.
         const double order_u     = order(&Run::max_error_u);
         const double order_sigma = order(&Run::max_error_sigma);
         const double order_total = order(&Run::max_error);
 
+        // One row of the CSV file, full precision ...
         csv << h << ',' << run.time_step << ',' << run.subdivisions << ','
             << run.n_dofs << ',' << run.times.size() << ','
             << run.n_compared_levels << ',' << run.wall_time << ','
             << run.max_error_u << ',' << run.max_error_sigma << ','
             << run.max_error << ',' << order_u << ',' << order_sigma << ','
             << order_total << '\n';
+        // ... and of the terminal table, aligned in columns.
         std::cout << std::setw(6) << "1/" + std::to_string(run.subdivisions)
                   << std::setw(11) << std::setprecision(4) << run.time_step
                   << std::setw(9) << run.n_dofs << std::setw(6)
@@ -483,6 +607,7 @@ namespace ViscoContact
 
 
 
+  // The instantiations for 2D and 3D.
   template class ConvergenceStudy<2>;
   template class ConvergenceStudy<3>;
 } // namespace ViscoContact

@@ -1,5 +1,13 @@
 // Sparse direct factorisations of the operator: CHOLMOD and UMFPACK on one
 // rank, MUMPS (through Amesos) on any number of ranks.
+//
+// The condensed back end solves with the operator of the step problem once
+// per contact node at set-up and once or twice per step problem afterwards;
+// the full space back end may use the same factorisation as its
+// preconditioner. What matters is therefore a fast factorisation that solves
+// many right-hand sides cheaply. CHOLMOD and UMFPACK are called through
+// their C interfaces, MUMPS through Trilinos' Amesos, all on the Trilinos
+// matrix the program assembles; the rest of the program never sees them.
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
@@ -23,6 +31,8 @@ namespace ViscoContact
 {
   namespace
   {
+    // CHOLMOD's status codes in words, for the messages of failed
+    // factorisations and solves.
     std::string
     cholmod_status_message(const int status)
     {
@@ -61,6 +71,10 @@ namespace ViscoContact
     };
 
     // keep(i, j): which entries to take (CHOLMOD reads one triangle only).
+    // Each row is read through Epetra's local view, its column indices are
+    // translated to global ones and sorted, as both libraries expect sorted
+    // indices within a column. Both are only used on one rank, where global
+    // and local indices coincide.
     template <typename Predicate>
     CompressedRows
     compressed_rows(const MatrixType &A, const Predicate &keep)
@@ -76,6 +90,8 @@ namespace ViscoContact
           int     n_entries = 0;
           double *values    = nullptr;
           int    *indices   = nullptr;
+          // The row's entries, with column indices local to this rank's
+          // column map.
           matrix.ExtractMyRowView(i, n_entries, values, indices);
           const SuiteSparse_long global_row = matrix.RowMap().GID64(i);
           row.clear();
@@ -92,6 +108,8 @@ namespace ViscoContact
               rows.column.push_back(j);
               rows.value.push_back(v);
             }
+          // row_start[i + 1] marks the end of row i: the usual compressed
+          // format.
           rows.row_start.push_back(rows.column.size());
         }
       return rows;
@@ -103,7 +121,11 @@ namespace ViscoContact
   // @sect4{The implementations}
   //
   // One struct holds whichever factorisation was chosen; only one of its
-  // parts is in use.
+  // parts is in use. It lives in this file only (the header declares it as
+  // an opaque Implementation), so that no other file has to include
+  // SuiteSparse or Amesos. in_use says which part holds the current
+  // factorisation; it may differ from kind, because CHOLMOD hands an
+  // unsymmetric operator to UMFPACK.
   struct SparseDirectSolver::Implementation
   {
     Implementation(const Parameters::DirectSolver kind,
@@ -111,6 +133,9 @@ namespace ViscoContact
       : kind(kind)
       , communicator(communicator)
     {
+      // CHOLMOD's settings, made once: no printing, always the supernodal
+      // factorisation (dense kernels on blocks of columns with the same
+      // structure), and the fill-reducing orderings to try.
       cholmod_l_start(&cholmod);
       cholmod.print      = 0;
       cholmod.supernodal = CHOLMOD_SUPERNODAL;
@@ -121,12 +146,17 @@ namespace ViscoContact
       cholmod.postorder          = 1;
     }
 
+    // Everything clear() frees, then CHOLMOD's common block.
     ~Implementation()
     {
       clear();
       cholmod_l_finish(&cholmod);
     }
 
+    // Frees whatever factorisation and workspace exist, before a new
+    // factorisation or at the end. cholmod_l_free_dense() accepts null
+    // pointers, so the work arrays are freed whether or not a solve has
+    // allocated them.
     void
     clear()
     {
@@ -143,6 +173,9 @@ namespace ViscoContact
       in_use = Parameters::DirectSolver::automatic;
     }
 
+    // The three factorisations, and the solve with whichever is in use
+    // (values: n_columns right-hand sides of n entries each, column by
+    // column, overwritten by the solutions).
     void
     factorize_cholmod(const MatrixType &A);
     void
@@ -160,15 +193,24 @@ namespace ViscoContact
     std::size_t              n      = 0; // locally owned rows
     std::string              what;
 
+    // CHOLMOD: its common block of settings and statistics, the factor, and
+    // the solution and workspace that cholmod_l_solve2() reuses from one
+    // solve to the next (hence mutable: solving does not change the
+    // factorisation).
     mutable cholmod_common cholmod;
     cholmod_factor        *cholmod_factor_     = nullptr;
     mutable cholmod_dense *cholmod_solution    = nullptr;
     mutable cholmod_dense *cholmod_workspace_y = nullptr;
     mutable cholmod_dense *cholmod_workspace_e = nullptr;
 
+    // UMFPACK: the matrix (its solve needs it again) and the numeric
+    // factors.
     CompressedRows umfpack_rows;
     void          *umfpack_numeric = nullptr;
 
+    // MUMPS: Amesos' linear problem, which points to the matrix and to the
+    // vectors of a solve, the solver holding the factors, and the row map
+    // that lays out the right-hand sides as the matrix's rows.
     std::unique_ptr<Epetra_LinearProblem> amesos_problem;
     std::unique_ptr<Amesos_BaseSolver>    amesos_solver;
     std::unique_ptr<Epetra_Map>           row_map;
@@ -176,22 +218,30 @@ namespace ViscoContact
 
 
 
+  // @sect4{The CHOLMOD factorisation}
+  //
   // CHOLMOD reads the lower triangle, stored by columns: with symmetric
-  // values that is the upper triangle of the rows.
+  // values that is the upper triangle of the rows. The rows are handed over
+  // without copying them again: CHOLMOD's sparse matrix only points to the
+  // arrays, which live until the end of this function (the factor does not
+  // need them).
   void
   SparseDirectSolver::Implementation::factorize_cholmod(const MatrixType &A)
   {
     CompressedRows rows
       = compressed_rows(A, [](const auto i, const auto j) { return j >= i; });
     cholmod_sparse matrix;
-    matrix.nrow   = n;
-    matrix.ncol   = n;
-    matrix.nzmax  = rows.value.size();
-    matrix.p      = rows.row_start.data();
-    matrix.i      = rows.column.data();
-    matrix.nz     = nullptr;
-    matrix.x      = rows.value.data();
-    matrix.z      = nullptr;
+    matrix.nrow  = n;
+    matrix.ncol  = n;
+    matrix.nzmax = rows.value.size();
+    matrix.p     = rows.row_start.data();
+    matrix.i     = rows.column.data();
+    matrix.nz    = nullptr;
+    matrix.x     = rows.value.data();
+    matrix.z     = nullptr;
+    // stype = -1: the matrix is symmetric and only its lower triangle is
+    // stored; long integer indices, real double values, sorted and packed
+    // columns.
     matrix.stype  = -1;
     matrix.itype  = CHOLMOD_LONG;
     matrix.xtype  = CHOLMOD_REAL;
@@ -199,11 +249,18 @@ namespace ViscoContact
     matrix.sorted = 1;
     matrix.packed = 1;
 
+    // The symbolic analysis (the ordering and the structure of the factor),
+    // then the numeric factorisation.
     cholmod_factor_ = cholmod_l_analyze(&matrix, &cholmod);
     AssertThrow(cholmod_factor_ != nullptr,
                 ExcMessage("CHOLMOD's analysis of the operator failed: "
                            + cholmod_status_message(cholmod.status)));
     const int ok = cholmod_l_factorize(&matrix, cholmod_factor_, &cholmod);
+    // A pivot that is not positive stops CHOLMOD early: factor->minor is the
+    // column where it stopped. For an elastic operator this means it has a
+    // null space, most likely rigid motions that no clamped boundary
+    // removes. The factorisation is freed before throwing, so the object is
+    // left without one.
     if (cholmod.status == CHOLMOD_NOT_POSDEF
         || cholmod_factor_->minor < cholmod_factor_->n)
       {
@@ -220,6 +277,8 @@ namespace ViscoContact
     AssertThrow(ok && cholmod.status >= CHOLMOD_OK,
                 ExcMessage("CHOLMOD's factorisation failed: "
                            + cholmod_status_message(cholmod.status)));
+    // The description for the run's header: the size of the factor says how
+    // much the fill cost.
     what = "CHOLMOD supernodal Cholesky, "
            + std::to_string(static_cast<std::size_t>(cholmod.lnz))
            + " nonzeros in the factor";
@@ -227,13 +286,18 @@ namespace ViscoContact
 
 
 
-  // UMFPACK takes columns; the rows of A are the columns of A^T, and
-  // solving with the transpose of that (UMFPACK_At) is solving with A.
+  // @sect4{The UMFPACK factorisation}
+  //
+  // UMFPACK takes columns; the rows of A are the columns of A^T, and solving
+  // with the transpose of that (UMFPACK_At) is solving with A. This avoids
+  // transposing the unsymmetric tangent. All entries are kept; the arrays
+  // stay in umfpack_rows because every solve passes them again.
   void
   SparseDirectSolver::Implementation::factorize_umfpack(const MatrixType &A)
   {
     umfpack_rows
       = compressed_rows(A, [](const auto, const auto) { return true; });
+    // The symbolic analysis (column ordering and structure) ...
     const SuiteSparse_long size     = n;
     void                  *symbolic = nullptr;
     int                    status   = umfpack_dl_symbolic(size,
@@ -247,6 +311,8 @@ namespace ViscoContact
     AssertThrow(status == UMFPACK_OK,
                 ExcMessage("UMFPACK's analysis of the operator failed (status "
                            + std::to_string(status) + ")."));
+    // ... and the numeric LU factorisation. The symbolic object is not
+    // needed after it; a singular operator is reported by name.
     status = umfpack_dl_numeric(umfpack_rows.row_start.data(),
                                 umfpack_rows.column.data(),
                                 umfpack_rows.value.data(),
@@ -268,25 +334,37 @@ namespace ViscoContact
 
 
 
-  // Amesos copies the matrix into MUMPS' own distributed format; the
-  // solver object keeps the factors.
+  // @sect4{The MUMPS factorisation}
+  //
+  // Amesos copies the matrix into MUMPS' own distributed format; the solver
+  // object keeps the factors. The matrix is used as it is distributed, rows
+  // owned by each rank, so this is the factorisation for several ranks.
   void
   SparseDirectSolver::Implementation::factorize_mumps(const MatrixType &A,
                                                       const bool symmetric)
   {
     const Epetra_CrsMatrix &matrix = A.trilinos_matrix();
+    // The row map lays out the right-hand sides of later solves like the
+    // matrix's rows.
     row_map        = std::make_unique<Epetra_Map>(matrix.RowMap());
     amesos_problem = std::make_unique<Epetra_LinearProblem>();
     amesos_problem->SetOperator(const_cast<Epetra_CrsMatrix *>(&matrix));
+    // MUMPS is optional in a Trilinos build; say so clearly instead of
+    // failing in Amesos.
     Amesos factory;
     AssertThrow(factory.Query("Amesos_Mumps"),
                 ExcMessage("MUMPS is not available in this Trilinos build; "
                            "choose Direct solver = cholmod or umfpack (one "
                            "MPI rank)."));
     amesos_solver.reset(factory.Create("Amesos_Mumps", *amesos_problem));
+    // With symmetric values MUMPS is told the matrix is symmetric positive
+    // definite, so that it factorises only one triangle (LDL^T); the tangent
+    // gets a general LU factorisation.
     Teuchos::ParameterList list;
     list.set("MatrixProperty", symmetric ? "SPD" : "general");
     amesos_solver->SetParameters(list);
+    // The analysis and the numeric factorisation; an error of either stops
+    // the run with Amesos' code.
     int error = amesos_solver->SymbolicFactorization();
     if (error == 0)
       error = amesos_solver->NumericFactorization();
@@ -301,6 +379,12 @@ namespace ViscoContact
 
 
 
+  // @sect4{SparseDirectSolver::Implementation::solve}
+  //
+  // Solves A x = b for n_columns right-hand sides, stored column by column
+  // in values (n locally owned entries each) and overwritten by the
+  // solutions. Each library gets the block in its own form; an empty block
+  // returns at once on every rank.
   void
   SparseDirectSolver::Implementation::solve(double           *values,
                                             const std::size_t n_columns) const
@@ -311,6 +395,11 @@ namespace ViscoContact
       {
         case Parameters::DirectSolver::cholmod:
           {
+            // CHOLMOD solves all columns in one call with its dense kernels:
+            // a dense-matrix header is put around the caller's array
+            // (leading dimension n), and cholmod_l_solve2() writes into the
+            // solution it keeps between calls, which is copied back column
+            // by column.
             cholmod_dense rhs;
             rhs.nrow     = n;
             rhs.ncol     = n_columns;
@@ -339,6 +428,9 @@ namespace ViscoContact
           }
         case Parameters::DirectSolver::umfpack:
           {
+            // UMFPACK solves one right-hand side at a time: each column is
+            // copied out as b, and the solution is written into the caller's
+            // array in its place.
             std::vector<double> rhs(n);
             for (std::size_t j = 0; j < n_columns; ++j)
               {
@@ -361,6 +453,11 @@ namespace ViscoContact
           }
         case Parameters::DirectSolver::mumps:
           {
+            // MUMPS: Amesos' multivectors are views of the arrays; only the
+            // right-hand side is copied, since the solution overwrites the
+            // caller's array. The problem only points to them during the
+            // solve, so the pointers are reset afterwards. This is
+            // collective: every rank passes its rows.
             std::vector<double> rhs(values, values + n * n_columns);
             Epetra_MultiVector  b(View, *row_map, rhs.data(), n, n_columns);
             Epetra_MultiVector  x(View, *row_map, values, n, n_columns);
@@ -374,6 +471,8 @@ namespace ViscoContact
                                    + std::to_string(error) + ")."));
             break;
           }
+        // A solve before any factorisation is an error of the program, not
+        // of the input.
         default:
           AssertThrow(false,
                       ExcMessage("SparseDirectSolver::solve() needs a "
@@ -383,6 +482,11 @@ namespace ViscoContact
 
 
 
+  // @sect4{SparseDirectSolver}
+  //
+  // The public class only forwards to the implementation. The caller must
+  // have resolved Direct solver = auto (CHOLMOD on one rank, MUMPS on
+  // several), so kind is one of the three libraries.
   SparseDirectSolver::SparseDirectSolver(const Parameters::DirectSolver kind,
                                          const MPI_Comm communicator)
     : implementation(std::make_unique<Implementation>(kind, communicator))
@@ -392,15 +496,27 @@ namespace ViscoContact
 
 
 
+  // Defined here, where Implementation is a complete type, so that the
+  // unique_ptr can delete it.
   SparseDirectSolver::~SparseDirectSolver() = default;
 
 
 
+  // @sect4{SparseDirectSolver::factorize}
+  //
+  // Replaces any earlier factorisation by one of A. MUMPS works on any
+  // number of ranks; CHOLMOD and UMFPACK only on one (the parameter check at
+  // start-up already rejects them on several ranks, this is the safety net).
+  // CHOLMOD only factorises symmetric operators; for an unsymmetric tangent
+  // the same request silently becomes UMFPACK's LU, which description() then
+  // reports.
   void
   SparseDirectSolver::factorize(const MatrixType &A, const bool symmetric)
   {
     Implementation &impl = *implementation;
     impl.clear();
+    // The number of locally owned rows, the length of every solve's
+    // right-hand side on this rank.
     impl.n = A.local_size();
     if (impl.kind == Parameters::DirectSolver::mumps)
       {
@@ -425,6 +541,10 @@ namespace ViscoContact
 
 
 
+  // @sect4{SparseDirectSolver::solve}
+  //
+  // One right-hand side: the solution overwrites a copy of b in the owned
+  // entries of x (its ghost entries are left alone).
   void
   SparseDirectSolver::solve(VectorType &x, const VectorType &b) const
   {
@@ -436,6 +556,7 @@ namespace ViscoContact
 
 
 
+  // A block of right-hand sides, as the condensed back end uses at set-up.
   void
   SparseDirectSolver::solve(std::vector<double> &columns,
                             const unsigned int   n_columns) const
@@ -446,6 +567,7 @@ namespace ViscoContact
 
 
 
+  // What was factorised, and how (set by the last factorize()).
   std::string
   SparseDirectSolver::description() const
   {

@@ -1,6 +1,13 @@
-// The full space back end: a Krylov method on the projected operator of
-// the step problem, preconditioned by AMG or a factorisation of the
-// operator, both built once per operator.
+// The full space back end: a Krylov method on the projected operator of the
+// step problem, preconditioned by AMG or a factorisation of the operator,
+// both built once per operator.
+//
+// This file implements option (b) of doc/model.md, section 2 ("Two ways to
+// solve the linear problem of fixed pieces"). Nothing here costs m^2 or n m
+// (m contact nodes, n unknowns): every active-set iteration is one Krylov
+// solve in the space of all displacement unknowns, and every node-wise
+// operation touches only the rank's own entries. This is the back end for
+// large 3D meshes and for several MPI ranks.
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
@@ -32,19 +39,26 @@ namespace ViscoContact
   //
   // For fixed pieces, a node on a sloped piece (slope s, intercept o)
   // carries the force w (o + s u.nu), a node on a vertical piece at r = beta
-  // has u.nu = beta. With u = u_0 + y, u_0 = beta nu at the fixed nodes,
-  // y solves
+  // has u.nu = beta. With u = u_0 + y, u_0 = beta nu at the fixed nodes, y
+  // solves
   //   (P (A + sum_i w_i s_i nu_i nu_i^T) P + (I - P)) y
   //     = P (b - sum_i w_i o_i nu_i - A u_0),
   // P the orthogonal projection that removes the normal component at the
   // fixed nodes (a constraint among the components of a node, for any
-  // normal). The operator is applied around A, which never changes within
-  // a step problem; the preconditioner P M^{-1} P + (I - P) uses the AMG
-  // cycle or the factorisation M^{-1} of A built by set_operator(). Both
-  // are symmetric when A is, and positive definite as long as the
-  // uniqueness condition (doc/model.md, section 4) holds: CG then; GMRES
-  // for the implicit update's unsymmetric tangent. The forces at the fixed
-  // nodes are read off the residual, z_i = nu_i . (b - A u)_i.
+  // normal). The operator is applied around A, which never changes within a
+  // step problem; the preconditioner P M^{-1} P + (I - P) uses the AMG cycle
+  // or the factorisation M^{-1} of A built by set_operator(). Both are
+  // symmetric when A is, and positive definite as long as the uniqueness
+  // condition (doc/model.md, section 4) holds: CG then; GMRES for the
+  // implicit update's unsymmetric tangent. The forces at the fixed nodes are
+  // read off the residual, z_i = nu_i . (b - A u)_i.
+  //
+  // Why this form: the sloped pieces only add a rank-one term per node and
+  // the vertical pieces only remove one direction per node, so neither the
+  // matrix A nor its preconditioner has to be rebuilt when a node changes
+  // its piece. The contact terms are applied on the fly, and the block I - P
+  // keeps the operator nonsingular while leaving the removed components of y
+  // at zero.
   template <int dim>
   class FullSpaceContactSolver : public ContactSolver<dim>
   {
@@ -68,14 +82,14 @@ namespace ViscoContact
     apply_compliance(const ContactSet<dim> &contact,
                      const Vector<double>  &x,
                      Vector<double>        &y) override;
-    // Per step problem: keep b; per active-set iteration: a Krylov solve
-    // on the projected operator, which leaves u final, so finish() has
-    // nothing to do.
+    // Per active-set iteration: a Krylov solve on the projected operator
+    // with the right-hand side b that set_right_hand_side() keeps per step
+    // problem. Its solution is u itself, so finish() has nothing to do.
+    LinearSolveReport
+    solve_for_pieces(ContactSet<dim> &contact, VectorType &u) override;
     void
     set_right_hand_side(const VectorType      &b,
                         const ContactSet<dim> &contact) override;
-    LinearSolveReport
-    solve_for_pieces(ContactSet<dim> &contact, VectorType &u) override;
     void
     finish(const ContactSet<dim> &contact, VectorType &u) override;
 
@@ -95,12 +109,20 @@ namespace ViscoContact
     void
     apply_preconditioner(VectorType &dst, const VectorType &src) const;
 
+    // Preconditioner (subsection Linear solver), Tolerance (subsection
+    // Active set solver), and what the AMG needs to build the rigid-body
+    // modes.
     const Parameters::Preconditioner preconditioner_type;
     const double                     tolerance;
     const MPI_Comm                   communicator;
     const Mapping<dim>              &mapping;
     const DoFHandler<dim>           &dof_handler;
 
+    // The operator of the current step problems (owned by the caller: the
+    // elastic matrix or the current tangent), whether it is symmetric (which
+    // decides between CG and GMRES), its preconditioner (AMG, or the
+    // factorisation when Preconditioner = direct), and the right-hand side
+    // of the current step problem.
     const MatrixType                   *A         = nullptr;
     bool                                symmetric = true;
     TrilinosWrappers::PreconditionAMG   amg;
@@ -111,6 +133,13 @@ namespace ViscoContact
 
 
 
+  // @sect4{FullSpaceContactSolver::FullSpaceContactSolver}
+  //
+  // Only the choice of the preconditioner is made here. With Preconditioner
+  // = direct, a sparse direct solver is created (with the same rule for
+  // Direct solver = auto as on the condensed back end: CHOLMOD on one rank,
+  // MUMPS on several); otherwise the AMG is built by set_operator(). The
+  // vector b takes its partition from layout.
   template <int dim>
   FullSpaceContactSolver<dim>::FullSpaceContactSolver(
     const Parameters::AllParameters &parameters,
@@ -136,6 +165,7 @@ namespace ViscoContact
 
 
 
+  // The line for the run's header: the Krylov method and its preconditioner.
   template <int dim>
   std::string
   FullSpaceContactSolver<dim>::description() const
@@ -156,13 +186,22 @@ namespace ViscoContact
   // AdditionalData only takes translations, so the parameter list is
   // completed by hand). An unsymmetric tangent gets ML's settings for
   // nonsymmetric problems.
+  //
+  // Smoothed aggregation builds its coarse spaces from these modes; with the
+  // translations alone they could not represent the rotations of parts of
+  // the body, the low-energy modes of elasticity.
   template <int dim>
   void
   FullSpaceContactSolver<dim>::build_amg(const MatrixType &matrix,
                                          const bool        is_symmetric)
   {
+    // The modes depend on the mesh and the dofs only, not on the operator,
+    // so they are computed for the first operator and reused for every
+    // tangent.
     if (!rigid_body_modes)
       {
+        // The location of every dof, and which vector component each locally
+        // owned dof belongs to.
         std::map<types::global_dof_index, Point<dim>> support_points;
         DoFTools::map_dofs_to_support_points(mapping,
                                              dof_handler,
@@ -173,10 +212,15 @@ namespace ViscoContact
             = DoFTools::extract_dofs(dof_handler,
                                      dof_handler.get_fe().component_mask(
                                        FEValuesExtractors::Scalar(c)));
+        // Three modes in 2D (two translations, one rotation), six in 3D,
+        // laid out like the rows of the matrix, so that ML can read them
+        // next to it.
         const unsigned int n_modes = (dim == 2 ? 3 : 6);
         const Epetra_Map  &row_map = matrix.trilinos_matrix().RowMap();
         rigid_body_modes
           = std::make_unique<Epetra_MultiVector>(row_map, n_modes);
+        // Per locally owned row: find its component c, then write component
+        // c of each mode at the row's support point x.
         for (int local = 0; local < row_map.NumMyElements(); ++local)
           {
             const types::global_dof_index dof = row_map.GID64(local);
@@ -186,11 +230,15 @@ namespace ViscoContact
             Assert(c < dim, ExcInternalError());
             const Point<dim> &x           = support_points[dof];
             (*rigid_body_modes)[c][local] = 1.; // translation along e_c
+            // In 2D the rotation is the field (-x_2, x_1) = cross(e_3, x).
             if (dim == 2)
               (*rigid_body_modes)[2][local] = (c == 0 ? -x[1] : x[0]);
             else
               {
-                // Rotations about the axes: e_d x x, component c.
+                // In 3D, mode 3 + d is the rotation about e_d, the field
+                // cross(x, e_d) (the sign of a null-space vector does not
+                // matter to ML); component c of it is x_{c+1} for d = c + 2,
+                // -x_{c+2} for d = c + 1 and 0 for d = c, indices mod 3.
                 const unsigned int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
                 for (unsigned int d = 0; d < 3; ++d)
                   (*rigid_body_modes)[3 + d][local]
@@ -199,11 +247,17 @@ namespace ViscoContact
           }
       }
 
+    // The AMG settings: ML's defaults for elliptic (symmetric) or for
+    // nonsymmetric problems, linear elements, two smoother sweeps and an
+    // aggregation threshold of 0.02.
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
     data.elliptic              = is_symmetric;
     data.higher_order_elements = false;
     data.smoother_sweeps       = 2;
     data.aggregation_threshold = 0.02;
+    // Let deal.II translate these settings into ML's parameter list (its
+    // constant-mode output is not needed), then replace the null space by
+    // the rigid-body modes and build the hierarchy.
     Teuchos::ParameterList              ml_parameters;
     std::unique_ptr<Epetra_MultiVector> unused_constant_modes;
     data.set_parameters(ml_parameters, unused_constant_modes, matrix);
@@ -215,6 +269,15 @@ namespace ViscoContact
 
 
 
+  // @sect4{FullSpaceContactSolver::set_operator}
+  //
+  // Remember the operator and build its preconditioner: once per run for the
+  // elastic K, once per Newton iteration for the implicit update's tangent.
+  // The contact terms are not part of the preconditioner; this keeps the
+  // set-up independent of the pieces, at the price of a preconditioner that
+  // fits the step operator less well when many nodes have changed piece
+  // (doc/algorithm.md, trade-offs). The parameters c_i of the active set are
+  // set by ContactSet::set_operator(), not here.
   template <int dim>
   void
   FullSpaceContactSolver<dim>::set_operator(const MatrixType &matrix,
@@ -232,6 +295,11 @@ namespace ViscoContact
 
 
 
+  // @sect4{FullSpaceContactSolver::set_right_hand_side}
+  //
+  // Nothing is solved per step problem on this back end: b is only kept for
+  // the Krylov solves of the active-set iterations and for the residual from
+  // which the forces at the fixed nodes are read off.
   template <int dim>
   void
   FullSpaceContactSolver<dim>::set_right_hand_side(const VectorType &rhs,
@@ -242,6 +310,9 @@ namespace ViscoContact
 
 
 
+  // @sect4{FullSpaceContactSolver::apply_preconditioner}
+  //
+  // M^{-1} src: one AMG cycle, or a solve with the factorisation of A.
   template <int dim>
   void
   FullSpaceContactSolver<dim>::apply_preconditioner(VectorType       &dst,
@@ -255,6 +326,18 @@ namespace ViscoContact
 
 
 
+  // @sect4{FullSpaceContactSolver::krylov_solve}
+  //
+  // The one Krylov solve of this back end, for the step operator as well as
+  // for A alone. The tolerance is relative to reference_norm; for the
+  // active-set solves that is the norm of the step's right-hand side b, the
+  // same measure for every iteration of a step, whatever the pieces. A
+  // symmetric operator gets CG. An unsymmetric one gets GMRES with right
+  // preconditioning, so that the residual it monitors is the true residual,
+  // as with CG, and the same Tolerance means the same thing for both; it
+  // restarts when its basis of about 50 vectors is full. A solve that does
+  // not converge is not an error here: the report says why, and the time
+  // loop decides whether to cut the step (time_step.cc).
   template <int dim>
   LinearSolveReport
   FullSpaceContactSolver<dim>::krylov_solve(const Apply      &op,
@@ -274,6 +357,8 @@ namespace ViscoContact
       }
     };
 
+    // At most 10000 iterations. The lower bound 1e-300 keeps the tolerance
+    // and the relative residual defined when the reference norm is zero.
     SolverControl control(10000, tolerance * std::max(reference_norm, 1e-300));
     LinearSolveReport report;
     try
@@ -293,6 +378,9 @@ namespace ViscoContact
       }
     catch (const SolverControl::NoConvergence &failure)
       {
+        // Explain the likely causes in terms of the parameter file: a step
+        // operator that is not positive definite, or a tolerance that
+        // rounding does not allow.
         std::ostringstream reason;
         reason << (symmetric ? "CG" : "GMRES") << " did not converge in "
                << failure.last_step << " iterations (residual "
@@ -306,6 +394,8 @@ namespace ViscoContact
         report.converged = false;
         report.failure   = reason.str();
       }
+    // Count the solve and its iterations for the run summary, whether it
+    // converged or not.
     report.inner_iterations = control.last_step();
     report.residual = control.last_value() / std::max(reference_norm, 1e-300);
     ++this->counts.solves;
@@ -316,6 +406,12 @@ namespace ViscoContact
 
 
   // @sect4{FullSpaceContactSolver::solve_for_pieces}
+  //
+  // One active-set iteration's linear solve, in four steps: collect what the
+  // pieces of this rank's nodes contribute (the prescribed normal
+  // displacements u_0, the loads -w o nu and the normal stiffnesses w s);
+  // set up the projected operator and preconditioner as functions; solve for
+  // y from the previous iterate; read r and z off the solution.
   //
   // Everything node-wise touches only locally owned entries (a node's dofs
   // belong to its owner), so no communication happens outside the matrix
@@ -330,6 +426,12 @@ namespace ViscoContact
     std::vector<double> normal_stiffness(m, 0.);
     VectorType          u0(b), step_rhs(b), A_u0(b);
     u0 = 0;
+    // Split the nodes by their pieces. A vertical piece (a jump of the law,
+    // or the rigid foundation) fixes the normal displacement to
+    // beta = r_lower: the node is fixed, u_0 gets beta nu_i. A sloped piece
+    // adds the load -w_i o_i nu_i to the right-hand side and the normal
+    // stiffness w_i s_i to the operator (zero on a flat piece, whose force
+    // w_i o_i is then known).
     for (unsigned int i = 0; i < m; ++i)
       {
         const ContactLawPiece &piece = contact.law().piece(contact.piece(i));
@@ -344,15 +446,23 @@ namespace ViscoContact
             normal_stiffness[i] = contact.weight(i) * piece.slope;
           }
       }
+    // step_rhs = b - sum_i w_i o_i nu_i - A u_0: the prescribed part of u
+    // moves to the right-hand side.
     A->vmult(A_u0, u0);
     step_rhs -= A_u0;
 
+    // P v: remove the normal component at every fixed node. nu_i is a unit
+    // vector, so this is the orthogonal projection I - nu_i nu_i^T on the
+    // node's dofs and the identity elsewhere.
     const auto project = [&](VectorType &v) {
       for (unsigned int i = 0; i < m; ++i)
         if (fixed[i])
           contact.add_normal(v, i, -contact.normal_component(v, i));
     };
-    // v -> P inner(P v) + (I - P) v.
+    // v -> P inner(P v) + (I - P) v, for the operator and the preconditioner
+    // alike. The last term puts the normal components of v at the fixed
+    // nodes back unchanged, which keeps the operator nonsingular; P and
+    // I - P are symmetric, so the result is symmetric whenever inner is.
     const auto projected = [&](const Apply &inner) -> Apply {
       return [&, inner](VectorType &dst, const VectorType &src) {
         VectorType projected_src(src);
@@ -364,6 +474,9 @@ namespace ViscoContact
             contact.add_normal(dst, i, contact.normal_component(src, i));
       };
     };
+    // A + sum_i w_i s_i nu_i nu_i^T, applied without forming it: the matrix
+    // A and its preconditioner stay those of set_operator() for every set of
+    // pieces.
     const Apply step_operator = [&](VectorType &dst, const VectorType &src) {
       A->vmult(dst, src);
       for (unsigned int i = 0; i < m; ++i)
@@ -377,6 +490,8 @@ namespace ViscoContact
       apply_preconditioner(dst, src);
     };
 
+    // With a projected right-hand side and start, every Krylov iterate keeps
+    // zero normal components at the fixed nodes.
     project(step_rhs);
     project(u); // the warm start: the previous iterate, constraints removed
     const LinearSolveReport report = krylov_solve(projected(step_operator),
@@ -384,13 +499,21 @@ namespace ViscoContact
                                                   u,
                                                   step_rhs,
                                                   b.l2_norm());
+    // u = u_0 + y: now u.nu_i = beta at the fixed nodes.
     u += u0;
+    // A failed solve leaves r and z as they were; ContactNodes::solve()
+    // stops on the report.
     if (!report.converged)
       return report;
 
+    // The residual b - A u equals N^T z: at node i its normal component is
+    // the force z_i (the contact force of node i acts on that node's dofs
+    // only).
     VectorType residual(b);
     A->vmult(residual, u);
     residual.sadd(-1., 1., b);
+    // At a fixed node the force is read off the residual; on a sloped piece
+    // the law gives it exactly, z_i = w_i (o_i + s_i r_i).
     for (unsigned int i = 0; i < m; ++i)
       {
         const ContactLawPiece &piece = contact.law().piece(contact.piece(i));
@@ -405,6 +528,10 @@ namespace ViscoContact
 
 
 
+  // @sect4{FullSpaceContactSolver::finish}
+  //
+  // Nothing to do: the last solve_for_pieces() left the displacement of the
+  // final pieces in u.
   template <int dim>
   void
   FullSpaceContactSolver<dim>::finish(const ContactSet<dim> &, VectorType &)
@@ -412,6 +539,11 @@ namespace ViscoContact
 
 
 
+  // @sect4{FullSpaceContactSolver::solve_without_contact}
+  //
+  // A^{-1} b by the same Krylov method and preconditioner, from a zero
+  // start: the step problem of a scene without contact, the reference solve
+  // of the cost measurements, and the inner solve of apply_compliance().
   template <int dim>
   LinearSolveReport
   FullSpaceContactSolver<dim>::solve_without_contact(const VectorType &rhs,
@@ -428,6 +560,12 @@ namespace ViscoContact
 
 
 
+  // @sect4{FullSpaceContactSolver::apply_compliance}
+  //
+  // y = N A^{-1} N^T x without the matrix S: put the forces x_i nu_i on this
+  // rank's contact nodes, solve once with A, and read off the normal
+  // displacements. One Krylov solve per product is what a Lanczos step of
+  // the uniqueness test costs on this back end (doc/model.md, section 4).
   template <int dim>
   void
   FullSpaceContactSolver<dim>::apply_compliance(const ContactSet<dim> &contact,
@@ -446,6 +584,10 @@ namespace ViscoContact
 
 
 
+  // @sect4{The factory}
+  //
+  // The class is only known in this file; create_contact_solver()
+  // (contact_solver.cc) reaches its constructor through this function.
   template <int dim>
   std::unique_ptr<ContactSolver<dim>>
   create_full_space_contact_solver(const Parameters::AllParameters &parameters,

@@ -1,4 +1,9 @@
 // Parsing the load expressions of subsection Loads.
+//
+// The body force f_0 and the surface traction f_2 are muparser expressions
+// in x, y (, z) and t. Two properties of an expression let the program skip
+// work: a load that does not mention t is assembled once, and a body force
+// that is zero is not integrated at all.
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
@@ -21,7 +26,8 @@ namespace ViscoContact
     return FunctionParser<dim>::default_variable_names() + ",t";
   }
 
-  // A load expression is time dependent iff it mentions the variable t.
+  // A load expression is time dependent iff it mentions the variable t: a
+  // "t" that is not part of a longer name (so "tan" or "t2" does not count).
   bool
   mentions_time(const std::string &expression)
   {
@@ -29,7 +35,9 @@ namespace ViscoContact
     return std::regex_search(expression, t_variable);
   }
 
-  // Every component is the literal number zero.
+  // Every component is the literal number zero. Anything that is not a
+  // number (an expression, even one that evaluates to zero) counts as
+  // nonzero, which only costs an unnecessary integration.
   bool
   is_zero_expression(const std::string &expression)
   {
@@ -50,7 +58,8 @@ namespace ViscoContact
   }
 
   // Parse a load expression with dim components; turn muparser's messages
-  // into one that names the parameter.
+  // into one that names the parameter. The expression may use the box's edge
+  // lengths L1, L2 (, L3) and pi as constants.
   template <int dim>
   void
   initialize_load(FunctionParser<dim>       &function,
@@ -58,6 +67,7 @@ namespace ViscoContact
                   const std::string         &expression,
                   const std::vector<double> &lengths)
   {
+    // One expression per displacement component, separated by ';'.
     const unsigned int n_parts
       = Utilities::split_string_list(expression, ';').size();
     AssertThrow(n_parts == dim,
@@ -66,11 +76,13 @@ namespace ViscoContact
                            + ">; accepted: " + std::to_string(dim)
                            + " expressions separated by ';' (one per "
                              "displacement component)."));
+    // The constants every load expression may use.
     std::map<std::string, double> constants;
     for (unsigned int d = 0; d < lengths.size(); ++d)
       constants["L" + std::to_string(d + 1)] = lengths[d];
     constants["pi"] = numbers::PI;
     std::string parser_message;
+    // Whatever the parser throws, its message becomes part of ours.
     try
       {
         function.initialize(load_variables<dim>(),

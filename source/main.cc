@@ -1,4 +1,9 @@
 // The driver: read a parameter file, pick the space dimension, run.
+//
+// As in the deal.II tutorials, main() only reads the input, chooses between
+// a single run and a convergence study and between 2D and 3D, and turns
+// every error into a readable message. Everything else is in the classes it
+// creates.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
@@ -13,6 +18,7 @@
 
 namespace
 {
+  // The usage text of --help and of a wrong command line.
   void
   print_usage(std::ostream &out)
   {
@@ -33,6 +39,11 @@ namespace
 
 
 
+// @sect4{main}
+//
+// Three ways to call the program: --help, --print-parameters (a complete
+// parameter file with the default values, i.e. the reference benchmark), or
+// one parameter file to run.
 int
 main(int argc, char **argv)
 {
@@ -41,9 +52,14 @@ main(int argc, char **argv)
 
   // Outside the try block, so that MPI is still up when an error is
   // reported; with several ranks an error on one of them ends all of them.
+  // The last argument allows each rank one thread: the parallelism of the
+  // program is that of its MPI ranks.
   Utilities::MPI::MPI_InitFinalize mpi_initialization(argc, argv, 1);
   const bool                       several_ranks
     = (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1);
+  // An error may happen on one rank only, while the others wait in a
+  // collective call that will never complete; MPI_Abort ends them all. On
+  // one rank returning an error code is enough.
   const auto stop_all_ranks = [&]() {
     if (several_ranks)
       MPI_Abort(MPI_COMM_WORLD, 1);
@@ -51,6 +67,7 @@ main(int argc, char **argv)
   };
   try
     {
+      // The options first: they need no parameter file.
       const std::string first = (argc > 1 ? argv[1] : "");
       if (first == "--help" || first == "-h")
         {
@@ -59,6 +76,8 @@ main(int argc, char **argv)
         }
       if (first == "--print-parameters")
         {
+          // --print-parameters writes every entry with its documentation and
+          // default value, to the named file or to standard output.
           ParameterHandler prm;
           Parameters::AllParameters::declare_parameters(prm);
           if (argc > 2)
@@ -70,12 +89,16 @@ main(int argc, char **argv)
             prm.print_parameters(std::cout, ParameterHandler::PRM);
           return 0;
         }
+      // Otherwise exactly one argument, the parameter file.
       if (argc != 2)
         {
           print_usage(std::cerr);
           return 1;
         }
 
+      // Read the parameter file: declare every entry, parse the file
+      // (unknown entries and invalid values are errors that name the entry),
+      // and turn the selections into the program's enums (parameters.cc).
       AssertThrow(std::filesystem::is_regular_file(first),
                   ExcMessage("The parameter file <" + first
                              + "> does not exist or is not a regular file."));
@@ -91,9 +114,14 @@ main(int argc, char **argv)
           = (std::filesystem::path(first).parent_path() / parameters.mesh_file)
               .lexically_normal()
               .string();
+      // Settings that depend on the number of ranks (CHOLMOD and UMFPACK
+      // need one rank) are checked here, before any work.
       parameters.check_run_configuration(
         Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD));
 
+      // A convergence study or a single run, in the dimension the parameter
+      // file asks for: both dimensions are compiled, the choice is made at
+      // run time.
       if (parameters.study_enabled && parameters.dimension == 2)
         ConvergenceStudy<2>(parameters, MPI_COMM_WORLD).run();
       else if (parameters.study_enabled)
@@ -117,6 +145,8 @@ main(int argc, char **argv)
     }
   catch (std::exception &exc)
     {
+      // Other exceptions (from the standard library, say) keep their own
+      // text.
       std::cerr << "\n----------------------------------------------------\n"
                 << "Error: " << exc.what() << "Aborting.\n"
                 << "----------------------------------------------------"
@@ -125,6 +155,7 @@ main(int argc, char **argv)
     }
   catch (...)
     {
+      // Anything else: at least say that the run did not succeed.
       std::cerr << "\nUnknown exception. Aborting." << std::endl;
       return stop_all_ranks();
     }

@@ -13,7 +13,7 @@ namespace ViscoContact
   // Hooke's law is stored as a rank-4 symmetric tensor
   // E = lambda* I (x) I + 2 mu* Id. In 2D (plane stress) the Lame-type
   // constants are lambda* = E k/(1-k^2), 2 mu* = E/(1+k), which is the
-  // formula of model.md; in 3D they are the usual isotropic ones.
+  // formula of doc/model.md; in 3D they are the usual isotropic ones.
   template <int dim>
   PerzynaMaterial<dim>::PerzynaMaterial(const double young_modulus,
                                         const double poisson_ratio,

@@ -1,5 +1,12 @@
 // Meshes: the generated box or a Gmsh file, refined uniformly and toward the
 // contact boundary, and the check that the named boundary parts exist.
+//
+// The stages are those of the header (mesh.h): a coarse mesh on a serial
+// Triangulation, the refinements, then the distributed mesh the program runs
+// on (p4est for hypercubes, a fully distributed mesh for simplices). The
+// generated simplex boxes are built here rather than by deal.II's generator
+// because the convergence study needs nested meshes, and the published
+// benchmark needs one particular diagonal.
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
@@ -27,6 +34,7 @@ namespace ViscoContact
 {
   namespace
   {
+    // Whether an id is among the given ones.
     bool
     contains(const std::vector<types::boundary_id> &ids,
              const types::boundary_id               id)
@@ -44,8 +52,27 @@ namespace ViscoContact
   // is listed with positive orientation (counter-clockwise triangles,
   // tetrahedra with a positive Jacobian), which is what deal.II's reference
   // simplices have.
+  //
+  // Why nested: the convergence study (convergence_study.cc) compares a
+  // coarse run with a reference run on a finer mesh, point by point, and
+  // needs every reference cell to lie inside one coarse cell. For "/",
+  // backslash, crossed and Kuhn's subdivision in 3D, the simplices are the
+  // pieces into which a fixed family of lines (planes) cuts the box: the
+  // grid lines x_d = k h_d, plus the diagonals x/h_x - y/h_y = integer
+  // ("/"), x/h_x + y/h_y = integer (backslash), both (crossed), or
+  // x_a/h_a - x_b/h_b = integer (Kuhn's tetrahedra). Multiplying the number
+  // of subdivisions keeps every line of the coarse family in the fine one,
+  // so each fine simplex lies in one coarse simplex. For union jack, the
+  // fine squares along the diagonal of a coarse square have that square's
+  // parity, hence its diagonal, so every coarse diagonal is again made of
+  // fine edges. deal.II's five tetrahedra per cube alternate between
+  // neighbouring cubes and are not nested; the convergence study rejects
+  // them.
   namespace
   {
+    // The boundary ids that colorize gives a hypercube box, 2d and 2d + 1 at
+    // x_d = 0 and x_d = L_d, set from the face centres with a tolerance
+    // relative to the box size.
     template <int dim>
     void
     set_box_boundary_ids(Triangulation<dim>        &triangulation,
@@ -67,7 +94,9 @@ namespace ViscoContact
 
 
     // The simplex with these vertices, reordered if needed so that its
-    // orientation is positive.
+    // orientation is positive: the sign of the determinant of the edge
+    // vectors from vertex 0 is the orientation, and swapping the last two
+    // vertices flips it.
     template <int dim>
     CellData<dim>
     positive_simplex(const std::vector<Point<dim>>    &points,
@@ -88,6 +117,10 @@ namespace ViscoContact
 
 
 
+  // @sect4{create_simplex_box (2D)}
+  //
+  // Two triangles per square for "/", backslash and union jack, four for
+  // crossed, with one new vertex in the centre of each square.
   template <>
   void
   create_simplex_box(Triangulation<2>                &triangulation,
@@ -95,7 +128,9 @@ namespace ViscoContact
                      const unsigned int               n,
                      const Parameters::SimplexPattern pattern)
   {
-    using Pattern            = Parameters::SimplexPattern;
+    using Pattern = Parameters::SimplexPattern;
+    // The (n + 1)^2 vertices of the squares, x fastest, and the index of
+    // vertex (i, j).
     const double          hx = lengths[0] / n, hy = lengths[1] / n;
     std::vector<Point<2>> points;
     for (unsigned int j = 0; j <= n; ++j)
@@ -109,6 +144,10 @@ namespace ViscoContact
     for (unsigned int j = 0; j < n; ++j)
       for (unsigned int i = 0; i < n; ++i)
         {
+          // The corners of square (i, j): a lower left, b lower right, c
+          // upper left, d upper right. Union jack alternates the diagonal
+          // like a checkerboard, so that the diagonals meet at every second
+          // vertex.
           const unsigned int a = vertex(i, j), b = vertex(i + 1, j),
                              c = vertex(i, j + 1), d = vertex(i + 1, j + 1);
           const bool slash
@@ -116,7 +155,8 @@ namespace ViscoContact
               || (pattern == Pattern::union_jack && (i + j) % 2 == 0);
           if (pattern == Pattern::crossed)
             {
-              // Both diagonals: a vertex at the centre, four triangles.
+              // Both diagonals: a vertex at the centre, four triangles, one
+              // on each edge of the square.
               const unsigned int e = points.size();
               points.emplace_back((i + 0.5) * hx, (j + 0.5) * hy);
               for (const auto &edge : {std::array<unsigned int, 2>{{a, b}},
@@ -128,21 +168,30 @@ namespace ViscoContact
             }
           else if (slash)
             {
+              // "/": the diagonal a-d, from (x_i, y_j) to
+              // (x_{i+1}, y_{j+1}), as in the published benchmark.
               cells.push_back(positive_simplex<2>(points, {{a, b, d}}));
               cells.push_back(positive_simplex<2>(points, {{a, d, c}}));
             }
           else
             {
+              // Backslash: the diagonal b-c.
               cells.push_back(positive_simplex<2>(points, {{a, b, c}}));
               cells.push_back(positive_simplex<2>(points, {{b, d, c}}));
             }
         }
+    // Build the triangulation, then give its boundary faces the ids colorize
+    // would give.
     triangulation.create_triangulation(points, cells, SubCellData());
     set_box_boundary_ids(triangulation, lengths);
   }
 
 
 
+  // @sect4{create_simplex_box (3D)}
+  //
+  // Either deal.II's generator with five tetrahedra per cube, or Kuhn's six
+  // tetrahedra around the diagonal of each cube (Simplex pattern = /).
   template <>
   void
   create_simplex_box(Triangulation<3>                &triangulation,
@@ -152,6 +201,7 @@ namespace ViscoContact
   {
     if (pattern == Parameters::SimplexPattern::five_tetrahedra)
       {
+        // deal.II's generator; only its boundary ids have to be added.
         GridGenerator::subdivided_hyper_rectangle_with_simplices(
           triangulation,
           std::vector<unsigned int>(3, n),
@@ -162,9 +212,11 @@ namespace ViscoContact
       }
 
     // Kuhn's subdivision: for every ordering (p0, p1, p2) of the axes, the
-    // tetrahedron of the path from the lower to the upper corner of the
-    // cube that steps along e_p0, then e_p1, then e_p2. All cubes are cut
-    // the same way, so the faces match.
+    // tetrahedron of the path from the lower to the upper corner of the cube
+    // that steps along e_p0, then e_p1, then e_p2. All cubes are cut the
+    // same way, so the faces match. In the cube's own coordinates t, the
+    // tetrahedron of an ordering is {t_p0 >= t_p1 >= t_p2}: the six of them
+    // fill the cube and all share its diagonal.
     std::vector<Point<3>> points;
     for (unsigned int k = 0; k <= n; ++k)
       for (unsigned int j = 0; j <= n; ++j)
@@ -172,6 +224,7 @@ namespace ViscoContact
           points.emplace_back(i * lengths[0] / n,
                               j * lengths[1] / n,
                               k * lengths[2] / n);
+    // The index of vertex (i, j, k), x fastest.
     const auto vertex = [n](const std::array<unsigned int, 3> &index) {
       return (index[2] * (n + 1) + index[1]) * (n + 1) + index[0];
     };
@@ -181,9 +234,14 @@ namespace ViscoContact
       for (unsigned int j = 0; j < n; ++j)
         for (unsigned int i = 0; i < n; ++i)
           {
+            // Start each cube from the ordering (0, 1, 2);
+            // std::next_permutation then runs through all six orderings.
             std::sort(axes.begin(), axes.end());
             do
               {
+                // Walk from the lower corner, one unit step along each axis
+                // in the order of the permutation: the four vertices of the
+                // path are the tetrahedron.
                 std::array<unsigned int, 3> corner = {{i, j, k}};
                 std::array<unsigned int, 4> tetrahedron;
                 tetrahedron[0] = vertex(corner);
@@ -212,6 +270,10 @@ namespace ViscoContact
   // A Gmsh file brings its own boundary ids (the physical groups of its
   // boundary faces); its cells must all be of the chosen Cell type, since
   // the finite element and the stress points are chosen from it.
+  //
+  // Every problem with the file is reported as an invalid value of Mesh
+  // file, with what is accepted, rather than as an exception from deep
+  // inside the reader.
   template <int dim>
   void
   create_coarse_mesh(const Parameters::AllParameters &parameters,
@@ -221,6 +283,8 @@ namespace ViscoContact
       = (parameters.cell_type == Parameters::CellType::simplex);
     if (!parameters.mesh_file.empty())
       {
+        // The file must exist (main.cc has made a relative path relative to
+        // the parameter file).
         const std::string &file = parameters.mesh_file;
         AssertThrow(std::filesystem::is_regular_file(file),
                     ExcMessage("Invalid parameter <Mesh file> in subsection "
@@ -230,6 +294,8 @@ namespace ViscoContact
                                  "(a relative path is relative to the "
                                  "directory of the parameter file) or "
                                  "nothing for the generated box."));
+        // The reader's own complaint, whatever its type, becomes part of the
+        // message; an empty mesh is an error too.
         std::string reader_message;
         try
           {
@@ -256,6 +322,7 @@ namespace ViscoContact
                                  "4, ASCII) of a "
                                + std::to_string(dim)
                                + "D mesh. The reader says: " + reader_message));
+        // One cell of the wrong type is enough to reject the file.
         for (const auto &cell : triangulation.active_cell_iterators())
           AssertThrow(cell->reference_cell().is_simplex() == simplex,
                       ExcMessage(
@@ -270,6 +337,8 @@ namespace ViscoContact
         return;
       }
 
+    // The generated box: its far corner and the number of squares (cubes)
+    // along each edge.
     Point<dim>                corner;
     std::vector<unsigned int> repetitions(dim, parameters.subdivisions);
     for (unsigned int d = 0; d < dim; ++d)
@@ -293,8 +362,8 @@ namespace ViscoContact
   // @sect4{create_distributed_mesh}
   //
   // Hypercube meshes live on p4est: every rank holds the coarse mesh, p4est
-  // distributes the refined cells, and the refinement toward Gamma_3 runs
-  // in parallel. Each coarse cell is a p4est tree, and trees are expensive
+  // distributes the refined cells, and the refinement toward Gamma_3 runs in
+  // parallel. Each coarse cell is a p4est tree, and trees are expensive
   // (every rank stores all of them), so the generated box of Subdivisions =
   // m 2^j cubes per edge is made of m^dim coarse cells refined j times: the
   // same mesh.
@@ -312,9 +381,15 @@ namespace ViscoContact
     std::unique_ptr<parallel::DistributedTriangulationBase<dim>> mesh;
     if (parameters.cell_type == Parameters::CellType::simplex)
       {
+        // Simplices: build and refine the whole mesh serially, identically
+        // on every rank.
         Triangulation<dim> serial_mesh;
         create_coarse_mesh(parameters, serial_mesh);
         refine_mesh(parameters, serial_mesh);
+        // Partition it into one part per rank (METIS sets the subdomain ids
+        // of the cells), and turn it into the description of this rank's
+        // part (its cells and a layer of ghosts), from which the fully
+        // distributed mesh is built.
         GridTools::partition_triangulation(Utilities::MPI::n_mpi_processes(
                                              communicator),
                                            serial_mesh);
@@ -328,6 +403,8 @@ namespace ViscoContact
       }
     else
       {
+        // Hypercubes: take factors of 2 out of the number of subdivisions of
+        // the generated box; a Gmsh mesh is used as it is.
         Parameters::AllParameters coarse_parameters = parameters;
         unsigned int              box_refinements   = 0;
         if (parameters.mesh_file.empty())
@@ -336,6 +413,9 @@ namespace ViscoContact
               coarse_parameters.subdivisions /= 2;
               ++box_refinements;
             }
+        // The coarse mesh, identical on every rank, becomes p4est's forest;
+        // the factors of 2 return as global refinements, which p4est
+        // distributes.
         Triangulation<dim> coarse_mesh;
         create_coarse_mesh(coarse_parameters, coarse_mesh);
         auto distributed_mesh
@@ -344,9 +424,11 @@ namespace ViscoContact
         distributed_mesh->copy_triangulation(coarse_mesh);
         if (box_refinements > 0)
           distributed_mesh->refine_global(box_refinements);
+        // Then the refinements the parameter file asks for, in parallel.
         refine_mesh(parameters, *distributed_mesh);
         mesh = std::move(distributed_mesh);
       }
+    // Last, the boundary parts the parameter file names must exist.
     check_boundary_ids(parameters, *mesh, communicator);
     return mesh;
   }
@@ -358,8 +440,12 @@ namespace ViscoContact
   // Uniform refinement, then Contact refinement levels rounds in which every
   // cell with a vertex on Gamma_3 is refined: the cells along the contact
   // boundary all end on the finest level, so no contact node is a hanging
-  // node, and the mesh coarsens away from Gamma_3 (2:1 across faces on
-  // p4est meshes).
+  // node, and the mesh coarsens away from Gamma_3 (2:1 across faces on p4est
+  // meshes).
+  //
+  // The same function refines the serial simplex mesh (where every cell is
+  // locally owned) and the distributed p4est mesh (where each rank flags its
+  // own cells).
   template <int dim>
   void
   refine_mesh(const Parameters::AllParameters &parameters,
@@ -372,7 +458,9 @@ namespace ViscoContact
          ++level)
       {
         // The vertices of Gamma_3 this rank sees; a cell touching Gamma_3 at
-        // a vertex only is refined too.
+        // a vertex only is refined too. Ghost cells are included, so that an
+        // owned cell whose contact vertex lies on a face of a ghost cell is
+        // found.
         std::vector<bool> on_contact_boundary(triangulation.n_vertices(),
                                               false);
         for (const auto &cell : triangulation.active_cell_iterators())
@@ -383,6 +471,8 @@ namespace ViscoContact
                               cell->face(f)->boundary_id()))
                 for (const unsigned int v : cell->face(f)->vertex_indices())
                   on_contact_boundary[cell->face(f)->vertex_index(v)] = true;
+        // Flag every owned cell with at least one such vertex; one is
+        // enough.
         for (const auto &cell : triangulation.active_cell_iterators())
           if (cell->is_locally_owned())
             for (const unsigned int v : cell->vertex_indices())
@@ -391,6 +481,8 @@ namespace ViscoContact
                   cell->set_refine_flag();
                   break;
                 }
+        // Refine; on p4est this also restores the 2:1 balance and rebalances
+        // the partition.
         triangulation.execute_coarsening_and_refinement();
       }
   }
@@ -399,15 +491,18 @@ namespace ViscoContact
 
   // @sect4{check_boundary_ids}
   //
-  // Every boundary part named in the parameter file must be on the mesh
-  // (on some rank), and Gamma_1 must not be empty: without it the elastic
-  // operator is singular.
+  // Every boundary part named in the parameter file must be on the mesh (on
+  // some rank), and Gamma_1 must not be empty: without it the elastic
+  // operator is singular. (The parameter file's pattern requires at least
+  // one clamped id; this check makes sure it is on the mesh.)
   template <int dim>
   void
   check_boundary_ids(const Parameters::AllParameters &parameters,
                      const Triangulation<dim>        &triangulation,
                      const MPI_Comm                   communicator)
   {
+    // The boundary ids of this rank's faces, then their union over all
+    // ranks: a part may well lie entirely on other ranks.
     std::set<types::boundary_id> local_ids;
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -421,6 +516,7 @@ namespace ViscoContact
     const std::set<types::boundary_id> present(present_list.begin(),
                                                present_list.end());
 
+    // The message lists the ids that are there, and where they come from.
     std::string accepted;
     for (const auto id : present)
       accepted += (accepted.empty() ? "" : ", ") + std::to_string(id);
@@ -430,6 +526,7 @@ namespace ViscoContact
                       "4/5 at z = 0/L3)"
                     : " (the physical groups of the boundary faces in "
                         + parameters.mesh_file + ")");
+    // Each named id must be among them; the message names the entry.
     const auto check_ids = [&](const std::vector<types::boundary_id> &ids,
                                const std::string                     &entry) {
       for (const auto id : ids)
@@ -447,6 +544,7 @@ namespace ViscoContact
 
 
 
+  // The instantiations for 2D and 3D.
   template std::unique_ptr<parallel::DistributedTriangulationBase<2>>
   create_distributed_mesh(const Parameters::AllParameters &, const MPI_Comm);
   template std::unique_ptr<parallel::DistributedTriangulationBase<3>>

@@ -27,6 +27,10 @@ namespace ViscoContact
   // the complete parsed parameter file for reproducibility and opens the
   // time series; the other ranks learn whether that worked, so that all
   // stop together.
+  //
+  // Only rank 0 touches the file system here; the .vtu files, the contact
+  // profiles and the checkpoints that follow are written by all ranks into this
+  // directory.
   template <int dim>
   void
   ViscoplasticContact<dim>::prepare_output_directory()
@@ -41,6 +45,8 @@ namespace ViscoContact
           problem = "it cannot be created (" + error.message() + ")";
         else
           {
+            // The parameter file as parsed, with every default filled in: the
+            // run can be repeated from its output directory alone.
             std::ofstream prm_copy(directory / "parameters.prm");
             prm_copy << parameters.parsed_parameters;
             // A resumed run continues the series of the run it resumes.
@@ -49,6 +55,8 @@ namespace ViscoContact
                                                : std::ios::trunc);
             if (!prm_copy || !time_series)
               problem = "it is not writable";
+            // A new series gets its header; a resumed one continues below the
+            // rows that resume_from_checkpoint() kept.
             if (!parameters.resume)
               time_series
                 << "step,time,active_set_iterations,unilateral_nodes,"
@@ -57,6 +65,8 @@ namespace ViscoContact
             time_series << std::setprecision(10);
           }
       }
+    // The outcome on rank 0 goes to every rank: either all continue or all
+    // throw the same message.
     problem = Utilities::MPI::broadcast(mpi_communicator, problem, 0);
     AssertThrow(problem.empty(),
                 ExcMessage("Invalid parameter <Output directory> in subsection "
@@ -66,8 +76,13 @@ namespace ViscoContact
 
 
 
-  // One row per step: the counts and the force are sums over all ranks,
-  // written by rank 0.
+  // @sect4{ViscoplasticContact::write_time_series_row}
+  //
+  // One row per step: the counts and the force are sums over all ranks, written
+  // by rank 0. They are computed on every rank before the other ranks return,
+  // since the sums are collective operations. The row is flushed at once, so
+  // that the file is complete up to the last finished step even if the run is
+  // killed; a resumed run cuts it back to its checkpoint.
   template <int dim>
   void
   ViscoplasticContact<dim>::write_time_series_row(const unsigned int     step,
@@ -92,6 +107,10 @@ namespace ViscoContact
   //
   // contact_profile_NNNN.csv: the state of every contact node along
   // Gamma_3 (contact_set.h), written by all ranks into one file.
+  //
+  // Collective: each rank formats the lines of its own contact nodes, and the
+  // blocks are written with MPI I/O in rank order at offsets from a prefix sum,
+  // so no rank gathers the others' nodes (mpi_tools.h).
   template <int dim>
   void
   ViscoplasticContact<dim>::write_contact_profile(const unsigned int step,
@@ -122,13 +141,21 @@ namespace ViscoContact
   //
   // With another file stem (failed_step) the record is written for
   // inspection only and not listed in solution.pvd.
+  //
+  // In parallel, each rank writes the patches of its own cells, so every field
+  // must be complete there: the cell fields on the owned cells, and the nodal
+  // fields at every vertex of the owned cells, the ghosts included.
   template <int dim>
   void
   ViscoplasticContact<dim>::output_results(const unsigned int step,
                                            const double       time,
                                            const std::string &stem)
   {
-    TimerOutput::Scope             t(computing_timer, "Output");
+    TimerOutput::Scope t(computing_timer, "Output");
+    // The cell fields have one entry per active cell of this rank's view of the
+    // mesh (owned, ghost and artificial cells), indexed by active_cell_index()
+    // as DataOut expects; only the entries of owned cells are set, and only
+    // those are written.
     const unsigned int             n_components = dim * (dim + 1) / 2;
     const unsigned int             n_q          = stress_quadrature.size();
     const unsigned int             n_cells = triangulation->n_active_cells();
@@ -143,11 +170,18 @@ namespace ViscoContact
         subdomain[c]         = owned_cells[k]->subdomain_id();
         for (unsigned int q = 0; q < n_q; ++q)
           {
+            // The viscoplastic part is recomputed as sigma_n - E eps(u_n)
+            // instead of being read from the stored history, because with the
+            // explicit update the stored history is already H_{n+1}, the one of
+            // the next step (after every step but the last).
             const SymmetricTensor<2, dim> &sigma
               = quadrature_point_history[std::size_t(k) * n_q + q].stress;
             const SymmetricTensor<2, dim> vp
               = sigma
                 - E * symmetrize(displacement_gradient_at(solution, k, q));
+            // Component i of the symmetric tensor, in deal.II's unrolled order
+            // (the diagonal first); each stress point contributes 1/n_q of the
+            // cell's average.
             for (unsigned int i = 0; i < n_components; ++i)
               {
                 const auto index = sigma.unrolled_to_component_indices(i);
@@ -158,6 +192,10 @@ namespace ViscoContact
           }
       }
 
+    // The nodal contact fields live on the scalar DoFHandler.
+    // fill_output_fields() sets the owned entries of this rank's contact nodes;
+    // the ghost import then gives every rank the values at all vertices of its
+    // cells, also those of contact nodes owned by a neighbour.
     IndexSet scalar_relevant;
     DoFTools::extract_locally_relevant_dofs(scalar_dof_handler,
                                             scalar_relevant);
@@ -174,6 +212,8 @@ namespace ViscoContact
     for (VectorType &field : contact_fields)
       field.update_ghost_values();
 
+    // The displacement is one vector field of dim components; the stress
+    // components get names like stress_xy.
     DataOut<dim> data_out;
     data_out.attach_triangulation(*triangulation);
     data_out.add_data_vector(
@@ -210,11 +250,18 @@ namespace ViscoContact
       data_out.add_data_vector(scalar_dof_handler,
                                contact_fields[i],
                                contact_names[i]);
+    // The patches are placed with the mapping of the cell type, the one the
+    // whole program uses.
     data_out.build_patches(mapping);
 
+    // Time and step number go into the .vtu files themselves; the data are
+    // compressed with zlib's fastest level.
     DataOutBase::VtkFlags flags(time, step);
     flags.compression_level = DataOutBase::VtkFlags::best_speed;
     data_out.set_flags(flags);
+    // The .vtu pieces are written by groups of ranks (at most 8 files) with MPI
+    // I/O, and rank 0 writes the .pvtu record that lists them; the step number
+    // has 4 digits in the file names.
     const std::string record = data_out.write_vtu_with_pvtu_record(
       parameters.directory + "/",
       stem,
@@ -222,6 +269,9 @@ namespace ViscoContact
       mpi_communicator,
       4,
       std::min(8u, Utilities::MPI::n_mpi_processes(mpi_communicator)));
+    // Only rank 0 keeps the list of records and rewrites solution.pvd with it
+    // after every record; the list goes into the checkpoints, so that a resumed
+    // run extends the same .pvd file.
     if (stem != "solution"
         || Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
@@ -246,6 +296,8 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::print_run_summary()
   {
+    // The L2 norms of eps(u) and sigma with the stress quadrature: each rank
+    // sums over its own stress points, and only the two sums are reduced.
     const unsigned int n_q         = stress_quadrature.size();
     double             strain_norm = 0, stress_norm = 0;
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
@@ -261,6 +313,8 @@ namespace ViscoContact
         }
     strain_norm = std::sqrt(Utilities::MPI::sum(strain_norm, mpi_communicator));
     stress_norm = std::sqrt(Utilities::MPI::sum(stress_norm, mpi_communicator));
+    // All collective (global norms, sums over the ranks): every rank computes
+    // them, rank 0 prints.
     const double l2_norm    = solution.l2_norm();
     const double max_norm   = solution.linfty_norm();
     const auto   states     = count_contact_states();
@@ -303,17 +357,27 @@ namespace ViscoContact
       krylov_iterations
         += contact_solver->solve_without_contact(external_load, reference)
              .inner_iterations;
+    // The solve with the operator the back end holds at the end of the run (K
+    // for the explicit update, the last tangent for the implicit one), on the
+    // external load; the wall time per solve is the maximum over the ranks, as
+    // the slowest rank sets the pace.
     const double solve_time
       = Utilities::MPI::max(timer.wall_time() / repetitions, mpi_communicator);
+    // One stress update (for the explicit update with the history update and
+    // the assembly of its load): the work every step does besides the solve.
     timer.restart();
     for (unsigned int r = 0; r < repetitions; ++r)
       update_stresses(parameters.time_step, parameters.time_step);
     const double update_time
       = Utilities::MPI::max(timer.wall_time() / repetitions, mpi_communicator);
+    // The average compute time of the steps of this run (solve and stress
+    // update, without output), again the maximum over the ranks.
     const double step_time
       = Utilities::MPI::max(time_loop_compute_time, mpi_communicator)
         / std::max(1u, n_steps_done);
 
+    // The peak resident memory of each rank (VmHWM, in kB), summed over the
+    // ranks.
     Utilities::System::MemoryStats memory;
     Utilities::System::get_memory_stats(memory);
     const double peak_memory

@@ -26,8 +26,13 @@ namespace ViscoContact
 {
   // @sect4{ViscoplasticContact::make_grid}
   //
-  // The distributed mesh of mesh.cc: p4est for hypercubes, fully
-  // distributed for simplices, on any number of ranks.
+  // The distributed mesh of mesh.cc: p4est for hypercubes, fully distributed
+  // for simplices, on any number of ranks. It is built from the parameter file
+  // alone (the generated box or a Gmsh file, then the uniform refinements and
+  // those toward Gamma_3), so that every run of the same file has the same mesh
+  // with the same cell ids, on any number of ranks; the checkpoints rely on
+  // this. The boundary ids the parameter file names are checked there as well,
+  // across all ranks.
   template <int dim>
   void
   ViscoplasticContact<dim>::make_grid()
@@ -51,14 +56,26 @@ namespace ViscoContact
   {
     {
       TimerOutput::Scope t(computing_timer, "Setup: dofs and constraints");
+      // Two DoFHandlers on the same mesh: the vector-valued one of the
+      // displacement, and a scalar one with one dof per vertex for the nodal
+      // contact fields of the output.
       dof_handler.reinit(*triangulation);
       dof_handler.distribute_dofs(*fe);
       scalar_dof_handler.reinit(*triangulation);
       scalar_dof_handler.distribute_dofs(*scalar_fe);
+      // Each rank owns a contiguous range of dofs (locally_owned_dofs) and also
+      // sees the dofs of its ghost cells (locally_relevant_dofs): the ghost
+      // entries of its vectors.
       locally_owned_dofs = dof_handler.locally_owned_dofs();
       DoFTools::extract_locally_relevant_dofs(dof_handler,
                                               locally_relevant_dofs);
 
+      // The constraints are stored for all locally relevant dofs, not only the
+      // owned ones: the cell loops write into every dof of an owned cell, and
+      // some of those are ghosts owned by another rank. The clamped parts
+      // Gamma_1 get u = 0, which is homogeneous, so the same constraints serve
+      // every displacement and every right-hand side of the run. Hanging nodes
+      // appear where the mesh is refined toward Gamma_3.
       constraints.clear();
       constraints.reinit(locally_relevant_dofs);
       DoFTools::make_hanging_node_constraints(dof_handler, constraints);
@@ -71,6 +88,12 @@ namespace ViscoContact
                                                  constraints);
       constraints.close();
 
+      // The sparsity pattern of the owned cells, without the entries that the
+      // constraints eliminate (distribute_local_to_global() never writes them).
+      // A rank's cells also couple ghost dofs; distribute_sparsity_pattern()
+      // sends those rows to the ranks that own them, so that each rank ends
+      // with the complete rows of its owned dofs, which is how the Trilinos
+      // matrices are partitioned.
       DynamicSparsityPattern dsp(locally_relevant_dofs);
       DoFTools::make_sparsity_pattern(dof_handler,
                                       dsp,
@@ -84,14 +107,19 @@ namespace ViscoContact
                               locally_owned_dofs,
                               dsp,
                               mpi_communicator);
+      // The tangent of the implicit update has the same couplings as K; the
+      // explicit update never needs it.
       if (parameters.stress_update == Parameters::StressUpdate::implicit_euler)
         tangent_matrix.reinit(locally_owned_dofs,
                               locally_owned_dofs,
                               dsp,
                               mpi_communicator);
 
-      // All displacement-sized vectors share one partition: owned entries
-      // and the ghosts of the locally relevant dofs.
+      // All displacement-sized vectors share one partition: owned entries and
+      // the ghosts of the locally relevant dofs. Sharing one partitioner also
+      // means that a local index (owned entries first, then ghosts) means the
+      // same dof in every one of them, which the stored stress-point geometry
+      // relies on.
       solution.reinit(locally_owned_dofs,
                       locally_relevant_dofs,
                       mpi_communicator);
@@ -111,6 +139,12 @@ namespace ViscoContact
   // constrained rows and columns condensed (their diagonal stays positive,
   // so K is symmetric positive definite on all dofs). The count is printed
   // in the run summary: a change that re-assembles per step shows up there.
+  //
+  // The integral is taken with the stress quadrature, the same points at which
+  // the stresses live and the history load is integrated, so that K and the
+  // history load are consistent: (E eps(u) + H, eps(v)) at the stress points is
+  // exactly K u + (H, eps(v)). This runs once, before the stress-point geometry
+  // exists, so it uses FEValues like any deal.II assembly loop.
   template <int dim>
   void
   ViscoplasticContact<dim>::assemble_elastic_operator()
@@ -127,6 +161,8 @@ namespace ViscoContact
     std::vector<SymmetricTensor<2, dim>> strains(dofs_per_cell);
     const SymmetricTensor<4, dim>       &E = material.elasticity_tensor();
 
+    // Each rank assembles its own cells. E has the major symmetry, so only the
+    // lower triangle of the cell matrix is computed, and then mirrored.
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -147,6 +183,9 @@ namespace ViscoContact
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
             for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
               cell_matrix(i, j) = cell_matrix(j, i);
+          // The constraints condense the cell matrix as it is added. Rows of
+          // ghost dofs are collected locally and sent to their owners by
+          // compress(add), which also finishes the matrix for Trilinos.
           cell->get_dof_indices(local_dof_indices);
           constraints.distribute_local_to_global(cell_matrix,
                                                  local_dof_indices,
@@ -165,11 +204,21 @@ namespace ViscoContact
   // Alongside, the stress-point geometry the time loop uses instead of
   // FEValues: the dofs of each cell as indices into the vectors' local
   // storage, and JxW and the scalar shape gradients at each stress point.
+  //
+  // Why not FEValues in the time loop: the stress update, the history load and
+  // the tangent visit every stress point in every step, and FEValues would
+  // recompute the same Jacobians and shape gradients each time. The mesh does
+  // not move, so the geometry is stored once; the loops then read u through
+  // local indices (no global-to-local lookup) and need no cell iterators.
   template <int dim>
   void
   ViscoplasticContact<dim>::setup_stress_points()
   {
     TimerOutput::Scope t(computing_timer, "Setup: stress points");
+    // The list of owned cells fixes the numbering k used by every stress-point
+    // array (and by the checkpoints and the convergence study). Ghost and
+    // artificial cells have no stress points here: their stresses belong to the
+    // rank that owns them.
     owned_cells.clear();
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -179,6 +228,8 @@ namespace ViscoContact
     quadrature_point_history.assign(n_cells * n_q,
                                     QuadraturePointHistory<dim>());
 
+    // For the linear elements the scalar dofs of a cell are its vertices, so a
+    // cell has n_cell_vertices * dim displacement dofs.
     n_cell_vertices = scalar_fe->n_dofs_per_cell();
     cell_local_dofs.resize(n_cells * n_cell_vertices * dim);
     cell_is_constrained.assign(n_cells, false);
@@ -190,11 +241,19 @@ namespace ViscoContact
                             stress_quadrature,
                             update_gradients | update_JxW_values);
     std::vector<types::global_dof_index> dof_indices(fe->n_dofs_per_cell());
+    // The partitioner of the solution vector translates global dof numbers into
+    // local indices of its storage. Every dof of an owned cell is locally
+    // relevant, so each has a local index (owned or ghost).
     const auto &partitioner = *solution.get_partitioner();
     for (std::size_t k = 0; k < n_cells; ++k)
       {
         fe_values.reinit(owned_cells[k]);
         owned_cells[k]->get_dof_indices(dof_indices);
+        // The displacement dof of vertex a and component d, in the order
+        // (vertex a, component c) that add_stress_point_load() and
+        // distribute_cell_vector() use. A cell with a constrained dof (clamped,
+        // or hanging) is marked: its contributions must go through the
+        // constraints.
         for (unsigned int a = 0; a < n_cell_vertices; ++a)
           for (unsigned int d = 0; d < dim; ++d)
             {
@@ -205,6 +264,10 @@ namespace ViscoContact
               if (constraints.is_constrained(dof))
                 cell_is_constrained[k] = true;
             }
+        // JxW and the gradients of the scalar shape functions N_a: the shape
+        // function of vertex a in component 0 is N_a e_0, so its gradient in
+        // that component is grad N_a, which is all the strains need
+        // (eps(N_a e_c) = sym(e_c (x) grad N_a)).
         for (unsigned int q = 0; q < n_q; ++q)
           {
             stress_point_JxW[k * n_q + q] = fe_values.JxW(q);
@@ -225,6 +288,14 @@ namespace ViscoContact
   // The contact set of contact_set.h, and its active-set parameters from K.
   // Without Gamma_3 or with a law that is zero everywhere and has no rigid
   // limit, contact is skipped altogether.
+  //
+  // ContactSet::setup() finds the contact nodes this rank owns (the owned
+  // vertices of Gamma_3 that are not constrained), assembles their lumped
+  // weights w_i and normals nu_i like a right-hand side (so that they do not
+  // depend on the partition), and puts every node on the piece of the state
+  // r = z = 0. The parameters c_i = max(nu_i^T K_ii nu_i / w_i,
+  // 2 * steepest softening) come from the diagonal blocks of K (doc/model.md,
+  // section 2); the implicit update recomputes them from each tangent.
   template <int dim>
   void
   ViscoplasticContact<dim>::setup_contact()
@@ -252,6 +323,11 @@ namespace ViscoContact
   // Method = auto picks the back end from the scene (contact_solver.cc);
   // the back end then factorises or preconditions K, which for the explicit
   // update is the operator of every step problem of the run.
+  //
+  // The choice depends only on numbers every rank knows (ranks, dofs, global
+  // number of contact nodes), so all ranks create the same back end. From here
+  // on the class speaks to it only through the ContactSolver interface: the
+  // time loop below is the same for both.
   template <int dim>
   void
   ViscoplasticContact<dim>::setup_back_end()
@@ -269,6 +345,10 @@ namespace ViscoContact
                                                 mapping,
                                                 dof_handler,
                                                 solution);
+    // Only the set-up of the operator is timed: the factorisation and the
+    // compliance S (one solve per contact node) of the condensed back end, or
+    // the AMG hierarchy of the full space one. K is symmetric (the argument
+    // true), so the back end may use CG and a symmetric factorisation.
     TimerOutput::Scope t(computing_timer, "Setup: back end for K");
     contact_solver->set_operator(stiffness_matrix, true, contact_set);
   }
@@ -276,6 +356,9 @@ namespace ViscoContact
 
 
   // @sect4{ViscoplasticContact::print_header}
+  // The run's header: the size of the problem (global counts), the model, the
+  // back end with the reason for the choice, and the parallel layout. pcout
+  // prints on rank 0 only.
   template <int dim>
   void
   ViscoplasticContact<dim>::print_header(const unsigned int n_steps) const
@@ -315,6 +398,8 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::report_scheme_limits()
   {
+    // The implicit update is unconditionally stable (doc/model.md, section 3);
+    // the explicit one has the limit of forward Euler on the relaxation.
     if (parameters.plasticity
         && parameters.stress_update == Parameters::StressUpdate::implicit_euler)
       pcout << "Implicit (backward-Euler) history update: no stability limit "
@@ -332,6 +417,10 @@ namespace ViscoContact
                    "explicit history update (doc/model.md, section 3): the "
                    "stresses may oscillate or blow up.\n";
       }
+    // The uniqueness margin needs products with the compliance S, i.e. the back
+    // end for K; Check uniqueness = false skips it. It is collective: every
+    // rank takes part in the Lanczos iteration and prints (on rank 0) the same
+    // number.
     if (contact_enabled && parameters.check_uniqueness)
       {
         TimerOutput::Scope t(computing_timer, "Setup: uniqueness margin");
@@ -362,12 +451,22 @@ namespace ViscoContact
   // small), whose extreme Ritz values converge fast; a product with S is
   // the back end's apply_compliance(): a dense product on the condensed
   // back end, one elastic solve on the full space back end.
+  //
+  // In parallel each rank holds the entries of its own contact nodes; the only
+  // communication besides apply_compliance() is the sum in the inner products.
+  // Since every rank then sees the same scalars, all take the same decisions
+  // (convergence, breakdown) and leave the loop together, as the collective
+  // apply_compliance() requires.
   template <int dim>
   double
   ViscoplasticContact<dim>::smallest_uniqueness_eigenvalue()
   {
+    // Vectors of length m_local, indexed by this rank's contact nodes; m is the
+    // global number of contact nodes.
     const unsigned int m_local = contact_set.size();
     const unsigned int m       = contact_set.n_global_nodes();
+    // The inner product of two such vectors over all ranks: only the scalar is
+    // reduced.
     const auto dot = [&](const Vector<double> &a, const Vector<double> &b) {
       double sum = 0;
       for (unsigned int i = 0; i < m_local; ++i)
@@ -384,25 +483,40 @@ namespace ViscoContact
         y[i] *= std::sqrt(contact_set.weight(i));
     };
 
+    // The Lanczos basis (kept for the reorthogonalisation) and the recurrence
+    // coefficients alpha_k (diagonal) and beta_k (off-diagonal) of the
+    // tridiagonal matrix T. The start vector is the constant vector of unit
+    // length over all ranks, which every rank sets up without communication.
     std::vector<Vector<double>> basis;
     std::vector<double>         alpha, beta;
     Vector<double>              v(m_local), w(m_local);
     for (unsigned int i = 0; i < m_local; ++i)
       v[i] = 1. / std::sqrt(double(m));
     double largest = 0;
+    // At most m iterations (then the Krylov space is the whole space) and at
+    // most 60; doc/model.md, section 4, reports 10 to 20 for the benchmark.
     for (unsigned int k = 0; k < std::min(m, 60u); ++k)
       {
         basis.push_back(v);
         apply(v, w);
         alpha.push_back(dot(w, v));
+        // w = A v with A = D^{1/2} S D^{1/2}, and alpha_k = (A v, v). Then w is
+        // orthogonalised against every earlier basis vector, not only the last
+        // two: in floating point the three-term recurrence loses orthogonality
+        // and produces spurious copies of converged Ritz values. This
+        // subtraction includes the usual alpha_k v_k and beta_{k-1} v_{k-1}.
         for (const Vector<double> &b : basis) // full reorthogonalisation
           {
             const double projection = dot(w, b);
             for (unsigned int i = 0; i < m_local; ++i)
               w[i] -= projection * b[i];
           }
+        // The norm of what remains is beta_k, the next off-diagonal entry.
         const double norm = std::sqrt(dot(w, w));
 
+        // The Ritz values are the eigenvalues of T (LAPACK's symmetric
+        // tridiagonal solver, in ascending order); the largest approximates
+        // lambda_max from below.
         TridiagonalMatrix<double> T(alpha.size(), true);
         for (unsigned int i = 0; i < alpha.size(); ++i)
           {
@@ -412,11 +526,15 @@ namespace ViscoContact
           }
         T.compute_eigenvalues();
         const double ritz = T.eigenvalue(alpha.size() - 1);
-        const bool   converged
+        // Stop when the largest Ritz value no longer changes (relative 1e-12),
+        // or when the Krylov space is invariant (w vanishes): then the Ritz
+        // value is exact.
+        const bool converged
           = k > 0 && std::abs(ritz - largest) <= 1e-12 * std::abs(ritz);
         largest = ritz;
         if (converged || norm <= 1e-14 * std::abs(ritz))
           break;
+        // Otherwise the normalised remainder is the next basis vector.
         beta.push_back(norm);
         for (unsigned int i = 0; i < m_local; ++i)
           v[i] = w[i] / norm;

@@ -28,13 +28,31 @@ namespace ViscoContact
   // With the implicit update, sigma_n solves the backward-Euler equation at
   // each stress point (as in the last Newton iteration), and the history of
   // the next step is what of sigma_n is not elastic.
+  //
+  // This is where the explicit and the implicit update differ, and why the
+  // explicit one is cheap: its step problem has the constant operator K, and
+  // all of the plasticity happens here, one evaluation of G per stress point,
+  // pointwise; the only communication is the compress() of the history load and
+  // one scalar maximum. The price is the stability limit
+  // k < 4 lambda / lambda_max(E) (doc/model.md, section 3). The implicit update
+  // has no limit, but its Newton iteration needs a tangent and a new set-up of
+  // the back end per iteration; here it only recomputes the converged stress.
+  //
+  // The field state.history means, between steps, the history of the next step:
+  // H_{n+1} for the explicit update, sigma_n - E eps(u_n) for the implicit one
+  // (the bracket of the trial stress of doc/model.md, section 3). In both cases
+  // the step problem of step n+1 reads it as it is.
   template <int dim>
   void
   ViscoplasticContact<dim>::update_stresses(const double current_time_step,
                                             const double next_time_step)
   {
     TimerOutput::Scope t(computing_timer, "Stress update");
-    const bool         implicit
+    // With plasticity off the stresses are elastic and the history stays zero.
+    // The history of the next step is only needed if there is a next step
+    // (next_time_step > 0); the run summary calls this function again for its
+    // cost measurement, with the time step of the parameter file.
+    const bool implicit
       = parameters.plasticity
         && parameters.stress_update == Parameters::StressUpdate::implicit_euler;
     const bool update_history
@@ -44,9 +62,13 @@ namespace ViscoContact
     const unsigned int             n_q = stress_quadrature.size();
     Vector<double>                 cell_vector(n_cell_vertices * dim);
 
+    // history_load is rebuilt from zero, ghost entries included; each cell adds
+    // into it below.
     if (update_history)
       history_load = 0;
     double local_max_von_mises = 0;
+    // Each rank visits the stress points of its own cells only; the record of
+    // stress point q of the k-th owned cell is entry k * n_q + q.
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
       {
         std::fill(cell_vector.begin(), cell_vector.end(), 0.);
@@ -54,8 +76,15 @@ namespace ViscoContact
           {
             QuadraturePointHistory<dim> &state
               = quadrature_point_history[std::size_t(k) * n_q + q];
+            // E eps(u_n), from the ghosted u_n (solve_contact_problem() has
+            // imported the ghosts).
             const SymmetricTensor<2, dim> elastic_stress
               = E * symmetrize(displacement_gradient_at(solution, k, q));
+            // Implicit: the trial stress is E eps(u_n) plus the stored history
+            // sigma_{n-1} - E eps(u_{n-1}); the backward-Euler update projects
+            // it (no tangent needed here), and the new history is the
+            // non-elastic part of sigma_n. Explicit: sigma_n = E eps(u_n) +
+            // H_n, with H_n stored by the previous call.
             if (implicit)
               {
                 state.stress
@@ -68,10 +97,17 @@ namespace ViscoContact
               }
             else
               state.stress = elastic_stress + state.history;
+            // The largest von Mises stress, for the time series. std::max would
+            // silently drop a NaN, so a non-finite value is recorded as
+            // infinity, which survives the maximum over the ranks.
             const double von_mises = material.equivalent_stress(state.stress);
             local_max_von_mises    = std::isfinite(von_mises)
                                        ? std::max(local_max_von_mises, von_mises)
                                        : std::numeric_limits<double>::infinity();
+            // Explicit history update: H_{n+1} = H_n + k_{n+1} G(sigma_n), with
+            // the plastic multiplier as the starting guess of the projection;
+            // then the point's contribution -(H_{n+1}, eps(v)) JxW to the next
+            // step's load.
             if (update_history)
               {
                 state.history
@@ -86,6 +122,9 @@ namespace ViscoContact
             distribute_cell_vector(k, cell_vector, history_load);
           }
       }
+    // The ghost entries of history_load hold contributions to dofs that other
+    // ranks own: compress() adds them there. The maximum von Mises stress is
+    // the one scalar reduced over the ranks.
     if (update_history)
       history_load.compress(VectorOperation::add);
     max_von_mises = Utilities::MPI::max(local_max_von_mises, mpi_communicator);
@@ -110,6 +149,12 @@ namespace ViscoContact
   //
   // grad u = sum_a u_a (x) grad N_a at stress point q of the k-th owned
   // cell, from the geometry stored at set-up and the ghosted entries of u.
+  //
+  // Row c of the result is grad u_c = sum_a u_{a,c} grad N_a. The values are
+  // read through the local indices stored for the cell, which point into the
+  // owned part or the ghost part of the vector's storage; hence the ghost
+  // values must be current, except on one rank, where the vector has no ghosts
+  // and the owned part is everything.
   template <int dim>
   Tensor<2, dim>
   ViscoplasticContact<dim>::displacement_gradient_at(
@@ -117,6 +162,8 @@ namespace ViscoContact
     const unsigned int k,
     const unsigned int q) const
   {
+    // The cell's dofs start at entry k * n_a * dim of cell_local_dofs, its
+    // stress point gradients at (k * n_q + q) * n_a of stress_point_gradients.
     const unsigned int    n_a    = n_cell_vertices;
     const unsigned int   *dofs   = &cell_local_dofs[std::size_t(k) * n_a * dim];
     const double         *values = displacement.get_values(); // owned, ghosts
@@ -140,6 +187,11 @@ namespace ViscoContact
   // cell_vector += (tau, eps(v)) JxW at stress point q of the k-th owned
   // cell: with eps(N_a e_c) = sym(e_c (x) grad N_a) and tau symmetric, the
   // entry of the cell's dof (a, c) is JxW (tau grad N_a)_c.
+  //
+  // Called with tau = -H, this is the history load (update_stresses(),
+  // assemble_history_load()); the tangent assembly computes its internal force
+  // inline with the same formula. It only adds into a cell vector;
+  // distribute_cell_vector() then adds the cell vector to a global one.
   template <int dim>
   void
   ViscoplasticContact<dim>::add_stress_point_load(
@@ -168,6 +220,12 @@ namespace ViscoContact
   // a, component c)). Cells without constrained dofs add straight into the
   // local storage; the others go through the constraints (hanging nodes,
   // the clamped Gamma_1). The caller compresses.
+  //
+  // The direct path is the common one (most cells touch neither Gamma_1 nor a
+  // hanging node) and needs no global dof numbers at all. Entries of dofs owned
+  // by other ranks land in the ghost part of target's storage, which is why the
+  // caller must start from a zeroed vector and finish with
+  // compress(VectorOperation::add).
   template <int dim>
   void
   ViscoplasticContact<dim>::distribute_cell_vector(
@@ -184,6 +242,9 @@ namespace ViscoContact
           values[dofs[i]] += cell_vector[i];
         return;
       }
+    // A cell with constrained dofs: back to global dof numbers, which
+    // AffineConstraints works with, and let it drop the clamped entries and
+    // distribute those of hanging nodes.
     std::vector<types::global_dof_index> global_dofs(n_local);
     const auto &partitioner = *target.get_partitioner();
     for (unsigned int i = 0; i < n_local; ++i)

@@ -26,19 +26,32 @@ namespace ViscoContact
   // accepted state is written to failed_step_NNNN.pvtu and the run stops
   // with a report. All failure criteria are reduced over the ranks, so
   // every rank takes the same decision.
+  //
+  // What "the state at the start of the step" is: the displacement u_{n-1} and
+  // the contact state (the pieces and (r, z) of every owned node). The stress
+  // points need no copy: a failed attempt changes nothing there but the
+  // starting guesses of the plastic multipliers, since sigma_n and the history
+  // are only written by update_stresses() after a step was accepted (and by the
+  // rescaling of a cut step below).
   template <int dim>
   ActiveSetResult
   ViscoplasticContact<dim>::solve_step_with_recovery(const unsigned int   n,
                                                      std::vector<double> &times)
   {
+    // The copies a failed attempt is undone with (each rank keeps its own
+    // part).
     const VectorType          start_solution = solution;
     const ContactNodes::State start_contact  = contact_set.state();
     const bool                explicit_history
       = parameters.plasticity
         && parameters.stress_update == Parameters::StressUpdate::explicit_euler;
 
+    // Each pass is one attempt at step n with the current schedule; a cut
+    // shortens times[n] and the next pass tries the shorter step. The loop ends
+    // by returning a converged result or by throwing.
     while (true)
       {
+        // The right-hand side depends on t_n, which a cut has changed.
         const double k = times[n] - times[n - 1];
         assemble_right_hand_side(times[n]);
         const ActiveSetResult result
@@ -49,10 +62,16 @@ namespace ViscoContact
         if (result.converged)
           return result;
 
+        // The contact counts of the failed iterate, for the report (collective,
+        // before the state is restored). Then back to u_{n-1} with its ghosts,
+        // and to the pieces the step started from.
         const std::array<unsigned int, 3> states = count_contact_states();
         solution                                 = start_solution;
         solution.update_ghost_values();
         contact_set.set_state(start_contact);
+        // cut_failed_step() decides from the parameters and the schedule, which
+        // every rank has alike, and on success inserts t_{n-1} + k/2 as the new
+        // t_n.
         if (cut_failed_step(parameters, pcout, n, times, result.failure))
           {
             if (explicit_history)
@@ -60,6 +79,12 @@ namespace ViscoContact
             continue;
           }
 
+        // No cut: write the last accepted state (u_{n-1}, sigma_{n-1} at
+        // t_{n-1}, as restored above) for inspection, then stop on every rank
+        // with the same message: what failed, the iteration history, and what
+        // can be changed in the parameter file. Nothing of the failed attempt
+        // is written, so the output of the run stays a consistent record of
+        // accepted steps.
         const std::string state_file = failed_state_file(n, "pvtu");
         output_results(n, times[n - 1], "failed_step");
         AssertThrow(false,
@@ -82,15 +107,28 @@ namespace ViscoContact
   // the back end's solves for fixed pieces, then the displacement of the
   // final pieces. Without contact it is one solve. The displacement is
   // left in solution (with its constrained entries and ghosts set).
+  //
+  // The division of labour: ContactNodes::solve() owns the iteration (move
+  // every node to the piece q_i names, stop when no node moved on any rank and
+  // the solve met its tolerance, doc/model.md, section 2); the back end only
+  // solves the linear problems of fixed pieces and writes r and z of the owned
+  // nodes. This function is the same for the explicit step (operator K,
+  // right-hand side b_n) and for every Newton iteration of the implicit one
+  // (the tangent, its linearised right-hand side).
   template <int dim>
   ActiveSetResult
   ViscoplasticContact<dim>::solve_contact_problem(const VectorType &rhs)
   {
     TimerOutput::Scope t(computing_timer, "Solve: contact problem");
     ActiveSetResult    result;
-    // The back ends work on the locally owned entries; the ghosts are
-    // imported again once the displacement is final.
+    // The back ends work on the locally owned entries; the ghosts are imported
+    // again once the displacement is final. Ghost entries would be stale while
+    // the solvers write into the vector, and a deal.II vector in its ghosted
+    // state cannot be compressed; the full space back end uses the owned
+    // entries of solution as its starting guess.
     solution.zero_out_ghost_values();
+    // No contact nodes: the displacement is A^{-1} rhs, one solve of the back
+    // end (a Krylov solve or the factorisation).
     if (!contact_enabled)
       {
         const LinearSolveReport report
@@ -101,6 +139,12 @@ namespace ViscoContact
       }
     else
       {
+        // With contact: the back end takes the right-hand side first (the
+        // condensed back end computes d = N A^{-1} b here, one solve; the full
+        // space back end keeps b), and each active-set iteration then asks it
+        // for the (r, z) of the current pieces. The iteration warm-starts from
+        // the pieces the nodes are on: those of the previous step or Newton
+        // iteration.
         contact_solver->set_right_hand_side(rhs, contact_set);
         result = contact_set.solve(
           [&]() {
@@ -109,6 +153,9 @@ namespace ViscoContact
           parameters.max_iterations,
           parameters.tolerance,
           mpi_communicator);
+        // finish() gives the displacement of the final pieces: u =
+        // A^{-1} b - W z on the condensed back end, nothing to do on the full
+        // space back end, whose last solve left u in solution.
         if (result.converged)
           contact_solver->finish(contact_set, solution);
       }
@@ -116,8 +163,13 @@ namespace ViscoContact
     if (!result.converged)
       return result;
 
+    // distribute() gives the constrained entries (clamped, hanging) their
+    // values from the constraints, then the ghosts are imported so that the
+    // stress update can read every dof of the owned cells.
     constraints.distribute(solution);
     solution.update_ghost_values();
+    // A NaN or Inf anywhere makes the global norm non-finite on every rank
+    // (l2_norm() is a reduction), so all ranks declare the failure together.
     if (!std::isfinite(solution.l2_norm()))
       {
         result.converged = false;
@@ -130,8 +182,10 @@ namespace ViscoContact
 
   // @sect4{ViscoplasticContact::solve_explicit_step}
   //
-  // The paper's scheme: the operator is K for the whole run, so a step is
-  // one step problem with b_n.
+  // The paper's scheme: the operator is K for the whole run, so a step is one
+  // step problem with b_n. All of the viscoplasticity is in the history load of
+  // b_n, computed from the previous step's stresses; the back end keeps the
+  // factorisation or preconditioner of K from set-up.
   template <int dim>
   ActiveSetResult
   ViscoplasticContact<dim>::solve_explicit_step()
@@ -153,6 +207,12 @@ namespace ViscoContact
   // relative size of each update is printed (with Verbose), which shows the
   // quadratic convergence once the contact set has settled. Returns whether
   // it converged; the iterate is updated in place.
+  //
+  // The contact law is not linearised: every Newton iteration solves a complete
+  // contact problem with the piecewise-linear law kept exactly, so Newton only
+  // has to deal with the nonlinearity of the stress update. The active set of
+  // each iteration starts from the pieces of the previous one, so once the
+  // contact zone has settled it needs few iterations.
   template <int dim>
   bool
   ViscoplasticContact<dim>::implicit_newton(const double     a,
@@ -162,21 +222,34 @@ namespace ViscoContact
     VectorType rhs(solution);
     for (unsigned int newton = 1; newton <= parameters.max_iterations; ++newton)
       {
+        // The tangent assembly reads the displacement at every dof of the owned
+        // cells, the ghosts included.
         iterate.update_ghost_values();
         assemble_tangent_system(iterate, a);
         // K_T u_new = f - F_int(u) + K_T u - N^T z.
         tangent_matrix.vmult(rhs, iterate);
         rhs += system_rhs;
         rhs -= internal_force;
+        // The tangent is the step's operator for this iteration: the parameters
+        // c_i are recomputed from its diagonal blocks, and the back end sets it
+        // up anew (a factorisation and the compliance, or an AMG hierarchy). It
+        // is passed as unsymmetric: in 2D plane stress it is, and GMRES or an
+        // LU factorisation work in either case.
         {
           TimerOutput::Scope t(computing_timer, "Solve: set up tangent");
           if (contact_enabled)
             contact_set.set_operator(tangent_matrix);
           contact_solver->set_operator(tangent_matrix, false, contact_set);
         }
+        // The full space back end starts its Krylov solve from the current
+        // iterate.
         solution                         = iterate;
         const ActiveSetResult linearised = solve_contact_problem(rhs);
-        result.earlier_inner_iterations  = result.inner_iterations();
+        // The statistics of the step accumulate over the Newton iterations: the
+        // earlier iterations and Krylov iterations are moved to the earlier_*
+        // counters, and history holds the last active-set run, whose
+        // convergence decides.
+        result.earlier_inner_iterations = result.inner_iterations();
         result.earlier_iterations += result.history.size();
         result.earlier_inner_iterations += linearised.earlier_inner_iterations;
         result.history   = linearised.history;
@@ -190,6 +263,9 @@ namespace ViscoContact
                     << ": the linearised contact problem was not solved\n";
             return false;
           }
+        // The relative change in the maximum norm; linfty_norm() is a maximum
+        // over the ranks, so every rank sees the same number and takes the same
+        // decision below.
         VectorType change(solution);
         change -= iterate;
         const double relative_change
@@ -231,9 +307,13 @@ namespace ViscoContact
   ActiveSetResult
   ViscoplasticContact<dim>::solve_implicit_step(const double time_step)
   {
+    // Every attempt starts from the state at the start of the step (start);
+    // iterate carries the solution from stage to stage.
     const double    a = time_step / (2 * material.viscosity());
     ActiveSetResult result;
     VectorType      start(solution), iterate(solution);
+    // stages = 1 is plain Newton with the step's own a; then 2, 4, ..., 64
+    // stages.
     for (unsigned int stages = 1; stages <= 64; stages *= 2)
       {
         if (stages > 1 && parameters.verbose)
@@ -242,8 +322,11 @@ namespace ViscoContact
                 << stages << " stages\n";
         iterate        = start;
         bool converged = true;
+        // The stages of one attempt: a/J, 2a/J, ..., a, each from the previous
+        // stage's solution; the attempt fails as soon as one stage fails.
         for (unsigned int stage = 1; stage <= stages && converged; ++stage)
           converged = implicit_newton(a * stage / stages, iterate, result);
+        // The last stage was the step's own problem: its solution is u_n.
         if (converged)
           {
             solution = iterate;
@@ -253,6 +336,8 @@ namespace ViscoContact
             return result;
           }
       }
+    // No number of stages helped: report the failure to
+    // solve_step_with_recovery(), which cuts the step or stops.
     result.converged = false;
     result.failure
       = "The Newton iteration of the implicit scheme did not converge, not "
@@ -271,6 +356,10 @@ namespace ViscoContact
   // H_n = H_{n-1} + k G(sigma_{n-1}) was computed with the step length k
   // the schedule had; a cut step needs it with k': H_n += (k' - k) G.
   // sigma_{n-1} is unchanged by the failed attempt, so G is the same.
+  //
+  // Each rank updates the stress points of its own cells; the history load of
+  // the new step is then assembled anew from them (the one update_stresses()
+  // assembled belongs to the old k).
   template <int dim>
   void
   ViscoplasticContact<dim>::rescale_history_increment(const double old_step,
@@ -287,8 +376,11 @@ namespace ViscoContact
 
   // @sect4{Contact state}
   //
-  // Counts over all ranks: at the rigid limit, in normal-compliance
-  // contact, out of contact; and the total contact force.
+  // Counts over all ranks: at the rigid limit, in normal-compliance contact,
+  // out of contact; and the total contact force. Both are collective (a sum
+  // over the ranks of the owned nodes' contributions), so every rank must call
+  // them, also where only rank 0 prints the result. Without contact they are
+  // zero and need no communication.
   template <int dim>
   std::array<unsigned int, 3>
   ViscoplasticContact<dim>::count_contact_states() const

@@ -17,6 +17,12 @@ namespace ViscoContact
 {
   namespace
   {
+    // The two helpers of the constructor's initialiser list, which must decide
+    // before the body runs: the reference cell named by the parameter file's
+    // Cell type, and the scalar linear Lagrange element on it (P1 on triangles
+    // and tetrahedra, Q1 on quadrilaterals and hexahedra). The displacement
+    // element is dim copies of the scalar one (FESystem); the scalar one alone
+    // carries the nodal contact fields of the output.
     template <int dim>
     ReferenceCell
     reference_cell_of(const Parameters::AllParameters &parameters)
@@ -41,11 +47,20 @@ namespace ViscoContact
   // @sect4{ViscoplasticContact::ViscoplasticContact}
   //
   // The choice between simplices and hypercubes is made here, once: the
-  // reference cell gives the mapping, the finite element (P1 or Q1) and
-  // the quadratures, and everything else is written for either. On
-  // simplices the P1 strain is constant per cell and one stress point per
-  // cell is the piecewise-constant stress space; on hypercubes the stresses
-  // live at the 2^dim Gauss points.
+  // reference cell gives the mapping, the finite element (P1 or Q1) and the
+  // quadratures, and everything else is written for either. On simplices the P1
+  // strain is constant per cell and one stress point per cell is the
+  // piecewise-constant stress space; on hypercubes the stresses live at the
+  // 2^dim Gauss points (doc/model.md, section 2). The same stress quadrature is
+  // used to assemble K, so that (sigma, eps(v)) summed over the stress points
+  // is exactly (K u)(v) + (H, eps(v)): the operator and the history load are
+  // integrated alike.
+  //
+  // The loads get a quadrature of their own (deal.II's Gauss-type rule of order
+  // 2 for the cell type), and the face quadrature is built on the reference
+  // face of the cell type (all faces of a cell have the same shape here).
+  // Nothing is done with the mesh yet: the constructor creates the element and
+  // the quadratures and parses the loads, and run() builds everything else.
   template <int dim>
   ViscoplasticContact<dim>::ViscoplasticContact(
     const Parameters::AllParameters &parameters,
@@ -74,7 +89,14 @@ namespace ViscoContact
     , body_force(dim)
     , surface_traction(dim)
   {
+    // main() instantiates the class for the Dimension the parameter file names;
+    // a mismatch is a programming error.
     AssertThrow(parameters.dimension == dim, ExcInternalError());
+    // The load expressions of subsection Loads, parsed once (a bad expression
+    // stops the run here, naming the entry). Two facts about them save work in
+    // every step: a body force that is the literal zero is not integrated at
+    // all, and loads that do not mention t are assembled only once
+    // (assemble_right_hand_side()).
     initialize_load(body_force,
                     "Body force",
                     parameters.body_force,
@@ -90,6 +112,7 @@ namespace ViscoContact
 
 
 
+  // @sect4{ViscoplasticContact::~ViscoplasticContact}
   template <int dim>
   ViscoplasticContact<dim>::~ViscoplasticContact()
   {
@@ -110,22 +133,42 @@ namespace ViscoContact
   // Around it: a resumed run starts after the step of its checkpoint, a
   // checkpoint is written every Checkpoint interval steps, and a run may be
   // told to stop after a given step (as if it had been killed).
+  //
+  // The schedule, times, is a vector that may grow during the run: a step whose
+  // solve fails may be cut in half, which inserts a new time level
+  // (solve_step_with_recovery()). That is why the loop runs to times.size() and
+  // recomputes the number of steps after every step, and why "the next step" is
+  // read off the schedule only after the current one was accepted.
   template <int dim>
   void
   ViscoplasticContact<dim>::run()
   {
+    // Set-up, in the order of the dependencies: the dofs need the mesh; the
+    // stress-point geometry needs the dofs and the partition of the vectors;
+    // the contact nodes need K for their parameters c_i; the back end needs the
+    // number of contact nodes to choose its method and, if condensed, the nodes
+    // themselves.
     make_grid();
     setup_system();
     setup_stress_points();
     setup_contact();
     setup_back_end();
 
+    // t_n = n k with the last step shortened to end at T. A resumed run
+    // replaces the schedule by the one of its checkpoint (with the cut steps of
+    // the interrupted run), restores the state, and continues after the
+    // checkpoint's step. This happens before the output directory is prepared,
+    // so that a damaged or mismatched checkpoint stops the run before the
+    // output directory is modified.
     std::vector<double> times
       = time_levels(parameters.end_time, parameters.time_step);
     unsigned int first_step = 1;
     if (parameters.resume)
       first_step = resume_from_checkpoint(times) + 1;
     prepare_output_directory();
+    // The header and the limits of the scheme go to the console before the
+    // first step, so that a user sees a warning (unstable time step, several
+    // solutions possible) at once and not after the run.
     n_time_steps = times.size() - 1;
     print_header(n_time_steps);
     report_scheme_limits();
@@ -145,22 +188,40 @@ namespace ViscoContact
       return false;
     };
 
+    // The initial state u_0 = 0, sigma_0 = 0 as record 0; a resumed run has it
+    // already.
     if (parameters.write_vtu && first_step == 1)
       output_results(0, 0.);
 
+    // The time loop. The wall time written per step counts from the start of
+    // the original run: a resumed run adds the time the interrupted run had
+    // spent up to its checkpoint (loop_time_offset), so that the time series
+    // reads as one run.
     Timer loop_timer;
     for (unsigned int n = first_step; n < times.size(); ++n)
       {
+        // One step: solve for u_n (retrying with cut steps if necessary), then
+        // the stresses sigma_n at every stress point and the history of the
+        // next step, whose length is the distance to the next time level (0
+        // after the last step, where no history is needed). Only this part
+        // counts as compute time; output is timed apart.
         Timer                 step_timer;
         const ActiveSetResult result = solve_step_with_recovery(n, times);
         update_stresses(times[n] - times[n - 1],
                         n + 1 < times.size() ? times[n + 1] - times[n] : 0.);
         time_loop_compute_time += step_timer.wall_time();
+        // A cut step has inserted a level: the number of steps is that of the
+        // current schedule.
         n_time_steps = times.size() - 1;
         n_steps_done = n;
         if (step_observer)
           step_observer(n, times[n]);
 
+        // What is written per step. The time-series row and the step line
+        // contain sums over the ranks: every rank calls count_contact_states()
+        // and total_contact_force(), which are collective, and rank 0 prints.
+        // The contact profile and the .pvtu record are written by all ranks
+        // into shared files.
         const double wall_time = loop_time_offset + loop_timer.wall_time();
         write_time_series_row(n, times[n], result, wall_time);
         if (parameters.verbose)
@@ -175,9 +236,14 @@ namespace ViscoContact
         if (parameters.write_vtu
             && (n % parameters.interval == 0 || n + 1 == times.size()))
           output_results(n, times[n]);
+        // The checkpoint comes after the output of the step, so that a run
+        // resumed from it has everything of step n on disk, and the .pvd list
+        // the checkpoint stores includes step n.
         if (parameters.checkpoint_interval > 0
             && n % parameters.checkpoint_interval == 0)
           write_checkpoint(n, times, wall_time);
+        // For tests of the checkpoints: end the loop here as if the run had
+        // been killed after the checkpoint; the summary is still printed.
         if (n == parameters.stop_after_step)
           {
             pcout << "Stopped after step " << n
@@ -193,6 +259,14 @@ namespace ViscoContact
 
 
   // @sect4{Access for studies}
+  //
+  // The convergence study runs several ViscoplasticContact objects and compares
+  // their states at every time level. It installs an observer that run() calls
+  // after every accepted step and reads, per locally owned cell k and stress
+  // point q, the stress, the displacement gradient and the weight JxW: the same
+  // (k, q) indexing as the stress-point arrays, so it needs no FEValues either.
+  // All of this is local to a rank; the study itself sends the cells where they
+  // are needed.
   template <int dim>
   void
   ViscoplasticContact<dim>::set_step_observer(
@@ -235,6 +309,7 @@ namespace ViscoContact
   ViscoplasticContact<dim>::get_stress(const unsigned int k,
                                        const unsigned int q) const
   {
+    // The record of (k, q) in the flat stress-point array.
     return quadrature_point_history[std::size_t(k) * stress_quadrature.size()
                                     + q]
       .stress;
@@ -248,6 +323,8 @@ namespace ViscoContact
     const unsigned int k,
     const unsigned int q) const
   {
+    // grad u_n at the stress point, from the ghosted solution (it is called
+    // between time steps, when solution holds u_n with its ghosts).
     return displacement_gradient_at(solution, k, q);
   }
 
@@ -263,6 +340,8 @@ namespace ViscoContact
 
 
 
+  // Both dimensions are compiled into the library; main() and the convergence
+  // study pick one at run time.
   template class ViscoplasticContact<2>;
   template class ViscoplasticContact<3>;
 } // namespace ViscoContact

@@ -16,16 +16,18 @@ namespace ViscoContact
   // doubles for W; afterwards a step is one solve and one dense product.
   // The full space back end costs an AMG set-up and a Krylov solve per
   // active-set iteration. Measured on this kind of machine (2 cores,
-  // benchmarks/ and doc/algorithm.md): in 2D the factorisation is cheap
-  // and the contact boundary is a line, and the condensed back end is
-  // faster at every size tried (up to 526k dofs, 512 contact nodes); in
-  // 3D, the 8 first steps of the cube scene on one rank took 6.7 s
-  // condensed against 38 s full space at 47k dofs (600 contact nodes), and
-  // 26 s condensed (22 s of it set-up, 0.3 s per step) at 108k dofs (1056
-  // contact nodes), where the full space back end needs about 16 s per
-  // step. Beyond that the fill of a 3D factorisation and the m solves
-  // grow fast, and on several ranks the compliance, which every rank
-  // holds, does not scale. The limits below stay within what was measured.
+  // benchmarks/run_back_end_comparison.py, doc/back_ends/back_ends.md; the
+  // first 8 steps of a run, where the contact zone forms): in 2D the
+  // factorisation is cheap and the contact boundary is a line, and the
+  // condensed back end is faster at every size tried (6 times at 132k dofs,
+  // 256 contact nodes; at 2.1M dofs and 1024 contact nodes it still takes
+  // 114 s of set-up and 1.3 s per step, 7.8 GB); in 3D it is 4.6 times
+  // faster at 47k dofs (600
+  // contact nodes) and 6 times at 108k dofs (1056 contact nodes: 22 s of
+  // set-up, then 0.28 s per step, against 16 s per step for the full space
+  // back end). Beyond that the fill of a 3D factorisation and the m solves
+  // grow fast, and on several ranks the compliance, which every rank holds,
+  // does not scale. The limits below stay within what was measured.
   MethodChoice
   choose_method(const Parameters::AllParameters &parameters,
                 const unsigned int               dim,
@@ -39,10 +41,10 @@ namespace ViscoContact
     if (parameters.method != Parameters::Method::automatic)
       return {parameters.method, "set in the parameter file"};
 
-    // The limits of the automatic choice, by space dimension: 4000 contact
-    // nodes and 4M dofs in 2D, 1500 contact nodes and 120k dofs in 3D.
-    const types::global_dof_index max_nodes = (dim == 2 ? 4000 : 1500);
-    const types::global_dof_index max_dofs  = (dim == 2 ? 4000000 : 120000);
+    // The limits of the automatic choice, by space dimension: 2000 contact
+    // nodes and 2.2M dofs in 2D, 1500 contact nodes and 120k dofs in 3D.
+    const types::global_dof_index max_nodes = (dim == 2 ? 2000 : 1500);
+    const types::global_dof_index max_dofs  = (dim == 2 ? 2200000 : 120000);
     // The reason names the scene's numbers, so that the run's header shows
     // which limit decided.
     std::ostringstream reason;

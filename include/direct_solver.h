@@ -3,6 +3,9 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <deal.II/lac/lapack_full_matrix.h>
+#include <deal.II/lac/vector.h>
+
 #include "linear_algebra.h"
 #include "parameters.h"
 
@@ -46,8 +49,38 @@ namespace ViscoContact
     // factorisation. Throws an ExcMessage that names the solver and the
     // reason if the factorisation fails (e.g. a matrix that is not
     // positive definite for CHOLMOD).
+    //
+    // last_rows (local row indices, e.g. the contact dofs) asks for an
+    // elimination order that ends with these rows. CHOLMOD can do this for
+    // a symmetric operator: then has_last_block() is true, and the last
+    // block L_c of the factor P A P^T = L L^T is the Cholesky factor of the
+    // Schur complement of A on these rows, so (A^{-1}) on these rows is
+    // L_c^{-T} L_c^{-1}, read off the factor without any further solve.
     void
-    factorize(const MatrixType &A, const bool symmetric);
+    factorize(const MatrixType                &A,
+              const bool                       symmetric,
+              const std::vector<unsigned int> &last_rows = {});
+
+    // Whether the last factorisation ends with last_rows (see above).
+    bool
+    has_last_block() const;
+
+    // The lower triangular last block L_c of the factor (size of last_rows),
+    // in the factor's order: its row k is last_rows[last_block_order()[k]].
+    const LAPACKFullMatrix<double> &
+    last_block_factor() const;
+    const std::vector<unsigned int> &
+    last_block_order() const;
+
+    // A solve split at the last block, for a right-hand side that changes
+    // in the last rows between the two halves: forward_solve() computes
+    // y = L^{-1} P b, keeps it and returns its last block y_c (in the
+    // factor's order); backward_solve() adds change to y_c and completes
+    // x = P^T L^{-T} y. Together they cost one solve.
+    void
+    forward_solve(const VectorType &b, Vector<double> &last_block) const;
+    void
+    backward_solve(const Vector<double> &change, VectorType &x) const;
 
     // Solve A x = b (the locally owned entries of both).
     void

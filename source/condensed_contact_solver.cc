@@ -7,7 +7,7 @@
 // and the free normal displacements d = N A^{-1} b, the active-set iteration
 // only ever sees the small dense problem r = d - S z of
 // CondensedContactSystem (condensed_system.cc), and the displacement is
-// assembled once, at the end of the step problem, as u = A^{-1} b - W z.
+// assembled once, at the end of the step problem, as u = A^{-1} (b - N^T z).
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
@@ -70,27 +70,43 @@ namespace ViscoContact
   // @sect3{The condensed back end}
   //
   // With A factorised, the displacement of fixed nodal forces z is
-  // u = A^{-1} b - W z, W = A^{-1} N^T, and the contact problem of fixed
-  // pieces is the dense m x m problem of CondensedContactSystem on the
-  // contact compliance S = N W. set_operator() pays for it: one
-  // factorisation and one solve per contact node (in blocks of 64 right-hand
-  // sides, which CHOLMOD solves with BLAS-3 kernels). After that, an
-  // active-set iteration never touches the bulk unknowns, and a step costs
-  // one solve with A plus the product W z.
+  // u = A^{-1} (b - N^T z), and the contact problem of fixed pieces is the
+  // dense m x m problem of CondensedContactSystem on the contact compliance
+  // S = N A^{-1} N^T and the free normal displacements d = N A^{-1} b. How
+  // S and d are found depends on what the factorisation offers.
+  //
+  // On one rank CHOLMOD factorises P A P^T = L L^T with an elimination order
+  // that ends with the contact dofs (direct_solver.cc). The last block L_c
+  // of the factor is then the Cholesky factor of the Schur complement of A
+  // on the contact dofs, and everything the contact problem needs follows
+  // from the dense matrix X = L_c^{-1} N_c^T (N_c: the normals at the
+  // contact dofs, one column per node):
+  //  - S = X^T X, without a single sparse solve;
+  //  - d = X^T y_c, where y = L^{-1} P b is the forward half of the solve
+  //    with b;
+  //  - u from the backward half, after y_c -= X z: the force only changes
+  //    the last block of the forward solve.
+  // A step then costs one forward and one backward solve, as a solve
+  // without contact does, plus products with the small X.
+  //
+  // Otherwise (UMFPACK's LU of an unsymmetric tangent, MUMPS on several
+  // ranks) S is computed column by column: column j is N A^{-1} N^T e_j, the
+  // normal displacements caused by a unit force at contact node j, from
+  // solves in blocks of 64 right-hand sides, and a step costs two solves:
+  // A^{-1} b before the active-set iteration and A^{-1} N^T z after it.
   //
   // For the explicit stress update the operator is the elastic K for the
   // whole run, so this set-up is paid once; for the implicit update it is
   // paid again in every Newton iteration, with the new tangent.
   //
-  // On several ranks the factorisation is MUMPS', each rank keeps the rows
-  // of W of its own dofs, and S (m^2 doubles) is held by every rank, which
-  // solves the small dense problem itself. Replicating S is what makes the
-  // active-set iteration free of communication beyond a few gathers of
-  // node-sized vectors: every rank has the same S, the same d and the same
-  // pieces, does the same arithmetic and thus reaches the same forces and
-  // the same decisions, so no rank has to wait for another's answer. The
-  // price is memory that does not shrink with the number of ranks. That is
-  // why Method = auto chooses this back end only on one rank and for small
+  // On several ranks S (m^2 doubles) is held by every rank, which solves the
+  // small dense problem itself. Replicating S is what makes the active-set
+  // iteration free of communication beyond a few gathers of node-sized
+  // vectors: every rank has the same S, the same d and the same pieces, does
+  // the same arithmetic and thus reaches the same forces and the same
+  // decisions, so no rank has to wait for another's answer. The price is
+  // memory that does not shrink with the number of ranks. That is why
+  // Method = auto chooses this back end only on one rank and for small
   // contact surfaces.
   template <int dim>
   class CondensedContactSolver : public ContactSolver<dim>
@@ -99,17 +115,16 @@ namespace ViscoContact
     CondensedContactSolver(const Parameters::AllParameters &parameters,
                            const VectorType                &layout);
 
-    // Set-up: the factorisation of A, and W and S from one solve per
-    // contact node.
+    // Set-up: the factorisation of A, and S, from its last block or from
+    // one solve per contact node.
     void
     set_operator(const MatrixType      &A,
                  const bool             symmetric,
                  const ContactSet<dim> &contact) override;
     std::string
     description() const override;
-    // Per step problem: A^{-1} b and d = N A^{-1} b; per active-set
-    // iteration: the dense problem on the contact nodes; at the end:
-    // u = A^{-1} b - W z.
+    // Per step problem: d = N A^{-1} b; per active-set iteration: the dense
+    // problem on the contact nodes; at the end: u = A^{-1} (b - N^T z).
     void
     set_right_hand_side(const VectorType      &b,
                         const ContactSet<dim> &contact) override;
@@ -126,19 +141,33 @@ namespace ViscoContact
     solve_without_contact(const VectorType &b, VectorType &u) override;
 
   private:
+    // The two ways to S (see above).
+    FullMatrix<double>
+    compliance_from_last_block(const ContactSet<dim> &contact);
+    FullMatrix<double>
+    compliance_by_solves(const ContactSet<dim> &contact);
+
     const MPI_Comm         communicator;
     SparseDirectSolver     factorization;
     CondensedContactSystem condensed_system;
 
-    // W = A^{-1} N^T, the rows of the locally owned dofs, kept when it
-    // takes less than 1 GiB on this rank (the product W z is then one BLAS
-    // call); otherwise finish() solves once more.
-    LAPACKFullMatrix<double> contact_responses;
-    bool                     responses_stored = false;
+    // The contact dofs of this rank's nodes (the components in which a
+    // node's normal is not zero), as local indices, and for each the node
+    // and the component.
+    std::vector<unsigned int>                             contact_dofs;
+    std::vector<std::pair<unsigned int, unsigned int>>    contact_dof_node;
 
-    // A^{-1} b, the free normal displacements d = N A^{-1} b and the
+    // With the last block: X = L_c^{-1} N_c^T (one row per contact dof, in
+    // the factor's order, one column per node) and the last block y_c of
+    // the forward solve of the current step problem.
+    LAPACKFullMatrix<double> normal_responses;
+    Vector<double>           forward_last;
+
+    // Without it: A^{-1} b of the current step problem.
+    VectorType free_displacement;
+
+    // The free normal displacements d, and the normal displacements r and
     // forces z of all contact nodes.
-    VectorType     free_displacement;
     Vector<double> d, r_all, z_all;
   };
 
@@ -185,12 +214,94 @@ namespace ViscoContact
   // @sect4{CondensedContactSolver::set_operator}
   //
   // The set-up of the condensed problem for a new operator A: its sparse
-  // factorisation, the columns of W = A^{-1} N^T and the compliance S = N W.
-  // Column j of W is the displacement caused by a unit normal force at
-  // contact node j, and S(i, j) is the normal displacement this force causes
-  // at node i.
+  // factorisation, asked to eliminate the contact dofs last, and the
+  // compliance S = N A^{-1} N^T. S(i, j) is the normal displacement at
+  // contact node i caused by a unit normal force at node j.
+  template <int dim>
+  void
+  CondensedContactSolver<dim>::set_operator(const MatrixType      &A,
+                                            const bool             symmetric,
+                                            const ContactSet<dim> &contact)
+  {
+    // The contact dofs: a component whose normal entry is zero does not
+    // enter N, so an axis-aligned contact boundary needs one dof per node.
+    contact_dofs.clear();
+    contact_dof_node.clear();
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      for (unsigned int c = 0; c < dim; ++c)
+        if (contact.node(i).normal[c] != 0.)
+          {
+            contact_dofs.push_back(contact.node(i).local_dofs[c]);
+            contact_dof_node.emplace_back(i, c);
+          }
+
+    // A new operator replaces the old factorisation (the implicit update
+    // calls this once per Newton iteration).
+    factorization.factorize(A, symmetric, contact_dofs);
+    ++this->counts.operator_setups;
+    const unsigned int m = contact.n_global_nodes();
+    if (m == 0) // no contact: the factorisation is all there is to do
+      return;
+
+    FullMatrix<double> S = factorization.has_last_block() ?
+                             compliance_from_last_block(contact) :
+                             compliance_by_solves(contact);
+    // S is symmetric in exact arithmetic when A is; make it so in floating
+    // point. For an unsymmetric tangent S is left as computed, and the dense
+    // problem is solved by LU anyway.
+    if (symmetric)
+      for (unsigned int i = 0; i < m; ++i)
+        for (unsigned int j = 0; j < i; ++j)
+          S(i, j) = S(j, i) = 0.5 * (S(i, j) + S(j, i));
+
+    // The dense problem also needs the weights w_i of all nodes. reinit()
+    // discards the dense LU factorisation of the previous S, so the next
+    // solve_for_pieces() factorises the dense matrix of the new S.
+    std::vector<double> weights(contact.size());
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      weights[i] = contact.weight(i);
+    condensed_system.reinit(contact.law(),
+                            S,
+                            gather_on_all_ranks(weights, communicator));
+  }
+
+
+
+  // @sect4{CondensedContactSolver::compliance_from_last_block}
   //
-  // Columns of W are computed for 64 contact nodes at a time: each rank puts
+  // S = X^T X with X = L_c^{-1} N_c^T: N_c^T has one row per contact dof, in
+  // the order of the factor's last block, holding the normal's component at
+  // that dof in the column of its node; one dense triangular solve with
+  // m columns turns it into X, and one dense product gives S. The last
+  // block exists on one rank only, so all nodes are this rank's.
+  template <int dim>
+  FullMatrix<double>
+  CondensedContactSolver<dim>::compliance_from_last_block(
+    const ContactSet<dim> &contact)
+  {
+    const unsigned int               m     = contact.size();
+    const std::vector<unsigned int> &order = factorization.last_block_order();
+    normal_responses.reinit(order.size(), m);
+    for (unsigned int k = 0; k < order.size(); ++k)
+      {
+        const auto [node, component] = contact_dof_node[order[k]];
+        normal_responses(k, node)    = contact.node(node).normal[component];
+      }
+    factorization.last_block_factor().solve(normal_responses);
+    LAPACKFullMatrix<double> S(m, m);
+    normal_responses.Tmmult(S, normal_responses);
+    FullMatrix<double> result(m, m);
+    for (unsigned int i = 0; i < m; ++i)
+      for (unsigned int j = 0; j < m; ++j)
+        result(i, j) = S(i, j);
+    return result;
+  }
+
+
+
+  // @sect4{CondensedContactSolver::compliance_by_solves}
+  //
+  // Columns of S are computed for 64 contact nodes at a time: each rank puts
   // the normals of its nodes of the block into the right-hand sides, all
   // ranks solve together, and each reads off the rows of S of its own nodes
   // (it can only evaluate nu_i . w at the dofs it owns). The rows are then
@@ -198,35 +309,16 @@ namespace ViscoContact
   // the direct solvers use dense matrix-matrix kernels instead of 64
   // separate triangular solves.
   template <int dim>
-  void
-  CondensedContactSolver<dim>::set_operator(const MatrixType      &A,
-                                            const bool             symmetric,
-                                            const ContactSet<dim> &contact)
+  FullMatrix<double>
+  CondensedContactSolver<dim>::compliance_by_solves(
+    const ContactSet<dim> &contact)
   {
-    // A new operator replaces the old factorisation (the implicit update
-    // calls this once per Newton iteration).
-    factorization.factorize(A, symmetric);
-    ++this->counts.operator_setups;
-
     // The sizes involved: n_local displacement entries on this rank, m_local
     // contact nodes on this rank, m contact nodes in all.
     const unsigned int n_local = free_displacement.locally_owned_size();
     const unsigned int m_local = contact.size();
     const unsigned int m       = contact.n_global_nodes();
-    if (m == 0) // no contact: the factorisation is all there is to do
-      return;
     const types::global_dof_index first = contact.first_global_index();
-    // Whether W is kept depends on its size: n_local x m doubles on each
-    // rank. Below 1 GiB, finish() can form W z with one dense product;
-    // above, W would be the largest object of the run, and finish() pays one
-    // more solve instead. All ranks must take the same decision, since that
-    // solve is collective: W is kept only if it fits on every rank.
-    responses_stored
-      = Utilities::MPI::min(8. * n_local * m < 1024. * 1024. * 1024. ? 1 : 0,
-                            communicator)
-        == 1;
-    contact_responses.reinit(responses_stored ? n_local : 0,
-                             responses_stored ? m : 0);
 
     // Row i of own_rows is row first + i of S, the row of this rank's i-th
     // node; the columns are filled block by block below.
@@ -262,10 +354,6 @@ namespace ViscoContact
                 own_rows[std::size_t(i) * m + first_column + j]
                   += contact.node(i).normal[c]
                      * response[contact.node(i).local_dofs[c]];
-            // The same column, on the owned entries, is a column of W.
-            if (responses_stored)
-              for (unsigned int k = 0; k < n_local; ++k)
-                contact_responses(k, first_column + j) = response[k];
           }
       }
 
@@ -277,46 +365,36 @@ namespace ViscoContact
     for (unsigned int i = 0; i < m; ++i)
       for (unsigned int j = 0; j < m; ++j)
         S(i, j) = all_rows[std::size_t(i) * m + j];
-    // S is symmetric in exact arithmetic when A is; make it so in floating
-    // point. For an unsymmetric tangent S is left as computed, and the dense
-    // problem is solved by LU anyway.
-    if (symmetric)
-      for (unsigned int i = 0; i < m; ++i)
-        for (unsigned int j = 0; j < i; ++j)
-          S(i, j) = S(j, i) = 0.5 * (S(i, j) + S(j, i));
-
-    // The dense problem also needs the weights w_i of all nodes. reinit()
-    // discards the dense LU factorisation of the previous S, so the next
-    // solve_for_pieces() factorises the dense matrix of the new S.
-    std::vector<double> weights(m_local);
-    for (unsigned int i = 0; i < m_local; ++i)
-      weights[i] = contact.weight(i);
-    condensed_system.reinit(contact.law(),
-                            S,
-                            gather_on_all_ranks(weights, communicator));
+    return S;
   }
 
 
 
   // @sect4{CondensedContactSolver::set_right_hand_side}
   //
-  // One solve per step problem gives A^{-1} b and with it the free normal
-  // displacements d = N A^{-1} b, the normal displacements the contact nodes
-  // would have without any contact force. This is the only sparse solve of a
-  // step problem (besides the one in finish() when W is not stored): all
-  // active-set iterations then work with d. d is needed on every rank, since
-  // every rank solves the whole dense problem.
+  // The free normal displacements d = N A^{-1} b, the normal displacements
+  // the contact nodes would have without any contact force: all active-set
+  // iterations of the step problem work with d. With the factor's last
+  // block, d = X^T y_c needs only the forward half of the solve with b;
+  // otherwise the whole solve A^{-1} b is done here (and kept for finish()),
+  // and each rank evaluates d at its own nodes. d is needed on every rank,
+  // since every rank solves the whole dense problem.
   template <int dim>
   void
   CondensedContactSolver<dim>::set_right_hand_side(
     const VectorType      &b,
     const ContactSet<dim> &contact)
   {
-    factorization.solve(free_displacement, b);
     ++this->counts.solves;
-    // Each rank evaluates d at its own nodes (their dofs are owned entries
-    // of the solution), then the pieces are put together in global node
-    // order.
+    if (factorization.has_last_block())
+      {
+        factorization.forward_solve(b, forward_last);
+        d.reinit(contact.size());
+        if (contact.size() > 0)
+          normal_responses.Tvmult(d, forward_last);
+        return;
+      }
+    factorization.solve(free_displacement, b);
     std::vector<double> own(contact.size());
     for (unsigned int i = 0; i < contact.size(); ++i)
       own[i] = contact.normal_component(free_displacement, i);
@@ -367,32 +445,31 @@ namespace ViscoContact
 
   // @sect4{CondensedContactSolver::finish}
   //
-  // u = A^{-1} b - W z once the active set has converged: a dense product
-  // over the nodes with a force, or one more solve when W is not stored.
+  // u = A^{-1} (b - N^T z) once the active-set iteration has converged.
+  // With the last block, the force changes the forward solve's last block
+  // by -X z, and the backward half of the solve completes u. Otherwise the
+  // nodal forces N^T z of this rank's nodes are assembled and solved for,
+  // and the response subtracted from A^{-1} b.
   template <int dim>
   void
   CondensedContactSolver<dim>::finish(const ContactSet<dim> &contact,
                                       VectorType            &u)
   {
-    const unsigned int n_local = free_displacement.locally_owned_size();
-    u                          = free_displacement;
-    // Without any contact force the free displacement is the answer.
-    if (z_all.size() == 0 || z_all.linfty_norm() == 0)
-      return;
-    // With W stored on this rank: W z as one matrix-vector product over the
-    // owned rows (a BLAS call on the LAPACK matrix), subtracted from the
-    // owned entries of u. The ghosts of u are updated by the caller.
-    if (responses_stored)
+    const bool has_force = (z_all.size() > 0 && z_all.linfty_norm() > 0);
+    if (factorization.has_last_block())
       {
-        Vector<double> response(n_local);
-        contact_responses.vmult(response, z_all);
-        for (unsigned int k = 0; k < n_local; ++k)
-          u.local_element(k) -= response[k];
+        Vector<double> change(forward_last.size());
+        if (has_force)
+          {
+            normal_responses.vmult(change, z_all);
+            change *= -1.;
+          }
+        factorization.backward_solve(change, u);
         return;
       }
-    // Otherwise: assemble the nodal forces N^T z of this rank's nodes and
-    // solve with the factorisation once more. This is the same displacement,
-    // at the cost of one solve instead of n_local m doubles of storage.
+    u = free_displacement;
+    if (!has_force)
+      return;
     VectorType forces(free_displacement), response(free_displacement);
     forces = 0;
     for (unsigned int i = 0; i < contact.size(); ++i)

@@ -52,9 +52,12 @@ main(int argc, char **argv)
 
   // Outside the try block, so that MPI is still up when an error is
   // reported; with several ranks an error on one of them ends all of them.
-  // The last argument allows each rank one thread: the parallelism of the
-  // program is that of its MPI ranks.
-  Utilities::MPI::MPI_InitFinalize mpi_initialization(argc, argv, 1);
+  // The last argument lets deal.II share the cores of a node among its
+  // ranks: each rank gets (cores / ranks on the node) threads, which the
+  // stress update at the stress points uses (DEAL_II_NUM_THREADS limits
+  // them further). Everything else is parallel through the MPI ranks.
+  Utilities::MPI::MPI_InitFinalize mpi_initialization(
+    argc, argv, numbers::invalid_unsigned_int);
   const bool                       several_ranks
     = (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1);
   // An error may happen on one rank only, while the others wait in a

@@ -5,6 +5,7 @@
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/parallel.h>
 #include <deal.II/base/timer.h>
 
 #include "viscoplastic_contact.h"
@@ -58,9 +59,83 @@ namespace ViscoContact
     const bool update_history
       = parameters.plasticity && !implicit && next_time_step > 0;
     const double a = current_time_step / (2 * material.viscosity());
-    const SymmetricTensor<4, dim> &E   = material.elasticity_tensor();
-    const unsigned int             n_q = stress_quadrature.size();
-    Vector<double>                 cell_vector(n_cell_vertices * dim);
+    const SymmetricTensor<4, dim> &E       = material.elasticity_tensor();
+    const unsigned int             n_q     = stress_quadrature.size();
+    const unsigned int             n_local = n_cell_vertices * dim;
+
+    // The work at the stress points is independent from point to point, so
+    // the threads of this rank (as many as deal.II's MultithreadInfo allows:
+    // the cores of a node shared among its ranks) share it. Only the
+    // addition of the cells' loads into history_load would collide (two
+    // cells share dofs): it is done afterwards, by one thread, in the order
+    // of the cells, so the result does not depend on the number of threads.
+    // The cells are taken in chunks, which bounds the buffer of cell loads.
+    const unsigned int  chunk_size = 4096;
+    std::vector<double> cell_loads(std::size_t(chunk_size) * n_local);
+    std::vector<double> cell_max_von_mises(chunk_size);
+
+    // The stress points of the cells [begin, end) of a chunk starting at
+    // first: sigma_n, the history, the cell's load, the largest von Mises
+    // stress of the cell.
+    const auto update_cells = [&](const unsigned int first,
+                                  const unsigned int begin,
+                                  const unsigned int end) {
+      Vector<double> cell_vector(n_local);
+      for (unsigned int k = begin; k < end; ++k)
+        {
+          cell_vector    = 0.;
+          double max_vm  = 0.;
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              QuadraturePointHistory<dim> &state
+                = quadrature_point_history[std::size_t(k) * n_q + q];
+              // E eps(u_n), from the ghosted u_n (solve_contact_problem() has
+              // imported the ghosts).
+              const SymmetricTensor<2, dim> elastic_stress
+                = E * symmetrize(displacement_gradient_at(solution, k, q));
+              // Implicit: the trial stress is E eps(u_n) plus the stored
+              // history sigma_{n-1} - E eps(u_{n-1}); the backward-Euler
+              // update projects it (no tangent needed here), and the new
+              // history is the non-elastic part of sigma_n. Explicit:
+              // sigma_n = E eps(u_n) + H_n, with H_n stored by the previous
+              // call.
+              if (implicit)
+                {
+                  state.stress = material.implicit_stress_update(
+                    elastic_stress + state.history,
+                    a,
+                    nullptr,
+                    &state.plastic_multiplier);
+                  state.history = state.stress - elastic_stress;
+                }
+              else
+                state.stress = elastic_stress + state.history;
+              // The largest von Mises stress, for the time series. std::max
+              // would silently drop a NaN, so a non-finite value is recorded
+              // as infinity, which survives the maximum over the ranks.
+              const double von_mises = material.equivalent_stress(state.stress);
+              max_vm = std::isfinite(von_mises) ?
+                         std::max(max_vm, von_mises) :
+                         std::numeric_limits<double>::infinity();
+              // Explicit history update: H_{n+1} = H_n + k_{n+1} G(sigma_n),
+              // with the plastic multiplier as the starting guess of the
+              // projection; then the point's contribution
+              // -(H_{n+1}, eps(v)) JxW to the next step's load.
+              if (update_history)
+                {
+                  state.history
+                    += next_time_step
+                       * material.viscoplastic_rate(state.stress,
+                                                    &state.plastic_multiplier);
+                  add_stress_point_load(-state.history, k, q, cell_vector);
+                }
+            }
+          std::copy(cell_vector.begin(),
+                    cell_vector.end(),
+                    cell_loads.begin() + std::size_t(k - first) * n_local);
+          cell_max_von_mises[k - first] = max_vm;
+        }
+    };
 
     // history_load is rebuilt from zero, ghost entries included; each cell adds
     // into it below.
@@ -69,57 +144,31 @@ namespace ViscoContact
     double local_max_von_mises = 0;
     // Each rank visits the stress points of its own cells only; the record of
     // stress point q of the k-th owned cell is entry k * n_q + q.
-    for (unsigned int k = 0; k < owned_cells.size(); ++k)
+    const unsigned int n_cells = owned_cells.size();
+    for (unsigned int first = 0; first < n_cells; first += chunk_size)
       {
-        std::fill(cell_vector.begin(), cell_vector.end(), 0.);
-        for (unsigned int q = 0; q < n_q; ++q)
+        const unsigned int end = std::min(first + chunk_size, n_cells);
+        parallel::apply_to_subranges(
+          first,
+          end,
+          [&](const unsigned int begin, const unsigned int stop) {
+            update_cells(first, begin, stop);
+          },
+          256);
+        // The serial part: the loads into history_load, cell by cell.
+        Vector<double> cell_vector(n_local);
+        for (unsigned int k = first; k < end; ++k)
           {
-            QuadraturePointHistory<dim> &state
-              = quadrature_point_history[std::size_t(k) * n_q + q];
-            // E eps(u_n), from the ghosted u_n (solve_contact_problem() has
-            // imported the ghosts).
-            const SymmetricTensor<2, dim> elastic_stress
-              = E * symmetrize(displacement_gradient_at(solution, k, q));
-            // Implicit: the trial stress is E eps(u_n) plus the stored history
-            // sigma_{n-1} - E eps(u_{n-1}); the backward-Euler update projects
-            // it (no tangent needed here), and the new history is the
-            // non-elastic part of sigma_n. Explicit: sigma_n = E eps(u_n) +
-            // H_n, with H_n stored by the previous call.
-            if (implicit)
-              {
-                state.stress
-                  = material.implicit_stress_update(elastic_stress
-                                                      + state.history,
-                                                    a,
-                                                    nullptr,
-                                                    &state.plastic_multiplier);
-                state.history = state.stress - elastic_stress;
-              }
-            else
-              state.stress = elastic_stress + state.history;
-            // The largest von Mises stress, for the time series. std::max would
-            // silently drop a NaN, so a non-finite value is recorded as
-            // infinity, which survives the maximum over the ranks.
-            const double von_mises = material.equivalent_stress(state.stress);
-            local_max_von_mises    = std::isfinite(von_mises)
-                                       ? std::max(local_max_von_mises, von_mises)
-                                       : std::numeric_limits<double>::infinity();
-            // Explicit history update: H_{n+1} = H_n + k_{n+1} G(sigma_n), with
-            // the plastic multiplier as the starting guess of the projection;
-            // then the point's contribution -(H_{n+1}, eps(v)) JxW to the next
-            // step's load.
+            local_max_von_mises =
+              std::max(local_max_von_mises, cell_max_von_mises[k - first]);
             if (update_history)
               {
-                state.history
-                  += next_time_step
-                     * material.viscoplastic_rate(state.stress,
-                                                  &state.plastic_multiplier);
-                add_stress_point_load(-state.history, k, q, cell_vector);
+                std::copy_n(cell_loads.begin()
+                              + std::size_t(k - first) * n_local,
+                            n_local,
+                            cell_vector.begin());
+                distribute_cell_vector(k, cell_vector, history_load);
               }
-          }
-        if (update_history)
-          {
-            distribute_cell_vector(k, cell_vector, history_load);
           }
       }
     // The ghost entries of history_load hold contributions to dofs that other

@@ -26,6 +26,7 @@
 
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/lapack_full_matrix.h>
 #include <deal.II/lac/sparse_direct.h>
 #include <deal.II/lac/sparse_matrix.h>
 
@@ -1033,6 +1034,108 @@ TEST(SparseDirectSolver, SolvesSymmetricAndUnsymmetricSystems)
       check_direct_solver(Parameters::DirectSolver::umfpack, true);
       check_direct_solver(Parameters::DirectSolver::umfpack, false);
     }
+}
+
+
+
+// The elimination order that ends with given rows (CHOLMOD, one rank): a
+// 5-point Laplacian on a 12 x 12 grid plus a shift, the rows of the grid's
+// bottom line requested last in a scrambled order. The last block L_c of
+// the factor must give A^{-1} on these rows as L_c^{-T} L_c^{-1}, and the
+// split solve with a change of the last block must equal a solve with the
+// corresponding right-hand side: A^{-1} (b - f) for f on the last rows is
+// the forward half of b, the change -L_c^{-1} f_c, and the backward half.
+TEST(SparseDirectSolver, LastBlockOfTheCholeskyFactor)
+{
+  if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+    return; // CHOLMOD factorises on one rank only
+  const MPI_Comm     comm = MPI_COMM_WORLD;
+  const unsigned int side = 12, n = side * side;
+  IndexSet           owned = complete_index_set(n);
+  DynamicSparsityPattern dsp(n, n, owned);
+  const auto             index = [&](const int i, const int j) {
+    return static_cast<unsigned int>(j * side + i);
+  };
+  for (unsigned int j = 0; j < side; ++j)
+    for (unsigned int i = 0; i < side; ++i)
+      for (const auto [di, dj] : {std::pair{0, 0}, {1, 0}, {-1, 0}, {0, 1},
+                                  {0, -1}})
+        if (int(i) + di >= 0 && int(i) + di < int(side) && int(j) + dj >= 0
+            && int(j) + dj < int(side))
+          dsp.add(index(i, j), index(i + di, j + dj));
+  MatrixType A;
+  A.reinit(owned, owned, dsp, comm);
+  for (unsigned int j = 0; j < side; ++j)
+    for (unsigned int i = 0; i < side; ++i)
+      for (const auto [di, dj] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}})
+        if (int(i) + di >= 0 && int(i) + di < int(side) && int(j) + dj >= 0
+            && int(j) + dj < int(side))
+          {
+            A.add(index(i, j), index(i, j), 1.);
+            A.add(index(i, j), index(i + di, j + dj), -1.);
+          }
+  for (unsigned int k = 0; k < n; ++k)
+    A.add(k, k, 0.01 + 0.001 * k);
+  A.compress(VectorOperation::add);
+
+  // The bottom line, every third entry first.
+  std::vector<unsigned int> last_rows;
+  for (unsigned int start = 0; start < 3; ++start)
+    for (unsigned int i = start; i < side; i += 3)
+      last_rows.push_back(index(i, 0));
+
+  SparseDirectSolver solver(Parameters::DirectSolver::cholmod, comm);
+  solver.factorize(A, true, last_rows);
+  ASSERT_TRUE(solver.has_last_block()) << solver.description();
+  const LAPACKFullMatrix<double>  &L_c   = solver.last_block_factor();
+  const std::vector<unsigned int> &order = solver.last_block_order();
+  const unsigned int               m     = last_rows.size();
+  ASSERT_EQ(order.size(), m);
+
+  // (A^{-1})_{kl} on the last rows from solves with unit vectors, against
+  // (L_c^{-T} L_c^{-1})_{kl} = sum_p (L_c^{-1})_{pk} (L_c^{-1})_{pl}.
+  LAPACKFullMatrix<double> inverse_factor(m, m);
+  for (unsigned int k = 0; k < m; ++k)
+    inverse_factor(k, k) = 1.;
+  L_c.solve(inverse_factor); // L_c^{-1}
+  VectorType unit(owned, comm), column(owned, comm);
+  for (unsigned int l = 0; l < m; ++l)
+    {
+      unit                       = 0;
+      unit(last_rows[order[l]]) = 1.;
+      solver.solve(column, unit);
+      for (unsigned int k = 0; k < m; ++k)
+        {
+          double from_block = 0;
+          for (unsigned int p = 0; p < m; ++p)
+            from_block += inverse_factor(p, k) * inverse_factor(p, l);
+          EXPECT_NEAR(from_block, column(last_rows[order[k]]), 1e-12)
+            << "entry " << k << ", " << l;
+        }
+    }
+
+  // The split solve.
+  VectorType b(owned, comm), f(owned, comm), expected(owned, comm),
+    split(owned, comm);
+  for (unsigned int k = 0; k < n; ++k)
+    b(k) = std::cos(0.7 * k);
+  Vector<double> f_last(m);
+  for (unsigned int k = 0; k < m; ++k)
+    {
+      f_last[k]                   = 1. + 0.5 * k;
+      f(last_rows[order[k]])      = f_last[k];
+    }
+  VectorType rhs(b);
+  rhs -= f;
+  solver.solve(expected, rhs);
+  Vector<double> forward_last;
+  solver.forward_solve(b, forward_last);
+  EXPECT_EQ(forward_last.size(), m);
+  L_c.solve(f_last); // L_c^{-1} f_c
+  f_last *= -1.;
+  solver.backward_solve(f_last, split);
+  split -= expected;
+  EXPECT_LE(split.linfty_norm(), 1e-12 * expected.linfty_norm());
 }
 
 

@@ -110,6 +110,25 @@ def run(executable, prm_text, work, name, threads=None):
     }
 
 
+def table(title, description, header, baseline):
+    """A section's title, its description and the header and alignment lines
+    of its table (with the baseline's columns if there is a baseline)."""
+    if baseline:
+        header += " baseline whole process [s] | this / baseline |"
+    return [f"## {title}", "", description, "", header,
+            "|" + " ---: |" * (header.count("|") - 1)]
+
+
+def add_row(lines, cells, row, run_baseline):
+    """Appends a table row (and prints it); with run_baseline, first runs the
+    same case with the baseline build and adds its time and the ratio."""
+    if run_baseline:
+        old = run_baseline()
+        cells += f" {old['wall']:.2f} | {row['wall'] / old['wall']:.2f} |"
+    lines.append(cells)
+    print(cells, flush=True)
+
+
 def main():
     parser = argparse.ArgumentParser(
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -129,27 +148,25 @@ def main():
 
     lines = ["# Performance", "",
              "Written by `benchmarks/run_performance.py` (" +
-             " ".join(a for a in sys.argv[1:] if not a.startswith("/")) +
+             " ".join("PATH" if a.startswith("/") else a for a in sys.argv[1:]) +
              "): Release build, one process at a time on a shared 2-core "
              "machine. Compare the ratios within a table: they were measured "
              "in one invocation; absolute times vary from run to run.", ""]
 
     # 1. The static scene.
-    lines += ["## 2D static scene: one step from rest (cold start)", "",
+    lines += table("2D static scene: one step from rest (cold start)",
               "`elastic.prm` (no plasticity), one step of k = 1/64 at h = 1/N. "
               "*factorisation* is the set-up of the back end for the same mesh "
               "without a contact boundary (analysis and factorisation only); "
               "*set-up* is that of the run with contact (factorisation with the "
               "contact dofs eliminated last, and the compliance read off its "
               "last block). *step* is the program's own average time step, "
-              "*solve* one solve with the factorised operator.", ""]
-    header = ("| N | dofs | contact nodes | method | whole process [s] | mesh [s] "
+              "*solve* one solve with the factorised operator.",
+                   ("| N | dofs | contact nodes | method | whole process [s] | mesh [s] "
               "| factorisation [s] | set-up [s] | set-up / factorisation "
               "| step [ms] | solve [ms] | active-set it. | Krylov it. "
-              "| peak memory [MB] | bytes per dof |")
-    if baseline:
-        header += " baseline whole process [s] | this / baseline |"
-    lines += [header, "|" + " ---: |" * (header.count("|") - 1)]
+              "| peak memory [MB] | bytes per dof |"),
+                   baseline)
     for n in sizes(args.static_sizes):
         for method in ["condensed", "full space"]:
             if method == "full space" and n > args.full_space_limit:
@@ -173,26 +190,21 @@ def main():
                      f"| {row['solve_ms']:.4g} | {row['iterations']:.0f} "
                      f"| {row['krylov']:.0f} | {row['memory_mb']:.0f} "
                      f"| {row['bytes_per_dof']:.0f} |")
-            if baseline:
-                old = run(baseline, text, work, f"static_{n}_{method[0]}_baseline")
-                cells += f" {old['wall']:.2f} | {row['wall'] / old['wall']:.2f} |"
-            lines.append(cells)
-            print(cells, flush=True)
+            add_row(lines, cells, row, baseline and (
+                lambda: run(baseline, text, work, f"static_{n}_{method[0]}_baseline")))
     lines.append("")
 
     # 2. The benchmark with one and two threads.
-    lines += ["## 2D benchmark: the stress update on one and two threads", "",
+    lines += table("2D benchmark: the stress update on one and two threads",
               "`default.prm` at h = k = 1/N, without file output. The same "
               "build with `DEAL_II_NUM_THREADS` = 1 and 2 (one MPI rank); "
               "*step / (solve + stress update)* is the cost of a time step "
-              "relative to its two unavoidable parts.", ""]
-    header = ("| N | dofs | threads | whole process [s] | time loop [s] "
+              "relative to its two unavoidable parts.",
+                   ("| N | dofs | threads | whole process [s] | time loop [s] "
               "| step [ms] | solve [ms] | stress update [ms] "
               "| step / (solve + stress update) | active-set it. per step "
-              "| peak memory [MB] |")
-    if baseline:
-        header += " baseline whole process [s] | this / baseline |"
-    lines += [header, "|" + " ---: |" * (header.count("|") - 1)]
+              "| peak memory [MB] |"),
+                   baseline)
     for n in sizes(args.benchmark_sizes):
         text = scene("default.prm", {(("Geometry",), "Subdivisions"): str(n),
                                      (("Time",), "Time step"): repr(1. / n)})
@@ -204,24 +216,21 @@ def main():
                      f"| {row['stress_ms']:.4g} "
                      f"| {row['step_ms'] / (row['solve_ms'] + row['stress_ms']):.2f} "
                      f"| {row['iterations'] / row['steps']:.2f} | {row['memory_mb']:.0f} |")
-            if baseline:
-                old = run(baseline, text, work, f"benchmark_{n}_{threads}_baseline",
-                          threads)
-                cells += f" {old['wall']:.2f} | {row['wall'] / old['wall']:.2f} |"
-            lines.append(cells)
-            print(cells, flush=True)
+            add_row(lines, cells, row, baseline and (
+                lambda: run(baseline, text, work, f"benchmark_{n}_{threads}_baseline",
+                            threads)))
     lines.append("")
 
     # 3. The cube.
-    lines += ["## 3D cube, hexahedra, condensed back end", "",
+    lines += table("3D cube, hexahedra, condensed back end",
               "`cube_3d.prm` on hexahedra at h = 1/N, the first 8 steps of "
               "k = 1/32 (the contact zone forms); factorisation and set-up as "
-              "in the static scene.", ""]
-    header = ("| N | dofs | contact nodes | whole process [s] | factorisation [s] "
+              "in the static scene.",
+                   ("| N | dofs | contact nodes | whole process [s] | factorisation [s] "
               "| set-up [s] | set-up / factorisation | step [ms] | solve [ms] "
               "| stress update [ms] | step / (solve + stress update) "
-              "| active-set it. per step | peak memory [MB] | bytes per dof |")
-    lines += [header, "|" + " ---: |" * (header.count("|") - 1)]
+              "| active-set it. per step | peak memory [MB] | bytes per dof |"),
+                   None)
     for n in sizes(args.cube_sizes):
         text = scene("cube_3d.prm", {(("Geometry",), "Subdivisions"): str(n),
                                      (("Geometry",), "Cell type"): "hypercube",
@@ -237,8 +246,7 @@ def main():
                  f"| {row['step_ms'] / (row['solve_ms'] + row['stress_ms']):.2f} "
                  f"| {row['iterations'] / row['steps']:.2f} | {row['memory_mb']:.0f} "
                  f"| {row['bytes_per_dof']:.0f} |")
-        lines.append(cells)
-        print(cells, flush=True)
+        add_row(lines, cells, row, None)
     lines.append("")
 
     os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)

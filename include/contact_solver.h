@@ -41,7 +41,7 @@ namespace ViscoContact
   // Two back ends implement it:
   //  - CondensedContactSolver: A factorised by a sparse direct solver, the
   //    contact problem condensed to the contact nodes (the compliance
-  //    S = N A^{-1} N^T computed with one solve per contact node);
+  //    S = N A^{-1} N^T read off the factor, or one solve per contact node);
   //  - FullSpaceContactSolver: a Krylov method in the full space on the
   //    projected operator, preconditioned by AMG or a factorisation of A.
   //

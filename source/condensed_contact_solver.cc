@@ -154,8 +154,8 @@ namespace ViscoContact
     // The contact dofs of this rank's nodes (the components in which a
     // node's normal is not zero), as local indices, and for each the node
     // and the component.
-    std::vector<unsigned int>                             contact_dofs;
-    std::vector<std::pair<unsigned int, unsigned int>>    contact_dof_node;
+    std::vector<unsigned int>                          contact_dofs;
+    std::vector<std::pair<unsigned int, unsigned int>> contact_dof_node;
 
     // With the last block: X = L_c^{-1} N_c^T (one row per contact dof, in
     // the factor's order, one column per node) and the last block y_c of
@@ -243,9 +243,9 @@ namespace ViscoContact
     if (m == 0) // no contact: the factorisation is all there is to do
       return;
 
-    FullMatrix<double> S = factorization.has_last_block() ?
-                             compliance_from_last_block(contact) :
-                             compliance_by_solves(contact);
+    FullMatrix<double> S = factorization.has_last_block()
+                             ? compliance_from_last_block(contact)
+                             : compliance_by_solves(contact);
     // S is symmetric in exact arithmetic when A is; make it so in floating
     // point. For an unsymmetric tangent S is left as computed, and the dense
     // problem is solved by LU anyway.

@@ -11,9 +11,9 @@ namespace ViscoContact
 {
   // @sect4{choose_method}
   //
-  // The condensed back end costs a factorisation of the operator and one
-  // solve per contact node at set-up, m^2 doubles on every rank, and n m
-  // doubles for W; afterwards a step is one solve and one dense product.
+  // The condensed back end costs a factorisation of the operator at set-up
+  // (on several ranks, with MUMPS, also one solve per contact node) and m^2
+  // doubles on every rank; afterwards a step is one solve (two with MUMPS).
   // The full space back end costs an AMG set-up and a Krylov solve per
   // active-set iteration. Measured on this kind of machine (2 cores,
   // benchmarks/run_back_end_comparison.py, doc/back_ends/back_ends.md; the
@@ -22,12 +22,14 @@ namespace ViscoContact
   // condensed back end is faster at every size tried (6 times at 132k dofs,
   // 256 contact nodes; at 2.1M dofs and 1024 contact nodes it still takes
   // 114 s of set-up and 1.3 s per step, 7.8 GB); in 3D it is 4.6 times
-  // faster at 47k dofs (600
-  // contact nodes) and 6 times at 108k dofs (1056 contact nodes: 22 s of
-  // set-up, then 0.28 s per step, against 16 s per step for the full space
-  // back end). Beyond that the fill of a 3D factorisation and the m solves
-  // grow fast, and on several ranks the compliance, which every rank holds,
-  // does not scale. The limits below stay within what was measured.
+  // faster at 47k dofs (600 contact nodes) and 6 times at 108k dofs (1056
+  // contact nodes: 22 s of set-up, then 0.28 s per step, against 16 s per
+  // step for the full space back end). (These were measured when S still
+  // cost one solve per contact node; reading S off the factor has since
+  // made the condensed set-up 2 to 3 times cheaper, doc/performance.md.)
+  // Beyond that the fill of a 3D factorisation grows fast, and on several
+  // ranks the compliance, which every rank holds, does not scale. The
+  // limits below stay within what was measured.
   MethodChoice
   choose_method(const Parameters::AllParameters &parameters,
                 const unsigned int               dim,

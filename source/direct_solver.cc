@@ -1,11 +1,12 @@
 // Sparse direct factorisations of the operator: CHOLMOD and UMFPACK on one
 // rank, MUMPS (through Amesos) on any number of ranks.
 //
-// The condensed back end solves with the operator of the step problem once
-// per contact node at set-up and once or twice per step problem afterwards;
-// the full space back end may use the same factorisation as its
-// preconditioner. What matters is therefore a fast factorisation that solves
-// many right-hand sides cheaply. CHOLMOD and UMFPACK are called through
+// The condensed back end reads the contact compliance off a CHOLMOD factor
+// whose elimination order ends with the contact dofs and splits each step's
+// solve around the contact problem; with the other libraries it solves once
+// per contact node at set-up (many right-hand sides at once) and twice per
+// step problem. The full space back end may use the same factorisation as
+// its preconditioner. CHOLMOD and UMFPACK are called through
 // their C interfaces, MUMPS through Trilinos' Amesos, all on the Trilinos
 // matrix the program assembles; the rest of the program never sees them.
 
@@ -189,7 +190,9 @@ namespace ViscoContact
     void
     read_last_block(const std::vector<unsigned int> &last_rows);
     void
-    solve_with_factor(const int sys, double *values) const;
+    solve_with_factor(const int         sys,
+                      double           *values,
+                      const std::size_t n_columns = 1) const;
     void
     factorize_umfpack(const MatrixType &A);
     void
@@ -219,9 +222,9 @@ namespace ViscoContact
     // with the requested rows (has_last_block()), the requested row of each
     // of its rows, and the forward half of a split solve, kept for the
     // backward half.
-    bool                      last_block = false;
-    LAPACKFullMatrix<double>  last_factor;
-    std::vector<unsigned int> last_order;
+    bool                        last_block = false;
+    LAPACKFullMatrix<double>    last_factor;
+    std::vector<unsigned int>   last_order;
     mutable std::vector<double> forward;
 
     // UMFPACK: the matrix (its solve needs it again) and the numeric
@@ -274,9 +277,9 @@ namespace ViscoContact
 
     // The symbolic analysis (the ordering and the structure of the factor),
     // then the numeric factorisation.
-    cholmod_factor_ = last_rows.empty() ?
-                        cholmod_l_analyze(&matrix, &cholmod) :
-                        analyze_with_last_rows(matrix, last_rows);
+    cholmod_factor_ = last_rows.empty()
+                        ? cholmod_l_analyze(&matrix, &cholmod)
+                        : analyze_with_last_rows(matrix, last_rows);
     AssertThrow(cholmod_factor_ != nullptr,
                 ExcMessage("CHOLMOD's analysis of the operator failed: "
                            + cholmod_status_message(cholmod.status)));
@@ -356,21 +359,21 @@ namespace ViscoContact
 
     // Analyse with the given order, with and then (if needed) without
     // post-ordering; the common block's settings are restored afterwards.
-    const auto     saved_methods   = cholmod.nmethods;
-    const auto     saved_ordering  = cholmod.method[0].ordering;
-    const auto     saved_postorder = cholmod.postorder;
-    cholmod_factor *factor         = nullptr;
-    cholmod.nmethods               = 1;
-    cholmod.method[0].ordering     = CHOLMOD_GIVEN;
+    const auto      saved_methods   = cholmod.nmethods;
+    const auto      saved_ordering  = cholmod.method[0].ordering;
+    const auto      saved_postorder = cholmod.postorder;
+    cholmod_factor *factor          = nullptr;
+    cholmod.nmethods                = 1;
+    cholmod.method[0].ordering      = CHOLMOD_GIVEN;
     for (const int postorder : {1, 0})
       {
         cholmod.postorder = postorder;
-        factor = cholmod_l_analyze_p(&matrix, order.data(), nullptr, 0,
-                                     &cholmod);
+        factor
+          = cholmod_l_analyze_p(&matrix, order.data(), nullptr, 0, &cholmod);
         if (factor == nullptr)
           break;
-        const auto *final_order =
-          static_cast<const SuiteSparse_long *>(factor->Perm);
+        const auto *final_order
+          = static_cast<const SuiteSparse_long *>(factor->Perm);
         bool ends_with_last_rows = true;
         for (std::size_t k = n - last_rows.size(); k < n; ++k)
           ends_with_last_rows = ends_with_last_rows && is_last[final_order[k]];
@@ -429,16 +432,15 @@ namespace ViscoContact
         if (end_column <= first)
           continue;
         const std::size_t n_rows = pi[s + 1] - pi[s];
-        for (std::size_t j = std::max(first, first_column); j < end_column;
-             ++j)
+        for (std::size_t j = std::max(first, first_column); j < end_column; ++j)
           for (std::size_t k = 0; k < n_rows; ++k)
             {
               const std::size_t row = rows[pi[s] + k];
               // Rows above the diagonal of a supernode's first block are
               // not part of L.
               if (row >= j)
-                last_factor(row - first, j - first) =
-                  values[px[s] + (j - first_column) * n_rows + k];
+                last_factor(row - first, j - first)
+                  = values[px[s] + (j - first_column) * n_rows + k];
             }
       }
     last_factor.set_property(LAPACKSupport::lower_triangular);
@@ -555,43 +557,24 @@ namespace ViscoContact
       {
         case Parameters::DirectSolver::cholmod:
           {
-            // CHOLMOD solves all columns in one call with its dense kernels:
-            // a dense-matrix header is put around the caller's array
-            // (leading dimension n), and cholmod_l_solve2() writes into the
-            // solution it keeps between calls, which is copied back column
-            // by column.
-            cholmod_dense rhs;
-            rhs.nrow     = n;
-            rhs.ncol     = n_columns;
-            rhs.nzmax    = n * n_columns;
-            rhs.d        = n;
-            rhs.x        = values;
-            rhs.z        = nullptr;
-            rhs.xtype    = CHOLMOD_REAL;
-            rhs.dtype    = CHOLMOD_DOUBLE;
-            const int ok = cholmod_l_solve2(CHOLMOD_A,
-                                            cholmod_factor_,
-                                            &rhs,
-                                            nullptr,
-                                            &cholmod_solution,
-                                            nullptr,
-                                            &cholmod_workspace_y,
-                                            &cholmod_workspace_e,
-                                            &cholmod);
-            AssertThrow(ok && cholmod_solution != nullptr,
-                        ExcMessage("CHOLMOD's solve failed: "
-                                   + cholmod_status_message(cholmod.status)));
-            const double *x = static_cast<const double *>(cholmod_solution->x);
-            for (std::size_t j = 0; j < n_columns; ++j)
-              std::copy_n(x + j * cholmod_solution->d, n, values + j * n);
+            // CHOLMOD solves all columns in one call with its dense kernels.
+            solve_with_factor(CHOLMOD_A, values, n_columns);
             break;
           }
         case Parameters::DirectSolver::umfpack:
           {
             // UMFPACK solves one right-hand side at a time: each column is
             // copied out as b, and the solution is written into the caller's
-            // array in its place.
+            // array in its place. Its default iterative refinement (up to
+            // two residual corrections per solve) is switched off: the LU
+            // factorisation with pivoting is backward stable for these
+            // operators, and the refinement made each solve several times
+            // as expensive (the condensed back end solves once per contact
+            // node and tangent).
             std::vector<double> rhs(n);
+            double              control[UMFPACK_CONTROL];
+            umfpack_dl_defaults(control);
+            control[UMFPACK_IRSTEP] = 0;
             for (std::size_t j = 0; j < n_columns; ++j)
               {
                 std::copy_n(values + j * n, n, rhs.begin());
@@ -603,7 +586,7 @@ namespace ViscoContact
                                      values + j * n,
                                      rhs.data(),
                                      umfpack_numeric,
-                                     nullptr,
+                                     control,
                                      nullptr);
                 AssertThrow(status == UMFPACK_OK,
                             ExcMessage("UMFPACK's solve failed (status "
@@ -642,19 +625,25 @@ namespace ViscoContact
 
 
 
-  // @sect4{Triangular solves with the CHOLMOD factor}
+  // @sect4{Solves with the CHOLMOD factor}
   //
-  // values (n entries, in the elimination order) is overwritten by
-  // L^{-1} values (sys = CHOLMOD_L) or L^{-T} values (CHOLMOD_Lt): the two
-  // halves of a solve, without the permutations, which the caller applies.
+  // values (n_columns right-hand sides of n entries, column by column) is
+  // overwritten by A^{-1} values (sys = CHOLMOD_A), L^{-1} values
+  // (CHOLMOD_L) or L^{-T} values (CHOLMOD_Lt): a whole solve, or the two
+  // halves of one without the permutations, which the caller then applies
+  // (values is in the elimination order). A dense-matrix header is put
+  // around the caller's array, and cholmod_l_solve2() writes into the
+  // solution it keeps between calls, which is copied back column by column.
   void
-  SparseDirectSolver::Implementation::solve_with_factor(const int sys,
-                                                        double *values) const
+  SparseDirectSolver::Implementation::solve_with_factor(
+    const int         sys,
+    double           *values,
+    const std::size_t n_columns) const
   {
     cholmod_dense rhs;
     rhs.nrow     = n;
-    rhs.ncol     = 1;
-    rhs.nzmax    = n;
+    rhs.ncol     = n_columns;
+    rhs.nzmax    = n * n_columns;
     rhs.d        = n;
     rhs.x        = values;
     rhs.z        = nullptr;
@@ -670,9 +659,11 @@ namespace ViscoContact
                                     &cholmod_workspace_e,
                                     &cholmod);
     AssertThrow(ok && cholmod_solution != nullptr,
-                ExcMessage("CHOLMOD's triangular solve failed: "
+                ExcMessage("CHOLMOD's solve failed: "
                            + cholmod_status_message(cholmod.status)));
-    std::copy_n(static_cast<const double *>(cholmod_solution->x), n, values);
+    const double *x = static_cast<const double *>(cholmod_solution->x);
+    for (std::size_t j = 0; j < n_columns; ++j)
+      std::copy_n(x + j * cholmod_solution->d, n, values + j * n);
   }
 
 
@@ -803,8 +794,8 @@ namespace ViscoContact
   {
     const Implementation &impl = *implementation;
     Assert(impl.last_block, ExcInternalError());
-    const auto *order =
-      static_cast<const SuiteSparse_long *>(impl.cholmod_factor_->Perm);
+    const auto *order
+      = static_cast<const SuiteSparse_long *>(impl.cholmod_factor_->Perm);
     impl.forward.resize(impl.n);
     for (std::size_t k = 0; k < impl.n; ++k)
       impl.forward[k] = b.local_element(order[k]);
@@ -822,15 +813,15 @@ namespace ViscoContact
   SparseDirectSolver::backward_solve(const Vector<double> &change,
                                      VectorType           &x) const
   {
-    const Implementation &impl = *implementation;
+    const Implementation &impl   = *implementation;
     const std::size_t     n_last = impl.last_order.size();
     AssertDimension(change.size(), n_last);
     AssertDimension(impl.forward.size(), impl.n);
     for (std::size_t k = 0; k < n_last; ++k)
       impl.forward[impl.n - n_last + k] += change[k];
     impl.solve_with_factor(CHOLMOD_Lt, impl.forward.data());
-    const auto *order =
-      static_cast<const SuiteSparse_long *>(impl.cholmod_factor_->Perm);
+    const auto *order
+      = static_cast<const SuiteSparse_long *>(impl.cholmod_factor_->Perm);
     for (std::size_t k = 0; k < impl.n; ++k)
       x.local_element(order[k]) = impl.forward[k];
   }

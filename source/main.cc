@@ -56,9 +56,9 @@ main(int argc, char **argv)
   // ranks: each rank gets (cores / ranks on the node) threads, which the
   // stress update at the stress points uses (DEAL_II_NUM_THREADS limits
   // them further). Everything else is parallel through the MPI ranks.
-  Utilities::MPI::MPI_InitFinalize mpi_initialization(
-    argc, argv, numbers::invalid_unsigned_int);
-  const bool                       several_ranks
+  Utilities::MPI::MPI_InitFinalize
+             mpi_initialization(argc, argv, numbers::invalid_unsigned_int);
+  const bool several_ranks
     = (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1);
   // An error may happen on one rank only, while the others wait in a
   // collective call that will never complete; MPI_Abort ends them all. On

@@ -346,7 +346,7 @@ namespace ViscoContact
                                                 dof_handler,
                                                 solution);
     // Only the set-up of the operator is timed: the factorisation and the
-    // compliance S (one solve per contact node) of the condensed back end, or
+    // compliance S (from the factor's last block) of the condensed back end, or
     // the AMG hierarchy of the full space one. K is symmetric (the argument
     // true), so the back end may use CG and a symmetric factorisation.
     TimerOutput::Scope t(computing_timer, "Setup: back end for K");

@@ -83,8 +83,8 @@ namespace ViscoContact
       Vector<double> cell_vector(n_local);
       for (unsigned int k = begin; k < end; ++k)
         {
-          cell_vector    = 0.;
-          double max_vm  = 0.;
+          cell_vector   = 0.;
+          double max_vm = 0.;
           for (unsigned int q = 0; q < n_q; ++q)
             {
               QuadraturePointHistory<dim> &state
@@ -114,9 +114,9 @@ namespace ViscoContact
               // would silently drop a NaN, so a non-finite value is recorded
               // as infinity, which survives the maximum over the ranks.
               const double von_mises = material.equivalent_stress(state.stress);
-              max_vm = std::isfinite(von_mises) ?
-                         std::max(max_vm, von_mises) :
-                         std::numeric_limits<double>::infinity();
+              max_vm                 = std::isfinite(von_mises)
+                                         ? std::max(max_vm, von_mises)
+                                         : std::numeric_limits<double>::infinity();
               // Explicit history update: H_{n+1} = H_n + k_{n+1} G(sigma_n),
               // with the plastic multiplier as the starting guess of the
               // projection; then the point's contribution
@@ -159,8 +159,8 @@ namespace ViscoContact
         Vector<double> cell_vector(n_local);
         for (unsigned int k = first; k < end; ++k)
           {
-            local_max_von_mises =
-              std::max(local_max_von_mises, cell_max_von_mises[k - first]);
+            local_max_von_mises
+              = std::max(local_max_von_mises, cell_max_von_mises[k - first]);
             if (update_history)
               {
                 std::copy_n(cell_loads.begin()

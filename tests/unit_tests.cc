@@ -1049,17 +1049,17 @@ TEST(SparseDirectSolver, LastBlockOfTheCholeskyFactor)
 {
   if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
     return; // CHOLMOD factorises on one rank only
-  const MPI_Comm     comm = MPI_COMM_WORLD;
-  const unsigned int side = 12, n = side * side;
-  IndexSet           owned = complete_index_set(n);
+  const MPI_Comm         comm = MPI_COMM_WORLD;
+  const unsigned int     side = 12, n = side * side;
+  IndexSet               owned = complete_index_set(n);
   DynamicSparsityPattern dsp(n, n, owned);
   const auto             index = [&](const int i, const int j) {
     return static_cast<unsigned int>(j * side + i);
   };
   for (unsigned int j = 0; j < side; ++j)
     for (unsigned int i = 0; i < side; ++i)
-      for (const auto [di, dj] : {std::pair{0, 0}, {1, 0}, {-1, 0}, {0, 1},
-                                  {0, -1}})
+      for (const auto &[di, dj] :
+           {std::pair{0, 0}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}})
         if (int(i) + di >= 0 && int(i) + di < int(side) && int(j) + dj >= 0
             && int(j) + dj < int(side))
           dsp.add(index(i, j), index(i + di, j + dj));
@@ -1067,7 +1067,7 @@ TEST(SparseDirectSolver, LastBlockOfTheCholeskyFactor)
   A.reinit(owned, owned, dsp, comm);
   for (unsigned int j = 0; j < side; ++j)
     for (unsigned int i = 0; i < side; ++i)
-      for (const auto [di, dj] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}})
+      for (const auto &[di, dj] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}})
         if (int(i) + di >= 0 && int(i) + di < int(side) && int(j) + dj >= 0
             && int(j) + dj < int(side))
           {
@@ -1101,7 +1101,7 @@ TEST(SparseDirectSolver, LastBlockOfTheCholeskyFactor)
   VectorType unit(owned, comm), column(owned, comm);
   for (unsigned int l = 0; l < m; ++l)
     {
-      unit                       = 0;
+      unit                      = 0;
       unit(last_rows[order[l]]) = 1.;
       solver.solve(column, unit);
       for (unsigned int k = 0; k < m; ++k)
@@ -1122,8 +1122,8 @@ TEST(SparseDirectSolver, LastBlockOfTheCholeskyFactor)
   Vector<double> f_last(m);
   for (unsigned int k = 0; k < m; ++k)
     {
-      f_last[k]                   = 1. + 0.5 * k;
-      f(last_rows[order[k]])      = f_last[k];
+      f_last[k]              = 1. + 0.5 * k;
+      f(last_rows[order[k]]) = f_last[k];
     }
   VectorType rhs(b);
   rhs -= f;

@@ -34,8 +34,7 @@ namespace ViscoContact
   class SparseDirectSolver
   {
   public:
-    // kind must not be automatic: the caller resolves it (cholmod on one
-    // rank, mumps on several).
+    // kind = automatic means cholmod on one rank, mumps on several.
     SparseDirectSolver(const Parameters::DirectSolver kind,
                        const MPI_Comm                 communicator);
     ~SparseDirectSolver();

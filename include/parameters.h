@@ -91,11 +91,6 @@ namespace ViscoContact
       mumps
     };
 
-    std::string
-    to_string(const Method method);
-    std::string
-    to_string(const DirectSolver solver);
-
 
     struct Geometry
     {

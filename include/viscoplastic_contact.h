@@ -1,6 +1,7 @@
 #ifndef viscoplastic_contact_viscoplastic_contact_h
 #define viscoplastic_contact_viscoplastic_contact_h
 
+#include <deal.II/base/array_view.h>
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/index_set.h>
@@ -107,6 +108,14 @@ namespace ViscoContact
     get_stress_point_weight(const unsigned int k, const unsigned int q) const;
 
   private:
+    // Which history update the steps run. Without plasticity the history
+    // stays zero and both updates are the elastic problem, so the implicit
+    // update's Newton iteration only runs with plasticity on.
+    bool
+    implicit_update() const;
+    bool
+    explicit_history_update() const;
+
     // @sect4{Set-up}
     //
     // Called once, in this order, by run(): the mesh; dofs, constraints and
@@ -220,11 +229,11 @@ namespace ViscoContact
     add_stress_point_load(const SymmetricTensor<2, dim> &stress,
                           const unsigned int             k,
                           const unsigned int             q,
-                          Vector<double>                &cell_vector) const;
+                          const ArrayView<double>       &cell_vector) const;
     void
-    distribute_cell_vector(const unsigned int    k,
-                           const Vector<double> &cell_vector,
-                           VectorType           &target) const;
+    distribute_cell_vector(const unsigned int             k,
+                           const ArrayView<const double> &cell_vector,
+                           VectorType                    &target) const;
     // Collective: the counts and the force are sums over all ranks.
     std::array<unsigned int, 3>
     count_contact_states() const;
@@ -269,9 +278,8 @@ namespace ViscoContact
     unsigned int n_external_load_assemblies = 0;
     unsigned int total_newton_iterations    = 0;
 
-    // How the step problems are solved: the method chosen (and why, for the
-    // header) and the back end that implements it.
-    Parameters::Method                  method;
+    // How the step problems are solved: why this method (for the header)
+    // and the back end that implements it.
     std::string                         method_reason;
     std::unique_ptr<ContactSolver<dim>> contact_solver;
 

@@ -36,8 +36,7 @@ namespace ViscoContact
     // Without plasticity H_n = sigma_0 - E eps(u_0) = 0 for all n, and
     // history_load stays zero; with the implicit update the history enters
     // through the internal force of implicit_newton().
-    if (parameters.plasticity
-        && parameters.stress_update == Parameters::StressUpdate::explicit_euler)
+    if (explicit_history_update())
       system_rhs += history_load;
   }
 
@@ -149,8 +148,7 @@ namespace ViscoContact
   // -(H, eps(v)) from the history stored at the stress points. The time
   // loop gets this vector from update_stresses(), which assembles it while
   // it computes H; this stand-alone version serves a cut step (whose
-  // history increment was rescaled), a resumed run, and the cost
-  // measurement of the run summary.
+  // history increment was rescaled) and a resumed run.
   //
   // It works on the stored stress-point geometry, like update_stresses(): per
   // owned cell k the contributions of its stress points are summed into a cell
@@ -162,9 +160,9 @@ namespace ViscoContact
   {
     // Zero also in the ghost entries, which collect the contributions to dofs
     // of other ranks until compress().
-    history_load           = 0;
-    const unsigned int n_q = stress_quadrature.size();
-    Vector<double>     cell_vector(n_cell_vertices * dim);
+    history_load            = 0;
+    const unsigned int  n_q = stress_quadrature.size();
+    std::vector<double> cell_vector(n_cell_vertices * dim);
     // The history of stress point q of the k-th owned cell is record
     // k * n_q + q.
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
@@ -175,8 +173,8 @@ namespace ViscoContact
             -quadrature_point_history[std::size_t(k) * n_q + q].history,
             k,
             q,
-            cell_vector);
-        distribute_cell_vector(k, cell_vector, history_load);
+            make_array_view(cell_vector));
+        distribute_cell_vector(k, make_array_view(cell_vector), history_load);
       }
     // Send the ghost contributions to their owners.
     history_load.compress(VectorOperation::add);

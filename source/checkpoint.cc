@@ -23,7 +23,6 @@ namespace ViscoContact
     // The version of the file layout, the first value of every header: a
     // resumed run refuses a checkpoint of another version rather than misread
     // it. Bumped whenever the layout of the files changes.
-    // Bumped whenever the layout of the files changes.
     constexpr std::uint32_t checkpoint_version = 2;
 
     // Every rank learns whether any rank saw an MPI error, and which, and all
@@ -663,25 +662,35 @@ namespace ViscoContact
     // that 0 means "no contact node"), r = u.nu_i from the restored
     // displacement. The next active set then starts from the pieces of the
     // interrupted run.
+    // A piece out of range means a file of another scene; that is decided
+    // over all ranks, like the cells above, so that all throw together.
     if (contact_enabled)
-      for (unsigned int i = 0; i < contact_set.size(); ++i)
-        {
-          const double piece
-            = contact_state.local_element(contact_set.node(i).local_dofs[0])
-              - 1.;
-          header.check(piece >= 0 && piece < contact_set.law().n_pieces());
-          contact_set.set_piece(i, static_cast<unsigned int>(piece + 0.5));
-          contact_set.z[i]
-            = contact_state.local_element(contact_set.node(i).local_dofs[1]);
-          contact_set.r[i] = contact_set.normal_component(solution, i);
-        }
+      {
+        bool pieces_valid = true;
+        for (unsigned int i = 0; i < contact_set.size(); ++i)
+          {
+            const double piece
+              = contact_state.local_element(contact_set.node(i).local_dofs[0])
+                - 1.;
+            if (!(piece >= 0 && piece < contact_set.law().n_pieces()))
+              {
+                pieces_valid = false;
+                continue;
+              }
+            contact_set.set_piece(i, static_cast<unsigned int>(piece + 0.5));
+            contact_set.z[i]
+              = contact_state.local_element(contact_set.node(i).local_dofs[1]);
+            contact_set.r[i] = contact_set.normal_component(solution, i);
+          }
+        header.check(Utilities::MPI::min(pieces_valid ? 1 : 0, mpi_communicator)
+                     == 1);
+      }
 
     // The explicit update's history load is not stored: it is assembled from
     // the restored histories, as update_stresses() would have left it. The
     // implicit update needs nothing more; its history enters through the
     // internal force.
-    if (parameters.plasticity
-        && parameters.stress_update == Parameters::StressUpdate::explicit_euler)
+    if (explicit_history_update())
       assemble_history_load();
     // Rank 0 removes the rows after the checkpoint from time_series.csv, which
     // the resumed run then appends to.

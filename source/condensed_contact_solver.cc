@@ -186,13 +186,7 @@ namespace ViscoContact
     const Parameters::AllParameters &parameters,
     const VectorType                &layout)
     : communicator(layout.get_mpi_communicator())
-    , factorization(parameters.direct_solver
-                        == Parameters::DirectSolver::automatic
-                      ? (Utilities::MPI::n_mpi_processes(communicator) == 1
-                           ? Parameters::DirectSolver::cholmod
-                           : Parameters::DirectSolver::mumps)
-                      : parameters.direct_solver,
-                    communicator)
+    , factorization(parameters.direct_solver, communicator)
     , free_displacement(layout)
   {}
 

@@ -412,7 +412,7 @@ namespace ViscoContact
 
   // @sect4{ConvergenceStudy::compare}
   //
-  // |eps(u_ref - u_h)||_L2 and ||sigma_ref - sigma_h||_L2 with the
+  // ||eps(u_ref - u_h)||_L2 and ||sigma_ref - sigma_h||_L2 with the
   // reference's stress-point quadrature, summed over the ranks.
   //
   // This is the error of doc/model.md, section 1, at one time level: the

@@ -670,15 +670,19 @@ namespace ViscoContact
 
   // @sect4{SparseDirectSolver}
   //
-  // The public class only forwards to the implementation. The caller must
-  // have resolved Direct solver = auto (CHOLMOD on one rank, MUMPS on
-  // several), so kind is one of the three libraries.
+  // The public class only forwards to the implementation. Direct solver =
+  // auto is resolved here: CHOLMOD on one rank, MUMPS (the only one of the
+  // three that works on distributed matrices) on several.
   SparseDirectSolver::SparseDirectSolver(const Parameters::DirectSolver kind,
                                          const MPI_Comm communicator)
-    : implementation(std::make_unique<Implementation>(kind, communicator))
-  {
-    Assert(kind != Parameters::DirectSolver::automatic, ExcInternalError());
-  }
+    : implementation(std::make_unique<Implementation>(
+      kind != Parameters::DirectSolver::automatic
+        ? kind
+        : (Utilities::MPI::n_mpi_processes(communicator) == 1
+             ? Parameters::DirectSolver::cholmod
+             : Parameters::DirectSolver::mumps),
+      communicator))
+  {}
 
 
 

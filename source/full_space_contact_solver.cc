@@ -154,13 +154,7 @@ namespace ViscoContact
     , b(layout)
   {
     if (preconditioner_type == Parameters::Preconditioner::direct)
-      factorization.emplace(
-        parameters.direct_solver == Parameters::DirectSolver::automatic
-          ? (Utilities::MPI::n_mpi_processes(communicator) == 1
-               ? Parameters::DirectSolver::cholmod
-               : Parameters::DirectSolver::mumps)
-          : parameters.direct_solver,
-        communicator);
+      factorization.emplace(parameters.direct_solver, communicator);
   }
 
 

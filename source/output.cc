@@ -328,7 +328,7 @@ namespace ViscoContact
           << "  final contact: " << states[0] << " unilateral, " << states[1]
           << " compliance, " << states[2]
           << " no contact, total force = " << force << '\n';
-    if (parameters.stress_update == Parameters::StressUpdate::implicit_euler)
+    if (implicit_update())
       pcout << "  Newton iterations (implicit scheme): "
             << total_newton_iterations << '\n';
     pcout << "  active-set iterations: " << total_active_set_iterations

@@ -646,9 +646,11 @@ namespace ViscoContact
           "How a time step's linear contact problem is solved (doc/model.md, "
           "section 2). condensed: the operator is factorised (Direct solver) "
           "and the active set works on the contact nodes alone through the "
-          "contact compliance S = N K^-1 N^T, which costs one solve per "
-          "contact node at set-up and m^2 doubles on every rank; fastest for "
-          "2D and for small contact surfaces. full space: the active set in "
+          "contact compliance S = N K^-1 N^T (m^2 doubles on every rank), "
+          "read off the factor on one rank (CHOLMOD, contact dofs "
+          "eliminated last) or computed with one solve per contact node "
+          "(UMFPACK, MUMPS); fastest for 2D and for small contact surfaces. "
+          "full space: the active set in "
           "the full space, CG (GMRES for the implicit update's tangent) "
           "preconditioned by the Preconditioner of the operator; scales to "
           "large 3D meshes and many ranks. auto: condensed on one rank when "
@@ -695,40 +697,6 @@ namespace ViscoContact
                                                     : DirectSolver::mumps);
       }
       prm.leave_subsection();
-    }
-
-
-
-    std::string
-    to_string(const Method method)
-    {
-      switch (method)
-        {
-          case Method::automatic:
-            return "auto";
-          case Method::condensed:
-            return "condensed";
-          default:
-            return "full space";
-        }
-    }
-
-
-
-    std::string
-    to_string(const DirectSolver solver)
-    {
-      switch (solver)
-        {
-          case DirectSolver::automatic:
-            return "auto";
-          case DirectSolver::cholmod:
-            return "CHOLMOD";
-          case DirectSolver::umfpack:
-            return "UMFPACK";
-          default:
-            return "MUMPS";
-        }
     }
 
 

@@ -76,16 +76,16 @@ namespace ViscoContact
       // Gamma_1 get u = 0, which is homogeneous, so the same constraints serve
       // every displacement and every right-hand side of the run. Hanging nodes
       // appear where the mesh is refined toward Gamma_3.
-      constraints.clear();
       constraints.reinit(locally_relevant_dofs);
       DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+      const Functions::ZeroFunction<dim>                  zero(dim);
+      std::map<types::boundary_id, const Function<dim> *> clamped;
       for (const auto id : parameters.clamped_ids)
-        VectorTools::interpolate_boundary_values(mapping,
-                                                 dof_handler,
-                                                 id,
-                                                 Functions::ZeroFunction<dim>(
-                                                   dim),
-                                                 constraints);
+        clamped[id] = &zero;
+      VectorTools::interpolate_boundary_values(mapping,
+                                               dof_handler,
+                                               clamped,
+                                               constraints);
       constraints.close();
 
       // The sparsity pattern of the owned cells, without the entries that the
@@ -109,7 +109,7 @@ namespace ViscoContact
                               mpi_communicator);
       // The tangent of the implicit update has the same couplings as K; the
       // explicit update never needs it.
-      if (parameters.stress_update == Parameters::StressUpdate::implicit_euler)
+      if (implicit_update())
         tangent_matrix.reinit(locally_owned_dofs,
                               locally_owned_dofs,
                               dsp,
@@ -338,9 +338,8 @@ namespace ViscoContact
                       Utilities::MPI::n_mpi_processes(mpi_communicator),
                       dof_handler.n_dofs(),
                       contact_enabled ? contact_set.n_global_nodes() : 0);
-    method         = choice.method;
     method_reason  = choice.reason;
-    contact_solver = create_contact_solver<dim>(method,
+    contact_solver = create_contact_solver<dim>(choice.method,
                                                 parameters,
                                                 mapping,
                                                 dof_handler,
@@ -400,8 +399,7 @@ namespace ViscoContact
   {
     // The implicit update is unconditionally stable (doc/model.md, section 3);
     // the explicit one has the limit of forward Euler on the relaxation.
-    if (parameters.plasticity
-        && parameters.stress_update == Parameters::StressUpdate::implicit_euler)
+    if (implicit_update())
       pcout << "Implicit (backward-Euler) history update: no stability limit "
                "on k (doc/model.md, section 3); k = "
             << parameters.time_step << " s\n";

@@ -53,12 +53,9 @@ namespace ViscoContact
     // The history of the next step is only needed if there is a next step
     // (next_time_step > 0); the run summary calls this function again for its
     // cost measurement, with the time step of the parameter file.
-    const bool implicit
-      = parameters.plasticity
-        && parameters.stress_update == Parameters::StressUpdate::implicit_euler;
-    const bool update_history
-      = parameters.plasticity && !implicit && next_time_step > 0;
-    const double a = current_time_step / (2 * material.viscosity());
+    const bool implicit       = implicit_update();
+    const bool update_history = explicit_history_update() && next_time_step > 0;
+    const double a            = current_time_step / (2 * material.viscosity());
     const SymmetricTensor<4, dim> &E       = material.elasticity_tensor();
     const unsigned int             n_q     = stress_quadrature.size();
     const unsigned int             n_local = n_cell_vertices * dim;
@@ -71,7 +68,7 @@ namespace ViscoContact
     // of the cells, so the result does not depend on the number of threads.
     // The cells are taken in chunks, which bounds the buffer of cell loads.
     const unsigned int  chunk_size = 4096;
-    std::vector<double> cell_loads(std::size_t(chunk_size) * n_local);
+    std::vector<double> cell_loads(update_history ? chunk_size * n_local : 0);
     std::vector<double> cell_max_von_mises(chunk_size);
 
     // The stress points of the cells [begin, end) of a chunk starting at
@@ -80,10 +77,16 @@ namespace ViscoContact
     const auto update_cells = [&](const unsigned int first,
                                   const unsigned int begin,
                                   const unsigned int end) {
-      Vector<double> cell_vector(n_local);
       for (unsigned int k = begin; k < end; ++k)
         {
-          cell_vector   = 0.;
+          // The cell's load goes straight into its slot of the buffer.
+          const ArrayView<double> cell_vector
+            = update_history
+                ? ArrayView<double>(cell_loads.data()
+                                      + std::size_t(k - first) * n_local,
+                                    n_local)
+                : ArrayView<double>();
+          std::fill(cell_vector.begin(), cell_vector.end(), 0.);
           double max_vm = 0.;
           for (unsigned int q = 0; q < n_q; ++q)
             {
@@ -130,9 +133,6 @@ namespace ViscoContact
                   add_stress_point_load(-state.history, k, q, cell_vector);
                 }
             }
-          std::copy(cell_vector.begin(),
-                    cell_vector.end(),
-                    cell_loads.begin() + std::size_t(k - first) * n_local);
           cell_max_von_mises[k - first] = max_vm;
         }
     };
@@ -156,19 +156,17 @@ namespace ViscoContact
           },
           256);
         // The serial part: the loads into history_load, cell by cell.
-        Vector<double> cell_vector(n_local);
         for (unsigned int k = first; k < end; ++k)
           {
             local_max_von_mises
               = std::max(local_max_von_mises, cell_max_von_mises[k - first]);
             if (update_history)
-              {
-                std::copy_n(cell_loads.begin()
-                              + std::size_t(k - first) * n_local,
-                            n_local,
-                            cell_vector.begin());
-                distribute_cell_vector(k, cell_vector, history_load);
-              }
+              distribute_cell_vector(
+                k,
+                ArrayView<const double>(cell_loads.data()
+                                          + std::size_t(k - first) * n_local,
+                                        n_local),
+                history_load);
           }
       }
     // The ghost entries of history_load hold contributions to dofs that other
@@ -247,7 +245,7 @@ namespace ViscoContact
     const SymmetricTensor<2, dim> &tau,
     const unsigned int             k,
     const unsigned int             q,
-    Vector<double>                &cell_vector) const
+    const ArrayView<double>       &cell_vector) const
   {
     const std::size_t     point = std::size_t(k) * stress_quadrature.size() + q;
     const Tensor<1, dim> *gradients
@@ -278,9 +276,9 @@ namespace ViscoContact
   template <int dim>
   void
   ViscoplasticContact<dim>::distribute_cell_vector(
-    const unsigned int    k,
-    const Vector<double> &cell_vector,
-    VectorType           &target) const
+    const unsigned int             k,
+    const ArrayView<const double> &cell_vector,
+    VectorType                    &target) const
   {
     const unsigned int  n_local = n_cell_vertices * dim;
     const unsigned int *dofs    = &cell_local_dofs[std::size_t(k) * n_local];
@@ -298,7 +296,10 @@ namespace ViscoContact
     const auto &partitioner = *target.get_partitioner();
     for (unsigned int i = 0; i < n_local; ++i)
       global_dofs[i] = partitioner.local_to_global(dofs[i]);
-    constraints.distribute_local_to_global(cell_vector, global_dofs, target);
+    constraints.distribute_local_to_global(cell_vector.begin(),
+                                           cell_vector.end(),
+                                           global_dofs.begin(),
+                                           target);
   }
 
 

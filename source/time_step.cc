@@ -40,11 +40,9 @@ namespace ViscoContact
   {
     // The copies a failed attempt is undone with (each rank keeps its own
     // part).
-    const VectorType          start_solution = solution;
-    const ContactNodes::State start_contact  = contact_set.state();
-    const bool                explicit_history
-      = parameters.plasticity
-        && parameters.stress_update == Parameters::StressUpdate::explicit_euler;
+    const VectorType          start_solution   = solution;
+    const ContactNodes::State start_contact    = contact_set.state();
+    const bool                explicit_history = explicit_history_update();
 
     // Each pass is one attempt at step n with the current schedule; a cut
     // shortens times[n] and the next pass tries the shorter step. The loop ends
@@ -55,10 +53,8 @@ namespace ViscoContact
         const double k = times[n] - times[n - 1];
         assemble_right_hand_side(times[n]);
         const ActiveSetResult result
-          = (parameters.stress_update
-                 == Parameters::StressUpdate::implicit_euler
-               ? solve_implicit_step(k)
-               : solve_explicit_step());
+          = (implicit_update() ? solve_implicit_step(k)
+                               : solve_explicit_step());
         if (result.converged)
           return result;
 
@@ -191,7 +187,7 @@ namespace ViscoContact
   ViscoplasticContact<dim>::solve_explicit_step()
   {
     const ActiveSetResult result = solve_contact_problem(system_rhs);
-    total_active_set_iterations += contact_enabled ? result.iterations() : 0;
+    total_active_set_iterations += result.iterations();
     return result;
   }
 

@@ -123,6 +123,31 @@ namespace ViscoContact
 
 
 
+  // @sect4{ViscoplasticContact::implicit_update}
+  //
+  // The two ways of updating the history (doc/model.md, sections 2 and 3),
+  // decided from the parameters in one place: the implicit update runs only
+  // with plasticity on; the explicit one adds a history load only then.
+  template <int dim>
+  bool
+  ViscoplasticContact<dim>::implicit_update() const
+  {
+    return parameters.plasticity
+           && parameters.stress_update
+                == Parameters::StressUpdate::implicit_euler;
+  }
+
+
+
+  template <int dim>
+  bool
+  ViscoplasticContact<dim>::explicit_history_update() const
+  {
+    return parameters.plasticity && !implicit_update();
+  }
+
+
+
   // @sect4{ViscoplasticContact::run}
   //
   // The algorithm of doc/model.md, section 2, as the reader would write it

@@ -119,8 +119,6 @@ namespace ViscoContact
     law() const;
     double
     weight(const unsigned int i) const;
-    double
-    parameter(const unsigned int i) const;
     unsigned int
     piece(const unsigned int i) const;
     void

@@ -31,11 +31,12 @@ namespace ViscoContact
   class CondensedContactSystem
   {
   public:
-    // The law, the contact compliance S and the lumped weights of all m
-    // contact nodes.
+    // The law, the contact compliance S (taken over: pass a temporary or
+    // std::move, so that m^2 doubles are not copied) and the lumped weights
+    // of all m contact nodes.
     void
     reinit(const ContactLaw          &law,
-           const FullMatrix<double>  &compliance,
+           FullMatrix<double>         compliance,
            const std::vector<double> &weights);
 
     // z and r = d - S z for the pieces of all nodes and the free normal

@@ -91,8 +91,6 @@ namespace ViscoContact
     // The global number of the first node of this rank.
     types::global_dof_index
     first_global_index() const;
-    MPI_Comm
-    get_communicator() const;
 
     // nu_i . u_i, from the locally owned entries of u.
     double

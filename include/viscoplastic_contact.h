@@ -5,6 +5,7 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/index_set.h>
+#include <deal.II/base/partitioner.h>
 #include <deal.II/base/quadrature.h>
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/timer.h>
@@ -260,12 +261,14 @@ namespace ViscoContact
     const std::unique_ptr<FiniteElement<dim>> scalar_fe; // nodal output
     DoFHandler<dim>                           dof_handler;
     DoFHandler<dim>                           scalar_dof_handler;
-    const Quadrature<dim>                     stress_quadrature;
-    const Quadrature<dim>                     load_quadrature;
-    const Quadrature<dim - 1>                 face_quadrature;
-    IndexSet                                  locally_owned_dofs;
-    IndexSet                                  locally_relevant_dofs;
-    AffineConstraints<double>                 constraints;
+    // The layout (owned entries and ghosts) of the nodal output fields.
+    std::shared_ptr<const Utilities::MPI::Partitioner> scalar_partitioner;
+    const Quadrature<dim>                              stress_quadrature;
+    const Quadrature<dim>                              load_quadrature;
+    const Quadrature<dim - 1>                          face_quadrature;
+    IndexSet                                           locally_owned_dofs;
+    IndexSet                                           locally_relevant_dofs;
+    AffineConstraints<double>                          constraints;
 
     // The elastic operator K (assembled once per run) and, for the implicit
     // update, the tangent and internal force of the current Newton iterate. The

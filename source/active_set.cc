@@ -29,13 +29,9 @@ namespace ViscoContact
                    const MPI_Comm                     communicator)
     {
       std::array<unsigned int, N> sums;
-      const int                   error = MPI_Allreduce(local.data(),
-                                      sums.data(),
-                                      N,
-                                      MPI_UNSIGNED,
-                                      MPI_SUM,
-                                      communicator);
-      AssertThrowMPI(error);
+      Utilities::MPI::sum(ArrayView<const unsigned int>(local.data(), N),
+                          communicator,
+                          ArrayView<unsigned int>(sums.data(), N));
       return sums;
     }
   } // namespace
@@ -256,7 +252,7 @@ namespace ViscoContact
   // @sect4{Access to the nodes}
   //
   // Plain access: the number of nodes of this rank, the law, and per node
-  // the weight w_i, the parameter c_i and the piece. set_piece() is for
+  // the weight w_i and the piece. set_piece() is for
   // restoring a state node by node (a resumed checkpoint).
   unsigned int
   ContactNodes::size() const
@@ -278,14 +274,6 @@ namespace ViscoContact
   ContactNodes::weight(const unsigned int i) const
   {
     return w[i];
-  }
-
-
-
-  double
-  ContactNodes::parameter(const unsigned int i) const
-  {
-    return c[i];
   }
 
 

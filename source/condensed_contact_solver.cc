@@ -255,7 +255,7 @@ namespace ViscoContact
     for (unsigned int i = 0; i < contact.size(); ++i)
       weights[i] = contact.weight(i);
     condensed_system.reinit(contact.law(),
-                            S,
+                            std::move(S),
                             gather_on_all_ranks(weights, communicator));
   }
 

@@ -8,6 +8,8 @@
 
 #include "condensed_system.h"
 
+#include <utility>
+
 #include <algorithm>
 #include <cmath>
 
@@ -20,13 +22,13 @@ namespace ViscoContact
   // even if the pieces have not changed.
   void
   CondensedContactSystem::reinit(const ContactLaw          &law,
-                                 const FullMatrix<double>  &compliance,
+                                 FullMatrix<double>         compliance,
                                  const std::vector<double> &weights)
   {
     AssertDimension(compliance.m(), weights.size());
     AssertDimension(compliance.n(), weights.size());
     contact_law.emplace(law);
-    S = compliance;
+    S = std::move(compliance);
     w = weights;
     factorized_pieces.clear();
   }
@@ -108,10 +110,18 @@ namespace ViscoContact
       }
 
     // The known forces z_i = w_i o of the nodes on flat pieces; the unknown
-    // entries are zero for now, so that S z below only sums the known ones.
+    // entries are zero for now. Only the known ones enter the right-hand
+    // side (usually there are none).
+    std::vector<unsigned int> known_nodes;
     for (unsigned int i = 0; i < m; ++i)
-      z[i]
-        = is_unknown(i) ? 0. : w[i] * contact_law->piece(pieces[i]).intercept;
+      {
+        z[i] = 0.;
+        if (!is_unknown(i))
+          {
+            z[i] = w[i] * contact_law->piece(pieces[i]).intercept;
+            known_nodes.push_back(i);
+          }
+      }
     // The right-hand side of each unknown row: d_i minus what the known
     // forces displace at node i, plus the piece's constant, -beta on a
     // vertical piece and o / s on a sloped one.
@@ -121,7 +131,7 @@ namespace ViscoContact
         const unsigned int     i     = unknown_nodes[a];
         const ContactLawPiece &piece = contact_law->piece(pieces[i]);
         double                 value = d[i];
-        for (unsigned int j = 0; j < m; ++j)
+        for (const unsigned int j : known_nodes)
           value -= S(i, j) * z[j];
         value
           += (piece.vertical ? -piece.r_lower : piece.intercept / piece.slope);

@@ -10,6 +10,7 @@
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/partitioner.h>
 
 #include <deal.II/fe/fe_values.h>
 
@@ -204,23 +205,15 @@ namespace ViscoContact
     reinit(law, node_weights);
 
     // Numbering across ranks: rank p's nodes come after those of ranks
-    // 0, ..., p - 1, so a prefix sum of the node counts gives each rank its
-    // first global number. (MPI_Exscan leaves the result on rank 0
-    // undefined; it is 0.) The condensed back end relies on this numbering:
-    // gathering node vectors in rank order yields them in global order.
-    const types::global_dof_index n_local = geometry.size();
-    n_global        = Utilities::MPI::sum(n_local, communicator);
-    first_global    = 0;
-    const int error = MPI_Exscan(
-      &n_local,
-      &first_global,
-      1,
-      Utilities::MPI::mpi_type_id_for_type<types::global_dof_index>,
-      MPI_SUM,
-      communicator);
-    AssertThrowMPI(error);
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      first_global = 0;
+    // 0, ..., p - 1, which is how deal.II's Partitioner numbers a vector
+    // whose ranks each hold a contiguous block (a prefix sum of the sizes).
+    // The condensed back end relies on this numbering: gathering node
+    // vectors in rank order yields them in global order.
+    const Utilities::MPI::Partitioner numbering(geometry.size(),
+                                                0,
+                                                communicator);
+    n_global     = numbering.size();
+    first_global = numbering.local_range().first;
     // A contact boundary whose nodes are all clamped has nothing to solve;
     // say so in the terms of the parameter file.
     AssertThrow(n_global > 0,
@@ -266,7 +259,7 @@ namespace ViscoContact
   // @sect4{Access to the nodes}
   //
   // The geometry of node i, the number of nodes of all ranks, this rank's
-  // first global node number, and the communicator the nodes live on.
+  // first global node number.
   template <int dim>
   const typename ContactSet<dim>::NodeGeometry &
   ContactSet<dim>::node(const unsigned int i) const
@@ -290,15 +283,6 @@ namespace ViscoContact
   ContactSet<dim>::first_global_index() const
   {
     return first_global;
-  }
-
-
-
-  template <int dim>
-  MPI_Comm
-  ContactSet<dim>::get_communicator() const
-  {
-    return communicator;
   }
 
 

@@ -12,8 +12,9 @@ namespace ViscoContact
   // @sect4{choose_method}
   //
   // The condensed back end costs a factorisation of the operator at set-up
-  // (on several ranks, with MUMPS, also one solve per contact node) and m^2
-  // doubles on every rank; afterwards a step is one solve (two with MUMPS).
+  // (with MUMPS on several ranks, or UMFPACK for the implicit update's
+  // unsymmetric tangent, also one solve per contact node) and m^2 doubles on
+  // every rank; afterwards a step is one solve (two with MUMPS or UMFPACK).
   // The full space back end costs an AMG set-up and a Krylov solve per
   // active-set iteration. Measured on this kind of machine (2 cores,
   // benchmarks/run_back_end_comparison.py, doc/back_ends/back_ends.md; the

@@ -129,6 +129,12 @@ namespace ViscoContact
     std::unique_ptr<Epetra_MultiVector> rigid_body_modes;
     std::optional<SparseDirectSolver>   factorization;
     VectorType                          b;
+    double                              b_norm = 0;
+
+    // Work vectors of the projected operator and preconditioner, which the
+    // Krylov method applies once per iteration each: allocated once here
+    // instead of once per application.
+    VectorType operator_scratch, preconditioner_scratch;
   };
 
 
@@ -152,6 +158,8 @@ namespace ViscoContact
     , mapping(mapping)
     , dof_handler(dof_handler)
     , b(layout)
+    , operator_scratch(layout)
+    , preconditioner_scratch(layout)
   {
     if (preconditioner_type == Parameters::Preconditioner::direct)
       factorization.emplace(parameters.direct_solver, communicator);
@@ -222,7 +230,7 @@ namespace ViscoContact
             while (c < dim && !component_dofs[c].is_element(dof))
               ++c;
             Assert(c < dim, ExcInternalError());
-            const Point<dim> &x           = support_points[dof];
+            const Point<dim> &x           = support_points.at(dof);
             (*rigid_body_modes)[c][local] = 1.; // translation along e_c
             // In 2D the rotation is the field (-x_2, x_1) = cross(e_3, x).
             if (dim == 2)
@@ -299,7 +307,8 @@ namespace ViscoContact
   FullSpaceContactSolver<dim>::set_right_hand_side(const VectorType &rhs,
                                                    const ContactSet<dim> &)
   {
-    b = rhs;
+    b      = rhs;
+    b_norm = b.l2_norm();
   }
 
 
@@ -418,8 +427,9 @@ namespace ViscoContact
     const unsigned int  m = contact.size();
     std::vector<bool>   fixed(m);
     std::vector<double> normal_stiffness(m, 0.);
-    VectorType          u0(b), step_rhs(b), A_u0(b);
-    u0 = 0;
+    VectorType          u0, A_u0, step_rhs(b);
+    u0.reinit(b);         // zero
+    A_u0.reinit(b, true); // overwritten by the products below
     // Split the nodes by their pieces. A vertical piece (a jump of the law,
     // or the rigid foundation) fixes the normal displacement to
     // beta = r_lower: the node is fixed, u_0 gets beta nu_i. A sloped piece
@@ -457,9 +467,10 @@ namespace ViscoContact
     // alike. The last term puts the normal components of v at the fixed
     // nodes back unchanged, which keeps the operator nonsingular; P and
     // I - P are symmetric, so the result is symmetric whenever inner is.
-    const auto projected = [&](const Apply &inner) -> Apply {
+    const auto projected
+      = [&](const Apply &inner, VectorType &projected_src) -> Apply {
       return [&, inner](VectorType &dst, const VectorType &src) {
-        VectorType projected_src(src);
+        projected_src = src;
         project(projected_src);
         inner(dst, projected_src);
         project(dst);
@@ -488,11 +499,12 @@ namespace ViscoContact
     // zero normal components at the fixed nodes.
     project(step_rhs);
     project(u); // the warm start: the previous iterate, constraints removed
-    const LinearSolveReport report = krylov_solve(projected(step_operator),
-                                                  projected(preconditioner),
-                                                  u,
-                                                  step_rhs,
-                                                  b.l2_norm());
+    const LinearSolveReport report
+      = krylov_solve(projected(step_operator, operator_scratch),
+                     projected(preconditioner, preconditioner_scratch),
+                     u,
+                     step_rhs,
+                     b_norm);
     // u = u_0 + y: now u.nu_i = beta at the fixed nodes.
     u += u0;
     // A failed solve leaves r and z as they were; ContactNodes::solve()
@@ -503,7 +515,7 @@ namespace ViscoContact
     // The residual b - A u equals N^T z: at node i its normal component is
     // the force z_i (the contact force of node i acts on that node's dofs
     // only).
-    VectorType residual(b);
+    VectorType &residual = A_u0; // its value is no longer needed
     A->vmult(residual, u);
     residual.sadd(-1., 1., b);
     // At a fixed node the force is read off the residual; on a sloped piece

@@ -196,14 +196,7 @@ namespace ViscoContact
     // fill_output_fields() sets the owned entries of this rank's contact nodes;
     // the ghost import then gives every rank the values at all vertices of its
     // cells, also those of contact nodes owned by a neighbour.
-    IndexSet scalar_relevant;
-    DoFTools::extract_locally_relevant_dofs(scalar_dof_handler,
-                                            scalar_relevant);
-    std::vector<VectorType> contact_fields(
-      4,
-      VectorType(scalar_dof_handler.locally_owned_dofs(),
-                 scalar_relevant,
-                 mpi_communicator));
+    std::vector<VectorType> contact_fields(4, VectorType(scalar_partitioner));
     if (contact_enabled)
       contact_set.fill_output_fields(contact_fields[0],
                                      contact_fields[1],

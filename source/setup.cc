@@ -63,6 +63,13 @@ namespace ViscoContact
       dof_handler.distribute_dofs(*fe);
       scalar_dof_handler.reinit(*triangulation);
       scalar_dof_handler.distribute_dofs(*scalar_fe);
+      IndexSet scalar_relevant;
+      DoFTools::extract_locally_relevant_dofs(scalar_dof_handler,
+                                              scalar_relevant);
+      scalar_partitioner = std::make_shared<Utilities::MPI::Partitioner>(
+        scalar_dof_handler.locally_owned_dofs(),
+        scalar_relevant,
+        mpi_communicator);
       // Each rank owns a contiguous range of dofs (locally_owned_dofs) and also
       // sees the dofs of its ghost cells (locally_relevant_dofs): the ghost
       // entries of its vectors.

@@ -92,15 +92,16 @@ namespace ViscoContact
     std::array<unsigned int, 2>
     update_pieces();
 
-    // The iteration: solve_for_pieces() solves the linear problem of the
-    // current pieces and writes r and z; repeat until no node moves on any
-    // rank of the communicator and the solve met the tolerance, or until
-    // max_iterations.
+    // The iteration: solve_for_pieces(accuracy) solves the linear problem
+    // of the current pieces to the given relative accuracy and writes r and
+    // z; repeat until no node moves on any rank of the communicator and the
+    // solve met the tolerance, or until max_iterations. Solves before the
+    // pieces settle are asked for sqrt(tolerance) only (active_set.cc).
     ActiveSetResult
-    solve(const std::function<LinearSolveReport()> &solve_for_pieces,
-          const unsigned int                        max_iterations,
-          const double                              tolerance,
-          const MPI_Comm                            communicator);
+    solve(const std::function<LinearSolveReport(double)> &solve_for_pieces,
+          const unsigned int                              max_iterations,
+          const double                                    tolerance,
+          const MPI_Comm                                  communicator);
 
     // The pieces and the last (r, z): what a retried time step restores.
     struct State

@@ -34,7 +34,7 @@ namespace ViscoContact
   //  - set_right_hand_side(): the right-hand side b of a step problem;
   //  - solve_for_pieces(): for the current pieces, write r = u.nu and the
   //    nodal forces z of every contact node (and u, if the back end has it
-  //    anyway);
+  //    anyway), to the accuracy the iteration asks for;
   //  - finish(): the displacement u of the final pieces;
   //  - solve_without_contact(), apply_compliance(): A^{-1} b for the cost
   //    measurements, and N A^{-1} N^T for the uniqueness margin.
@@ -95,13 +95,16 @@ namespace ViscoContact
 
     // For the current pieces of the contact nodes, write r_i = u.nu_i and
     // the nodal forces z_i of this rank's nodes into contact.r and
-    // contact.z. The report says whether the linear solve met its tolerance;
-    // if it did not, the active-set iteration stops with the report's
-    // failure. u holds the previous iterate on entry (the full space back
-    // end starts from it) and, for the full space back end, the solution on
-    // exit.
+    // contact.z, with the relative accuracy the active-set iteration asks
+    // for (a Krylov method may stop there; a direct solve is exact anyway).
+    // The report says whether the linear solve met it; if it did not, the
+    // active-set iteration stops with the report's failure. u holds the
+    // previous iterate on entry (the full space back end starts from it)
+    // and, for the full space back end, the solution on exit.
     virtual LinearSolveReport
-    solve_for_pieces(ContactSet<dim> &contact, VectorType &u)
+    solve_for_pieces(ContactSet<dim> &contact,
+                     VectorType      &u,
+                     const double     accuracy)
       = 0;
 
     // After the active-set iteration has converged: the displacement of the

@@ -129,7 +129,9 @@ namespace ViscoContact
     set_right_hand_side(const VectorType      &b,
                         const ContactSet<dim> &contact) override;
     LinearSolveReport
-    solve_for_pieces(ContactSet<dim> &contact, VectorType &u) override;
+    solve_for_pieces(ContactSet<dim> &contact,
+                     VectorType      &u,
+                     const double     accuracy) override;
     void
     finish(const ContactSet<dim> &contact, VectorType &u) override;
     // S x, and a solve with the factorisation.
@@ -407,14 +409,15 @@ namespace ViscoContact
   // rank. The displacement u is not touched here; it is formed once, in
   // finish(), when the pieces are final.
   //
-  // The solve is direct, so the report says "converged" with no inner
-  // iterations; its residual is the defect the dense solve leaves in the
-  // equations of the pieces, which ContactNodes::solve() compares with the
-  // Tolerance.
+  // The solve is direct, so the accuracy asked for does not matter and the
+  // report says "converged" with no inner iterations; its residual is the
+  // defect the dense solve leaves in the equations of the pieces, which
+  // ContactNodes::solve() compares with the Tolerance.
   template <int dim>
   LinearSolveReport
   CondensedContactSolver<dim>::solve_for_pieces(ContactSet<dim> &contact,
-                                                VectorType &)
+                                                VectorType &,
+                                                const double)
   {
     // The dense problem couples all nodes, so every rank needs the pieces of
     // all of them. Every rank then solves the same problem and finds the

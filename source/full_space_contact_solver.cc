@@ -29,7 +29,9 @@
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
 
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -46,8 +48,10 @@ namespace ViscoContact
   // P the orthogonal projection that removes the normal component at the
   // fixed nodes (a constraint among the components of a node, for any
   // normal). The operator is applied around A, which never changes within a
-  // step problem; the preconditioner P M^{-1} P + (I - P) uses the AMG cycle
-  // or the factorisation M^{-1} of A built by set_operator(). Both are
+  // step problem; the preconditioner P M^{-1} P + (I - P) uses an AMG cycle
+  // of the step operator (with a penalty for the fixed nodes, rebuilt when
+  // enough nodes have changed, update_contact_amg()) or the factorisation
+  // M^{-1} of A built by set_operator(). Both are
   // symmetric when A is, and positive definite as long as the uniqueness
   // condition (doc/model.md, section 4) holds: CG then; GMRES for the
   // implicit update's unsymmetric tangent. The forces at the fixed nodes are
@@ -86,7 +90,9 @@ namespace ViscoContact
     // with the right-hand side b that set_right_hand_side() keeps per step
     // problem. Its solution is u itself, so finish() has nothing to do.
     LinearSolveReport
-    solve_for_pieces(ContactSet<dim> &contact, VectorType &u) override;
+    solve_for_pieces(ContactSet<dim> &contact,
+                     VectorType      &u,
+                     const double     accuracy) override;
     void
     set_right_hand_side(const VectorType      &b,
                         const ContactSet<dim> &contact) override;
@@ -97,17 +103,22 @@ namespace ViscoContact
     using Apply = std::function<void(VectorType &, const VectorType &)>;
 
     void
-    build_amg(const MatrixType &A, const bool symmetric);
+    build_amg(const MatrixType &matrix, TrilinosWrappers::PreconditionAMG &amg);
+    // The AMG of the step operator of the current pieces, rebuilt when
+    // enough nodes have changed their stiffness since it was last built.
+    void
+    update_contact_amg(const ContactSet<dim>     &contact,
+                       const std::vector<double> &stiffness);
     // Solves op y = rhs from the initial y with the preconditioner prec:
-    // CG or GMRES to Tolerance relative to the norm of reference.
+    // CG or GMRES to the relative accuracy (Tolerance unless the active-set
+    // iteration asks for less) times reference_norm.
     LinearSolveReport
     krylov_solve(const Apply      &op,
                  const Apply      &prec,
                  VectorType       &y,
                  const VectorType &rhs,
-                 const double      reference_norm);
-    void
-    apply_preconditioner(VectorType &dst, const VectorType &src) const;
+                 const double      reference_norm,
+                 const double      accuracy);
 
     // Preconditioner (subsection Linear solver), Tolerance (subsection
     // Active set solver), and what the AMG needs to build the rigid-body
@@ -120,16 +131,27 @@ namespace ViscoContact
 
     // The operator of the current step problems (owned by the caller: the
     // elastic matrix or the current tangent), whether it is symmetric (which
-    // decides between CG and GMRES), its preconditioner (AMG, or the
-    // factorisation when Preconditioner = direct), and the right-hand side
-    // of the current step problem.
+    // decides between CG and GMRES), the factorisation when Preconditioner =
+    // direct, and the right-hand side of the current step problem.
     const MatrixType                   *A         = nullptr;
     bool                                symmetric = true;
-    TrilinosWrappers::PreconditionAMG   amg;
     std::unique_ptr<Epetra_MultiVector> rigid_body_modes;
     std::optional<SparseDirectSolver>   factorization;
     VectorType                          b;
     double                              b_norm = 0;
+
+    // The two AMG preconditioners, each built when first needed after
+    // set_operator(): one of A alone, for the solves without contact, and
+    // one of the step operator A + sum_i k_i nu_i nu_i^T of the pieces
+    // the nodes were on when it was built (k_i the normal stiffness of a
+    // sloped piece, or a penalty for a fixed node), held in contact_matrix.
+    // contact_amg_stiffness keeps those k_i of this rank's nodes, to tell
+    // how many nodes have changed since.
+    TrilinosWrappers::PreconditionAMG operator_amg, contact_amg;
+    bool                              operator_amg_built = false;
+    bool                              contact_amg_built  = false;
+    MatrixType                        contact_matrix;
+    std::vector<double>               contact_amg_stiffness;
 
     // Work vectors of the projected operator and preconditioner, which the
     // Krylov method applies once per iteration each: allocated once here
@@ -175,7 +197,8 @@ namespace ViscoContact
     return std::string("full space: CG (GMRES for the implicit update's "
                        "tangent) on the projected operator, preconditioned by ")
            + (factorization ? factorization->description()
-                            : "ML AMG with the rigid-body modes");
+                            : "ML AMG of the step operator with the "
+                                              "rigid-body modes");
   }
 
 
@@ -195,7 +218,7 @@ namespace ViscoContact
   template <int dim>
   void
   FullSpaceContactSolver<dim>::build_amg(const MatrixType &matrix,
-                                         const bool        is_symmetric)
+                                         TrilinosWrappers::PreconditionAMG &amg)
   {
     // The modes depend on the mesh and the dofs only, not on the operator,
     // so they are computed for the first operator and reused for every
@@ -253,7 +276,7 @@ namespace ViscoContact
     // nonsymmetric problems, linear elements, two smoother sweeps and an
     // aggregation threshold of 0.02.
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
-    data.elliptic              = is_symmetric;
+    data.elliptic              = symmetric;
     data.higher_order_elements = false;
     data.smoother_sweeps       = 2;
     data.aggregation_threshold = 0.02;
@@ -273,25 +296,96 @@ namespace ViscoContact
 
   // @sect4{FullSpaceContactSolver::set_operator}
   //
-  // Remember the operator and build its preconditioner: once per run for the
-  // elastic K, once per Newton iteration for the implicit update's tangent.
-  // The contact terms are not part of the preconditioner; this keeps the
-  // set-up independent of the pieces, at the price of a preconditioner that
-  // fits the step operator less well when many nodes have changed piece
-  // (doc/algorithm.md, trade-offs). The parameters c_i of the active set are
-  // set by ContactSet::set_operator(), not here.
+  // Remember the operator: once per run for the elastic K, once per Newton
+  // iteration for the implicit update's tangent. With Preconditioner =
+  // direct, A is factorised here. The AMG preconditioners are built when a
+  // solve first needs them (a scene with contact rarely solves with A alone,
+  // one without contact never needs the step operator's), so each Newton
+  // iteration builds one AMG, not two. The parameters c_i of the active set
+  // are set by ContactSet::set_operator(), not here.
   template <int dim>
   void
   FullSpaceContactSolver<dim>::set_operator(const MatrixType &matrix,
                                             const bool        is_symmetric,
                                             const ContactSet<dim> &)
   {
-    A         = &matrix;
-    symmetric = is_symmetric;
+    A                  = &matrix;
+    symmetric          = is_symmetric;
+    operator_amg_built = false;
+    contact_amg_built  = false;
     if (factorization)
-      factorization->factorize(matrix, is_symmetric);
-    else
-      build_amg(matrix, is_symmetric);
+      {
+        factorization->factorize(matrix, is_symmetric);
+        ++this->counts.operator_setups;
+      }
+  }
+
+
+
+  // @sect4{FullSpaceContactSolver::update_contact_amg}
+  //
+  // The step operator differs from A by the normal stiffness of the nodes on
+  // sloped pieces and, above all, by the nodes on vertical pieces, whose
+  // normal displacement is fixed. A preconditioner of A alone treats those
+  // as free: with a few hundred fixed nodes, CG needs about twice as many
+  // iterations per digit as for A (measured in doc/performance.md). So the
+  // AMG is built for A + sum_i k_i nu_i nu_i^T instead: k_i = w_i s_i on a
+  // sloped piece, and a penalty of 1000 nu^T A_ii nu on a fixed node, which
+  // makes its normal direction as stiff as a Dirichlet condition for the
+  // AMG's purposes (the Krylov method still projects it exactly). Each term
+  // only touches the node's own dim x dim block, which is in the sparsity
+  // pattern, so the matrix is a copy of A with a few entries added.
+  //
+  // Building an AMG costs about 20 CG iterations, so it is not rebuilt for
+  // every set of pieces: only when more than 1% of the contact nodes (over
+  // all ranks) have become fixed or free since it was built (a changed slope
+  // matters little, a fixed node much: the slopes are small against the
+  // stiffness of the body, measured in doc/performance.md).
+  // Within a time step few nodes move, so most steps reuse the AMG of the
+  // previous one, while a cold start, where most nodes move, rebuilds it
+  // as the pieces change.
+  template <int dim>
+  void
+  FullSpaceContactSolver<dim>::update_contact_amg(
+    const ContactSet<dim>     &contact,
+    const std::vector<double> &stiffness)
+  {
+    unsigned int changed = 0;
+    if (contact_amg_built)
+      for (unsigned int i = 0; i < contact.size(); ++i)
+        changed
+          += (std::isinf(stiffness[i]) != std::isinf(contact_amg_stiffness[i]));
+    changed = Utilities::MPI::sum(changed, communicator);
+    if (contact_amg_built && changed <= 0.01 * contact.n_global_nodes())
+      return;
+
+    // A, plus k_i nu_i nu_i^T in the block of every node with a stiffness;
+    // a fixed node (infinite k_i) gets the penalty 1000 nu^T A_ii nu.
+    contact_matrix.copy_from(*A);
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      if (stiffness[i] != 0)
+        {
+          const auto &node = contact.node(i);
+          double      k    = stiffness[i];
+          if (std::isinf(k))
+            {
+              k = 0;
+              for (unsigned int c = 0; c < dim; ++c)
+                for (unsigned int d = 0; d < dim; ++d)
+                  k += node.normal[c] * A->el(node.dofs[c], node.dofs[d])
+                       * node.normal[d];
+              k *= 1000;
+            }
+          for (unsigned int c = 0; c < dim; ++c)
+            for (unsigned int d = 0; d < dim; ++d)
+              contact_matrix.add(node.dofs[c],
+                                 node.dofs[d],
+                                 k * node.normal[c] * node.normal[d]);
+        }
+    contact_matrix.compress(VectorOperation::add);
+    build_amg(contact_matrix, contact_amg);
+    contact_amg_stiffness = stiffness;
+    contact_amg_built     = true;
     ++this->counts.operator_setups;
   }
 
@@ -309,22 +403,6 @@ namespace ViscoContact
   {
     b      = rhs;
     b_norm = b.l2_norm();
-  }
-
-
-
-  // @sect4{FullSpaceContactSolver::apply_preconditioner}
-  //
-  // M^{-1} src: one AMG cycle, or a solve with the factorisation of A.
-  template <int dim>
-  void
-  FullSpaceContactSolver<dim>::apply_preconditioner(VectorType       &dst,
-                                                    const VectorType &src) const
-  {
-    if (factorization)
-      factorization->solve(dst, src);
-    else
-      amg.vmult(dst, src);
   }
 
 
@@ -347,7 +425,8 @@ namespace ViscoContact
                                             const Apply      &prec,
                                             VectorType       &y,
                                             const VectorType &rhs,
-                                            const double      reference_norm)
+                                            const double      reference_norm,
+                                            const double      accuracy)
   {
     // The operators of the Krylov methods: what deal.II's solvers call.
     struct Operator
@@ -362,7 +441,7 @@ namespace ViscoContact
 
     // At most 10000 iterations. The lower bound 1e-300 keeps the tolerance
     // and the relative residual defined when the reference norm is zero.
-    SolverControl control(10000, tolerance * std::max(reference_norm, 1e-300));
+    SolverControl control(10000, accuracy * std::max(reference_norm, 1e-300));
     LinearSolveReport report;
     try
       {
@@ -422,7 +501,8 @@ namespace ViscoContact
   template <int dim>
   LinearSolveReport
   FullSpaceContactSolver<dim>::solve_for_pieces(ContactSet<dim> &contact,
-                                                VectorType      &u)
+                                                VectorType      &u,
+                                                const double     accuracy)
   {
     const unsigned int  m = contact.size();
     std::vector<bool>   fixed(m);
@@ -480,8 +560,7 @@ namespace ViscoContact
       };
     };
     // A + sum_i w_i s_i nu_i nu_i^T, applied without forming it: the matrix
-    // A and its preconditioner stay those of set_operator() for every set of
-    // pieces.
+    // A stays that of set_operator() for every set of pieces.
     const Apply step_operator = [&](VectorType &dst, const VectorType &src) {
       A->vmult(dst, src);
       for (unsigned int i = 0; i < m; ++i)
@@ -491,9 +570,25 @@ namespace ViscoContact
                              normal_stiffness[i]
                                * contact.normal_component(src, i));
     };
-    const Apply preconditioner = [&](VectorType &dst, const VectorType &src) {
-      apply_preconditioner(dst, src);
-    };
+    // The preconditioner: the factorisation of A, or the AMG of the step
+    // operator of (nearly) these pieces, the fixed nodes marked by an
+    // infinite stiffness (update_contact_amg() puts a penalty there).
+    Apply preconditioner;
+    if (factorization)
+      preconditioner = [&](VectorType &dst, const VectorType &src) {
+        factorization->solve(dst, src);
+      };
+    else
+      {
+        std::vector<double> stiffness = normal_stiffness;
+        for (unsigned int i = 0; i < m; ++i)
+          if (fixed[i])
+            stiffness[i] = std::numeric_limits<double>::infinity();
+        update_contact_amg(contact, stiffness);
+        preconditioner = [&](VectorType &dst, const VectorType &src) {
+          contact_amg.vmult(dst, src);
+        };
+      }
 
     // With a projected right-hand side and start, every Krylov iterate keeps
     // zero normal components at the fixed nodes.
@@ -504,7 +599,8 @@ namespace ViscoContact
                      projected(preconditioner, preconditioner_scratch),
                      u,
                      step_rhs,
-                     b_norm);
+                     b_norm,
+                     accuracy);
     // u = u_0 + y: now u.nu_i = beta at the fixed nodes.
     u += u0;
     // A failed solve leaves r and z as they were; ContactNodes::solve()
@@ -557,11 +653,25 @@ namespace ViscoContact
   {
     const Apply op
       = [&](VectorType &dst, const VectorType &src) { A->vmult(dst, src); };
-    const Apply prec = [&](VectorType &dst, const VectorType &src) {
-      apply_preconditioner(dst, src);
-    };
+    Apply prec;
+    if (factorization)
+      prec = [&](VectorType &dst, const VectorType &src) {
+        factorization->solve(dst, src);
+      };
+    else
+      {
+        if (!operator_amg_built)
+          {
+            build_amg(*A, operator_amg);
+            operator_amg_built = true;
+            ++this->counts.operator_setups;
+          }
+        prec = [&](VectorType &dst, const VectorType &src) {
+          operator_amg.vmult(dst, src);
+        };
+      }
     u = 0;
-    return krylov_solve(op, prec, u, rhs, rhs.l2_norm());
+    return krylov_solve(op, prec, u, rhs, rhs.l2_norm(), tolerance);
   }
 
 

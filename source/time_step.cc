@@ -143,8 +143,10 @@ namespace ViscoContact
         // iteration.
         contact_solver->set_right_hand_side(rhs, contact_set);
         result = contact_set.solve(
-          [&]() {
-            return contact_solver->solve_for_pieces(contact_set, solution);
+          [&](const double accuracy) {
+            return contact_solver->solve_for_pieces(contact_set,
+                                                    solution,
+                                                    accuracy);
           },
           parameters.max_iterations,
           parameters.tolerance,

@@ -505,7 +505,7 @@ namespace
           const double          tolerance)
     {
       return nodes.solve(
-        [&]() {
+        [&](double) {
           LinearSolveReport report;
           Vector<double>    r, z;
           report.residual = system.solve(nodes.pieces(), d, r, z);
@@ -549,6 +549,63 @@ TEST(ActiveSetSolver, DecoupledNodesMatchClosedForm)
   const unsigned int factorizations = solver.system.n_factorizations();
   EXPECT_EQ(solver.solve(d_vector, 50, 1e-12).iterations(), 1u);
   EXPECT_EQ(solver.system.n_factorizations(), factorizations);
+}
+
+
+
+// Inexact early solves: a back end that solves only to the accuracy it is
+// asked for (here: the exact dense solution, off by that accuracy) must be
+// asked for sqrt(Tolerance) while the pieces change, then for Tolerance on
+// the same pieces, and end with the exact iteration's pieces, forces and
+// number of iterations.
+TEST(ActiveSetSolver, InexactEarlySolvesEndAtTheExactSolution)
+{
+  const std::vector<double> d = {-0.001, 0.002, 0.0075, 0.009, 0.03};
+  const unsigned int        m = d.size();
+  FullMatrix<double>        S(m, m);
+  std::vector<double>       w(m, 0.03125);
+  for (unsigned int i = 0; i < m; ++i)
+    S(i, i) = 0.01 * (1 + 0.1 * i);
+  Vector<double> d_vector(d.begin(), d.end());
+
+  DenseActiveSet exact(benchmark_law, S, w);
+  const auto     exact_result = exact.solve(d_vector, 50, 1e-12);
+  ASSERT_TRUE(exact_result.converged);
+
+  DenseActiveSet      inexact(benchmark_law, S, w);
+  std::vector<double> asked;
+  const auto          result = inexact.nodes.solve(
+    [&](const double accuracy) {
+      asked.push_back(accuracy);
+      LinearSolveReport report;
+      Vector<double>    r, z;
+      inexact.system.solve(inexact.nodes.pieces(), d_vector, r, z);
+      for (unsigned int i = 0; i < m; ++i)
+        {
+          inexact.nodes.r[i] = r[i] * (1 + accuracy);
+          inexact.nodes.z[i] = z[i] * (1 - accuracy);
+        }
+      report.residual = accuracy;
+      return report;
+    },
+    50,
+    1e-12,
+    MPI_COMM_SELF);
+  ASSERT_TRUE(result.converged);
+  EXPECT_EQ(result.iterations(), exact_result.iterations());
+  // One early solve per iteration, the last one continued to the tolerance.
+  ASSERT_EQ(asked.size(), exact_result.iterations() + 1);
+  for (unsigned int k = 0; k + 1 < asked.size(); ++k)
+    EXPECT_DOUBLE_EQ(asked[k], 1e-6);
+  EXPECT_DOUBLE_EQ(asked.back(), 1e-12);
+  for (unsigned int i = 0; i < m; ++i)
+    {
+      EXPECT_EQ(inexact.nodes.piece(i), exact.nodes.piece(i));
+      // Off by the last solve's accuracy 1e-12, relative.
+      EXPECT_NEAR(inexact.nodes.z[i],
+                  exact.nodes.z[i],
+                  2e-12 * std::abs(exact.nodes.z[i]));
+    }
 }
 
 

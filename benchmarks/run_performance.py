@@ -107,6 +107,7 @@ def run(executable, prm_text, work, name, threads=None):
         "steps": number(r"active-set iterations: \d+ in (\d+) steps", out),
         "krylov": number(r"back end: \d+ solves, (\d+) Krylov iterations", out),
         "final": re.search(r"Final displacement: .*", out).group(0),
+        "output": out,
     }
 
 

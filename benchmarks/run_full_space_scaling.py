@@ -1,0 +1,213 @@
+#!/usr/bin/python3
+"""The full space back end across mesh sizes: what a time step costs in
+elastic solves of the same mesh, and whether the CG iterations per solve
+stay put as the mesh is refined. Writes doc/performance/full_space.md and
+its figures (read in doc/performance.md).
+
+The scene is the 3D cube (parameters/cube_3d.prm on hexahedra,
+parameters/cube_3d_tetrahedra.prm on tetrahedra) with Method = full space,
+Preconditioner = amg and the explicit update, the first 8 steps of
+k = 1/32 (End time = 0.25: the contact zone grows from none to about a
+fifth of the bottom at the rigid limit), without the uniqueness check (a
+Lanczos iteration at set-up, not part of a step) and without file output.
+Each size is one process; the program's own "Cost measurement" block gives,
+measured in that process, the average time step and one solve with the
+elastic operator from a zero start to the same Tolerance (1e-10): their
+ratio is "elastic solves per step".
+
+Usage:
+    benchmarks/run_full_space_scaling.py [--executable build/viscoplastic_contact]
+        [--hexahedra 16,24,32,48] [--tetrahedra 8,12,16,24]
+        [--baseline OTHER_BUILD/viscoplastic_contact --baseline-sizes 32]
+        [--output doc/performance/full_space.md]
+    benchmarks/run_full_space_scaling.py --figures-only
+        (the figure again from the table in --output, without running)
+
+Times are wall times on whatever machine runs it; compare ratios within
+one invocation.
+"""
+
+import argparse
+import os
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from run_performance import number, run, scene  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__))), "scripts"))
+from vc_scripts import (REPO_ROOT, add_executable_argument,  # noqa: E402
+                        resolve_executable)
+
+SCENES = {"hexahedra": "cube_3d.prm", "tetrahedra": "cube_3d_tetrahedra.prm"}
+
+
+def cube(cells, n):
+    return scene(SCENES[cells], {
+        (("Geometry",), "Subdivisions"): str(n),
+        (("Time",), "End time"): "0.25",
+        (("Linear solver",), "Method"): "full space",
+        (("Linear solver",), "Preconditioner"): "amg",
+        (("Contact",), "Check uniqueness"): "false",
+    })
+
+
+def measure(executable, cells, n, work, tag):
+    row = run(executable, cube(cells, n), work, f"{tag}_{cells}_{n}")
+    out = row["output"]
+    row["solves"] = number(r"back end: (\d+) solves", out)
+    row["setups"] = number(r"set up by the back end (\d+)x", out)
+    row["elastic_krylov"] = number(
+        r"one solve with the step operator, no contact: [0-9.e+-]+ ms "
+        r"\((\d+) Krylov iterations\)", out)
+    row["step_per_solve"] = row["step_ms"] / row["solve_ms"]
+    row["krylov_per_solve"] = row["krylov"] / row["solves"]
+    row["krylov_per_step"] = row["krylov"] / row["steps"]
+    return row
+
+
+def figures(results, directory):
+    """Time per step, CG iterations per solve and elastic solves per step
+    against the dofs, one line per cell type."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))
+    for cells, rows in results.items():
+        dofs = [r["dofs"] for r in rows]
+        axes[0].loglog(dofs, [r["step_ms"] / 1000 for r in rows], "o-",
+                       label=f"{cells}: time step")
+        axes[0].loglog(dofs, [r["solve_ms"] / 1000 for r in rows], "s--",
+                       label=f"{cells}: one elastic solve")
+        axes[1].semilogx(dofs, [r["krylov_per_solve"] for r in rows], "o-",
+                         label=f"{cells}: per active-set solve")
+        axes[1].semilogx(dofs, [r["elastic_krylov"] for r in rows], "s--",
+                         label=f"{cells}: elastic solve (1e-10)")
+        axes[2].semilogx(dofs, [r["step_per_solve"] for r in rows], "o-",
+                         label=cells)
+    all_rows = [r for rows in results.values() for r in rows]
+    if all_rows:
+        first = min(all_rows, key=lambda r: r["dofs"])
+        xs = sorted(r["dofs"] for r in all_rows)
+        axes[0].loglog([xs[0], xs[-1]],
+                       [first["step_ms"] / 1000,
+                        first["step_ms"] / 1000 * xs[-1] / xs[0]],
+                       "k:", label="O(n)")
+    axes[2].axhline(3, color="k", linestyle=":", label="target 3")
+    axes[0].set_ylabel("wall time [s]")
+    axes[1].set_ylabel("CG iterations per solve")
+    axes[2].set_ylabel("time step / one elastic solve")
+    for ax in axes:
+        ax.set_xlabel("displacement dofs")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    axes[1].set_ylim(bottom=0)
+    axes[2].set_ylim(bottom=0)
+    fig.tight_layout()
+    fig.savefig(os.path.join(directory, "full_space_scaling.png"), dpi=110)
+
+
+def read_table(path):
+    """The rows of the first table of a written full_space.md, as figures()
+    needs them."""
+    results = {}
+    with open(path) as f:
+        for line in f:
+            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            if len(cells) != 15 or cells[0] not in SCENES:
+                continue
+            results.setdefault(cells[0], []).append({
+                "dofs": int(cells[2]),
+                "krylov_per_solve": float(cells[5]),
+                "elastic_krylov": float(cells[7]),
+                "step_ms": 1000 * float(cells[9]),
+                "solve_ms": 1000 * float(cells[10]),
+                "step_per_solve": float(cells[11]),
+            })
+    return results
+
+
+def main():
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_executable_argument(parser)
+    parser.add_argument("--hexahedra", default="16,24,32,48")
+    parser.add_argument("--tetrahedra", default="8,12,16,24")
+    parser.add_argument("--baseline", default=None)
+    parser.add_argument("--baseline-sizes", default="32")
+    parser.add_argument("--output", default=os.path.join(
+        REPO_ROOT, "doc", "performance", "full_space.md"))
+    parser.add_argument("--figures-only", action="store_true")
+    args = parser.parse_args()
+    if args.figures_only:
+        figures(read_table(args.output), os.path.dirname(args.output))
+        return
+    executable = resolve_executable(args.executable)
+    sizes = {"hexahedra": args.hexahedra, "tetrahedra": args.tetrahedra}
+
+    lines = [
+        "# Full space back end across mesh sizes",
+        "",
+        "Written by `benchmarks/run_full_space_scaling.py`; "
+        "`doc/performance.md` reads it. The cube (`cube_3d.prm`, "
+        "`cube_3d_tetrahedra.prm`), full space back end with AMG, 8 explicit "
+        "steps of k = 1/32, one process each. \"Elastic solves per step\": "
+        "the average time step over one solve with the elastic operator "
+        "from zero to the same Tolerance, both measured in that process.",
+        "",
+        "| cells | N | dofs | contact nodes | active-set its per step | "
+        "CG its per active-set solve | CG its per step | CG its, elastic "
+        "solve | AMG set-ups | time step [s] | elastic solve [s] | elastic "
+        "solves per step | peak memory [MB] | bytes per dof | whole "
+        "process [s] |",
+        "|" + " ---: |" * 15,
+    ]
+    results = {}
+    with tempfile.TemporaryDirectory() as work:
+        for cells in ("hexahedra", "tetrahedra"):
+            results[cells] = []
+            for n in [int(s) for s in sizes[cells].split(",") if s]:
+                r = measure(executable, cells, n, work, "this")
+                results[cells].append(r)
+                cells_line = (
+                    f"| {cells} | {n} | {r['dofs']} | {r['contact_nodes']} | "
+                    f"{r['iterations'] / r['steps']:.2f} | "
+                    f"{r['krylov_per_solve']:.1f} | {r['krylov_per_step']:.0f} | "
+                    f"{r['elastic_krylov']:.0f} | {r['setups']:.0f} | "
+                    f"{r['step_ms'] / 1000:.3g} | {r['solve_ms'] / 1000:.3g} | "
+                    f"{r['step_per_solve']:.2f} | {r['memory_mb']:.0f} | "
+                    f"{r['bytes_per_dof']:.0f} | {r['wall']:.1f} |")
+                lines.append(cells_line)
+                print(cells_line, flush=True)
+        if args.baseline:
+            lines += [
+                "", "## Against another build",
+                "",
+                f"The same runs with `{args.baseline}`, each right after "
+                "this build's run.", "",
+                "| cells | N | elastic solves per step: this | baseline | "
+                "CG its per step: this | baseline | time step: this / "
+                "baseline |",
+                "|" + " ---: |" * 7]
+            baseline = resolve_executable(args.baseline)
+            for cells in ("hexahedra",):
+                for n in [int(s) for s in args.baseline_sizes.split(",") if s]:
+                    this = measure(executable, cells, n, work, "pair")
+                    old = measure(baseline, cells, n, work, "baseline")
+                    line = (f"| {cells} | {n} | {this['step_per_solve']:.2f} | "
+                            f"{old['step_per_solve']:.2f} | "
+                            f"{this['krylov_per_step']:.0f} | "
+                            f"{old['krylov_per_step']:.0f} | "
+                            f"{this['step_ms'] / old['step_ms']:.2f} |")
+                    lines.append(line)
+                    print(line, flush=True)
+    os.makedirs(os.path.dirname(args.output), exist_ok=True)
+    with open(args.output, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    figures(results, os.path.dirname(args.output))
+
+
+if __name__ == "__main__":
+    main()

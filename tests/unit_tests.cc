@@ -521,6 +521,21 @@ namespace
     ContactNodes           nodes;
     CondensedContactSystem system;
   };
+
+  // Five decoupled nodes (a diagonal compliance), one on each piece of the
+  // benchmark law and one out of contact: their data d, S and w.
+  struct DecoupledNodes
+  {
+    const std::vector<double> d = {-0.001, 0.002, 0.0075, 0.009, 0.03};
+    const unsigned int        m = d.size();
+    FullMatrix<double>        S{m, m};
+    const std::vector<double> w = std::vector<double>(m, 0.03125);
+    DecoupledNodes()
+    {
+      for (unsigned int i = 0; i < m; ++i)
+        S(i, i) = 0.01 * (1 + 0.1 * i);
+    }
+  };
 } // namespace
 
 
@@ -529,12 +544,10 @@ namespace
 // answer. Five nodes cover the four pieces.
 TEST(ActiveSetSolver, DecoupledNodesMatchClosedForm)
 {
-  const std::vector<double> d = {-0.001, 0.002, 0.0075, 0.009, 0.03};
-  const unsigned int        m = d.size();
-  FullMatrix<double>        S(m, m);
-  std::vector<double>       w(m, 0.03125);
-  for (unsigned int i = 0; i < m; ++i)
-    S(i, i) = 0.01 * (1 + 0.1 * i);
+  const DecoupledNodes       nodes;
+  const std::vector<double> &d = nodes.d, &w = nodes.w;
+  const unsigned int         m = nodes.m;
+  const FullMatrix<double>  &S = nodes.S;
 
   DenseActiveSet solver(benchmark_law, S, w);
   Vector<double> d_vector(d.begin(), d.end());
@@ -560,13 +573,11 @@ TEST(ActiveSetSolver, DecoupledNodesMatchClosedForm)
 // number of iterations.
 TEST(ActiveSetSolver, InexactEarlySolvesEndAtTheExactSolution)
 {
-  const std::vector<double> d = {-0.001, 0.002, 0.0075, 0.009, 0.03};
-  const unsigned int        m = d.size();
-  FullMatrix<double>        S(m, m);
-  std::vector<double>       w(m, 0.03125);
-  for (unsigned int i = 0; i < m; ++i)
-    S(i, i) = 0.01 * (1 + 0.1 * i);
-  Vector<double> d_vector(d.begin(), d.end());
+  const DecoupledNodes       nodes;
+  const std::vector<double> &d = nodes.d, &w = nodes.w;
+  const unsigned int         m = nodes.m;
+  const FullMatrix<double>  &S = nodes.S;
+  Vector<double>             d_vector(d.begin(), d.end());
 
   DenseActiveSet exact(benchmark_law, S, w);
   const auto     exact_result = exact.solve(d_vector, 50, 1e-12);

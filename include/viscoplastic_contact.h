@@ -157,6 +157,10 @@ namespace ViscoContact
     assemble_right_hand_side(const double time);
     void
     assemble_external_load(const double time);
+    // Every load value at the load points and the times of the run is
+    // finite, or all ranks stop with a message naming the entry.
+    void
+    check_loads(const std::vector<double> &times);
     void
     assemble_history_load();
     // The active set around the back end's solves, for the operator it holds.

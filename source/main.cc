@@ -9,12 +9,17 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include "convergence_study.h"
+#include "file_output.h"
 #include "parameters.h"
 #include "viscoplastic_contact.h"
 
 #include <filesystem>
 #include <fstream>
+#include <cstdio>
 #include <iostream>
+#include <regex>
+#include <sstream>
+#include <vector>
 
 namespace
 {
@@ -24,7 +29,7 @@ namespace
   {
     out
       << "Usage: viscoplastic_contact FILE.prm\n"
-      << "       viscoplastic_contact --print-parameters [FILE.prm]\n"
+      << "       viscoplastic_contact --print-parameters [FILE.prm [--force]]\n"
       << "       viscoplastic_contact --help\n\n"
       << "Solves the quasistatic contact problem of a viscoplastic body with "
          "a\nnonmonotone normal compliance law for the scene FILE.prm "
@@ -32,7 +37,8 @@ namespace
          "and the scheme are\ndescribed in doc/model.md, the program in "
          "doc/algorithm.md.\n--print-parameters writes a complete, documented "
          "parameter file with the\ndefault values (the reference benchmark) "
-         "to standard output or to FILE.prm.\nThe default scene is "
+         "to standard output or to FILE.prm;\nan existing FILE.prm is only "
+         "replaced with --force.\nThe default scene is "
          "parameters/default.prm.\n";
   }
 } // namespace
@@ -57,7 +63,7 @@ main(int argc, char **argv)
   // stress update at the stress points uses (DEAL_II_NUM_THREADS limits
   // them further). Everything else is parallel through the MPI ranks.
   Utilities::MPI::MPI_InitFinalize
-             mpi_initialization(argc, argv, numbers::invalid_unsigned_int);
+    mpi_initialization(argc, argv, numbers::invalid_unsigned_int);
   const bool several_ranks
     = (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1);
   // An error may happen on one rank only, while the others wait in a
@@ -80,16 +86,49 @@ main(int argc, char **argv)
       if (first == "--print-parameters")
         {
           // --print-parameters writes every entry with its documentation and
-          // default value, to the named file or to standard output.
+          // default value, to the named file or to standard output. The
+          // command line never destroys a file: an existing file (a scene the
+          // user wrote, say) is only replaced with --force, and the new text
+          // goes to a temporary name first, so that a failed write leaves the
+          // old file as it was.
+          bool                     force = false;
+          std::vector<std::string> files;
+          for (int a = 2; a < argc; ++a)
+            if (std::string(argv[a]) == "--force")
+              force = true;
+            else
+              files.emplace_back(argv[a]);
+          if (files.size() > 1 || (force && files.empty()))
+            {
+              print_usage(std::cerr);
+              return 1;
+            }
           ParameterHandler prm;
           Parameters::AllParameters::declare_parameters(prm);
-          if (argc > 2)
+          std::ostringstream text;
+          prm.print_parameters(text, ParameterHandler::PRM);
+          if (files.empty())
             {
-              std::ofstream out(argv[2]);
-              prm.print_parameters(out, ParameterHandler::PRM);
+              std::cout << text.str() << std::flush;
+              return 0;
             }
-          else
-            prm.print_parameters(std::cout, ParameterHandler::PRM);
+          const std::string &file = files[0];
+          if (std::filesystem::exists(file) && !force)
+            {
+              std::cerr << "Error: the file <" << file
+                        << "> exists; --print-parameters does not overwrite "
+                           "it. Choose another name, or add --force to "
+                           "replace it."
+                        << std::endl;
+              return 1;
+            }
+          const std::string problem
+            = FileOutput::write_file_atomically(file, text.str());
+          if (!problem.empty())
+            {
+              std::cerr << "Error: " << problem << std::endl;
+              return 1;
+            }
           return 0;
         }
       // Otherwise exactly one argument, the parameter file.
@@ -108,6 +147,23 @@ main(int argc, char **argv)
       ParameterHandler prm;
       Parameters::AllParameters::declare_parameters(prm);
       prm.parse_input(first);
+      // A file that sets nothing (empty, or only comments) is most likely a
+      // mistake: it runs the reference benchmark into output/default. It is
+      // allowed, but said.
+      {
+        std::ifstream    in(first);
+        std::string      line;
+        bool             sets_an_entry = false;
+        const std::regex set_line("^\\s*set\\s");
+        while (!sets_an_entry && std::getline(in, line))
+          sets_an_entry = std::regex_search(line, set_line);
+        if (!sets_an_entry
+            && Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+          std::cerr << "Warning: the parameter file <" << first
+                    << "> sets no entry; every value is the default (the "
+                       "reference benchmark, output into output/default)."
+                    << std::endl;
+      }
       Parameters::AllParameters parameters;
       parameters.parse_parameters(prm);
       // A mesh file is found relative to the parameter file that names it.

@@ -187,6 +187,10 @@ namespace ViscoContact
     // output directory is modified.
     std::vector<double> times
       = time_levels(parameters.end_time, parameters.time_step);
+    // The loads at every point and time they will be evaluated: a load that
+    // is not finite stops the run here, naming the entry, the point and the
+    // time, before anything is read or written.
+    check_loads(times);
     unsigned int first_step = 1;
     if (parameters.resume)
       first_step = resume_from_checkpoint(times) + 1;

@@ -64,6 +64,11 @@ main(int argc, char **argv)
   // them further). Everything else is parallel through the MPI ranks.
   Utilities::MPI::MPI_InitFinalize
     mpi_initialization(argc, argv, numbers::invalid_unsigned_int);
+  // Standard output is line buffered even when it goes into a file or a
+  // pipe (a batch job's log): every progress line reaches the log when it
+  // is complete, not when a buffer of several kB is full. std::cout writes
+  // through C's stdout (synchronised with stdio), so this covers it too.
+  std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
   const bool several_ranks
     = (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1);
   // An error may happen on one rank only, while the others wait in a

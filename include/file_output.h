@@ -26,7 +26,8 @@ namespace ViscoContact
   //
   // For the tests, the environment variable VISCOPLASTIC_CONTACT_FAIL_WRITE
   // makes writes fail as on a full disk: every file whose name contains its
-  // value (on the last rank, for files all ranks write together).
+  // value (on the last rank, for files all ranks write together); with the
+  // value PATTERN:N from the N-th such write on.
   namespace FileOutput
   {
     // True if the test switch VISCOPLASTIC_CONTACT_FAIL_WRITE is set and its

@@ -210,6 +210,10 @@ namespace ViscoContact
       bool                print_timing_summary;
       bool                verbose;
       std::string         parsed_parameters; // the complete parsed file
+      // Every entry that changes the result, as "Subsection/Entry = value":
+      // all but the Output and Checkpoint entries and End time (a resumed
+      // run may go further). Stored with a checkpoint and compared on resume.
+      std::vector<std::string> result_entries;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -19,6 +19,8 @@
 
 #include <deal.II/lac/affine_constraints.h>
 
+#include <deal.II/numerics/data_out.h>
+
 #include "active_set.h"
 #include "contact_set.h"
 #include "contact_solver.h"
@@ -199,6 +201,11 @@ namespace ViscoContact
     output_results(const unsigned int step,
                    const double       time,
                    const std::string &stem = "solution");
+    std::string
+    write_vtu_pieces(const DataOut<dim>          &data_out,
+                     const DataOutBase::VtkFlags &flags,
+                     const std::string           &stem,
+                     const unsigned int           step) const;
     void
     write_time_series_row(const unsigned int     step,
                           const double           time,
@@ -344,7 +351,7 @@ namespace ViscoContact
     // rank 0 only), the time spent in the time loop without output, and the
     // step counters a checkpoint stores and a resumed run restores.
     std::vector<std::pair<double, std::string>> times_and_names;
-    std::ofstream                               time_series; // rank 0
+    std::string                                 time_series_file; // rank 0
     double                                      time_loop_compute_time = 0;
     unsigned int                                n_time_steps           = 0;
     unsigned int                                n_steps_done           = 0;

@@ -50,12 +50,28 @@ namespace ViscoContact
 
 
 
+    // The value is PATTERN or PATTERN:N: the writes of files whose name
+    // contains PATTERN fail, from the N-th such write on (the first, without
+    // N). N lets a test fail a file that is written repeatedly (the time
+    // series gets its header, then a row per step) at a later write.
     bool
     simulate_failure(const std::string &file)
     {
-      const char *pattern = std::getenv("VISCOPLASTIC_CONTACT_FAIL_WRITE");
-      return pattern != nullptr && *pattern != '\0'
-             && file.find(pattern) != std::string::npos;
+      const char *value = std::getenv("VISCOPLASTIC_CONTACT_FAIL_WRITE");
+      if (value == nullptr || *value == '\0')
+        return false;
+      std::string       pattern = value;
+      unsigned int      first   = 1;
+      const std::size_t colon   = pattern.rfind(':');
+      if (colon != std::string::npos)
+        {
+          first   = std::atoi(pattern.c_str() + colon + 1);
+          pattern = pattern.substr(0, colon);
+        }
+      if (file.find(pattern) == std::string::npos)
+        return false;
+      static unsigned int n_matching_writes = 0;
+      return ++n_matching_writes >= first;
     }
 
 

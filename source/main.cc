@@ -17,6 +17,7 @@
 #include <fstream>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <regex>
 #include <sstream>
 #include <vector>
@@ -79,6 +80,13 @@ main(int argc, char **argv)
       MPI_Abort(MPI_COMM_WORLD, 1);
     return 1;
   };
+  // The problem lives outside the try block: if an error reaches main()
+  // on one rank only, that rank must not run the problem's destructors
+  // before MPI_Abort, since some of them (MUMPS's, say) are collective calls
+  // that the other ranks, busy elsewhere, would never join. MPI_Abort does
+  // not return, so the objects are never destroyed then.
+  std::unique_ptr<ViscoplasticContact<2>> problem_2d;
+  std::unique_ptr<ViscoplasticContact<3>> problem_3d;
   try
     {
       // The options first: they need no parameter file.
@@ -191,9 +199,15 @@ main(int argc, char **argv)
       else if (parameters.study_enabled)
         ConvergenceStudy<3>(parameters, MPI_COMM_WORLD).run();
       else if (parameters.dimension == 2)
-        ViscoplasticContact<2>(parameters).run();
+        {
+          problem_2d = std::make_unique<ViscoplasticContact<2>>(parameters);
+          problem_2d->run();
+        }
       else
-        ViscoplasticContact<3>(parameters).run();
+        {
+          problem_3d = std::make_unique<ViscoplasticContact<3>>(parameters);
+          problem_3d->run();
+        }
     }
   catch (ExceptionBase &exc)
     {

@@ -11,6 +11,8 @@
 
 #include <deal.II/numerics/data_out.h>
 
+#include "file_output.h"
+#include "mpi_tools.h"
 #include "viscoplastic_contact.h"
 
 #include <filesystem>
@@ -43,35 +45,29 @@ namespace ViscoContact
         std::filesystem::create_directories(directory, error);
         if (error)
           problem = "it cannot be created (" + error.message() + ")";
-        else
-          {
-            // The parameter file as parsed, with every default filled in: the
-            // run can be repeated from its output directory alone.
-            std::ofstream prm_copy(directory / "parameters.prm");
-            prm_copy << parameters.parsed_parameters;
-            // A resumed run continues the series of the run it resumes.
-            time_series.open(directory / "time_series.csv",
-                             parameters.resume ? std::ios::app
-                                               : std::ios::trunc);
-            if (!prm_copy || !time_series)
-              problem = "it is not writable";
-            // A new series gets its header; a resumed one continues below the
-            // rows that resume_from_checkpoint() kept.
-            if (!parameters.resume)
-              time_series
-                << "step,time,active_set_iterations,unilateral_nodes,"
-                   "compliance_nodes,no_contact_nodes,total_contact_force,"
-                   "max_von_mises,wall_time,krylov_iterations\n";
-            time_series << std::setprecision(10);
-          }
+        if (!problem.empty())
+          problem = "Invalid parameter <Output directory> in subsection "
+                    "<Output>: value <"
+                    + parameters.directory + ">; " + problem + ".";
+        // The parameter file as parsed, with every default filled in: the
+        // run can be repeated from its output directory alone.
+        if (problem.empty())
+          problem = FileOutput::write_file_atomically(
+            (directory / "parameters.prm").string(),
+            parameters.parsed_parameters);
+        // A new series gets its header; a resumed one continues below the
+        // rows that resume_from_checkpoint() kept.
+        time_series_file = (directory / "time_series.csv").string();
+        if (problem.empty() && !parameters.resume)
+          problem = FileOutput::write_file_atomically(
+            time_series_file,
+            "step,time,active_set_iterations,unilateral_nodes,"
+            "compliance_nodes,no_contact_nodes,total_contact_force,"
+            "max_von_mises,wall_time,krylov_iterations\n");
       }
     // The outcome on rank 0 goes to every rank: either all continue or all
     // throw the same message.
-    problem = Utilities::MPI::broadcast(mpi_communicator, problem, 0);
-    AssertThrow(problem.empty(),
-                ExcMessage("Invalid parameter <Output directory> in subsection "
-                           "<Output>: value <"
-                           + parameters.directory + ">; " + problem + "."));
+    FileOutput::agree_on_problem(problem, mpi_communicator);
   }
 
 
@@ -82,7 +78,9 @@ namespace ViscoContact
   // by rank 0. They are computed on every rank before the other ranks return,
   // since the sums are collective operations. The row is flushed at once, so
   // that the file is complete up to the last finished step even if the run is
-  // killed; a resumed run cuts it back to its checkpoint.
+  // killed; a resumed run cuts it back to its checkpoint. The row is appended
+  // (rewriting the whole file per step would cost O(steps^2)); a failed append
+  // is undone and stops all ranks.
   template <int dim>
   void
   ViscoplasticContact<dim>::write_time_series_row(const unsigned int     step,
@@ -92,13 +90,17 @@ namespace ViscoContact
   {
     const auto   states = count_contact_states();
     const double force  = total_contact_force();
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
-      return;
-    time_series << step << ',' << time << ',' << result.iterations() << ','
-                << states[0] << ',' << states[1] << ',' << states[2] << ','
-                << force << ',' << max_von_mises << ',' << wall_time << ','
-                << result.inner_iterations() << '\n';
-    time_series.flush();
+    std::string  problem;
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      {
+        std::ostringstream row;
+        row << std::setprecision(10) << step << ',' << time << ','
+            << result.iterations() << ',' << states[0] << ',' << states[1]
+            << ',' << states[2] << ',' << force << ',' << max_von_mises << ','
+            << wall_time << ',' << result.inner_iterations() << '\n';
+        problem = FileOutput::append_to_file(time_series_file, row.str());
+      }
+    FileOutput::agree_on_problem(problem, mpi_communicator);
   }
 
 
@@ -254,24 +256,121 @@ namespace ViscoContact
     data_out.set_flags(flags);
     // The .vtu pieces are written by groups of ranks (at most 8 files) with MPI
     // I/O, and rank 0 writes the .pvtu record that lists them; the step number
-    // has 4 digits in the file names.
-    const std::string record = data_out.write_vtu_with_pvtu_record(
-      parameters.directory + "/",
-      stem,
-      step,
-      mpi_communicator,
-      4,
-      std::min(8u, Utilities::MPI::n_mpi_processes(mpi_communicator)));
+    // has 4 digits in the file names. Every file goes to a temporary name
+    // first, and a failure on any rank stops all ranks with the file and the
+    // reason (write_vtu_pieces()).
+    const std::string record = write_vtu_pieces(data_out, flags, stem, step);
     // Only rank 0 keeps the list of records and rewrites solution.pvd with it
     // after every record; the list goes into the checkpoints, so that a resumed
     // run extends the same .pvd file.
-    if (stem != "solution"
-        || Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
-      return;
-    times_and_names.emplace_back(time, record);
-    std::ofstream pvd(std::filesystem::path(parameters.directory)
-                      / "solution.pvd");
-    DataOutBase::write_pvd_record(pvd, times_and_names);
+    std::string problem;
+    if (stem == "solution"
+        && Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      {
+        times_and_names.emplace_back(time, record);
+        std::ostringstream pvd;
+        DataOutBase::write_pvd_record(pvd, times_and_names);
+        problem = FileOutput::write_file_atomically(
+          (std::filesystem::path(parameters.directory) / "solution.pvd")
+            .string(),
+          pvd.str());
+      }
+    FileOutput::agree_on_problem(problem, mpi_communicator);
+  }
+
+
+
+  // @sect4{ViscoplasticContact::write_vtu_pieces}
+  //
+  // What DataOut::write_vtu_with_pvtu_record() does, with deal.II's file
+  // names, but through the program's own writers: deal.II's writes the files
+  // under their final names and throws on the rank that sees an I/O error,
+  // while the others wait in the next collective call (a hang on a full
+  // disk), and it leaves a truncated file behind.
+  //
+  // The ranks form at most 8 groups of consecutive ranks; each group writes
+  // one .vtu file with MPI I/O (MPITools::write_blocks_collectively(): the
+  // XML header from the group's first rank, the patches of every rank, the
+  // footer from the last rank; temporary name, then rename). Then rank 0
+  // writes the .pvtu record that lists the pieces. Every failure is agreed
+  // on by all ranks before anyone throws.
+  template <int dim>
+  std::string
+  ViscoplasticContact<dim>::write_vtu_pieces(const DataOut<dim> &data_out,
+                                             const DataOutBase::VtkFlags &flags,
+                                             const std::string           &stem,
+                                             const unsigned int step) const
+  {
+    // DataOut keeps its patches and field names protected; this class only
+    // opens them to the writer below.
+    struct Patches : public DataOut<dim>
+    {
+      using DataOut<dim>::get_patches;
+      using DataOut<dim>::get_dataset_names;
+      using DataOut<dim>::get_nonscalar_data_ranges;
+    };
+    const Patches &patches = static_cast<const Patches &>(data_out);
+
+    const unsigned int n_ranks
+      = Utilities::MPI::n_mpi_processes(mpi_communicator);
+    const unsigned int rank
+      = Utilities::MPI::this_mpi_process(mpi_communicator);
+    const unsigned int n_files = std::min(8u, n_ranks);
+    const unsigned int group   = rank * n_files / n_ranks;
+    const unsigned int n_digits
+      = Utilities::needed_digits(std::max(0, int(n_files) - 1));
+    const std::string record = stem + "_" + Utilities::int_to_string(step, 4);
+    const auto        piece_name = [&](const unsigned int g) {
+      return record + "." + Utilities::int_to_string(g, n_digits) + ".vtu";
+    };
+
+    // This rank's part of its group's file: the header on the group's first
+    // rank, the patches, the footer on its last rank.
+    MPI_Comm  group_communicator;
+    const int error
+      = MPI_Comm_split(mpi_communicator, group, rank, &group_communicator);
+    AssertThrowMPI(error);
+    const bool first_of_group
+      = (Utilities::MPI::this_mpi_process(group_communicator) == 0);
+    const bool last_of_group
+      = (Utilities::MPI::this_mpi_process(group_communicator) + 1
+         == Utilities::MPI::n_mpi_processes(group_communicator));
+    std::ostringstream header, block;
+    if (first_of_group)
+      DataOutBase::write_vtu_header(header, flags);
+    DataOutBase::write_vtu_main(patches.get_patches(),
+                                patches.get_dataset_names(),
+                                patches.get_nonscalar_data_ranges(),
+                                flags,
+                                block);
+    if (last_of_group)
+      DataOutBase::write_vtu_footer(block);
+    const std::string text    = block.str();
+    std::string       problem = MPITools::try_write_blocks_collectively(
+      (std::filesystem::path(parameters.directory) / piece_name(group))
+        .string(),
+      header.str(),
+      text.data(),
+      text.size(),
+      group_communicator);
+    MPI_Comm_free(&group_communicator);
+    FileOutput::agree_on_problem(problem, mpi_communicator);
+
+    // The .pvtu record, once every piece is in place.
+    if (rank == 0)
+      {
+        std::vector<std::string> pieces;
+        for (unsigned int g = 0; g < n_files; ++g)
+          pieces.push_back(piece_name(g));
+        std::ostringstream pvtu;
+        data_out.write_pvtu_record(pvtu, pieces);
+        problem = FileOutput::write_file_atomically(
+          (std::filesystem::path(parameters.directory) / (record + ".pvtu"))
+            .string(),
+          pvtu.str());
+      }
+    FileOutput::agree_on_problem(problem, mpi_communicator);
+    return record + ".pvtu";
   }
 
 

@@ -779,6 +779,42 @@ namespace ViscoContact
       std::ostringstream parsed;
       prm.print_parameters(parsed, ParameterHandler::PRM);
       parsed_parameters = parsed.str();
+
+      // The entries that change the result, from the short listing (one
+      // "set" line per entry, inside "subsection" ... "end").
+      std::ostringstream short_listing;
+      prm.print_parameters(short_listing, ParameterHandler::ShortPRM);
+      std::istringstream       lines(short_listing.str());
+      std::vector<std::string> path;
+      std::string              line;
+      result_entries.clear();
+      while (std::getline(lines, line))
+        {
+          const std::string text = Utilities::trim(line);
+          if (text.rfind("subsection ", 0) == 0)
+            path.push_back(Utilities::trim(text.substr(11)));
+          else if (text == "end" && !path.empty())
+            path.pop_back();
+          else if (text.rfind("set ", 0) == 0)
+            {
+              const std::size_t equals = text.find('=');
+              const std::string name
+                = Utilities::trim(text.substr(4, equals - 4));
+              const std::string value
+                = equals == std::string::npos
+                    ? ""
+                    : Utilities::trim(text.substr(equals + 1));
+              std::string full_name;
+              for (const std::string &section : path)
+                full_name += section + "/";
+              full_name += name;
+              if (full_name.rfind("Output/", 0) == 0
+                  || full_name.rfind("Checkpoint/", 0) == 0
+                  || full_name == "Time/End time")
+                continue;
+              result_entries.push_back(full_name + " = " + value);
+            }
+        }
     }
 
 

@@ -209,6 +209,7 @@ namespace ViscoContact
       std::vector<double> profile_times;
       bool                print_timing_summary;
       bool                verbose;
+      bool                overwrite;         // remove an earlier run's files
       std::string         parsed_parameters; // the complete parsed file
       // Every entry that changes the result, as "Subsection/Entry = value":
       // all but the Output and Checkpoint entries and End time (a resumed

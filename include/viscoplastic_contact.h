@@ -196,6 +196,8 @@ namespace ViscoContact
     // is either reduced over the ranks (counts, forces, norms: written by rank
     // 0) or each rank's own part of one file (written collectively).
     void
+    check_output_directory() const;
+    void
     prepare_output_directory();
     void
     output_results(const unsigned int step,

@@ -11,6 +11,7 @@
 #include "checkpoint.h"
 #include "file_output.h"
 #include "mpi_tools.h"
+#include "time_loop.h"
 #include "viscoplastic_contact.h"
 
 #include <fstream>
@@ -616,6 +617,38 @@ namespace ViscoContact
     header.check(step == checkpoint.step);
     times = header.read_vector<double>();
     header.check(step < times.size());
+    std::pair<double, double> rescaled_next_step(0., 0.);
+    // End time is the one entry of the scene a resumed run may change (to go
+    // further, or to stop earlier). The levels up to the checkpoint stay those
+    // of the interrupted run (with its cut steps); the levels after it are
+    // those of the new schedule, so that without cuts the resumed run makes
+    // exactly the steps of an uninterrupted run to the new End time.
+    if (parameters.end_time != times.back())
+      {
+        AssertThrow(parameters.end_time > times[step],
+                    ExcMessage(
+                      "Invalid parameter <End time> in subsection "
+                      "<Time>: value <"
+                      + std::to_string(parameters.end_time)
+                      + ">, but the checkpoint to resume from is at t = "
+                      + std::to_string(times[step])
+                      + "; accepted: an End time after the "
+                        "checkpoint's time."));
+        const std::vector<double> levels
+          = time_levels(parameters.end_time, parameters.time_step);
+        const double old_next_step
+          = step + 1 < times.size() ? times[step + 1] - times[step] : 0.;
+        times.resize(step + 1);
+        for (const double t : levels)
+          if (t > times[step] * (1 + 1e-12) + 1e-300)
+            times.push_back(t);
+        // The explicit update stored the history of the next step for the
+        // old schedule's next step length (0 after its last step); it is
+        // rescaled below, once the stress points are restored.
+        rescaled_next_step
+          = {old_next_step,
+             step + 1 < times.size() ? times[step + 1] - times[step] : 0.};
+      }
     loop_time_offset            = header.read<double>();
     time_loop_compute_time      = header.read<double>();
     total_active_set_iterations = header.read<std::uint32_t>();
@@ -727,7 +760,11 @@ namespace ViscoContact
     // the restored histories, as update_stresses() would have left it. The
     // implicit update needs nothing more; its history enters through the
     // internal force.
-    if (explicit_history_update())
+    if (explicit_history_update()
+        && rescaled_next_step.first != rescaled_next_step.second)
+      rescale_history_increment(rescaled_next_step.first,
+                                rescaled_next_step.second);
+    else if (explicit_history_update())
       assemble_history_load();
     // Rank 0 removes the rows after the checkpoint from time_series.csv, which
     // the resumed run then appends to.

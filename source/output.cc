@@ -15,12 +15,81 @@
 #include "mpi_tools.h"
 #include "viscoplastic_contact.h"
 
+#include <algorithm>
 #include <filesystem>
+#include <regex>
 #include <iomanip>
 #include <sstream>
 
 namespace ViscoContact
 {
+  namespace
+  {
+    // The files and folders a run writes into its Output directory, and the
+    // temporary names they have while they are written. Nothing else in the
+    // directory is ever touched.
+    std::vector<std::filesystem::path>
+    files_of_a_run(const std::filesystem::path &directory)
+    {
+      static const std::regex names(
+        "(parameters\\.prm|solution\\.pvd|time_series\\.csv|"
+        "convergence\\.csv|(solution|failed_step)_[0-9]+(\\.[0-9]+)?\\."
+        "(vtu|pvtu)|contact_profile_[0-9]+\\.csv|checkpoint|runs)(\\.tmp)?");
+      std::vector<std::filesystem::path> files;
+      std::error_code                    error;
+      if (!std::filesystem::is_directory(directory, error))
+        return files;
+      for (const auto &entry :
+           std::filesystem::directory_iterator(directory, error))
+        if (std::regex_match(entry.path().filename().string(), names))
+          files.push_back(entry.path());
+      std::sort(files.begin(), files.end());
+      return files;
+    }
+  } // namespace
+
+
+
+  // @sect4{ViscoplasticContact::check_output_directory}
+  //
+  // The first thing run() does: a new run refuses an Output directory with
+  // another run's files, unless Overwrite = true (then
+  // prepare_output_directory() removes them once the set-up has succeeded). Old
+  // solution_0200.vtu files next to a new solution.pvd of 64 steps, or an old
+  // checkpoint that a later Resume would take up, would be mistaken for results
+  // of the new run. Only reading here; rank 0 looks, all ranks agree.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::check_output_directory() const
+  {
+    std::string problem;
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0
+        && !parameters.resume && !parameters.overwrite)
+      {
+        const auto files = files_of_a_run(parameters.directory);
+        if (!files.empty())
+          {
+            std::string list;
+            for (unsigned int i = 0; i < std::min<std::size_t>(4, files.size());
+                 ++i)
+              list += (i > 0 ? ", " : "") + files[i].filename().string();
+            if (files.size() > 4)
+              list += " and " + std::to_string(files.size() - 4) + " more";
+            problem = "Invalid parameter <Output directory> in subsection "
+                      "<Output>: value <"
+                      + parameters.directory
+                      + "> holds the files of another run (" + list
+                      + "); accepted: a directory without them, or Overwrite "
+                        "= true in subsection Output to remove them first "
+                        "(or Resume = true in subsection Checkpoint to "
+                        "continue that run).";
+          }
+      }
+    FileOutput::agree_on_problem(problem, mpi_communicator);
+  }
+
+
+
   // @sect4{ViscoplasticContact::prepare_output_directory}
   //
   // Called once the input is known to be good (parameters parsed, mesh,
@@ -42,13 +111,23 @@ namespace ViscoContact
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
         std::error_code error;
-        std::filesystem::create_directories(directory, error);
+        // With Overwrite = true, the earlier run's files go now, after the
+        // set-up of this run succeeded and before anything of it is written.
+        if (!parameters.resume && parameters.overwrite)
+          for (const auto &file : files_of_a_run(directory))
+            if (!error)
+              std::filesystem::remove_all(file, error);
         if (error)
-          problem = "it cannot be created (" + error.message() + ")";
-        if (!problem.empty())
           problem = "Invalid parameter <Output directory> in subsection "
                     "<Output>: value <"
-                    + parameters.directory + ">; " + problem + ".";
+                    + parameters.directory
+                    + ">; the files of the earlier run cannot be removed ("
+                    + error.message() + ").";
+        else if (std::filesystem::create_directories(directory, error), error)
+          problem = "Invalid parameter <Output directory> in subsection "
+                    "<Output>: value <"
+                    + parameters.directory + ">; it cannot be created ("
+                    + error.message() + ").";
         // The parameter file as parsed, with every default filled in: the
         // run can be repeated from its output directory alone.
         if (problem.empty())

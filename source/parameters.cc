@@ -725,6 +725,17 @@ namespace ViscoContact
                           "with its .vtu files, time_series.csv and the "
                           "contact profiles. Created if missing; must not be "
                           "empty.");
+        prm.declare_entry(
+          "Overwrite",
+          "false",
+          Patterns::Bool(),
+          "A new run never mixes its files with those of an earlier run: "
+          "false refuses an Output directory that holds another run's files "
+          "(parameters.prm, solution*, failed_step_*, time_series.csv, "
+          "contact_profile_*.csv, convergence.csv, checkpoint/, runs/); true "
+          "removes those files first, once the new run's set-up has "
+          "succeeded (other files stay). A resumed run continues its own "
+          "files.");
         prm.declare_entry("Write vtu",
                           "true",
                           Patterns::Bool(),
@@ -774,6 +785,7 @@ namespace ViscoContact
           Utilities::split_string_list(prm.get("Profile times")));
         print_timing_summary = prm.get_bool("Print timing summary");
         verbose              = prm.get_bool("Verbose");
+        overwrite            = prm.get_bool("Overwrite");
       }
       prm.leave_subsection();
       std::ostringstream parsed;

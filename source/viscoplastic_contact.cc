@@ -173,6 +173,9 @@ namespace ViscoContact
     // the contact nodes need K for their parameters c_i; the back end needs the
     // number of contact nodes to choose its method and, if condensed, the nodes
     // themselves.
+    // A folder with another run's files is refused before any work is done
+    // (or, with Overwrite = true, cleared later by prepare_output_directory()).
+    check_output_directory();
     make_grid();
     setup_system();
     setup_stress_points();

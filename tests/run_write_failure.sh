@@ -70,7 +70,7 @@ done
 
 # The checkpoint of step 6 fails: the one of step 4 stays, and a run resumed
 # from it ends as the uninterrupted run.
-mkdir -p full
+rm -rf full && mkdir -p full
 (cd full && "$here/run_mpi.sh" "$ranks" "$executable" ../scene.prm > out.txt 2> err.txt) \
   || fail "The uninterrupted run failed: $(cat full/err.txt)"
 expect_failure "$label" step_000006 checkpoint/step_000006.bin
@@ -80,6 +80,14 @@ sed -e "s/^\( *set Resume *=\).*/\1 true/" scene.prm > resume.prm
 "$here/run_mpi.sh" "$ranks" "$executable" resume.prm > out.txt 2> err.txt \
   || fail "Resuming after the failed checkpoint failed: $(cat err.txt)"
 grep -q "^Resuming from the checkpoint of step 4 " out.txt || fail "Not resumed from step 4."
-cmp -s <(cut -d, -f1-8 full/results/time_series.csv) <(cut -d, -f1-8 results/time_series.csv) \
-  || fail "The resumed run's time series differs from the uninterrupted run's."
+# Identical on one rank; on two, MUMPS and the parallel sums are not
+# bit-reproducible from run to run, so numdiff with the tolerances of
+# run_resume_check.sh for other rank counts (the CSV has 10 digits).
+cut -d, -f1-8 full/results/time_series.csv > full.txt
+cut -d, -f1-8 results/time_series.csv > resumed.txt
+if [ "$ranks" -eq 1 ]; then
+  cmp -s full.txt resumed.txt
+else
+  numdiff -q -a 1e-10 -r 1e-8 -s ' \t\n,' full.txt resumed.txt > /dev/null
+fi || fail "The resumed run's time series differs from the uninterrupted run's."
 echo "$((n + 1)) simulated write failures on $ranks rank(s) ended every rank with status 1 and the file and reason; the last complete checkpoint resumed to the uninterrupted result."

@@ -10,6 +10,7 @@
 
 #include "convergence_study.h"
 #include "file_output.h"
+#include "stop_signals.h"
 #include "parameters.h"
 #include "viscoplastic_contact.h"
 
@@ -70,6 +71,10 @@ main(int argc, char **argv)
   // is complete, not when a buffer of several kB is full. std::cout writes
   // through C's stdout (synchronised with stdio), so this covers it too.
   std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
+  // SIGTERM, SIGINT and SIGUSR1 stop the run after the current time step,
+  // with a checkpoint (stop_signals.h). Installed once MPI is up: Open MPI's
+  // start-up sets its own handlers.
+  StopSignals::install();
   const bool several_ranks
     = (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1);
   // An error may happen on one rank only, while the others wait in a
@@ -208,6 +213,13 @@ main(int argc, char **argv)
           problem_3d = std::make_unique<ViscoplasticContact<3>>(parameters);
           problem_3d->run();
         }
+    }
+  catch (const StopSignals::Stopped &stopped)
+    {
+      // All ranks stopped after the same step, its checkpoint written: an
+      // orderly end, with the status a shell gives a process killed by
+      // the signal, so that job scripts see that the run is not complete.
+      return 128 + stopped.signal;
     }
   catch (ExceptionBase &exc)
     {

@@ -9,7 +9,9 @@
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/fe_system.h>
 
+#include "checkpoint.h"
 #include "loads.h"
+#include "stop_signals.h"
 #include "time_loop.h"
 #include "viscoplastic_contact.h"
 
@@ -271,9 +273,32 @@ namespace ViscoContact
         // The checkpoint comes after the output of the step, so that a run
         // resumed from it has everything of step n on disk, and the .pvd list
         // the checkpoint stores includes step n.
-        if (parameters.checkpoint_interval > 0
-            && n % parameters.checkpoint_interval == 0)
+        const bool checkpoint_due = parameters.checkpoint_interval > 0
+                                    && n % parameters.checkpoint_interval == 0;
+        if (checkpoint_due)
           write_checkpoint(n, times, wall_time);
+        // A scheduler's signal (SIGTERM, SIGINT, SIGUSR1) on any rank: every
+        // rank learns of it here, once per step, through the maximum over the
+        // ranks, so that all stop after this same step. The step is complete
+        // and written; a checkpoint of it is written if none is due, and the
+        // run ends with status 128 + signal (main()). After the last step
+        // there is nothing left to save the run for: it ends normally.
+        const int signal
+          = Utilities::MPI::max(StopSignals::received(), mpi_communicator);
+        if (signal != 0 && n + 1 < times.size())
+          {
+            if (!checkpoint_due)
+              write_checkpoint(n, times, wall_time);
+            pcout << "Stopped after step " << n << " (t = " << times[n]
+                  << ") on " << StopSignals::name(signal)
+                  << "; the checkpoint of step " << n << " is in "
+                  << checkpoint_directory(parameters.directory).string()
+                  << ".\nTo continue the run, set Resume = true in "
+                     "subsection <Checkpoint> and run the same parameter "
+                     "file again (on any number of MPI ranks)."
+                  << std::endl;
+            throw StopSignals::Stopped{signal};
+          }
         // For tests of the checkpoints: end the loop here as if the run had
         // been killed after the checkpoint; the summary is still printed.
         if (n == parameters.stop_after_step)

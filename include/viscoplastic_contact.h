@@ -198,6 +198,8 @@ namespace ViscoContact
     void
     check_output_directory() const;
     void
+    check_memory_estimate() const;
+    void
     prepare_output_directory();
     void
     output_results(const unsigned int step,

@@ -46,7 +46,8 @@ rank_pid() { # mpirun_pid rank
 # signal(s) to the target (run: the process started; rank1: rank 1 alone),
 # and waits for the end; sets status and log.
 interrupt() { # target signal [signal]
-  rm -rf stopped/results
+  # The log of the last case must not be mistaken for this one's.
+  rm -rf stopped/results stopped/out.txt stopped/err.txt
   (cd stopped && exec "$here/run_mpi.sh" "$ranks" "$executable" ../scene.prm > out.txt 2> err.txt) &
   local pid=$! start=$SECONDS
   until grep -q "^Step   20 " stopped/out.txt 2>/dev/null; do
@@ -113,7 +114,7 @@ if [ "$ranks" -eq 1 ]; then
   sed -e 's/^\( *set Subdivisions *=\).*/\1 96/' \
       -e 's/^\( *set Time step *=\).*/\1 0.0625/' \
       -e 's/^\( *set Method *=\).*/\1 full space/' scene.prm > slow.prm
-  rm -rf stopped/results
+  rm -rf stopped/results stopped/out.txt stopped/err.txt
   (cd stopped && exec "$executable" ../slow.prm > out.txt 2> err.txt) &
   pid=$!
   start=$SECONDS

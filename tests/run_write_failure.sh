@@ -54,10 +54,15 @@ for configuration in $configurations; do
   label="$ranks rank(s), Method = $method, Preconditioner = $preconditioner"
   scene "$method" "$preconditioner" true > scene.prm
   expect_failure "$label" time_series.csv:5 time_series.csv
-  expect_failure "$label" contact_profile contact_profile_0008.csv
   expect_failure "$label" "solution_0003.$((ranks - 1)).vtu" "solution_0003.$((ranks - 1)).vtu"
-  expect_failure "$label" solution.pvd:3 solution.pvd
-  n=$((n + 4))
+  n=$((n + 2))
+  # The other files once per rank count (their writers do not depend on
+  # the solver): with the last configuration, the one that used to hang.
+  if [ "$configuration" = "${configurations##* }" ]; then
+    expect_failure "$label" contact_profile contact_profile_0008.csv
+    expect_failure "$label" solution.pvd:3 solution.pvd
+    n=$((n + 2))
+  fi
   if [ "$ranks" -eq 1 ]; then
     expect_failure "$label" parameters.prm parameters.prm
     expect_failure "$label" solution_0003.pvtu solution_0003.pvtu

@@ -227,6 +227,9 @@ namespace ViscoContact
       unsigned int checkpoint_interval; // 0: never
       bool         resume;
       unsigned int stop_after_step; // 0: never
+      // Not an entry: false for the runs of a convergence study, which
+      // cannot be resumed one by one (a signal then writes no checkpoint).
+      bool resumable = true;
 
       static void
       declare_parameters(ParameterHandler &prm);

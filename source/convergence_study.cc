@@ -57,6 +57,7 @@ namespace ViscoContact
     run_parameters.subdivisions              = subdivisions;
     run_parameters.time_step                 = time_step;
     run_parameters.study_enabled             = false;
+    run_parameters.resumable                 = false;
     run_parameters.write_vtu                 = false;
     run_parameters.verbose                   = false;
     run_parameters.print_timing_summary      = false;

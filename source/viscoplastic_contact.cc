@@ -372,6 +372,15 @@ namespace ViscoContact
         // there is nothing left to save the run for: it ends normally.
         const int signal
           = Utilities::MPI::max(StopSignals::received(), mpi_communicator);
+        if (signal != 0 && n + 1 < times.size() && !parameters.resumable)
+          {
+            pcout << "Stopped after step " << n << " (t = " << times[n]
+                  << ") on " << StopSignals::name(signal)
+                  << "; a convergence study cannot be resumed: run it "
+                     "again."
+                  << std::endl;
+            throw StopSignals::Stopped{signal};
+          }
         if (signal != 0 && n + 1 < times.size())
           {
             if (!checkpoint_due)

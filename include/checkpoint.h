@@ -133,6 +133,10 @@ namespace ViscoContact
     double        time    = 0;
     unsigned int  n_ranks = 1;
     std::uint64_t n_dofs  = 0;
+    // The entries that change the result, as "Subsection/Entry = value"
+    // (Parameters::AllParameters::result_entries): a resumed run must have
+    // the same ones.
+    std::vector<std::string> entries;
   };
 
   // <Output directory>/checkpoint, and the file of a step in it.
@@ -172,13 +176,16 @@ namespace ViscoContact
   // The last complete checkpoint; throws with a message that names the
   // Resume entry if there is none or it was written for another problem
   // size.
+  // The entries of the run that resumes must be those of the record.
   CheckpointRecord
-  read_checkpoint_record(const std::string  &output_directory,
-                         const std::uint64_t n_dofs);
+  read_checkpoint_record(const std::string              &output_directory,
+                         const std::uint64_t             n_dofs,
+                         const std::vector<std::string> &entries);
 
   // Keep the header and the rows of steps <= step of time_series.csv (the
   // rows of a resumed run's later steps are written again).
-  void
+  // Returns an empty string or the message of a failed write.
+  std::string
   truncate_time_series(const std::filesystem::path &file,
                        const unsigned int           step);
 } // namespace ViscoContact

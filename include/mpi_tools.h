@@ -37,7 +37,14 @@ namespace ViscoContact
                             const MPI_Comm     communicator);
 
     // Collective. The general form: rank 0's prefix, then the blocks of all
-    // ranks in rank order.
+    // ranks in rank order. try_write_blocks_collectively() returns the
+    // message of a failure (the same on every rank) instead of throwing.
+    std::string
+    try_write_blocks_collectively(const std::string &file,
+                                  const std::string &prefix,
+                                  const char        *local_block,
+                                  const std::size_t  local_size,
+                                  const MPI_Comm     communicator);
     void
     write_blocks_collectively(const std::string &file,
                               const std::string &prefix,
@@ -70,6 +77,11 @@ namespace ViscoContact
     // MPI's text for an error code.
     std::string
     error_string(const int error_code);
+
+    // The system's reason for an I/O error class of MPI (No space left on
+    // device, ...) with MPI's text; MPI's text alone for other errors.
+    std::string
+    describe_error(const int error_code);
   } // namespace MPITools
 } // namespace ViscoContact
 

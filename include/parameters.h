@@ -209,7 +209,12 @@ namespace ViscoContact
       std::vector<double> profile_times;
       bool                print_timing_summary;
       bool                verbose;
+      bool                overwrite;         // remove an earlier run's files
       std::string         parsed_parameters; // the complete parsed file
+      // Every entry that changes the result, as "Subsection/Entry = value":
+      // all but the Output and Checkpoint entries and End time (a resumed
+      // run may go further). Stored with a checkpoint and compared on resume.
+      std::vector<std::string> result_entries;
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -222,6 +227,9 @@ namespace ViscoContact
       unsigned int checkpoint_interval; // 0: never
       bool         resume;
       unsigned int stop_after_step; // 0: never
+      // Not an entry: false for the runs of a convergence study, which
+      // cannot be resumed one by one (a signal then writes no checkpoint).
+      bool resumable = true;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -19,6 +19,8 @@
 
 #include <deal.II/lac/affine_constraints.h>
 
+#include <deal.II/numerics/data_out.h>
+
 #include "active_set.h"
 #include "contact_set.h"
 #include "contact_solver.h"
@@ -157,6 +159,10 @@ namespace ViscoContact
     assemble_right_hand_side(const double time);
     void
     assemble_external_load(const double time);
+    // Every load value at the load points and the times of the run is
+    // finite, or all ranks stop with a message naming the entry.
+    void
+    check_loads(const std::vector<double> &times);
     void
     assemble_history_load();
     // The active set around the back end's solves, for the operator it holds.
@@ -190,11 +196,20 @@ namespace ViscoContact
     // is either reduced over the ranks (counts, forces, norms: written by rank
     // 0) or each rank's own part of one file (written collectively).
     void
+    check_output_directory() const;
+    void
+    check_memory_estimate() const;
+    void
     prepare_output_directory();
     void
     output_results(const unsigned int step,
                    const double       time,
                    const std::string &stem = "solution");
+    std::string
+    write_vtu_pieces(const DataOut<dim>          &data_out,
+                     const DataOutBase::VtkFlags &flags,
+                     const std::string           &stem,
+                     const unsigned int           step) const;
     void
     write_time_series_row(const unsigned int     step,
                           const double           time,
@@ -340,7 +355,7 @@ namespace ViscoContact
     // rank 0 only), the time spent in the time loop without output, and the
     // step counters a checkpoint stores and a resumed run restores.
     std::vector<std::pair<double, std::string>> times_and_names;
-    std::ofstream                               time_series; // rank 0
+    std::string                                 time_series_file; // rank 0
     double                                      time_loop_compute_time = 0;
     unsigned int                                n_time_steps           = 0;
     unsigned int                                n_steps_done           = 0;

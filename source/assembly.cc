@@ -7,12 +7,145 @@
 
 #include <deal.II/fe/fe_values.h>
 
+#include "file_output.h"
 #include "viscoplastic_contact.h"
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 
 namespace ViscoContact
 {
+  namespace
+  {
+    // The message of a load that is not finite at a point and a time: the
+    // entry, its value, the point and the time, and what is accepted.
+    template <int dim>
+    std::string
+    non_finite_load(const std::string    &entry,
+                    const std::string    &expression,
+                    const Vector<double> &value,
+                    const Point<dim>     &point,
+                    const double          time)
+    {
+      const auto list = [](const auto &values, const unsigned int n) {
+        std::ostringstream text;
+        for (unsigned int d = 0; d < n; ++d)
+          text << (d > 0 ? ", " : "") << values[d];
+        return text.str();
+      };
+      return "Invalid parameter <" + entry + "> in subsection <Loads>: value <"
+             + expression + "> is not finite at the point (" + list(point, dim)
+             + ") at t = " + list(std::vector<double>{time}, 1) + " (it gives "
+             + list(value, dim)
+             + "); accepted: expressions with a finite value at every load "
+               "point of the mesh and every time of the run.";
+    }
+
+    template <int dim>
+    bool
+    is_finite(const Vector<double> &value)
+    {
+      for (const double v : value)
+        if (!std::isfinite(v))
+          return false;
+      return true;
+    }
+  } // namespace
+
+
+
+  // @sect4{ViscoplasticContact::check_loads}
+  //
+  // A load that is not finite somewhere (1/0, sqrt(t - 0.5) at t = 0) would
+  // only show as a displacement that is not finite in some step, after files
+  // have been written and without naming the entry. So the loads are
+  // evaluated here, before the output directory is touched: the surface
+  // traction at the face quadrature points of the loaded boundary, the body
+  // force at the load quadrature points of the cells, each at every time
+  // level of the run (at t = 0 only, if the loads do not mention t). These are
+  // the points and times the assembly evaluates.
+  //
+  // The body force of a large time-dependent 3D run would make this as
+  // expensive as assembling it in every step; beyond a budget of evaluations,
+  // the cells are checked at a stride, and the assembly itself checks every
+  // value it computes (assemble_external_load()).
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::check_loads(const std::vector<double> &times)
+  {
+    const std::vector<double> check_times
+      = loads_depend_on_time ? times : std::vector<double>{times[0]};
+    // The points first, once: the geometry does not change with time.
+    std::vector<Point<dim>> body_points, traction_points;
+    FEValues<dim>           fe_values(mapping,
+                            *fe,
+                            load_quadrature,
+                            update_quadrature_points);
+    FEFaceValues<dim>       fe_face_values(mapping,
+                                     *fe,
+                                     face_quadrature,
+                                     update_quadrature_points);
+    for (const auto &cell : owned_cells)
+      {
+        if (!body_force_is_zero)
+          {
+            fe_values.reinit(cell);
+            for (const unsigned int q : fe_values.quadrature_point_indices())
+              body_points.push_back(fe_values.quadrature_point(q));
+          }
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary()
+              && std::find(parameters.loaded_ids.begin(),
+                           parameters.loaded_ids.end(),
+                           cell->face(f)->boundary_id())
+                   != parameters.loaded_ids.end())
+            {
+              fe_face_values.reinit(cell, f);
+              for (const unsigned int q :
+                   fe_face_values.quadrature_point_indices())
+                traction_points.push_back(fe_face_values.quadrature_point(q));
+            }
+      }
+
+    // At most about 2e7 evaluations per rank and load: every point if that
+    // suffices, otherwise every stride-th point.
+    const auto stride_of = [&](const std::size_t n_points) {
+      const double evaluations = double(n_points) * check_times.size();
+      return std::max<std::size_t>(1, std::size_t(evaluations / 2e7));
+    };
+    std::string    problem;
+    Vector<double> value(dim);
+    const auto     check = [&](FunctionParser<dim>           &load,
+                           const std::string             &entry,
+                           const std::string             &expression,
+                           const std::vector<Point<dim>> &points) {
+      const std::size_t stride = stride_of(points.size());
+      for (const double t : check_times)
+        {
+          load.set_time(t);
+          for (std::size_t i = 0; i < points.size() && problem.empty();
+               i += stride)
+            {
+              load.vector_value(points[i], value);
+              if (!is_finite<dim>(value))
+                problem
+                  = non_finite_load(entry, expression, value, points[i], t);
+            }
+        }
+    };
+    check(surface_traction,
+          "Surface traction",
+          parameters.surface_traction,
+          traction_points);
+    check(body_force, "Body force", parameters.body_force, body_points);
+    // One outcome for all ranks: the message of the lowest rank that found
+    // a point.
+    FileOutput::agree_on_problem(problem, mpi_communicator);
+  }
+
+
+
   // @sect4{ViscoplasticContact::assemble_right_hand_side}
   //
   // b_n = (f_n, v) - (H_n, eps(v)). The history part was assembled by the
@@ -83,6 +216,9 @@ namespace ViscoContact
              != parameters.loaded_ids.end();
     };
 
+    // The first value that is not finite, if any (check_loads() has checked
+    // the loads before the run, possibly only at some of the points).
+    std::string problem;
     for (const auto &cell : owned_cells)
       {
         cell_rhs       = 0;
@@ -96,6 +232,12 @@ namespace ViscoContact
               {
                 body_force.vector_value(fe_values.quadrature_point(q),
                                         load_value);
+                if (problem.empty() && !is_finite<dim>(load_value))
+                  problem = non_finite_load(std::string("Body force"),
+                                            parameters.body_force,
+                                            load_value,
+                                            fe_values.quadrature_point(q),
+                                            time);
                 for (unsigned int i = 0; i < dofs_per_cell; ++i)
                   cell_rhs(i)
                     += load_value(fe->system_to_component_index(i).first)
@@ -116,6 +258,13 @@ namespace ViscoContact
                   surface_traction.vector_value(fe_face_values.quadrature_point(
                                                   q),
                                                 load_value);
+                  if (problem.empty() && !is_finite<dim>(load_value))
+                    problem
+                      = non_finite_load(std::string("Surface traction"),
+                                        parameters.surface_traction,
+                                        load_value,
+                                        fe_face_values.quadrature_point(q),
+                                        time);
                   for (unsigned int i = 0; i < dofs_per_cell; ++i)
                     cell_rhs(i)
                       += load_value(fe->system_to_component_index(i).first)
@@ -138,6 +287,7 @@ namespace ViscoContact
     // Contributions to ghost dofs are sent to and added by their owners; the
     // vector then holds owned entries only.
     external_load.compress(VectorOperation::add);
+    FileOutput::agree_on_problem(problem, mpi_communicator);
     ++n_external_load_assemblies;
   }
 

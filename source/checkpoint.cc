@@ -9,7 +9,9 @@
 #include <deal.II/grid/cell_id.h>
 
 #include "checkpoint.h"
+#include "file_output.h"
 #include "mpi_tools.h"
+#include "time_loop.h"
 #include "viscoplastic_contact.h"
 
 #include <fstream>
@@ -300,22 +302,19 @@ namespace ViscoContact
         const std::filesystem::path info = directory / "checkpoint.info";
         const std::filesystem::path temporary
           = directory / "checkpoint.info.tmp";
-        {
-          std::ofstream out(temporary);
-          out << std::setprecision(17) << "step " << record.step << '\n'
-              << "time " << record.time << '\n'
-              << "ranks " << record.n_ranks << '\n'
-              << "dofs " << record.n_dofs << '\n';
-          out.flush();
-          if (!out)
-            problem = "Writing " + temporary.string() + " failed.";
-        }
+        // Written to the disk (fsync) before the rename: the record must never
+        // name a file that a crash of the machine could lose.
+        std::ostringstream out;
+        out << std::setprecision(17) << "step " << record.step << '\n'
+            << "time " << record.time << '\n'
+            << "ranks " << record.n_ranks << '\n'
+            << "dofs " << record.n_dofs << '\n';
+        for (const std::string &entry : record.entries)
+          out << "entry " << entry << '\n';
+        problem = FileOutput::write_file_atomically(info.string(),
+                                                    out.str(),
+                                                    /*durable=*/true);
         std::error_code error;
-        if (problem.empty())
-          std::filesystem::rename(temporary, info, error);
-        if (error)
-          problem = "Renaming " + temporary.string()
-                    + " failed: " + error.message() + ".";
         if (problem.empty() && previous_step != numbers::invalid_unsigned_int
             && previous_step != record.step)
           std::filesystem::remove(checkpoint_file(output_directory,
@@ -336,8 +335,9 @@ namespace ViscoContact
   // with a message about the Resume entry; the dof count is a cheap check that
   // the parameter file describes the scene that wrote the checkpoint.
   CheckpointRecord
-  read_checkpoint_record(const std::string  &output_directory,
-                         const std::uint64_t n_dofs)
+  read_checkpoint_record(const std::string              &output_directory,
+                         const std::uint64_t             n_dofs,
+                         const std::vector<std::string> &entries)
   {
     const std::filesystem::path info
       = checkpoint_directory(output_directory) / "checkpoint.info";
@@ -362,6 +362,40 @@ namespace ViscoContact
                            + " displacement dofs, this scene "
                            + std::to_string(n_dofs)
                            + "; accepted: resuming the scene that wrote it."));
+    // The entries that change the result, one per line after the counts.
+    // A resumed run with another material or time step would continue the
+    // old state with the new scene: a result of neither. Every entry that
+    // differs is named.
+    std::string line;
+    while (std::getline(in, line))
+      if (line.rfind("entry ", 0) == 0)
+        record.entries.push_back(line.substr(6));
+    std::string differences;
+    const auto  name_of = [](const std::string &entry) {
+      return entry.substr(0, entry.find(" = "));
+    };
+    for (const std::string &entry : entries)
+      if (std::find(record.entries.begin(), record.entries.end(), entry)
+          == record.entries.end())
+        {
+          // The value the checkpoint was written with, if it has the entry.
+          std::string stored = "(none)";
+          for (const std::string &old_entry : record.entries)
+            if (name_of(old_entry) == name_of(entry))
+              stored = old_entry.substr(old_entry.find(" = ") + 3);
+          differences += "\n      " + entry + " (checkpoint: " + stored + ")";
+        }
+    AssertThrow(differences.empty(),
+                ExcMessage("Invalid parameter <Resume> in subsection "
+                           "<Checkpoint>: the checkpoint of step "
+                           + std::to_string(record.step) + " in "
+                           + info.string()
+                           + " was written with other parameters; these "
+                             "entries differ:"
+                           + differences
+                           + "\n    accepted: resuming with the parameters "
+                             "that wrote it (only the Output and Checkpoint "
+                             "entries and End time may change)."));
     return record;
   }
 
@@ -373,7 +407,7 @@ namespace ViscoContact
   // its checkpoint are dropped, since the resumed run computes those steps
   // again and appends their rows. The file is small (one row per step) and is
   // read and rewritten as a whole.
-  void
+  std::string
   truncate_time_series(const std::filesystem::path &file,
                        const unsigned int           step)
   {
@@ -393,9 +427,10 @@ namespace ViscoContact
           kept.push_back(line);
       }
     in.close();
-    std::ofstream out(file, std::ios::trunc);
+    std::string text;
     for (const std::string &row : kept)
-      out << row << '\n';
+      text += row + '\n';
+    return FileOutput::write_file_atomically(file.string(), text);
   }
 
 
@@ -523,6 +558,7 @@ namespace ViscoContact
     record.time    = times[step];
     record.n_ranks = Utilities::MPI::n_mpi_processes(mpi_communicator);
     record.n_dofs  = dof_handler.n_dofs();
+    record.entries = parameters.result_entries;
     publish_checkpoint(parameters.directory,
                        record,
                        last_checkpoint_step,
@@ -552,7 +588,9 @@ namespace ViscoContact
   ViscoplasticContact<dim>::resume_from_checkpoint(std::vector<double> &times)
   {
     const CheckpointRecord checkpoint
-      = read_checkpoint_record(parameters.directory, dof_handler.n_dofs());
+      = read_checkpoint_record(parameters.directory,
+                               dof_handler.n_dofs(),
+                               parameters.result_entries);
     const std::filesystem::path file
       = checkpoint_file(parameters.directory, checkpoint.step);
 
@@ -579,6 +617,38 @@ namespace ViscoContact
     header.check(step == checkpoint.step);
     times = header.read_vector<double>();
     header.check(step < times.size());
+    std::pair<double, double> rescaled_next_step(0., 0.);
+    // End time is the one entry of the scene a resumed run may change (to go
+    // further, or to stop earlier). The levels up to the checkpoint stay those
+    // of the interrupted run (with its cut steps); the levels after it are
+    // those of the new schedule, so that without cuts the resumed run makes
+    // exactly the steps of an uninterrupted run to the new End time.
+    if (parameters.end_time != times.back())
+      {
+        AssertThrow(parameters.end_time > times[step],
+                    ExcMessage(
+                      "Invalid parameter <End time> in subsection "
+                      "<Time>: value <"
+                      + std::to_string(parameters.end_time)
+                      + ">, but the checkpoint to resume from is at t = "
+                      + std::to_string(times[step])
+                      + "; accepted: an End time after the "
+                        "checkpoint's time."));
+        const std::vector<double> levels
+          = time_levels(parameters.end_time, parameters.time_step);
+        const double old_next_step
+          = step + 1 < times.size() ? times[step + 1] - times[step] : 0.;
+        times.resize(step + 1);
+        for (const double t : levels)
+          if (t > times[step] * (1 + 1e-12) + 1e-300)
+            times.push_back(t);
+        // The explicit update stored the history of the next step for the
+        // old schedule's next step length (0 after its last step); it is
+        // rescaled below, once the stress points are restored.
+        rescaled_next_step
+          = {old_next_step,
+             step + 1 < times.size() ? times[step + 1] - times[step] : 0.};
+      }
     loop_time_offset            = header.read<double>();
     time_loop_compute_time      = header.read<double>();
     total_active_set_iterations = header.read<std::uint32_t>();
@@ -690,14 +760,20 @@ namespace ViscoContact
     // the restored histories, as update_stresses() would have left it. The
     // implicit update needs nothing more; its history enters through the
     // internal force.
-    if (explicit_history_update())
+    if (explicit_history_update()
+        && rescaled_next_step.first != rescaled_next_step.second)
+      rescale_history_increment(rescaled_next_step.first,
+                                rescaled_next_step.second);
+    else if (explicit_history_update())
       assemble_history_load();
     // Rank 0 removes the rows after the checkpoint from time_series.csv, which
     // the resumed run then appends to.
+    std::string problem;
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-      truncate_time_series(std::filesystem::path(parameters.directory)
-                             / "time_series.csv",
-                           step);
+      problem = truncate_time_series(std::filesystem::path(parameters.directory)
+                                       / "time_series.csv",
+                                     step);
+    FileOutput::agree_on_problem(problem, mpi_communicator);
     last_checkpoint_step = step;
     n_steps_done         = step;
     pcout << "Resuming from the checkpoint of step " << step

@@ -14,6 +14,7 @@
 #include <deal.II/base/timer.h>
 
 #include "convergence_study.h"
+#include "file_output.h"
 
 #include <algorithm>
 #include <cmath>
@@ -56,6 +57,7 @@ namespace ViscoContact
     run_parameters.subdivisions              = subdivisions;
     run_parameters.time_step                 = time_step;
     run_parameters.study_enabled             = false;
+    run_parameters.resumable                 = false;
     run_parameters.write_vtu                 = false;
     run_parameters.verbose                   = false;
     run_parameters.print_timing_summary      = false;
@@ -516,93 +518,107 @@ namespace ViscoContact
     const unsigned int            reference_steps,
     const double                  reference_wall_time) const
   {
-    if (Utilities::MPI::this_mpi_process(communicator) != 0)
-      return;
-    // The table goes into the study's output directory, created if need be.
-    std::filesystem::create_directories(parameters.directory);
-    std::ofstream csv(std::filesystem::path(parameters.directory)
-                      / "convergence.csv");
-    csv << "h,k,subdivisions,dofs,steps,compared_levels,wall_time,error_u,"
-           "error_sigma,error,order_u,order_sigma,order\n"
-        << std::setprecision(10);
-    // Wall times only with the timing summary, so that the table of a test
-    // run is reproducible.
-    const auto wall_time_text = [&](const double seconds) {
-      std::ostringstream text;
-      if (parameters.print_timing_summary)
-        text << std::setprecision(3) << seconds;
-      else
-        text << '-';
-      return text.str();
-    };
-    // The terminal header names the reference resolution and its cost.
-    std::cout << "\nConvergence study against h = 1/"
-              << parameters.reference_subdivisions
-              << ", k = " << parameters.reference_time_step << " ("
-              << reference_dofs << " dofs, " << reference_steps << " steps, "
-              << wall_time_text(reference_wall_time) << " s)\n"
-              << "     h          k     dofs steps  wall [s]   "
-                 "err_u    order  err_sigma  order      error  order\n";
-    for (unsigned int r = 0; r < runs.size(); ++r)
+    // Rank 0 writes the table (under a temporary name, then renamed); all
+    // ranks learn whether that worked.
+    std::string problem;
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
       {
-        const Run   &run = runs[r];
-        const double h   = parameters.lengths[0] / run.subdivisions;
-        // The observed order of one error column (a pointer to the member of
-        // Run that holds it); NaN where it is not defined.
-        const auto order = [&](const double Run::*member) -> double {
-          if (r == 0 || runs[r - 1].failed)
-            return std::numeric_limits<double>::quiet_NaN();
-          const Run   &previous = runs[r - 1];
-          const double h_prev   = parameters.lengths[0] / previous.subdivisions;
-          // The order in the quantity that varies: k on a fixed mesh, h at
-          // a fixed step, h + k when both change.
-          const double size_prev
-            = (previous.subdivisions == run.subdivisions ? 0. : h_prev)
-              + (previous.time_step == run.time_step ? 0. : previous.time_step);
-          const double size
-            = (previous.subdivisions == run.subdivisions ? 0. : h)
-              + (previous.time_step == run.time_step ? 0. : run.time_step);
-          return std::log(previous.*member / run.*member)
-                 / std::log(size_prev / size);
+        // The table goes into the study's output directory, created if need be.
+        std::filesystem::create_directories(parameters.directory);
+        std::ostringstream csv;
+        csv << "h,k,subdivisions,dofs,steps,compared_levels,wall_time,error_u,"
+               "error_sigma,error,order_u,order_sigma,order\n"
+            << std::setprecision(10);
+        // Wall times only with the timing summary, so that the table of a test
+        // run is reproducible.
+        const auto wall_time_text = [&](const double seconds) {
+          std::ostringstream text;
+          if (parameters.print_timing_summary)
+            text << std::setprecision(3) << seconds;
+          else
+            text << '-';
+          return text.str();
         };
-        // A failed run: its resolution, and infinite errors.
-        if (run.failed)
+        // The terminal header names the reference resolution and its cost.
+        std::cout << "\nConvergence study against h = 1/"
+                  << parameters.reference_subdivisions
+                  << ", k = " << parameters.reference_time_step << " ("
+                  << reference_dofs << " dofs, " << reference_steps
+                  << " steps, " << wall_time_text(reference_wall_time)
+                  << " s)\n"
+                  << "     h          k     dofs steps  wall [s]   "
+                     "err_u    order  err_sigma  order      error  order\n";
+        for (unsigned int r = 0; r < runs.size(); ++r)
           {
-            csv << h << ',' << run.time_step << ',' << run.subdivisions
-                << ",,,0," << run.wall_time << ",inf,inf,inf,nan,nan,nan\n";
+            const Run   &run = runs[r];
+            const double h   = parameters.lengths[0] / run.subdivisions;
+            // The observed order of one error column (a pointer to the member
+            // of Run that holds it); NaN where it is not defined.
+            const auto order = [&](const double Run::*member) -> double {
+              if (r == 0 || runs[r - 1].failed)
+                return std::numeric_limits<double>::quiet_NaN();
+              const Run   &previous = runs[r - 1];
+              const double h_prev
+                = parameters.lengths[0] / previous.subdivisions;
+              // The order in the quantity that varies: k on a fixed mesh, h at
+              // a fixed step, h + k when both change.
+              const double size_prev
+                = (previous.subdivisions == run.subdivisions ? 0. : h_prev)
+                  + (previous.time_step == run.time_step ? 0.
+                                                         : previous.time_step);
+              const double size
+                = (previous.subdivisions == run.subdivisions ? 0. : h)
+                  + (previous.time_step == run.time_step ? 0. : run.time_step);
+              return std::log(previous.*member / run.*member)
+                     / std::log(size_prev / size);
+            };
+            // A failed run: its resolution, and infinite errors.
+            if (run.failed)
+              {
+                csv << h << ',' << run.time_step << ',' << run.subdivisions
+                    << ",,,0," << run.wall_time << ",inf,inf,inf,nan,nan,nan\n";
+                std::cout << std::setw(6)
+                          << "1/" + std::to_string(run.subdivisions)
+                          << std::setw(11) << std::setprecision(4)
+                          << run.time_step << "   failed: see above\n";
+                continue;
+              }
+            // The orders of the displacement part, the stress part and the
+            // total.
+            const double order_u     = order(&Run::max_error_u);
+            const double order_sigma = order(&Run::max_error_sigma);
+            const double order_total = order(&Run::max_error);
+
+            // One row of the CSV file, full precision ...
+            csv << h << ',' << run.time_step << ',' << run.subdivisions << ','
+                << run.n_dofs << ',' << run.times.size() << ','
+                << run.n_compared_levels << ',' << run.wall_time << ','
+                << run.max_error_u << ',' << run.max_error_sigma << ','
+                << run.max_error << ',' << order_u << ',' << order_sigma << ','
+                << order_total << '\n';
+            // ... and of the terminal table, aligned in columns.
             std::cout << std::setw(6) << "1/" + std::to_string(run.subdivisions)
                       << std::setw(11) << std::setprecision(4) << run.time_step
-                      << "   failed: see above\n";
-            continue;
+                      << std::setw(9) << run.n_dofs << std::setw(6)
+                      << run.times.size() << std::setw(10)
+                      << wall_time_text(run.wall_time) << std::scientific
+                      << std::setprecision(3) << std::setw(11)
+                      << run.max_error_u << std::fixed << std::setprecision(2)
+                      << std::setw(7) << order_u << std::scientific
+                      << std::setprecision(3) << std::setw(11)
+                      << run.max_error_sigma << std::fixed
+                      << std::setprecision(2) << std::setw(7) << order_sigma
+                      << std::scientific << std::setprecision(3)
+                      << std::setw(11) << run.max_error << std::fixed
+                      << std::setprecision(2) << std::setw(7) << order_total
+                      << std::defaultfloat << '\n';
           }
-        // The orders of the displacement part, the stress part and the
-        // total.
-        const double order_u     = order(&Run::max_error_u);
-        const double order_sigma = order(&Run::max_error_sigma);
-        const double order_total = order(&Run::max_error);
-
-        // One row of the CSV file, full precision ...
-        csv << h << ',' << run.time_step << ',' << run.subdivisions << ','
-            << run.n_dofs << ',' << run.times.size() << ','
-            << run.n_compared_levels << ',' << run.wall_time << ','
-            << run.max_error_u << ',' << run.max_error_sigma << ','
-            << run.max_error << ',' << order_u << ',' << order_sigma << ','
-            << order_total << '\n';
-        // ... and of the terminal table, aligned in columns.
-        std::cout << std::setw(6) << "1/" + std::to_string(run.subdivisions)
-                  << std::setw(11) << std::setprecision(4) << run.time_step
-                  << std::setw(9) << run.n_dofs << std::setw(6)
-                  << run.times.size() << std::setw(10)
-                  << wall_time_text(run.wall_time) << std::scientific
-                  << std::setprecision(3) << std::setw(11) << run.max_error_u
-                  << std::fixed << std::setprecision(2) << std::setw(7)
-                  << order_u << std::scientific << std::setprecision(3)
-                  << std::setw(11) << run.max_error_sigma << std::fixed
-                  << std::setprecision(2) << std::setw(7) << order_sigma
-                  << std::scientific << std::setprecision(3) << std::setw(11)
-                  << run.max_error << std::fixed << std::setprecision(2)
-                  << std::setw(7) << order_total << std::defaultfloat << '\n';
+        problem = FileOutput::write_file_atomically(
+          (std::filesystem::path(parameters.directory) / "convergence.csv")
+            .string(),
+          csv.str());
       }
+    FileOutput::agree_on_problem(problem, communicator);
   }
 
 

@@ -9,12 +9,19 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include "convergence_study.h"
+#include "file_output.h"
+#include "stop_signals.h"
 #include "parameters.h"
 #include "viscoplastic_contact.h"
 
 #include <filesystem>
 #include <fstream>
+#include <cstdio>
 #include <iostream>
+#include <memory>
+#include <regex>
+#include <sstream>
+#include <vector>
 
 namespace
 {
@@ -24,7 +31,7 @@ namespace
   {
     out
       << "Usage: viscoplastic_contact FILE.prm\n"
-      << "       viscoplastic_contact --print-parameters [FILE.prm]\n"
+      << "       viscoplastic_contact --print-parameters [FILE.prm [--force]]\n"
       << "       viscoplastic_contact --help\n\n"
       << "Solves the quasistatic contact problem of a viscoplastic body with "
          "a\nnonmonotone normal compliance law for the scene FILE.prm "
@@ -32,7 +39,8 @@ namespace
          "and the scheme are\ndescribed in doc/model.md, the program in "
          "doc/algorithm.md.\n--print-parameters writes a complete, documented "
          "parameter file with the\ndefault values (the reference benchmark) "
-         "to standard output or to FILE.prm.\nThe default scene is "
+         "to standard output or to FILE.prm;\nan existing FILE.prm is only "
+         "replaced with --force.\nThe default scene is "
          "parameters/default.prm.\n";
   }
 } // namespace
@@ -57,7 +65,16 @@ main(int argc, char **argv)
   // stress update at the stress points uses (DEAL_II_NUM_THREADS limits
   // them further). Everything else is parallel through the MPI ranks.
   Utilities::MPI::MPI_InitFinalize
-             mpi_initialization(argc, argv, numbers::invalid_unsigned_int);
+    mpi_initialization(argc, argv, numbers::invalid_unsigned_int);
+  // Standard output is line buffered even when it goes into a file or a
+  // pipe (a batch job's log): every progress line reaches the log when it
+  // is complete, not when a buffer of several kB is full. std::cout writes
+  // through C's stdout (synchronised with stdio), so this covers it too.
+  std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
+  // SIGTERM, SIGINT and SIGUSR1 stop the run after the current time step,
+  // with a checkpoint (stop_signals.h). Installed once MPI is up: Open MPI's
+  // start-up sets its own handlers.
+  StopSignals::install();
   const bool several_ranks
     = (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1);
   // An error may happen on one rank only, while the others wait in a
@@ -68,6 +85,13 @@ main(int argc, char **argv)
       MPI_Abort(MPI_COMM_WORLD, 1);
     return 1;
   };
+  // The problem lives outside the try block: if an error reaches main()
+  // on one rank only, that rank must not run the problem's destructors
+  // before MPI_Abort, since some of them (MUMPS's, say) are collective calls
+  // that the other ranks, busy elsewhere, would never join. MPI_Abort does
+  // not return, so the objects are never destroyed then.
+  std::unique_ptr<ViscoplasticContact<2>> problem_2d;
+  std::unique_ptr<ViscoplasticContact<3>> problem_3d;
   try
     {
       // The options first: they need no parameter file.
@@ -80,16 +104,49 @@ main(int argc, char **argv)
       if (first == "--print-parameters")
         {
           // --print-parameters writes every entry with its documentation and
-          // default value, to the named file or to standard output.
+          // default value, to the named file or to standard output. The
+          // command line never destroys a file: an existing file (a scene the
+          // user wrote, say) is only replaced with --force, and the new text
+          // goes to a temporary name first, so that a failed write leaves the
+          // old file as it was.
+          bool                     force = false;
+          std::vector<std::string> files;
+          for (int a = 2; a < argc; ++a)
+            if (std::string(argv[a]) == "--force")
+              force = true;
+            else
+              files.emplace_back(argv[a]);
+          if (files.size() > 1 || (force && files.empty()))
+            {
+              print_usage(std::cerr);
+              return 1;
+            }
           ParameterHandler prm;
           Parameters::AllParameters::declare_parameters(prm);
-          if (argc > 2)
+          std::ostringstream text;
+          prm.print_parameters(text, ParameterHandler::PRM);
+          if (files.empty())
             {
-              std::ofstream out(argv[2]);
-              prm.print_parameters(out, ParameterHandler::PRM);
+              std::cout << text.str() << std::flush;
+              return 0;
             }
-          else
-            prm.print_parameters(std::cout, ParameterHandler::PRM);
+          const std::string &file = files[0];
+          if (std::filesystem::exists(file) && !force)
+            {
+              std::cerr << "Error: the file <" << file
+                        << "> exists; --print-parameters does not overwrite "
+                           "it. Choose another name, or add --force to "
+                           "replace it."
+                        << std::endl;
+              return 1;
+            }
+          const std::string problem
+            = FileOutput::write_file_atomically(file, text.str());
+          if (!problem.empty())
+            {
+              std::cerr << "Error: " << problem << std::endl;
+              return 1;
+            }
           return 0;
         }
       // Otherwise exactly one argument, the parameter file.
@@ -108,6 +165,23 @@ main(int argc, char **argv)
       ParameterHandler prm;
       Parameters::AllParameters::declare_parameters(prm);
       prm.parse_input(first);
+      // A file that sets nothing (empty, or only comments) is most likely a
+      // mistake: it runs the reference benchmark into output/default. It is
+      // allowed, but said.
+      {
+        std::ifstream    in(first);
+        std::string      line;
+        bool             sets_an_entry = false;
+        const std::regex set_line("^\\s*set\\s");
+        while (!sets_an_entry && std::getline(in, line))
+          sets_an_entry = std::regex_search(line, set_line);
+        if (!sets_an_entry
+            && Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+          std::cerr << "Warning: the parameter file <" << first
+                    << "> sets no entry; every value is the default (the "
+                       "reference benchmark, output into output/default)."
+                    << std::endl;
+      }
       Parameters::AllParameters parameters;
       parameters.parse_parameters(prm);
       // A mesh file is found relative to the parameter file that names it.
@@ -130,9 +204,22 @@ main(int argc, char **argv)
       else if (parameters.study_enabled)
         ConvergenceStudy<3>(parameters, MPI_COMM_WORLD).run();
       else if (parameters.dimension == 2)
-        ViscoplasticContact<2>(parameters).run();
+        {
+          problem_2d = std::make_unique<ViscoplasticContact<2>>(parameters);
+          problem_2d->run();
+        }
       else
-        ViscoplasticContact<3>(parameters).run();
+        {
+          problem_3d = std::make_unique<ViscoplasticContact<3>>(parameters);
+          problem_3d->run();
+        }
+    }
+  catch (const StopSignals::Stopped &stopped)
+    {
+      // All ranks stopped after the same step, its checkpoint written: an
+      // orderly end, with the status a shell gives a process killed by
+      // the signal, so that job scripts see that the run is not complete.
+      return 128 + stopped.signal;
     }
   catch (ExceptionBase &exc)
     {

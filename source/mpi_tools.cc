@@ -13,8 +13,10 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
+#include "file_output.h"
 #include "mpi_tools.h"
 
+#include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <algorithm>
@@ -37,6 +39,28 @@ namespace ViscoContact
 
 
 
+    // MPI's I/O error classes that correspond to a system error get the
+    // system's words, as in the messages of the files written without MPI
+    // ("No space left on device"), followed by MPI's text.
+    std::string
+    describe_error(const int error_code)
+    {
+      int error_class = error_code;
+      MPI_Error_class(error_code, &error_class);
+      const std::map<int, int> system_error = {{MPI_ERR_NO_SPACE, ENOSPC},
+                                               {MPI_ERR_QUOTA, EDQUOT},
+                                               {MPI_ERR_ACCESS, EACCES},
+                                               {MPI_ERR_READ_ONLY, EROFS},
+                                               {MPI_ERR_NO_SUCH_FILE, ENOENT}};
+      const auto               entry        = system_error.find(error_class);
+      if (entry == system_error.end())
+        return error_string(error_code);
+      return std::string(std::strerror(entry->second)) + " ("
+             + error_string(error_code) + ")";
+    }
+
+
+
     // @sect4{write_blocks_collectively}
     //
     // Offsets from an exclusive prefix sum of the block sizes; every rank
@@ -47,12 +71,12 @@ namespace ViscoContact
     // The file is written under a temporary name and renamed only when every
     // rank has written its part: a reader (or a resumed run) sees the old
     // file or the complete new one, never a partly written one.
-    void
-    write_blocks_collectively(const std::string &file,
-                              const std::string &prefix,
-                              const char        *local_block,
-                              const std::size_t  local_size,
-                              const MPI_Comm     communicator)
+    std::string
+    try_write_blocks_collectively(const std::string &file,
+                                  const std::string &prefix,
+                                  const char        *local_block,
+                                  const std::size_t  local_size,
+                                  const MPI_Comm     communicator)
     {
       const bool root = (Utilities::MPI::this_mpi_process(communicator) == 0);
       const std::string temporary = file + ".tmp";
@@ -105,6 +129,12 @@ namespace ViscoContact
                                              MPI_CHAR,
                                              MPI_STATUS_IGNORE);
               });
+          // The test switch of FileOutput: the last rank fails as on a full
+          // disk, the case where one rank alone sees the error.
+          if (error == MPI_SUCCESS && FileOutput::simulate_failure(file)
+              && Utilities::MPI::this_mpi_process(communicator) + 1
+                   == Utilities::MPI::n_mpi_processes(communicator))
+            error = MPI_ERR_NO_SPACE;
           // Closing is collective too; its error counts only if everything
           // before succeeded.
           const int close_error = MPI_File_close(&handle);
@@ -112,21 +142,43 @@ namespace ViscoContact
             error = close_error;
         }
       // One outcome for all ranks. Only rank 0 renames, and it may fail
-      // alone, so its result is broadcast: every rank throws the same
-      // message, or none does.
+      // alone, so its result is broadcast: every rank returns the same
+      // message, or none does. A failed file is removed, so that no partial
+      // file is left behind.
       error               = Utilities::MPI::max(error, communicator);
-      std::string problem = (error == MPI_SUCCESS ? "" : error_string(error));
-      if (problem.empty() && root)
+      std::string problem = (error == MPI_SUCCESS ? "" : describe_error(error));
+      if (root)
         {
-          std::error_code rename_error;
-          std::filesystem::rename(temporary, file, rename_error);
-          if (rename_error)
-            problem = rename_error.message();
+          std::error_code file_error;
+          if (problem.empty())
+            std::filesystem::rename(temporary, file, file_error);
+          if (file_error)
+            problem = file_error.message();
+          if (!problem.empty())
+            std::filesystem::remove(temporary, file_error);
         }
       problem = Utilities::MPI::broadcast(communicator, problem, 0);
-      AssertThrow(problem.empty(),
-                  ExcMessage("Writing the file " + file + " failed: " + problem
-                             + "."));
+      return problem.empty()
+               ? ""
+               : "Writing the file " + file + " failed: " + problem + ".";
+    }
+
+
+
+    // The throwing form: every rank throws the same message, or none does.
+    void
+    write_blocks_collectively(const std::string &file,
+                              const std::string &prefix,
+                              const char        *local_block,
+                              const std::size_t  local_size,
+                              const MPI_Comm     communicator)
+    {
+      const std::string problem = try_write_blocks_collectively(file,
+                                                                prefix,
+                                                                local_block,
+                                                                local_size,
+                                                                communicator);
+      AssertThrow(problem.empty(), ExcMessage(problem));
     }
 
 

@@ -11,14 +11,85 @@
 
 #include <deal.II/numerics/data_out.h>
 
+#include "file_output.h"
+#include "mpi_tools.h"
 #include "viscoplastic_contact.h"
 
+#include <algorithm>
 #include <filesystem>
+#include <regex>
 #include <iomanip>
 #include <sstream>
 
 namespace ViscoContact
 {
+  namespace
+  {
+    // The files and folders a run writes into its Output directory, and the
+    // temporary names they have while they are written. Nothing else in the
+    // directory is ever touched.
+    std::vector<std::filesystem::path>
+    files_of_a_run(const std::filesystem::path &directory)
+    {
+      static const std::regex names(
+        "(parameters\\.prm|solution\\.pvd|time_series\\.csv|"
+        "convergence\\.csv|(solution|failed_step)_[0-9]+(\\.[0-9]+)?\\."
+        "(vtu|pvtu)|contact_profile_[0-9]+\\.csv|checkpoint|runs)(\\.tmp)?");
+      std::vector<std::filesystem::path> files;
+      std::error_code                    error;
+      if (!std::filesystem::is_directory(directory, error))
+        return files;
+      for (const auto &entry :
+           std::filesystem::directory_iterator(directory, error))
+        if (std::regex_match(entry.path().filename().string(), names))
+          files.push_back(entry.path());
+      std::sort(files.begin(), files.end());
+      return files;
+    }
+  } // namespace
+
+
+
+  // @sect4{ViscoplasticContact::check_output_directory}
+  //
+  // The first thing run() does: a new run refuses an Output directory with
+  // another run's files, unless Overwrite = true (then
+  // prepare_output_directory() removes them once the set-up has succeeded). Old
+  // solution_0200.vtu files next to a new solution.pvd of 64 steps, or an old
+  // checkpoint that a later Resume would take up, would be mistaken for results
+  // of the new run. Only reading here; rank 0 looks, all ranks agree.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::check_output_directory() const
+  {
+    std::string problem;
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0
+        && !parameters.resume && !parameters.overwrite)
+      {
+        const auto files = files_of_a_run(parameters.directory);
+        if (!files.empty())
+          {
+            std::string list;
+            for (unsigned int i = 0; i < std::min<std::size_t>(4, files.size());
+                 ++i)
+              list += (i > 0 ? ", " : "") + files[i].filename().string();
+            if (files.size() > 4)
+              list += " and " + std::to_string(files.size() - 4) + " more";
+            problem = "Invalid parameter <Output directory> in subsection "
+                      "<Output>: value <"
+                      + parameters.directory
+                      + "> holds the files of another run (" + list
+                      + "); accepted: a directory without them, or Overwrite "
+                        "= true in subsection Output to remove them first "
+                        "(or Resume = true in subsection Checkpoint to "
+                        "continue that run).";
+          }
+      }
+    FileOutput::agree_on_problem(problem, mpi_communicator);
+  }
+
+
+
   // @sect4{ViscoplasticContact::prepare_output_directory}
   //
   // Called once the input is known to be good (parameters parsed, mesh,
@@ -40,38 +111,42 @@ namespace ViscoContact
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
         std::error_code error;
-        std::filesystem::create_directories(directory, error);
+        // With Overwrite = true, the earlier run's files go now, after the
+        // set-up of this run succeeded and before anything of it is written.
+        if (!parameters.resume && parameters.overwrite)
+          for (const auto &file : files_of_a_run(directory))
+            if (!error)
+              std::filesystem::remove_all(file, error);
         if (error)
-          problem = "it cannot be created (" + error.message() + ")";
-        else
-          {
-            // The parameter file as parsed, with every default filled in: the
-            // run can be repeated from its output directory alone.
-            std::ofstream prm_copy(directory / "parameters.prm");
-            prm_copy << parameters.parsed_parameters;
-            // A resumed run continues the series of the run it resumes.
-            time_series.open(directory / "time_series.csv",
-                             parameters.resume ? std::ios::app
-                                               : std::ios::trunc);
-            if (!prm_copy || !time_series)
-              problem = "it is not writable";
-            // A new series gets its header; a resumed one continues below the
-            // rows that resume_from_checkpoint() kept.
-            if (!parameters.resume)
-              time_series
-                << "step,time,active_set_iterations,unilateral_nodes,"
-                   "compliance_nodes,no_contact_nodes,total_contact_force,"
-                   "max_von_mises,wall_time,krylov_iterations\n";
-            time_series << std::setprecision(10);
-          }
+          problem = "Invalid parameter <Output directory> in subsection "
+                    "<Output>: value <"
+                    + parameters.directory
+                    + ">; the files of the earlier run cannot be removed ("
+                    + error.message() + ").";
+        else if (std::filesystem::create_directories(directory, error), error)
+          problem = "Invalid parameter <Output directory> in subsection "
+                    "<Output>: value <"
+                    + parameters.directory + ">; it cannot be created ("
+                    + error.message() + ").";
+        // The parameter file as parsed, with every default filled in: the
+        // run can be repeated from its output directory alone.
+        if (problem.empty())
+          problem = FileOutput::write_file_atomically(
+            (directory / "parameters.prm").string(),
+            parameters.parsed_parameters);
+        // A new series gets its header; a resumed one continues below the
+        // rows that resume_from_checkpoint() kept.
+        time_series_file = (directory / "time_series.csv").string();
+        if (problem.empty() && !parameters.resume)
+          problem = FileOutput::write_file_atomically(
+            time_series_file,
+            "step,time,active_set_iterations,unilateral_nodes,"
+            "compliance_nodes,no_contact_nodes,total_contact_force,"
+            "max_von_mises,wall_time,krylov_iterations\n");
       }
     // The outcome on rank 0 goes to every rank: either all continue or all
     // throw the same message.
-    problem = Utilities::MPI::broadcast(mpi_communicator, problem, 0);
-    AssertThrow(problem.empty(),
-                ExcMessage("Invalid parameter <Output directory> in subsection "
-                           "<Output>: value <"
-                           + parameters.directory + ">; " + problem + "."));
+    FileOutput::agree_on_problem(problem, mpi_communicator);
   }
 
 
@@ -82,7 +157,9 @@ namespace ViscoContact
   // by rank 0. They are computed on every rank before the other ranks return,
   // since the sums are collective operations. The row is flushed at once, so
   // that the file is complete up to the last finished step even if the run is
-  // killed; a resumed run cuts it back to its checkpoint.
+  // killed; a resumed run cuts it back to its checkpoint. The row is appended
+  // (rewriting the whole file per step would cost O(steps^2)); a failed append
+  // is undone and stops all ranks.
   template <int dim>
   void
   ViscoplasticContact<dim>::write_time_series_row(const unsigned int     step,
@@ -92,13 +169,17 @@ namespace ViscoContact
   {
     const auto   states = count_contact_states();
     const double force  = total_contact_force();
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
-      return;
-    time_series << step << ',' << time << ',' << result.iterations() << ','
-                << states[0] << ',' << states[1] << ',' << states[2] << ','
-                << force << ',' << max_von_mises << ',' << wall_time << ','
-                << result.inner_iterations() << '\n';
-    time_series.flush();
+    std::string  problem;
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      {
+        std::ostringstream row;
+        row << std::setprecision(10) << step << ',' << time << ','
+            << result.iterations() << ',' << states[0] << ',' << states[1]
+            << ',' << states[2] << ',' << force << ',' << max_von_mises << ','
+            << wall_time << ',' << result.inner_iterations() << '\n';
+        problem = FileOutput::append_to_file(time_series_file, row.str());
+      }
+    FileOutput::agree_on_problem(problem, mpi_communicator);
   }
 
 
@@ -254,24 +335,121 @@ namespace ViscoContact
     data_out.set_flags(flags);
     // The .vtu pieces are written by groups of ranks (at most 8 files) with MPI
     // I/O, and rank 0 writes the .pvtu record that lists them; the step number
-    // has 4 digits in the file names.
-    const std::string record = data_out.write_vtu_with_pvtu_record(
-      parameters.directory + "/",
-      stem,
-      step,
-      mpi_communicator,
-      4,
-      std::min(8u, Utilities::MPI::n_mpi_processes(mpi_communicator)));
+    // has 4 digits in the file names. Every file goes to a temporary name
+    // first, and a failure on any rank stops all ranks with the file and the
+    // reason (write_vtu_pieces()).
+    const std::string record = write_vtu_pieces(data_out, flags, stem, step);
     // Only rank 0 keeps the list of records and rewrites solution.pvd with it
     // after every record; the list goes into the checkpoints, so that a resumed
     // run extends the same .pvd file.
-    if (stem != "solution"
-        || Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
-      return;
-    times_and_names.emplace_back(time, record);
-    std::ofstream pvd(std::filesystem::path(parameters.directory)
-                      / "solution.pvd");
-    DataOutBase::write_pvd_record(pvd, times_and_names);
+    std::string problem;
+    if (stem == "solution"
+        && Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      {
+        times_and_names.emplace_back(time, record);
+        std::ostringstream pvd;
+        DataOutBase::write_pvd_record(pvd, times_and_names);
+        problem = FileOutput::write_file_atomically(
+          (std::filesystem::path(parameters.directory) / "solution.pvd")
+            .string(),
+          pvd.str());
+      }
+    FileOutput::agree_on_problem(problem, mpi_communicator);
+  }
+
+
+
+  // @sect4{ViscoplasticContact::write_vtu_pieces}
+  //
+  // What DataOut::write_vtu_with_pvtu_record() does, with deal.II's file
+  // names, but through the program's own writers: deal.II's writes the files
+  // under their final names and throws on the rank that sees an I/O error,
+  // while the others wait in the next collective call (a hang on a full
+  // disk), and it leaves a truncated file behind.
+  //
+  // The ranks form at most 8 groups of consecutive ranks; each group writes
+  // one .vtu file with MPI I/O (MPITools::write_blocks_collectively(): the
+  // XML header from the group's first rank, the patches of every rank, the
+  // footer from the last rank; temporary name, then rename). Then rank 0
+  // writes the .pvtu record that lists the pieces. Every failure is agreed
+  // on by all ranks before anyone throws.
+  template <int dim>
+  std::string
+  ViscoplasticContact<dim>::write_vtu_pieces(const DataOut<dim> &data_out,
+                                             const DataOutBase::VtkFlags &flags,
+                                             const std::string           &stem,
+                                             const unsigned int step) const
+  {
+    // DataOut keeps its patches and field names protected; this class only
+    // opens them to the writer below.
+    struct Patches : public DataOut<dim>
+    {
+      using DataOut<dim>::get_patches;
+      using DataOut<dim>::get_dataset_names;
+      using DataOut<dim>::get_nonscalar_data_ranges;
+    };
+    const Patches &patches = static_cast<const Patches &>(data_out);
+
+    const unsigned int n_ranks
+      = Utilities::MPI::n_mpi_processes(mpi_communicator);
+    const unsigned int rank
+      = Utilities::MPI::this_mpi_process(mpi_communicator);
+    const unsigned int n_files = std::min(8u, n_ranks);
+    const unsigned int group   = rank * n_files / n_ranks;
+    const unsigned int n_digits
+      = Utilities::needed_digits(std::max(0, int(n_files) - 1));
+    const std::string record = stem + "_" + Utilities::int_to_string(step, 4);
+    const auto        piece_name = [&](const unsigned int g) {
+      return record + "." + Utilities::int_to_string(g, n_digits) + ".vtu";
+    };
+
+    // This rank's part of its group's file: the header on the group's first
+    // rank, the patches, the footer on its last rank.
+    MPI_Comm  group_communicator;
+    const int error
+      = MPI_Comm_split(mpi_communicator, group, rank, &group_communicator);
+    AssertThrowMPI(error);
+    const bool first_of_group
+      = (Utilities::MPI::this_mpi_process(group_communicator) == 0);
+    const bool last_of_group
+      = (Utilities::MPI::this_mpi_process(group_communicator) + 1
+         == Utilities::MPI::n_mpi_processes(group_communicator));
+    std::ostringstream header, block;
+    if (first_of_group)
+      DataOutBase::write_vtu_header(header, flags);
+    DataOutBase::write_vtu_main(patches.get_patches(),
+                                patches.get_dataset_names(),
+                                patches.get_nonscalar_data_ranges(),
+                                flags,
+                                block);
+    if (last_of_group)
+      DataOutBase::write_vtu_footer(block);
+    const std::string text    = block.str();
+    std::string       problem = MPITools::try_write_blocks_collectively(
+      (std::filesystem::path(parameters.directory) / piece_name(group))
+        .string(),
+      header.str(),
+      text.data(),
+      text.size(),
+      group_communicator);
+    MPI_Comm_free(&group_communicator);
+    FileOutput::agree_on_problem(problem, mpi_communicator);
+
+    // The .pvtu record, once every piece is in place.
+    if (rank == 0)
+      {
+        std::vector<std::string> pieces;
+        for (unsigned int g = 0; g < n_files; ++g)
+          pieces.push_back(piece_name(g));
+        std::ostringstream pvtu;
+        data_out.write_pvtu_record(pvtu, pieces);
+        problem = FileOutput::write_file_atomically(
+          (std::filesystem::path(parameters.directory) / (record + ".pvtu"))
+            .string(),
+          pvtu.str());
+      }
+    FileOutput::agree_on_problem(problem, mpi_communicator);
+    return record + ".pvtu";
   }
 
 

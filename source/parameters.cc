@@ -57,16 +57,19 @@ namespace ViscoContact
                         "Space dimension: 2 (plane stress) or 3.");
       prm.enter_subsection("Geometry");
       {
-        prm.declare_entry("Lengths",
-                          "1, 1",
-                          Patterns::List(Patterns::Double(0), 2, 3),
-                          "Edge lengths L1, L2 (, L3) of the rectangular body "
-                          "(0,L1)x(0,L2)(x(0,L3)), one per dimension.");
+        prm.declare_entry(
+          "Lengths",
+          "1, 1",
+          Patterns::List(Patterns::Double(0), 2, 3),
+          "Edge lengths L1, L2 (, L3) of the rectangular body "
+          "(0,L1)x(0,L2)(x(0,L3)), one per dimension, each > 0.");
         prm.declare_entry("Subdivisions",
                           "32",
                           Patterns::Integer(1, 100000),
                           "Number of squares (cubes) along each edge; the mesh "
-                          "size is h = L_i / Subdivisions.");
+                          "size is h = L_i / Subdivisions. An integer in [1, "
+                          "100000]; a mesh whose estimated memory exceeds "
+                          "the memory of the machine is refused.");
         prm.declare_entry(
           "Cell type",
           "simplex",
@@ -104,14 +107,16 @@ namespace ViscoContact
         prm.declare_entry("Global refinements",
                           "0",
                           Patterns::Integer(0, 20),
-                          "Uniform refinements of the generated or read mesh.");
+                          "Uniform refinements of the generated or read mesh; "
+                          "an integer in [0, 20].");
         prm.declare_entry(
           "Contact refinement levels",
           "0",
           Patterns::Integer(0, 20),
           "Extra refinements of the cells that touch Gamma_3, repeated this "
           "many times (a mesh graded toward the contact boundary; hanging "
-          "nodes are constrained). Hypercube meshes only.");
+          "nodes are constrained). An integer in [0, 20]; 0 for simplex "
+          "cells.");
       }
       prm.leave_subsection();
     }
@@ -183,18 +188,21 @@ namespace ViscoContact
           Patterns::List(Patterns::Integer(0, 255), 1),
           "Boundary ids of Gamma_1 (u = 0). The generated box numbers its "
           "faces as deal.II's colorize does: 0/1 at x = 0/L1, 2/3 at y = 0/L2, "
-          "4/5 at z = 0/L3.");
+          "4/5 at z = 0/L3. At least one id; ids are integers in [0, 255] "
+          "and must be on the mesh.");
         prm.declare_entry("Contact boundary ids",
                           "2",
                           Patterns::List(Patterns::Integer(0, 255)),
                           "Boundary ids of Gamma_3 (contact with the "
-                          "foundation). Every other boundary part is Gamma_2.");
+                          "foundation). Every other boundary part is Gamma_2. "
+                          "Integers in [0, 255], none of them clamped.");
         prm.declare_entry("Loaded boundary ids",
                           "3",
                           Patterns::List(Patterns::Integer(0, 255)),
                           "Parts of Gamma_2 that carry the surface traction of "
                           "subsection Loads; the rest of Gamma_2 is "
-                          "traction-free.");
+                          "traction-free. Integers in [0, 255], none of them "
+                          "clamped.");
       }
       prm.leave_subsection();
     }
@@ -309,13 +317,14 @@ namespace ViscoContact
           "f_0(x,t) [N/m^2 in 2D]: one muparser expression per component, "
           "separated by ';', in the variables x, y (, z) and t and the "
           "constants pi, L1, L2 (, L3). A load without the variable t is "
-          "assembled once for the whole run.");
+          "assembled once for the whole run. Every value at the load points "
+          "of the mesh and the times of the run must be finite.");
         prm.declare_entry(
           "Surface traction",
           "0; -5",
           Patterns::Anything(),
           "f_2(x,t) [N/m in 2D] on the Loaded boundary ids, same syntax as "
-          "the body force.");
+          "the body force; every value must be finite.");
       }
       prm.leave_subsection();
     }
@@ -561,8 +570,9 @@ namespace ViscoContact
           "0",
           Patterns::Integer(0),
           "Write a checkpoint (everything a resumed run needs) into "
-          "<Output directory>/checkpoint every n-th step; 0: never. Only the "
-          "last complete checkpoint is kept.");
+          "<Output directory>/checkpoint every n-th step; 0: never (an "
+          "integer >= 0). Only the last complete checkpoint is kept. A "
+          "signal (SIGTERM, SIGINT, SIGUSR1) always writes one.");
         prm.declare_entry(
           "Resume",
           "false",
@@ -570,11 +580,13 @@ namespace ViscoContact
           "Continue from the last complete checkpoint in the Output "
           "directory (same scene; any number of MPI ranks) instead of "
           "starting at t = 0. The time series and the .pvd record continue.");
-        prm.declare_entry("Stop after step",
-                          "0",
-                          Patterns::Integer(0),
-                          "End the run after this step as if it had been "
-                          "killed (for tests of Resume); 0: never.");
+        prm.declare_entry(
+          "Stop after step",
+          "0",
+          Patterns::Integer(0),
+          "End the run after this step as if it had been "
+          "killed (for tests of Resume); 0: never. An integer in [0, "
+          "number of time steps].");
       }
       prm.leave_subsection();
     }
@@ -601,7 +613,7 @@ namespace ViscoContact
                           Patterns::Integer(1, 10000),
                           "Limit of the primal-dual active set (semismooth "
                           "Newton) iterations per time step; reaching it stops "
-                          "the run with a report.");
+                          "the run with a report. An integer in [1, 10000].");
         prm.declare_entry(
           "Tolerance",
           "1e-10",
@@ -711,7 +723,19 @@ namespace ViscoContact
                           Patterns::DirectoryName(),
                           "Where the run writes parameters.prm, solution.pvd "
                           "with its .vtu files, time_series.csv and the "
-                          "contact profiles. Created if missing.");
+                          "contact profiles. Created if missing; must not be "
+                          "empty.");
+        prm.declare_entry(
+          "Overwrite",
+          "false",
+          Patterns::Bool(),
+          "A new run never mixes its files with those of an earlier run: "
+          "false refuses an Output directory that holds another run's files "
+          "(parameters.prm, solution*, failed_step_*, time_series.csv, "
+          "contact_profile_*.csv, convergence.csv, checkpoint/, runs/); true "
+          "removes those files first, once the new run's set-up has "
+          "succeeded (other files stay). A resumed run continues its own "
+          "files.");
         prm.declare_entry("Write vtu",
                           "true",
                           Patterns::Bool(),
@@ -721,13 +745,14 @@ namespace ViscoContact
                           "1",
                           Patterns::Integer(1),
                           "Write a .vtu file every n-th time step (and always "
-                          "the last one).");
+                          "the last one); an integer >= 1.");
         prm.declare_entry(
           "Profile times",
           "0.015625, 0.5, 1",
           Patterns::List(Patterns::Double(0)),
           "Times at which the contact profile along Gamma_3 is written to "
-          "contact_profile_NNNN.csv (the step closest to each time).");
+          "contact_profile_NNNN.csv (the step closest to each time). Each "
+          "in [0, End time].");
         prm.declare_entry("Print timing summary",
                           "true",
                           Patterns::Bool(),
@@ -746,20 +771,62 @@ namespace ViscoContact
     {
       prm.enter_subsection("Output");
       {
+        // An empty directory would put every result into the working
+        // directory, next to whatever is there; "." says so explicitly.
         directory = prm.get("Output directory");
-        if (directory.empty())
-          directory = ".";
+        require(!directory.empty(),
+                "Output",
+                "Output directory",
+                "",
+                "a directory name (\".\" for the working directory)");
         write_vtu     = prm.get_bool("Write vtu");
         interval      = prm.get_integer("Output interval");
         profile_times = Utilities::string_to_double(
           Utilities::split_string_list(prm.get("Profile times")));
         print_timing_summary = prm.get_bool("Print timing summary");
         verbose              = prm.get_bool("Verbose");
+        overwrite            = prm.get_bool("Overwrite");
       }
       prm.leave_subsection();
       std::ostringstream parsed;
       prm.print_parameters(parsed, ParameterHandler::PRM);
       parsed_parameters = parsed.str();
+
+      // The entries that change the result, from the short listing (one
+      // "set" line per entry, inside "subsection" ... "end").
+      std::ostringstream short_listing;
+      prm.print_parameters(short_listing, ParameterHandler::ShortPRM);
+      std::istringstream       lines(short_listing.str());
+      std::vector<std::string> path;
+      std::string              line;
+      result_entries.clear();
+      while (std::getline(lines, line))
+        {
+          const std::string text = Utilities::trim(line);
+          if (text.rfind("subsection ", 0) == 0)
+            path.push_back(Utilities::trim(text.substr(11)));
+          else if (text == "end" && !path.empty())
+            path.pop_back();
+          else if (text.rfind("set ", 0) == 0)
+            {
+              const std::size_t equals = text.find('=');
+              const std::string name
+                = Utilities::trim(text.substr(4, equals - 4));
+              const std::string value
+                = equals == std::string::npos
+                    ? ""
+                    : Utilities::trim(text.substr(equals + 1));
+              std::string full_name;
+              for (const std::string &section : path)
+                full_name += section + "/";
+              full_name += name;
+              if (full_name.rfind("Output/", 0) == 0
+                  || full_name.rfind("Checkpoint/", 0) == 0
+                  || full_name == "Time/End time")
+                continue;
+              result_entries.push_back(full_name + " = " + value);
+            }
+        }
     }
 
 
@@ -782,13 +849,14 @@ namespace ViscoContact
         prm.declare_entry("Subdivisions",
                           "2, 4, 8, 16, 32",
                           Patterns::List(Patterns::Integer(1)),
-                          "Mesh of each run: squares along each edge.");
+                          "Mesh of each run: squares along each edge; "
+                          "integers >= 1.");
         prm.declare_entry("Time steps",
                           "0.5, 0.25, 0.125, 0.0625, 0.03125",
                           Patterns::List(Patterns::Double(0)),
                           "Time step of each run (one per Subdivisions entry); "
-                          "each must be a multiple of the reference time "
-                          "step.");
+                          "each must be a positive multiple of the reference "
+                          "time step.");
         prm.declare_entry("Reference subdivisions",
                           "64",
                           Patterns::Integer(1),
@@ -797,7 +865,7 @@ namespace ViscoContact
         prm.declare_entry("Reference time step",
                           "0.015625",
                           Patterns::Double(0),
-                          "Time step of the reference run.");
+                          "Time step of the reference run; > 0.");
       }
       prm.leave_subsection();
     }
@@ -901,6 +969,43 @@ namespace ViscoContact
                 "an empty Mesh file and no Global refinements or Contact "
                 "refinement levels when a convergence study runs (it builds "
                 "its own nested boxes)");
+      // Entries whose value the run would otherwise ignore without a word.
+      // A profile time outside [0, T] has no step near it (the closest step
+      // would be the first or the last one, a profile nobody asked for).
+      for (const double t : profile_times)
+        require(t >= 0 && t <= end_time,
+                "Output",
+                "Profile times",
+                prm.get({"Output"}, "Profile times"),
+                "times in [0, End time = " + to_string(end_time) + "]");
+      // A stop or a checkpoint interval beyond the last step would never
+      // happen. The number of steps is that of time_levels() (time_loop.cc).
+      const unsigned int n_steps = static_cast<unsigned int>(
+        std::ceil(end_time / time_step * (1 - 1e-12)));
+      require(stop_after_step <= n_steps,
+              "Checkpoint",
+              "Stop after step",
+              std::to_string(stop_after_step),
+              "0 (never) or a step of the run, at most "
+                + std::to_string(n_steps));
+      require(checkpoint_interval <= n_steps,
+              "Checkpoint",
+              "Checkpoint interval",
+              std::to_string(checkpoint_interval),
+              "0 (never) or at most the number of steps, "
+                + std::to_string(n_steps));
+      // The points of a piecewise-linear law mean nothing to the benchmark
+      // law (their defaults are empty, so a value is a mistake, not a
+      // leftover default).
+      if (law_type == ContactLawType::nonmonotone)
+        for (const std::string entry : {"Breakpoints", "Slopes", "Jumps"})
+          require(prm.get({"Contact"}, entry).empty(),
+                  "Contact",
+                  entry,
+                  prm.get({"Contact"}, entry),
+                  "empty when Law = nonmonotone (it is used by Law = "
+                  "piecewise linear only)");
+
       if (study_enabled && cell_type == CellType::simplex)
         require(simplex_pattern != SimplexPattern::five_tetrahedra,
                 "Geometry",

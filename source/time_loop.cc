@@ -46,7 +46,8 @@ namespace ViscoContact
   // iterations, the contact states (rigid limit, normal compliance, no
   // contact, as ContactNodes::count_states() returns them) and the total
   // contact force. The regression tests compare these lines, so their format
-  // is fixed.
+  // is fixed. Each line is flushed, so that a log file shows the progress of
+  // a batch job as it happens.
   void
   print_step_line(ConditionalOStream                &out,
                   const unsigned int                 step,
@@ -61,7 +62,7 @@ namespace ViscoContact
         << contact_states[0] << "  compliance " << std::setw(4)
         << contact_states[1] << "  no contact " << std::setw(4)
         << contact_states[2] << "  contact force " << std::setprecision(8)
-        << total_contact_force << '\n';
+        << total_contact_force << std::endl;
   }
 
 

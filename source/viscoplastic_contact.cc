@@ -9,9 +9,17 @@
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/fe_system.h>
 
+#include "checkpoint.h"
 #include "loads.h"
+#include "stop_signals.h"
 #include "time_loop.h"
 #include "viscoplastic_contact.h"
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
 
 namespace ViscoContact
 {
@@ -148,6 +156,84 @@ namespace ViscoContact
 
 
 
+  // @sect4{ViscoplasticContact::check_memory_estimate}
+  //
+  // The size of a generated box follows from the parameters alone: (N 2^r +
+  // 1)^dim vertices for N Subdivisions and r Global refinements (plus a centre
+  // vertex per square for the crossed pattern), dim dofs per vertex. The
+  // memory per dof was measured on the benchmark scenes (peak resident memory
+  // of runs of 10^4 to 10^5 dofs on one rank, both back ends): about 2 kB per
+  // dof in 2D and 13 kB in 3D, where the direct factorisations fill in more,
+  // plus some 150 MB for the libraries. Both are lower estimates (the fill-in
+  // of a factorisation grows faster than the dofs), so a mesh is refused only
+  // if it certainly does not fit: if the estimate exceeds the physical memory
+  // of the ranks' nodes (MemTotal of /proc/meminfo, shared among the ranks of
+  // a node). A Gmsh mesh is only known once read; it is not estimated here.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::check_memory_estimate() const
+  {
+    if (!parameters.mesh_file.empty())
+      return;
+    const double edge
+      = parameters.subdivisions * std::pow(2., parameters.global_refinements);
+    double vertices = std::pow(edge + 1, dim);
+    if (parameters.cell_type == Parameters::CellType::simplex
+        && parameters.simplex_pattern == Parameters::SimplexPattern::crossed)
+      vertices += std::pow(edge, dim);
+    const double dofs  = dim * vertices;
+    const double bytes = 150e6 + dofs * (dim == 2 ? 2e3 : 13e3);
+
+    // The memory of this rank's node, shared by the ranks on it; summed over
+    // the ranks, the memory of all nodes of the run.
+    double node_memory = 0;
+    {
+      std::ifstream meminfo("/proc/meminfo");
+      std::string   key;
+      double        kilobytes = 0;
+      while (meminfo >> key >> kilobytes)
+        {
+          if (key == "MemTotal:")
+            {
+              node_memory = kilobytes * 1024;
+              break;
+            }
+          meminfo.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+        }
+    }
+    MPI_Comm node_communicator;
+    MPI_Comm_split_type(mpi_communicator,
+                        MPI_COMM_TYPE_SHARED,
+                        0,
+                        MPI_INFO_NULL,
+                        &node_communicator);
+    const unsigned int ranks_on_node
+      = Utilities::MPI::n_mpi_processes(node_communicator);
+    MPI_Comm_free(&node_communicator);
+    const double available
+      = Utilities::MPI::sum(node_memory / ranks_on_node, mpi_communicator);
+    // Without /proc/meminfo (not Linux) the check is skipped.
+    if (available <= 0 || bytes <= available)
+      return;
+
+    std::ostringstream message;
+    message << std::setprecision(3) << "Invalid parameter <Subdivisions> in "
+            << "subsection <Geometry>: value <" << parameters.subdivisions
+            << ">";
+    if (parameters.global_refinements > 0)
+      message << " with <Global refinements> = "
+              << parameters.global_refinements;
+    message << "; the mesh would have about " << dofs
+            << " displacement dofs and need at least " << bytes / 1e9
+            << " GB of memory, but the nodes of this run have "
+            << available / 1e9
+            << " GB; accepted: a mesh that fits (fewer Subdivisions or "
+               "Global refinements, or more nodes).";
+    AssertThrow(false, ExcMessage(message.str()));
+  }
+
+
+
   // @sect4{ViscoplasticContact::run}
   //
   // The algorithm of doc/model.md, section 2, as the reader would write it
@@ -173,6 +259,12 @@ namespace ViscoContact
     // the contact nodes need K for their parameters c_i; the back end needs the
     // number of contact nodes to choose its method and, if condensed, the nodes
     // themselves.
+    // A folder with another run's files is refused before any work is done
+    // (or, with Overwrite = true, cleared later by prepare_output_directory()).
+    check_output_directory();
+    // A generated mesh far too large for the machine is refused before it is
+    // built, with the estimate, instead of ending in std::bad_alloc.
+    check_memory_estimate();
     make_grid();
     setup_system();
     setup_stress_points();
@@ -187,6 +279,10 @@ namespace ViscoContact
     // output directory is modified.
     std::vector<double> times
       = time_levels(parameters.end_time, parameters.time_step);
+    // The loads at every point and time they will be evaluated: a load that
+    // is not finite stops the run here, naming the entry, the point and the
+    // time, before anything is read or written.
+    check_loads(times);
     unsigned int first_step = 1;
     if (parameters.resume)
       first_step = resume_from_checkpoint(times) + 1;
@@ -264,9 +360,41 @@ namespace ViscoContact
         // The checkpoint comes after the output of the step, so that a run
         // resumed from it has everything of step n on disk, and the .pvd list
         // the checkpoint stores includes step n.
-        if (parameters.checkpoint_interval > 0
-            && n % parameters.checkpoint_interval == 0)
+        const bool checkpoint_due = parameters.checkpoint_interval > 0
+                                    && n % parameters.checkpoint_interval == 0;
+        if (checkpoint_due)
           write_checkpoint(n, times, wall_time);
+        // A scheduler's signal (SIGTERM, SIGINT, SIGUSR1) on any rank: every
+        // rank learns of it here, once per step, through the maximum over the
+        // ranks, so that all stop after this same step. The step is complete
+        // and written; a checkpoint of it is written if none is due, and the
+        // run ends with status 128 + signal (main()). After the last step
+        // there is nothing left to save the run for: it ends normally.
+        const int signal
+          = Utilities::MPI::max(StopSignals::received(), mpi_communicator);
+        if (signal != 0 && n + 1 < times.size() && !parameters.resumable)
+          {
+            pcout << "Stopped after step " << n << " (t = " << times[n]
+                  << ") on " << StopSignals::name(signal)
+                  << "; a convergence study cannot be resumed: run it "
+                     "again."
+                  << std::endl;
+            throw StopSignals::Stopped{signal};
+          }
+        if (signal != 0 && n + 1 < times.size())
+          {
+            if (!checkpoint_due)
+              write_checkpoint(n, times, wall_time);
+            pcout << "Stopped after step " << n << " (t = " << times[n]
+                  << ") on " << StopSignals::name(signal)
+                  << "; the checkpoint of step " << n << " is in "
+                  << checkpoint_directory(parameters.directory).string()
+                  << ".\nTo continue the run, set Resume = true in "
+                     "subsection <Checkpoint> and run the same parameter "
+                     "file again (on any number of MPI ranks)."
+                  << std::endl;
+            throw StopSignals::Stopped{signal};
+          }
         // For tests of the checkpoints: end the loop here as if the run had
         // been killed after the checkpoint; the summary is still printed.
         if (n == parameters.stop_after_step)

@@ -19,6 +19,12 @@ if [ $status -eq 0 ]; then
   echo "The program accepted $prm; it must reject it."
   exit 1
 fi
+# Exactly 1: a crash, an abort or a sanitizer's report has another status.
+if [ $status -ne 1 ]; then
+  echo "The program stopped with exit status $status, not 1:"
+  cat stderr.txt
+  exit 1
+fi
 if ! grep -qF -- "$expected" stderr.txt; then
   echo "The error message does not contain <$expected>:"
   cat stderr.txt

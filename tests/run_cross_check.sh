@@ -10,6 +10,9 @@ set -u
 here=$(dirname "$0")
 executable=$1 prm=$2 reference=$3 n=$4 absolute=$5 relative=$6
 
+# The program refuses an output directory with an earlier run's files:
+# start from a clean one, as a repeated ctest run finds the last one's.
+rm -rf results output
 "$here/run_mpi.sh" "$n" "$executable" "$prm" > output.txt 2> error.txt
 status=$?
 if [ $status -ne 0 ]; then

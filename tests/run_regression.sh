@@ -8,6 +8,9 @@
 set -u
 executable=$1 prm=$2 reference=$3 absolute=$4 relative=$5 n=${6:-1}
 
+# The program refuses an output directory with an earlier run's files:
+# start from a clean one, as a repeated ctest run finds the last one's.
+rm -rf results output
 "$(dirname "$0")/run_mpi.sh" "$n" "$executable" "$prm" > output.txt 2> error.txt
 status=$?
 if [ $status -ne 0 ]; then

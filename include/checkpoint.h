@@ -175,7 +175,7 @@ namespace ViscoContact
 
   // The last complete checkpoint; throws with a message that names the
   // Resume entry if there is none or it was written for another problem
-  // size.
+  // size (n_dofs = 0: not checked).
   // The entries of the run that resumes must be those of the record.
   CheckpointRecord
   read_checkpoint_record(const std::string              &output_directory,

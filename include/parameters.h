@@ -237,6 +237,25 @@ namespace ViscoContact
       parse_parameters(ParameterHandler &prm);
     };
 
+    // Adaptive meshes during the run (mesh_adaptation.cc): every Refinement
+    // interval steps the mesh is refined and coarsened by the indicator of
+    // doc/adaptivity.md, the state is carried over, and the step problem is
+    // set up again. Hypercube meshes only (p4est).
+    struct MeshAdaptation
+    {
+      bool         adaptive_refinement;
+      unsigned int refinement_interval;
+      double       refine_fraction;
+      double       coarsen_fraction;
+      unsigned int maximum_cells;
+      unsigned int maximum_refinement_level;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
     struct ConvergenceStudy
     {
       bool                      study_enabled;
@@ -259,6 +278,7 @@ namespace ViscoContact
                            public Time,
                            public ActiveSetSolver,
                            public LinearSolver,
+                           public MeshAdaptation,
                            public ConvergenceStudy,
                            public Output,
                            public Checkpoint

@@ -18,6 +18,7 @@
 #include <deal.II/fe/mapping.h>
 
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/vector.h>
 
 #include <deal.II/numerics/data_out.h>
 
@@ -121,12 +122,16 @@ namespace ViscoContact
 
     // @sect4{Set-up}
     //
-    // Called once, in this order, by run(): the mesh; dofs, constraints and
-    // vectors, with K; the stress points and their geometry; the contact nodes;
-    // the back end with K. Then the header and the limits of the scheme
-    // (stability of the explicit update, the uniqueness margin) are printed.
+    // Called in this order by run(): the mesh; then, in setup_on_mesh(), dofs,
+    // constraints and vectors, with K; the stress points and their geometry;
+    // the contact nodes; the back end with K. Then the header and the limits of
+    // the scheme (stability of the explicit update, the uniqueness margin) are
+    // printed. setup_on_mesh() runs again whenever the mesh changes (an
+    // adaptation, the mesh of a resumed adaptive run); it resets the state.
     void
     make_grid();
+    void
+    setup_on_mesh();
     void
     setup_system();
     void
@@ -219,6 +224,24 @@ namespace ViscoContact
     write_contact_profile(const unsigned int step, const double time) const;
     void
     print_run_summary();
+
+    // @sect4{Mesh adaptation}
+    //
+    // Every Refinement interval steps (mesh_adaptation.cc, doc/adaptivity.md):
+    // the indicator (Kelly's estimator of the displacement, raised at the
+    // contact front and at the boundary of the plastic zone), refinement and
+    // coarsening of the p4est mesh with the displacement, the stress-point data
+    // and the contact pressures carried over, the set-up on the new mesh and
+    // the contact set re-established. A resumed adaptive run first rebuilds
+    // the checkpoint's mesh.
+    bool
+    adaptation_due(const unsigned int step, const unsigned int n_steps) const;
+    void
+    adapt_mesh(const double time);
+    Vector<float>
+    refinement_indicators() const;
+    void
+    restore_checkpoint_mesh();
 
     // @sect4{Checkpoints}
     //

@@ -354,7 +354,7 @@ namespace ViscoContact
                            + " does not exist or is damaged; accepted: true "
                              "only when the Output directory holds a complete "
                              "checkpoint of an earlier run of this scene."));
-    AssertThrow(record.n_dofs == n_dofs,
+    AssertThrow(n_dofs == 0 || record.n_dofs == n_dofs,
                 ExcMessage("Invalid parameter <Resume> in subsection "
                            "<Checkpoint>: the checkpoint of step "
                            + std::to_string(record.step) + " has "
@@ -587,6 +587,10 @@ namespace ViscoContact
   unsigned int
   ViscoplasticContact<dim>::resume_from_checkpoint(std::vector<double> &times)
   {
+    // The records of an adaptive run are those of its adapted mesh, which is
+    // rebuilt first (mesh_adaptation.cc).
+    if (parameters.adaptive_refinement)
+      restore_checkpoint_mesh();
     const CheckpointRecord checkpoint
       = read_checkpoint_record(parameters.directory,
                                dof_handler.n_dofs(),

@@ -136,9 +136,31 @@ namespace ViscoContact
                             weights,
                             weighted_normals);
 
-    // The partitioner tells which dofs this rank owns and where they sit in
-    // the local storage of the vectors.
+    // A vertex of Gamma_3 may be hanging (on adapted 3D meshes: the middle of
+    // an edge between a refined and an unrefined contact face). It is no
+    // contact node, since its displacement is the average of its parents';
+    // its weight and weighted normal go to those parents with the weights of
+    // its constraint. The result is the row sums of the boundary mass matrix
+    // of the conforming (constrained) space, C^T M C 1 = C^T M 1, as without
+    // hanging vertices. Each rank passes on the values of the hanging dofs it
+    // owns (the parents are locally relevant: they lie on the same cells); on
+    // meshes without hanging vertices on Gamma_3 nothing is added.
     const auto &partitioner = *layout.get_partitioner();
+    for (VectorType *vector : {&weights, &weighted_normals})
+      {
+        VectorType passed_on(layout);
+        passed_on = 0;
+        for (types::global_dof_index dof = partitioner.local_range().first;
+             dof < partitioner.local_range().second;
+             ++dof)
+          if ((*vector)(dof) != 0 && constraints.is_constrained(dof))
+            if (const auto *entries = constraints.get_constraint_entries(dof))
+              for (const auto &[parent, coefficient] : *entries)
+                passed_on(parent) += coefficient * (*vector)(dof);
+        passed_on.compress(VectorOperation::add);
+        *vector += passed_on;
+      }
+
     geometry.clear();
     std::set<types::global_dof_index> seen;
     // Every vertex of every contact face of the owned and ghost cells, once

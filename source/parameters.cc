@@ -832,6 +832,100 @@ namespace ViscoContact
 
 
     void
+    MeshAdaptation::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Mesh adaptation");
+      {
+        prm.declare_entry(
+          "Adaptive refinement",
+          "false",
+          Patterns::Bool(),
+          "Refine and coarsen the mesh during the run (doc/adaptivity.md, "
+          "\"Adaptive meshes\"): every Refinement interval steps, by the "
+          "Kelly estimator of the displacement plus the cells at the contact "
+          "front and at the boundary of the plastic zone; the displacement, "
+          "the stress-point history and the contact state are carried over. "
+          "Hypercube meshes (Cell type = hypercube) only.");
+        prm.declare_entry("Refinement interval",
+                          "1",
+                          Patterns::Integer(),
+                          "Adapt the mesh after every n-th step (an integer "
+                          ">= 1).");
+        prm.declare_entry("Refine fraction",
+                          "0.3",
+                          Patterns::Double(),
+                          "The fraction of the cells with the largest "
+                          "indicators that is refined, in [0, 1].");
+        prm.declare_entry("Coarsen fraction",
+                          "0.03",
+                          Patterns::Double(),
+                          "The fraction of the cells with the smallest "
+                          "indicators that is coarsened, in [0, 1]; Refine "
+                          "fraction + Coarsen fraction <= 1.");
+        prm.declare_entry("Maximum cells",
+                          "20000",
+                          Patterns::Integer(),
+                          "A bound on the number of active cells: fewer "
+                          "cells are refined when it would be exceeded (an "
+                          "integer >= 1).");
+        prm.declare_entry("Maximum refinement level",
+                          "8",
+                          Patterns::Integer(),
+                          "No cell is refined beyond this level of the "
+                          "p4est forest (the generated box of m 2^j "
+                          "Subdivisions has m^dim trees); an integer in "
+                          "[0, 20].");
+      }
+      prm.leave_subsection();
+    }
+
+    void
+    MeshAdaptation::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Mesh adaptation");
+      {
+        adaptive_refinement = prm.get_bool("Adaptive refinement");
+        const long interval = prm.get_integer("Refinement interval");
+        require(interval >= 1 && interval <= 1000000000,
+                "Mesh adaptation",
+                "Refinement interval",
+                prm.get("Refinement interval"),
+                "an integer >= 1");
+        refinement_interval = interval;
+        refine_fraction     = prm.get_double("Refine fraction");
+        require(refine_fraction >= 0 && refine_fraction <= 1,
+                "Mesh adaptation",
+                "Refine fraction",
+                prm.get("Refine fraction"),
+                "a number in [0, 1]");
+        coarsen_fraction = prm.get_double("Coarsen fraction");
+        require(coarsen_fraction >= 0
+                  && coarsen_fraction <= 1 - refine_fraction,
+                "Mesh adaptation",
+                "Coarsen fraction",
+                prm.get("Coarsen fraction"),
+                "a number in [0, 1 - Refine fraction]");
+        const long cells = prm.get_integer("Maximum cells");
+        require(cells >= 1 && cells <= 2000000000,
+                "Mesh adaptation",
+                "Maximum cells",
+                prm.get("Maximum cells"),
+                "an integer in [1, 2e9]");
+        maximum_cells    = cells;
+        const long level = prm.get_integer("Maximum refinement level");
+        require(level >= 0 && level <= 20,
+                "Mesh adaptation",
+                "Maximum refinement level",
+                prm.get("Maximum refinement level"),
+                "an integer in [0, 20]");
+        maximum_refinement_level = level;
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
     ConvergenceStudy::declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Convergence study");
@@ -933,6 +1027,7 @@ namespace ViscoContact
       Time::declare_parameters(prm);
       ActiveSetSolver::declare_parameters(prm);
       LinearSolver::declare_parameters(prm);
+      MeshAdaptation::declare_parameters(prm);
       ConvergenceStudy::declare_parameters(prm);
       Output::declare_parameters(prm);
       Checkpoint::declare_parameters(prm);
@@ -949,6 +1044,7 @@ namespace ViscoContact
       Time::parse_parameters(prm);
       ActiveSetSolver::parse_parameters(prm);
       LinearSolver::parse_parameters(prm);
+      MeshAdaptation::parse_parameters(prm);
       ConvergenceStudy::parse_parameters(prm);
       Output::parse_parameters(prm);
       Checkpoint::parse_parameters(prm);
@@ -969,6 +1065,18 @@ namespace ViscoContact
                 "an empty Mesh file and no Global refinements or Contact "
                 "refinement levels when a convergence study runs (it builds "
                 "its own nested boxes)");
+      // Adaptivity refines p4est meshes; deal.II 9.4's fully distributed
+      // triangulation of simplices cannot be refined during the run, and a
+      // convergence study builds its own nested meshes.
+      if (adaptive_refinement)
+        require(cell_type == CellType::hypercube && !study_enabled,
+                "Mesh adaptation",
+                "Adaptive refinement",
+                "true",
+                "false when Cell type = simplex or a convergence study runs "
+                "(adaptive meshes need hypercube cells on p4est: deal.II "
+                "9.4's fully distributed triangulation of triangles and "
+                "tetrahedra cannot refine)");
       // Entries whose value the run would otherwise ignore without a word.
       // A profile time outside [0, T] has no step near it (the closest step
       // would be the first or the last one, a profile nobody asked for).

@@ -43,6 +43,28 @@ namespace ViscoContact
 
 
 
+  // @sect4{ViscoplasticContact::setup_on_mesh}
+  //
+  // Everything that depends on the mesh, in the order of the dependencies: the
+  // dofs need the mesh; the stress-point geometry needs the dofs and the
+  // partition of the vectors; the contact nodes need K for their parameters
+  // c_i; the back end needs the number of contact nodes to choose its method
+  // and, if condensed, the nodes themselves. The state it leaves is the
+  // initial one (u = 0, zero stresses and history, every contact node at
+  // r = z = 0): run() starts from it, and after a change of the mesh the
+  // caller carries the state over (adapt_mesh(), resume_from_checkpoint()).
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::setup_on_mesh()
+  {
+    setup_system();
+    setup_stress_points();
+    setup_contact();
+    setup_back_end();
+  }
+
+
+
   // @sect4{ViscoplasticContact::setup_system}
   //
   // Dofs and their ownership (as in step-40), the clamping of Gamma_1 and

@@ -254,11 +254,7 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::run()
   {
-    // Set-up, in the order of the dependencies: the dofs need the mesh; the
-    // stress-point geometry needs the dofs and the partition of the vectors;
-    // the contact nodes need K for their parameters c_i; the back end needs the
-    // number of contact nodes to choose its method and, if condensed, the nodes
-    // themselves.
+    // Set-up: the mesh, then everything that depends on it (setup_on_mesh()).
     // A folder with another run's files is refused before any work is done
     // (or, with Overwrite = true, cleared later by prepare_output_directory()).
     check_output_directory();
@@ -266,10 +262,7 @@ namespace ViscoContact
     // built, with the estimate, instead of ending in std::bad_alloc.
     check_memory_estimate();
     make_grid();
-    setup_system();
-    setup_stress_points();
-    setup_contact();
-    setup_back_end();
+    setup_on_mesh();
 
     // t_n = n k with the last step shortened to end at T. A resumed run
     // replaces the schedule by the one of its checkpoint (with the cut steps of
@@ -357,6 +350,11 @@ namespace ViscoContact
         if (parameters.write_vtu
             && (n % parameters.interval == 0 || n + 1 == times.size()))
           output_results(n, times[n]);
+        // With Adaptive refinement, the mesh of the next steps: after the
+        // output of step n (which shows the mesh step n was computed on) and
+        // before its checkpoint (which stores the adapted mesh and state).
+        if (adaptation_due(n, times.size() - 1))
+          adapt_mesh(times[n]);
         // The checkpoint comes after the output of the step, so that a run
         // resumed from it has everything of step n on disk, and the .pvd list
         // the checkpoint stores includes step n.

@@ -1,7 +1,8 @@
 // Unit tests of the pieces where the physics lives: the E-norm projection
 // onto the von Mises set, the contact law and its pieces, the lumped contact
 // weights, the active-set iteration on the condensed contact problem, the
-// sparse direct solvers, the simplex patterns of the generated box, and the
+// sparse direct solvers, the simplex patterns of the generated box, the Q1
+// transfer of stress-point data between a cell and its children, and the
 // parallel tools (exchange of keyed records, collective text files). Each
 // expectation states its tolerance; reference values are computed by hand
 // or by an independent method written out here (bisection, exhaustive
@@ -9,6 +10,8 @@
 // (ctest unit_tests.np2), where the parallel tools exchange across ranks.
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/geometry_info.h>
+#include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/symmetric_tensor.h>
 
 #include <deal.II/dofs/dof_handler.h>
@@ -42,6 +45,7 @@
 #include "material.h"
 #include "mesh.h"
 #include "mpi_tools.h"
+#include "stress_point_transfer.h"
 
 #include "direct_solver.h"
 
@@ -1213,6 +1217,84 @@ TEST(SparseDirectSolver, LastBlockOfTheCholeskyFactor)
 // Every rank holds records under its own keys and one under a shared key,
 // and asks for the keys of the next rank: each answer must be that rank's
 // payload; the shared key brings one payload per rank, in rank order.
+// @sect3{The Q1 transfer of stress-point data}
+//
+// Two fields at the 2^dim Gauss points: a multilinear one (x y (z) and an
+// affine part), which refinement and coarsening must reproduce exactly, and a
+// quadratic one, for which coarsening must undo refinement (the refined
+// values are a Q1 field again) but refinement itself cannot be exact. Points
+// are in the reference coordinates of the parent; child c of deal.II's
+// isotropic refinement covers child_to_cell_coordinates(., c). Tolerance
+// 1e-13 (the matrices are built from 1/sqrt(3)).
+template <int dim>
+void
+check_stress_point_transfer()
+{
+  const QGauss<dim>              gauss(2);
+  const unsigned int             n_q = gauss.size(), n_children = 1u << dim;
+  const StressPointTransfer<dim> transfer(gauss, 2);
+  const auto                     multilinear = [](const Point<dim> &x) {
+    double product = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      product *= x[d];
+    return 0.5 + 2 * x[0] - x[dim - 1] + 3 * product;
+  };
+  const auto quadratic = [](const Point<dim> &x) { return x.square(); };
+  std::vector<double> parent(2 * n_q);
+  for (unsigned int q = 0; q < n_q; ++q)
+    {
+      parent[2 * q]     = multilinear(gauss.point(q));
+      parent[2 * q + 1] = quadratic(gauss.point(q));
+    }
+  const auto children = transfer.refine(parent);
+  ASSERT_EQ(children.size(), n_children);
+  for (unsigned int c = 0; c < n_children; ++c)
+    for (unsigned int q = 0; q < n_q; ++q)
+      EXPECT_NEAR(children[c][2 * q],
+                  multilinear(
+                    GeometryInfo<dim>::child_to_cell_coordinates(gauss.point(q),
+                                                                 c)),
+                  1e-13);
+  // Coarsening undoes refinement, for both fields.
+  const auto back = transfer.coarsen(children);
+  for (unsigned int i = 0; i < parent.size(); ++i)
+    EXPECT_NEAR(back[i], parent[i], 1e-13);
+  // Coarsening children's values of a multilinear field gives the parent's
+  // values exactly; of the quadratic one, the least-squares fit, which
+  // preserves the mean over the children's points (the constant is in Q1).
+  std::vector<std::vector<double>> fine(n_children,
+                                        std::vector<double>(2 * n_q));
+  double                           fine_mean = 0;
+  for (unsigned int c = 0; c < n_children; ++c)
+    for (unsigned int q = 0; q < n_q; ++q)
+      {
+        const Point<dim> x
+          = GeometryInfo<dim>::child_to_cell_coordinates(gauss.point(q), c);
+        fine[c][2 * q]     = multilinear(x);
+        fine[c][2 * q + 1] = quadratic(x);
+        fine_mean += quadratic(x) / (n_children * n_q);
+      }
+  const auto coarse      = transfer.coarsen(fine);
+  double     coarse_mean = 0;
+  for (unsigned int q = 0; q < n_q; ++q)
+    {
+      EXPECT_NEAR(coarse[2 * q], parent[2 * q], 1e-13);
+      coarse_mean += coarse[2 * q + 1] / n_q;
+    }
+  EXPECT_NEAR(coarse_mean, fine_mean, 1e-13);
+}
+
+TEST(StressPointTransfer, ExactForMultilinearFields2D)
+{
+  check_stress_point_transfer<2>();
+}
+
+TEST(StressPointTransfer, ExactForMultilinearFields3D)
+{
+  check_stress_point_transfer<3>();
+}
+
+
 TEST(MPITools, ExchangeRecordsAcrossRanks)
 {
   const MPI_Comm     comm    = MPI_COMM_WORLD;

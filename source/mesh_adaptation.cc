@@ -1,0 +1,462 @@
+// Adaptive meshes during the run (doc/adaptivity.md, "Adaptive meshes"): the
+// refinement indicator, the refinement and coarsening of the p4est mesh with
+// the state carried over, and the mesh of a resumed adaptive run.
+//
+// What the state is, and how each part crosses a change of the mesh:
+//  - the displacement u_n: a finite element function, interpolated by
+//    deal.II's SolutionTransfer (exact where the mesh is refined; the nodal
+//    values of the remaining vertices where it is coarsened), then the
+//    hanging-node constraints of the new mesh;
+//  - the stress points' sigma_n, the history of the next step and the plastic
+//    multiplier: cell data, moved by deal.II's CellDataTransfer with the Q1
+//    transfer of stress_point_transfer.h;
+//  - the contact set: the nodal contact pressure z_i / w_i is a nodal field
+//    like u and is interpolated with it; the new contact nodes get r = u.nu
+//    from the new u, z = w p from the interpolated pressure, and the piece that
+//    q = p + c r names. The next step's active-set iteration corrects them.
+// Everything else (dofs, constraints, K, the stress-point geometry, the
+// contact nodes with their weights and c_i, the back end) is set up again by
+// setup_on_mesh(), the function run() uses, and the loads of the next step are
+// assembled from the carried-over state.
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/geometry_info.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/distributed/cell_data_transfer.templates.h>
+#include <deal.II/distributed/grid_refinement.h>
+#include <deal.II/distributed/solution_transfer.h>
+#include <deal.II/distributed/tria.h>
+
+#include <deal.II/grid/cell_id.h>
+
+#include <deal.II/numerics/error_estimator.h>
+
+#include "checkpoint.h"
+#include "stress_point_transfer.h"
+#include "viscoplastic_contact.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+
+namespace ViscoContact
+{
+  namespace
+  {
+    // The data of one stress point as doubles: sigma (its independent
+    // components), the history, the plastic multiplier; a hypercube cell has
+    // 2^dim of them. A fixed-size array is plain data, which CellDataTransfer
+    // packs by copying (no serialisation, the same size for every cell).
+    template <int dim>
+    constexpr unsigned int n_point_fields
+      = 2 * SymmetricTensor<2, dim>::n_independent_components + 1;
+    template <int dim>
+    using CellRecord
+      = std::array<double,
+                   GeometryInfo<dim>::vertices_per_cell * n_point_fields<dim>>;
+
+    template <int dim>
+    void
+    pack_point(const QuadraturePointHistory<dim> &state, double *out)
+    {
+      constexpr unsigned int n
+        = SymmetricTensor<2, dim>::n_independent_components;
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          out[i]     = state.stress.access_raw_entry(i);
+          out[n + i] = state.history.access_raw_entry(i);
+        }
+      out[2 * n] = state.plastic_multiplier;
+    }
+
+    template <int dim>
+    void
+    unpack_point(const double *in, QuadraturePointHistory<dim> &state)
+    {
+      constexpr unsigned int n
+        = SymmetricTensor<2, dim>::n_independent_components;
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          state.stress.access_raw_entry(i)  = in[i];
+          state.history.access_raw_entry(i) = in[n + i];
+        }
+      // The multiplier is only the starting guess of the next projection; a
+      // fitted value below zero (the multiplier is >= 0) starts from zero.
+      state.plastic_multiplier = std::max(in[2 * n], 0.);
+    }
+  } // namespace
+
+
+
+  // @sect4{ViscoplasticContact::adaptation_due}
+  //
+  // After every Refinement interval-th step, except after the last one (no
+  // step would use the new mesh).
+  template <int dim>
+  bool
+  ViscoplasticContact<dim>::adaptation_due(const unsigned int step,
+                                           const unsigned int n_steps) const
+  {
+    return parameters.adaptive_refinement
+           && step % parameters.refinement_interval == 0 && step < n_steps;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::refinement_indicators}
+  //
+  // One number per active cell (the entries of owned cells are used): Kelly's
+  // estimator of the displacement, raised to the largest Kelly value of the
+  // mesh on the cells where the solution is known to be less regular than
+  // Kelly's face jumps see (doc/adaptivity.md):
+  //  - the contact front: a cell with contact nodes in different states (out
+  //    of contact, in the layer, at the rigid limit). There the contact law
+  //    changes its branch, and the normal pressure, hence the stress flux
+  //    through Gamma_3, has a kink or a jump;
+  //  - the boundary of the plastic zone: a cell with a vertex that touches
+  //    stress points inside and outside the yield set. There the viscoplastic
+  //    rate switches on, and the history H, which is discontinuous from cell
+  //    to cell and not seen by the jumps of grad u, changes its behaviour.
+  // Kelly's estimator itself sums the jumps of the normal derivative of u over
+  // the interior faces: up to the (bounded) elasticity tensor the jumps of the
+  // elastic stress flux. Boundary faces contribute nothing: on the loaded and
+  // free parts the traction is smooth data, and on Gamma_3 the traction is the
+  // contact pressure, which is not known to the estimator (treating Gamma_3 as
+  // traction-free would flag every cell in contact).
+  template <int dim>
+  Vector<float>
+  ViscoplasticContact<dim>::refinement_indicators() const
+  {
+    Vector<float> indicators(triangulation->n_active_cells());
+    KellyErrorEstimator<dim>::estimate(
+      mapping,
+      dof_handler,
+      face_quadrature,
+      std::map<types::boundary_id, const Function<dim> *>(),
+      solution,
+      indicators);
+
+    // Vertex fields on the scalar dof layout: whether a vertex touches a
+    // plastic stress point, an elastic one, and the contact state + 1 of a
+    // contact node (0 elsewhere). The first two are collected from the owned
+    // cells with a maximum over the ranks, so that a vertex on a partition
+    // boundary sees the stress points of all its cells.
+    VectorType touches_plastic(scalar_partitioner),
+      touches_elastic(scalar_partitioner), contact_state(scalar_partitioner);
+    const unsigned int n_q            = stress_quadrature.size();
+    const auto         scalar_cell_of = [&](const auto &cell) {
+      return typename DoFHandler<dim>::active_cell_iterator(
+        &dof_handler.get_triangulation(),
+        cell->level(),
+        cell->index(),
+        &scalar_dof_handler);
+    };
+    if (parameters.plasticity)
+      {
+        for (unsigned int k = 0; k < owned_cells.size(); ++k)
+          {
+            bool plastic = false, elastic = false;
+            for (unsigned int q = 0; q < n_q; ++q)
+              (material.equivalent_stress(
+                 quadrature_point_history[std::size_t(k) * n_q + q].stress)
+                   > material.yield_stress()
+                 ? plastic
+                 : elastic)
+                = true;
+            const auto scalar_cell = scalar_cell_of(owned_cells[k]);
+            for (const unsigned int v : scalar_cell->vertex_indices())
+              {
+                const auto dof = scalar_cell->vertex_dof_index(v, 0);
+                if (plastic)
+                  touches_plastic(dof) = 1;
+                if (elastic)
+                  touches_elastic(dof) = 1;
+              }
+          }
+        touches_plastic.compress(VectorOperation::max);
+        touches_elastic.compress(VectorOperation::max);
+        touches_plastic.update_ghost_values();
+        touches_elastic.update_ghost_values();
+      }
+    if (contact_enabled)
+      {
+        for (unsigned int i = 0; i < contact_set.size(); ++i)
+          contact_state(contact_set.node(i).scalar_dof)
+            = contact_set.status(i) + 1.;
+        contact_state.update_ghost_values();
+      }
+
+    // The largest Kelly value of the mesh, and the raised cells.
+    float largest = 0;
+    for (const auto &cell : owned_cells)
+      largest = std::max(largest, indicators[cell->active_cell_index()]);
+    largest = Utilities::MPI::max(largest, mpi_communicator);
+    for (const auto &cell : owned_cells)
+      {
+        const auto scalar_cell   = scalar_cell_of(cell);
+        bool       zone_boundary = false;
+        double     lowest_state = 3, highest_state = 0;
+        for (const unsigned int v : scalar_cell->vertex_indices())
+          {
+            const auto dof = scalar_cell->vertex_dof_index(v, 0);
+            zone_boundary
+              = zone_boundary
+                || (touches_plastic(dof) > 0 && touches_elastic(dof) > 0);
+            if (contact_state(dof) > 0)
+              {
+                lowest_state  = std::min(lowest_state, contact_state(dof));
+                highest_state = std::max(highest_state, contact_state(dof));
+              }
+          }
+        if (zone_boundary || lowest_state < highest_state)
+          indicators[cell->active_cell_index()] = largest > 0 ? largest : 1.f;
+      }
+    return indicators;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::adapt_mesh}
+  //
+  // Mark, transfer, refine, set up, restore (the order of step-40/step-75 for
+  // distributed meshes). The marking takes a fixed fraction of the cells with
+  // the largest and the smallest indicators, with p4est's bisection over all
+  // ranks (parallel::distributed::GridRefinement), and refines fewer cells if
+  // the mesh would exceed Maximum cells; cells on Maximum refinement level are
+  // not refined. If nothing is marked the mesh and the state stay as they are.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::adapt_mesh(const double time)
+  {
+    TimerOutput::Scope t(computing_timer, "Mesh adaptation");
+    auto &mesh = dynamic_cast<parallel::distributed::Triangulation<dim> &>(
+      *triangulation);
+    solution.update_ghost_values();
+    const Vector<float> indicators = refinement_indicators();
+    parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
+      mesh,
+      indicators,
+      parameters.refine_fraction,
+      parameters.coarsen_fraction,
+      parameters.maximum_cells);
+    for (const auto &cell : mesh.active_cell_iterators())
+      if (cell->is_locally_owned() && cell->refine_flag_set()
+          && cell->level() >= int(parameters.maximum_refinement_level))
+        cell->clear_refine_flag();
+    mesh.prepare_coarsening_and_refinement();
+    unsigned int marked = 0;
+    for (const auto &cell : mesh.active_cell_iterators())
+      if (cell->is_locally_owned()
+          && (cell->refine_flag_set() || cell->coarsen_flag_set()))
+        ++marked;
+    if (Utilities::MPI::sum(marked, mpi_communicator) == 0)
+      return;
+    const auto cells_before = mesh.n_global_active_cells();
+    const auto dofs_before  = dof_handler.n_dofs();
+
+    // The nodal fields: u and the contact pressure z_i / w_i at the x-dof of
+    // each contact node (zero elsewhere), both with their ghosts, as
+    // SolutionTransfer reads them on the owned cells.
+    VectorType pressure(solution);
+    pressure = 0;
+    if (contact_enabled)
+      for (unsigned int i = 0; i < contact_set.size(); ++i)
+        pressure.local_element(contact_set.node(i).local_dofs[0])
+          = contact_set.contact_pressure(i);
+    pressure.update_ghost_values();
+    parallel::distributed::SolutionTransfer<dim, VectorType> nodal_transfer(
+      dof_handler);
+    nodal_transfer.prepare_for_coarsening_and_refinement(
+      std::vector<const VectorType *>{&solution, &pressure});
+
+    // The stress-point data, one record per active cell (owned entries set).
+    using Record                 = CellRecord<dim>;
+    const unsigned int n_q       = stress_quadrature.size();
+    const unsigned int n_fields  = n_point_fields<dim>;
+    const auto         to_record = [](const std::vector<double> &values) {
+      Record record;
+      std::copy(values.begin(), values.end(), record.begin());
+      return record;
+    };
+    const StressPointTransfer<dim> q1_transfer(stress_quadrature, n_fields);
+    std::vector<Record>            cell_data(mesh.n_active_cells());
+    for (unsigned int k = 0; k < owned_cells.size(); ++k)
+      for (unsigned int q = 0; q < n_q; ++q)
+        pack_point(quadrature_point_history[std::size_t(k) * n_q + q],
+                   cell_data[owned_cells[k]->active_cell_index()].data()
+                     + q * n_fields);
+    parallel::distributed::CellDataTransfer<dim, dim, std::vector<Record>>
+      data_transfer(
+        mesh,
+        /*transfer_variable_size_data=*/false,
+        [&](const typename Triangulation<dim>::cell_iterator &,
+            const Record &parent) {
+          std::vector<Record> children;
+          for (const auto &child : q1_transfer.refine(
+                 std::vector<double>(parent.begin(), parent.end())))
+            children.push_back(to_record(child));
+          return children;
+        },
+        [&](const typename Triangulation<dim>::cell_iterator &,
+            const std::vector<Record> &children) {
+          std::vector<std::vector<double>> values;
+          for (const Record &child : children)
+            values.emplace_back(child.begin(), child.end());
+          return to_record(q1_transfer.coarsen(values));
+        });
+    data_transfer.prepare_for_coarsening_and_refinement(cell_data);
+
+    // The new mesh (p4est also rebalances the partition), and everything on
+    // it, from the initial state.
+    mesh.execute_coarsening_and_refinement();
+    setup_on_mesh();
+
+    // u on the new mesh, then the constraints of its hanging nodes.
+    VectorType new_pressure(solution);
+    solution.zero_out_ghost_values();
+    new_pressure.zero_out_ghost_values();
+    std::vector<VectorType *> nodal_fields{&solution, &new_pressure};
+    nodal_transfer.interpolate(nodal_fields);
+    constraints.distribute(solution);
+    solution.update_ghost_values();
+
+    // The stress points of the new owned cells, in the order of owned_cells.
+    cell_data.assign(mesh.n_active_cells(), Record());
+    data_transfer.unpack(cell_data);
+    for (unsigned int k = 0; k < owned_cells.size(); ++k)
+      for (unsigned int q = 0; q < n_q; ++q)
+        unpack_point(cell_data[owned_cells[k]->active_cell_index()].data()
+                       + q * n_fields,
+                     quadrature_point_history[std::size_t(k) * n_q + q]);
+
+    // The contact set: (r, z) from u and the pressure, and the piece they name.
+    if (contact_enabled)
+      {
+        for (unsigned int i = 0; i < contact_set.size(); ++i)
+          {
+            contact_set.r[i] = contact_set.normal_component(solution, i);
+            contact_set.z[i]
+              = contact_set.weight(i)
+                * new_pressure.local_element(contact_set.node(i).local_dofs[0]);
+          }
+        contact_set.update_pieces();
+      }
+
+    // The loads of the next step on the new mesh: the external load (the time
+    // loop assembles it only once if it does not depend on t) and the history
+    // load of the explicit update from the carried-over history.
+    assemble_external_load(time);
+    if (explicit_history_update())
+      assemble_history_load();
+
+    if (parameters.verbose)
+      pcout << "Mesh adapted at t = " << time << ": " << cells_before << " -> "
+            << mesh.n_global_active_cells() << " cells, " << dofs_before
+            << " -> " << dof_handler.n_dofs() << " dofs, "
+            << (contact_enabled ? contact_set.n_global_nodes() : 0)
+            << " contact nodes" << std::endl;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::restore_checkpoint_mesh}
+  //
+  // A checkpoint holds one record per active cell, keyed by its cell id
+  // (checkpoint.h): the ids of the records are the adapted mesh. The mesh
+  // built from the parameter file is refined where a checkpoint cell descends
+  // from one of its cells and coarsened where one of its cells descends from a
+  // checkpoint cell, pass by pass (coarsening goes one level per pass), until
+  // its active cells are those of the checkpoint; then everything is set up on
+  // it. The ids of all records are gathered on every rank: a few bytes per
+  // cell, for a mesh whose size Maximum cells bounds. Whether the mesh matches
+  // is checked by resume_from_checkpoint(), which must find every owned cell's
+  // record.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::restore_checkpoint_mesh()
+  {
+    // The checkpoint's step (its dof count belongs to the adapted mesh, so it
+    // is checked later), and the records of this rank's share, as
+    // resume_from_checkpoint() reads them.
+    const CheckpointRecord checkpoint
+      = read_checkpoint_record(parameters.directory,
+                               0,
+                               parameters.result_entries);
+    using Key = CellId::binary_type;
+    const std::size_t size
+      = sizeof(Key) + 2 * fe->n_dofs_per_cell() * sizeof(double)
+        + stress_quadrature.size() * sizeof(QuadraturePointHistory<dim>);
+    std::vector<char> header, share;
+    read_record_file(checkpoint_file(parameters.directory, checkpoint.step),
+                     header,
+                     share,
+                     size,
+                     mpi_communicator);
+
+    // All ranks' keys, on every rank, sorted: the descendants of a cell
+    // follow it in the order of CellId.
+    std::vector<char> keys;
+    for (std::size_t r = 0; r < share.size() / size; ++r)
+      keys.insert(keys.end(),
+                  share.begin() + r * size,
+                  share.begin() + r * size + sizeof(Key));
+    const std::vector<int> counts
+      = Utilities::MPI::all_gather(mpi_communicator, int(keys.size()));
+    std::vector<int> offsets(counts.size(), 0);
+    for (unsigned int p = 1; p < counts.size(); ++p)
+      offsets[p] = offsets[p - 1] + counts[p - 1];
+    std::vector<char> all_keys(offsets.back() + counts.back());
+    MPI_Allgatherv(keys.data(),
+                   keys.size(),
+                   MPI_CHAR,
+                   all_keys.data(),
+                   counts.data(),
+                   offsets.data(),
+                   MPI_CHAR,
+                   mpi_communicator);
+    std::vector<CellId> targets;
+    for (std::size_t r = 0; r < all_keys.size() / sizeof(Key); ++r)
+      {
+        Key key;
+        std::memcpy(&key, all_keys.data() + r * sizeof(Key), sizeof(Key));
+        targets.emplace_back(key);
+      }
+    std::sort(targets.begin(), targets.end());
+
+    auto &mesh = dynamic_cast<parallel::distributed::Triangulation<dim> &>(
+      *triangulation);
+    // At most one level of coarsening per pass, and the levels are bounded by
+    // Maximum refinement level (and p4est's limit).
+    for (unsigned int pass = 0; pass < 64; ++pass)
+      {
+        unsigned int marked = 0;
+        for (const auto &cell : mesh.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              const CellId id = cell->id();
+              const auto   found
+                = std::lower_bound(targets.begin(), targets.end(), id);
+              if (found != targets.end() && *found == id)
+                continue;
+              if (found != targets.end() && id.is_ancestor_of(*found))
+                cell->set_refine_flag();
+              else if (cell->level() > 0)
+                cell->set_coarsen_flag();
+              else
+                continue;
+              ++marked;
+            }
+        if (Utilities::MPI::sum(marked, mpi_communicator) == 0)
+          break;
+        mesh.execute_coarsening_and_refinement();
+      }
+    setup_on_mesh();
+  }
+
+
+
+  template class ViscoplasticContact<2>;
+  template class ViscoplasticContact<3>;
+} // namespace ViscoContact

@@ -1,0 +1,229 @@
+#!/usr/bin/python3
+"""Work and precision of uniform, graded and adaptive meshes.
+
+The 2D benchmark (parameters/default.prm) on quadrilaterals, k = 1/64 for
+every run, so that the time discretisation is the same everywhere and only
+the mesh differs:
+
+* uniform meshes with Subdivisions = 8, 16, 32, 64;
+* graded meshes (Contact refinement levels = 2): Subdivisions = 4, 8, 16, 32;
+* adaptive meshes (subsection Mesh adaptation) from the uniform mesh with
+  Subdivisions = 8, adapted every 4 steps, for two pairs of fractions and
+  several Maximum cells;
+* the reference: a uniform mesh with Subdivisions = 256 (--reference).
+
+Errors against the reference, all quantities the program writes:
+* u_nu: the relative L2(Gamma_3) error of the normal displacement at t = 1
+  (the contact profile; the reference profile interpolated linearly in x,
+  the nodal weights of the run);
+* force history: max over the steps of |F_h(t_n) - F(t_n)| / F(1), with the
+  total contact force F of time_series.csv;
+* strain norm: the relative error of ||eps(u)||_L2 at t = 1 (run summary), a
+  quantity of the whole body.
+Work: the whole process's wall time (start-up included) and the dofs (for
+adaptive runs, the mean over the steps of the dofs each step was computed
+with, and the final count).
+
+Writes <output-dir>/work_precision_mesh.{csv,md,png}.
+
+    benchmarks/run_adaptive_meshes.py [--executable build/viscoplastic_contact]
+                                      [--output-dir doc/adaptivity]
+                                      [--reference 256]
+"""
+
+import argparse
+import csv
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                "..", "scripts"))
+from vc_scripts import REPO_ROOT, resolve_executable, set_prm_entries  # noqa
+
+TIME_STEP = 1.0 / 64
+
+
+def run(executable, subdivisions, levels=0, adaptive=None, scene="default.prm"):
+    """One run; adaptive = (refine fraction, coarsen fraction, max cells)."""
+    with open(os.path.join(REPO_ROOT, "parameters", scene)) as f:
+        text = f.read()
+    entries = {
+        (("Geometry",), "Subdivisions"): str(subdivisions),
+        (("Geometry",), "Cell type"): "hypercube",
+        (("Geometry",), "Contact refinement levels"): str(levels),
+        (("Time",), "Time step"): repr(TIME_STEP),
+        (("Output",), "Output directory"): "results",
+        (("Output",), "Write vtu"): "false",
+        (("Output",), "Profile times"): "1",
+        (("Output",), "Verbose"): "true",
+        (("Output",), "Print timing summary"): "false",
+    }
+    if adaptive:
+        entries.update({
+            (("Mesh adaptation",), "Adaptive refinement"): "true",
+            (("Mesh adaptation",), "Refinement interval"): "4",
+            (("Mesh adaptation",), "Refine fraction"): repr(adaptive[0]),
+            (("Mesh adaptation",), "Coarsen fraction"): repr(adaptive[1]),
+            (("Mesh adaptation",), "Maximum cells"): str(adaptive[2]),
+            (("Mesh adaptation",), "Maximum refinement level"): "8",
+        })
+    text = set_prm_entries(text, entries)
+    with tempfile.TemporaryDirectory() as workdir:
+        prm = os.path.join(workdir, "run.prm")
+        with open(prm, "w") as f:
+            f.write(text)
+        start = time.perf_counter()
+        result = subprocess.run([executable, prm], cwd=workdir,
+                                capture_output=True, text=True)
+        wall = time.perf_counter() - start
+        if result.returncode != 0:
+            raise RuntimeError(result.stdout[-2000:] + result.stderr[-2000:])
+        out = result.stdout
+        dofs = int(out.split(" displacement dofs")[0].split()[-1])
+        # The dofs of each step: the initial count until the first
+        # adaptation, then the count after each.
+        step_dofs, current = [], dofs
+        for line in out.splitlines():
+            m = re.match(r"Mesh adapted at .* -> (\d+) dofs", line)
+            if m:
+                current = int(m.group(1))
+            elif line.startswith("Step "):
+                step_dofs.append(current)
+        cells = re.findall(r"-> (\d+) cells", out)
+        strain = float(re.search(r"\|\|eps\(u\)\|\|_L2 = ([0-9.eE+-]+)", out).group(1))
+        results = os.path.join(workdir, "results")
+        profile = [f for f in os.listdir(results) if f.startswith("contact_profile_")]
+        with open(os.path.join(results, sorted(profile)[-1])) as f:
+            nodes = sorted(csv.DictReader(f), key=lambda r: float(r["x"]))
+        with open(os.path.join(results, "time_series.csv")) as f:
+            series = list(csv.DictReader(f))
+    return {"kind": "adaptive" if adaptive else ("graded" if levels else "uniform"),
+            "subdivisions": subdivisions, "levels": levels,
+            "fractions": "%g/%g" % adaptive[:2] if adaptive else "",
+            "max_cells": adaptive[2] if adaptive else "",
+            "dofs": dofs, "final_dofs": step_dofs[-1],
+            "mean_dofs": sum(step_dofs) / len(step_dofs),
+            "final_cells": int(cells[-1]) if cells else subdivisions ** 2,
+            "wall_time": wall, "strain_norm": strain,
+            "force": [float(r["total_contact_force"]) for r in series],
+            "x": [float(r["x"]) for r in nodes],
+            "u_nu": [float(r["u_nu"]) for r in nodes],
+            "weight": [float(r["weight"]) for r in nodes]}
+
+
+def interpolate(xs, ys, x):
+    if x <= xs[0]:
+        return ys[0]
+    for i in range(1, len(xs)):
+        if x <= xs[i]:
+            t = (x - xs[i - 1]) / (xs[i] - xs[i - 1])
+            return (1 - t) * ys[i - 1] + t * ys[i]
+    return ys[-1]
+
+
+def errors(r, reference):
+    num = den = 0.0
+    for x, value, w in zip(r["x"], r["u_nu"], r["weight"]):
+        exact = interpolate(reference["x"], reference["u_nu"], x)
+        num += w * (value - exact) ** 2
+        den += w * exact ** 2
+    r["error_u_nu"] = math.sqrt(num / den)
+    r["error_force"] = max(abs(a - b) for a, b in zip(r["force"], reference["force"])) \
+        / reference["force"][-1]
+    r["error_strain"] = abs(r["strain_norm"] - reference["strain_norm"]) \
+        / reference["strain_norm"]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--executable")
+    parser.add_argument("--output-dir",
+                        default=os.path.join(REPO_ROOT, "doc", "adaptivity"))
+    parser.add_argument("--reference", type=int, default=256)
+    args = parser.parse_args()
+    executable = resolve_executable(args.executable)
+
+    print("reference: uniform, Subdivisions = %d ..." % args.reference, flush=True)
+    reference = run(executable, args.reference)
+    runs = [run(executable, n) for n in (8, 16, 32, 64)]
+    runs += [run(executable, n, levels=2) for n in (4, 8, 16, 32)]
+    for fractions in ((0.3, 0.03), (0.15, 0.1)):
+        for max_cells in (250, 500, 1000, 2000, 4000):
+            runs.append(run(executable, 8, adaptive=fractions + (max_cells,)))
+    for r in runs:
+        errors(r, reference)
+        print("%-8s n = %3d %-9s %5s: %6d dofs (mean %8.1f), %.2f s, errors u_nu "
+              "%.3e force %.3e strain %.3e"
+              % (r["kind"], r["subdivisions"], r["fractions"], r["max_cells"],
+                 r["final_dofs"], r["mean_dofs"], r["wall_time"], r["error_u_nu"],
+                 r["error_force"], r["error_strain"]), flush=True)
+
+    os.makedirs(args.output_dir, exist_ok=True)
+    keys = ["kind", "subdivisions", "levels", "fractions", "max_cells",
+            "final_cells", "final_dofs", "mean_dofs", "wall_time",
+            "error_u_nu", "error_force", "error_strain"]
+    with open(os.path.join(args.output_dir, "work_precision_mesh.csv"), "w",
+              newline="") as f:
+        writer = csv.writer(f)
+        writer.writerow(keys)
+        for r in runs:
+            writer.writerow([r[k] for k in keys])
+    lines = ["# Work and precision: uniform, graded and adaptive meshes", "",
+             "Generated by `benchmarks/run_adaptive_meshes.py`. The 2D benchmark "
+             "on quadrilaterals, k = 1/64 in every run; errors against a uniform "
+             "mesh with Subdivisions = %d (%d dofs, the same k, %.1f s): u_nu = "
+             "relative L2(Gamma_3) error of the normal displacement at t = 1; "
+             "force = max over the steps of the error of the total contact force, "
+             "relative to F(1); strain = relative error of ||eps(u)||_L2 at t = 1. "
+             "Graded: Contact refinement levels = 2. Adaptive: from Subdivisions "
+             "= 8, adapted every 4 steps with Refine/Coarsen fraction and Maximum "
+             "cells as listed. dofs: final (mean over the steps). Wall time: the "
+             "whole process, one rank."
+             % (args.reference, reference["dofs"], reference["wall_time"]), "",
+             "| mesh | Subdivisions | fractions | Maximum cells | final cells | "
+             "dofs (mean) | wall time [s] | error u_nu | error force | error strain |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for r in runs:
+        lines.append("| %s | %d | %s | %s | %d | %d (%.0f) | %.2f | %.3e | %.3e | %.3e |" % (
+            r["kind"], r["subdivisions"], r["fractions"], r["max_cells"],
+            r["final_cells"], r["final_dofs"], r["mean_dofs"], r["wall_time"],
+            r["error_u_nu"], r["error_force"], r["error_strain"]))
+    with open(os.path.join(args.output_dir, "work_precision_mesh.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(2, 3, figsize=(15, 8.4))
+    groups = [("uniform", "", "o", "uniform"),
+              ("graded", "", "s", "graded, 2 levels")]
+    groups += [("adaptive", f, m, "adaptive, fractions " + f)
+               for f, m in (("0.3/0.03", "^"), ("0.15/0.1", "v"))]
+    for row, (work, work_label) in enumerate((("mean_dofs", "dofs (mean over the steps)"),
+                                              ("wall_time", "wall time [s], whole process"))):
+        for ax, key, title in zip(axes[row], ["error_u_nu", "error_force", "error_strain"],
+                                  ["u_nu on Gamma_3 at t = 1 (rel. L2)",
+                                   "total contact force, max over t (rel.)",
+                                   "||eps(u)||_L2 at t = 1 (rel.)"]):
+            for kind, fractions, marker, label in groups:
+                sel = [r for r in runs if r["kind"] == kind
+                       and (not fractions or r["fractions"] == fractions)]
+                ax.loglog([r[work] for r in sel], [r[key] for r in sel],
+                          marker=marker, label=label)
+            ax.set_xlabel(work_label)
+            ax.set_title(title)
+            ax.grid(True, which="both", alpha=0.3)
+        axes[row][0].set_ylabel("error against Subdivisions = %d" % args.reference)
+    axes[0][0].legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(args.output_dir, "work_precision_mesh.png"), dpi=100)
+
+
+if __name__ == "__main__":
+    main()

@@ -210,8 +210,11 @@ namespace ViscoContact
                 highest_state = std::max(highest_state, contact_state(dof));
               }
           }
+        // Raised above every unflagged cell, and among themselves still in
+        // the order of their Kelly values: the marking takes a fraction of
+        // them when Maximum cells does not allow all.
         if (zone_boundary || lowest_state < highest_state)
-          indicators[cell->active_cell_index()] = largest > 0 ? largest : 1.f;
+          indicators[cell->active_cell_index()] += largest > 0 ? largest : 1.f;
       }
     return indicators;
   }
@@ -235,26 +238,58 @@ namespace ViscoContact
       *triangulation);
     solution.update_ghost_values();
     const Vector<float> indicators = refinement_indicators();
-    parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
-      mesh,
-      indicators,
-      parameters.refine_fraction,
-      parameters.coarsen_fraction,
-      parameters.maximum_cells);
-    for (const auto &cell : mesh.active_cell_iterators())
-      if (cell->is_locally_owned() && cell->refine_flag_set()
-          && cell->level() >= int(parameters.maximum_refinement_level))
-        cell->clear_refine_flag();
-    mesh.prepare_coarsening_and_refinement();
-    unsigned int marked = 0;
-    for (const auto &cell : mesh.active_cell_iterators())
-      if (cell->is_locally_owned()
-          && (cell->refine_flag_set() || cell->coarsen_flag_set()))
-        ++marked;
-    if (Utilities::MPI::sum(marked, mpi_communicator) == 0)
-      return;
+    // The marking for a refine fraction, and the number of cells it would
+    // give: a refined cell adds 2^dim - 1 cells, a coarsened one removes
+    // (2^dim - 1) / 2^dim, after prepare_coarsening_and_refinement() has
+    // added the refinements p4est's 2:1 balance needs and dropped the
+    // coarsenings it cannot do. The fixed-number marking bounds the count
+    // before that balance; if the balanced mesh would still exceed Maximum
+    // cells, the refine fraction is reduced until it does not (to zero if the
+    // mesh is already at the bound: then it is only coarsened).
     const auto cells_before = mesh.n_global_active_cells();
-    const auto dofs_before  = dof_handler.n_dofs();
+    const auto mark         = [&](const double refine_fraction) {
+      for (const auto &cell : mesh.active_cell_iterators())
+        {
+          cell->clear_refine_flag();
+          cell->clear_coarsen_flag();
+        }
+      parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
+        mesh,
+        indicators,
+        refine_fraction,
+        parameters.coarsen_fraction,
+        parameters.maximum_cells);
+      for (const auto &cell : mesh.active_cell_iterators())
+        if (cell->is_locally_owned() && cell->refine_flag_set()
+            && cell->level() >= int(parameters.maximum_refinement_level))
+          cell->clear_refine_flag();
+      mesh.prepare_coarsening_and_refinement();
+      double marked[2] = {0, 0};
+      for (const auto &cell : mesh.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            marked[0] += cell->refine_flag_set();
+            marked[1] += cell->coarsen_flag_set();
+          }
+      for (double &count : marked)
+        count = Utilities::MPI::sum(count, mpi_communicator);
+      const double children = GeometryInfo<dim>::max_children_per_cell;
+      return std::make_pair(marked[0] + marked[1] > 0,
+                            cells_before + (children - 1) * marked[0]
+                              - (children - 1) / children * marked[1]);
+    };
+    double refine_fraction = parameters.refine_fraction;
+    auto   outcome         = mark(refine_fraction);
+    for (unsigned int attempt = 0;
+         outcome.second > parameters.maximum_cells && refine_fraction > 0;
+         ++attempt)
+      {
+        refine_fraction = attempt < 10 ? refine_fraction / 2 : 0.;
+        outcome         = mark(refine_fraction);
+      }
+    if (!outcome.first)
+      return;
+    const auto dofs_before = dof_handler.n_dofs();
 
     // The nodal fields: u and the contact pressure z_i / w_i at the x-dof of
     // each contact node (zero elsewhere), both with their ghosts, as

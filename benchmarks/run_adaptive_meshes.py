@@ -5,11 +5,12 @@ The 2D benchmark (parameters/default.prm) on quadrilaterals, k = 1/64 for
 every run, so that the time discretisation is the same everywhere and only
 the mesh differs:
 
-* uniform meshes with Subdivisions = 8, 16, 32, 64;
-* graded meshes (Contact refinement levels = 2): Subdivisions = 4, 8, 16, 32;
+* uniform meshes with Subdivisions = 8, 16, 32, 64, 128;
+* graded meshes (Contact refinement levels = 2): Subdivisions = 4, ..., 64;
 * adaptive meshes (subsection Mesh adaptation) from the uniform mesh with
-  Subdivisions = 8, adapted every 4 steps, for two pairs of fractions and
-  several Maximum cells;
+  Subdivisions = 16, adapted every 4 steps and every step (fractions 0.3 and
+  0.03), with Maximum cells = 1000, ..., 8000; and from Subdivisions = 8
+  (every 4 steps, fractions 0.3/0.03 and 0.15/0.1, 2000 cells);
 * the reference: a uniform mesh with Subdivisions = 256 (--reference).
 
 Errors against the reference, all quantities the program writes:
@@ -49,7 +50,8 @@ TIME_STEP = 1.0 / 64
 
 
 def run(executable, subdivisions, levels=0, adaptive=None, scene="default.prm"):
-    """One run; adaptive = (refine fraction, coarsen fraction, max cells)."""
+    """One run; adaptive = (refine fraction, coarsen fraction, max cells,
+    refinement interval)."""
     with open(os.path.join(REPO_ROOT, "parameters", scene)) as f:
         text = f.read()
     entries = {
@@ -66,7 +68,7 @@ def run(executable, subdivisions, levels=0, adaptive=None, scene="default.prm"):
     if adaptive:
         entries.update({
             (("Mesh adaptation",), "Adaptive refinement"): "true",
-            (("Mesh adaptation",), "Refinement interval"): "4",
+            (("Mesh adaptation",), "Refinement interval"): str(adaptive[3]),
             (("Mesh adaptation",), "Refine fraction"): repr(adaptive[0]),
             (("Mesh adaptation",), "Coarsen fraction"): repr(adaptive[1]),
             (("Mesh adaptation",), "Maximum cells"): str(adaptive[2]),
@@ -105,6 +107,7 @@ def run(executable, subdivisions, levels=0, adaptive=None, scene="default.prm"):
     return {"kind": "adaptive" if adaptive else ("graded" if levels else "uniform"),
             "subdivisions": subdivisions, "levels": levels,
             "fractions": "%g/%g" % adaptive[:2] if adaptive else "",
+            "interval": adaptive[3] if adaptive else "",
             "max_cells": adaptive[2] if adaptive else "",
             "dofs": dofs, "final_dofs": step_dofs[-1],
             "mean_dofs": sum(step_dofs) / len(step_dofs),
@@ -150,11 +153,13 @@ def main():
 
     print("reference: uniform, Subdivisions = %d ..." % args.reference, flush=True)
     reference = run(executable, args.reference)
-    runs = [run(executable, n) for n in (8, 16, 32, 64)]
-    runs += [run(executable, n, levels=2) for n in (4, 8, 16, 32)]
+    runs = [run(executable, n) for n in (8, 16, 32, 64, 128)]
+    runs += [run(executable, n, levels=2) for n in (4, 8, 16, 32, 64)]
+    for interval in (4, 1):
+        for max_cells in (1000, 2000, 4000, 8000):
+            runs.append(run(executable, 16, adaptive=(0.3, 0.03, max_cells, interval)))
     for fractions in ((0.3, 0.03), (0.15, 0.1)):
-        for max_cells in (250, 500, 1000, 2000, 4000):
-            runs.append(run(executable, 8, adaptive=fractions + (max_cells,)))
+        runs.append(run(executable, 8, adaptive=fractions + (2000, 4)))
     for r in runs:
         errors(r, reference)
         print("%-8s n = %3d %-9s %5s: %6d dofs (mean %8.1f), %.2f s, errors u_nu "
@@ -164,7 +169,7 @@ def main():
                  r["error_force"], r["error_strain"]), flush=True)
 
     os.makedirs(args.output_dir, exist_ok=True)
-    keys = ["kind", "subdivisions", "levels", "fractions", "max_cells",
+    keys = ["kind", "subdivisions", "levels", "fractions", "interval", "max_cells",
             "final_cells", "final_dofs", "mean_dofs", "wall_time",
             "error_u_nu", "error_force", "error_strain"]
     with open(os.path.join(args.output_dir, "work_precision_mesh.csv"), "w",
@@ -180,17 +185,18 @@ def main():
              "relative L2(Gamma_3) error of the normal displacement at t = 1; "
              "force = max over the steps of the error of the total contact force, "
              "relative to F(1); strain = relative error of ||eps(u)||_L2 at t = 1. "
-             "Graded: Contact refinement levels = 2. Adaptive: from Subdivisions "
-             "= 8, adapted every 4 steps with Refine/Coarsen fraction and Maximum "
-             "cells as listed. dofs: final (mean over the steps). Wall time: the "
+             "Graded: Contact refinement levels = 2. Adaptive: from the uniform mesh "
+             "of the Subdivisions listed, adapted every *interval* steps with the "
+             "Refine/Coarsen fractions and Maximum cells listed (Maximum refinement "
+             "level 8, i.e. h >= 1/256). dofs: final (mean over the steps). Wall time: the "
              "whole process, one rank."
              % (args.reference, reference["dofs"], reference["wall_time"]), "",
-             "| mesh | Subdivisions | fractions | Maximum cells | final cells | "
+             "| mesh | Subdivisions | fractions | interval | Maximum cells | final cells | "
              "dofs (mean) | wall time [s] | error u_nu | error force | error strain |",
-             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for r in runs:
-        lines.append("| %s | %d | %s | %s | %d | %d (%.0f) | %.2f | %.3e | %.3e | %.3e |" % (
-            r["kind"], r["subdivisions"], r["fractions"], r["max_cells"],
+        lines.append("| %s | %d | %s | %s | %s | %d | %d (%.0f) | %.2f | %.3e | %.3e | %.3e |" % (
+            r["kind"], r["subdivisions"], r["fractions"], r["interval"], r["max_cells"],
             r["final_cells"], r["final_dofs"], r["mean_dofs"], r["wall_time"],
             r["error_u_nu"], r["error_force"], r["error_strain"]))
     with open(os.path.join(args.output_dir, "work_precision_mesh.md"), "w") as f:
@@ -201,19 +207,22 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(2, 3, figsize=(15, 8.4))
-    groups = [("uniform", "", "o", "uniform"),
-              ("graded", "", "s", "graded, 2 levels")]
-    groups += [("adaptive", f, m, "adaptive, fractions " + f)
-               for f, m in (("0.3/0.03", "^"), ("0.15/0.1", "v"))]
+    groups = [("uniform", lambda r: True, "o", "uniform"),
+              ("graded", lambda r: True, "s", "graded, 2 levels"),
+              ("adaptive", lambda r: r["subdivisions"] == 16 and r["interval"] == 4,
+               "^", "adaptive from 1/16, every 4 steps"),
+              ("adaptive", lambda r: r["subdivisions"] == 16 and r["interval"] == 1,
+               "v", "adaptive from 1/16, every step"),
+              ("adaptive", lambda r: r["subdivisions"] == 8, "x",
+               "adaptive from 1/8 (0.3/0.03, 0.15/0.1)")]
     for row, (work, work_label) in enumerate((("mean_dofs", "dofs (mean over the steps)"),
                                               ("wall_time", "wall time [s], whole process"))):
         for ax, key, title in zip(axes[row], ["error_u_nu", "error_force", "error_strain"],
                                   ["u_nu on Gamma_3 at t = 1 (rel. L2)",
                                    "total contact force, max over t (rel.)",
                                    "||eps(u)||_L2 at t = 1 (rel.)"]):
-            for kind, fractions, marker, label in groups:
-                sel = [r for r in runs if r["kind"] == kind
-                       and (not fractions or r["fractions"] == fractions)]
+            for kind, select, marker, label in groups:
+                sel = [r for r in runs if r["kind"] == kind and select(r)]
                 ax.loglog([r[work] for r in sel], [r[key] for r in sel],
                           marker=marker, label=label)
             ax.set_xlabel(work_label)

@@ -40,6 +40,7 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <optional>
 
 namespace ViscoContact
 {
@@ -233,10 +234,14 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::adapt_mesh(const double time)
   {
+    // The timer's sections: the whole adaptation and, within it, its parts
+    // (the set-up on the new mesh has its own sections).
     TimerOutput::Scope t(computing_timer, "Mesh adaptation");
     auto &mesh = dynamic_cast<parallel::distributed::Triangulation<dim> &>(
       *triangulation);
     solution.update_ghost_values();
+    std::optional<TimerOutput::Scope> part;
+    part.emplace(computing_timer, "Mesh adaptation: indicators and marking");
     const Vector<float> indicators = refinement_indicators();
     // The marking for a refine fraction, and the number of cells it would
     // give: a refined cell adds 2^dim - 1 cells, a coarsened one removes
@@ -278,17 +283,28 @@ namespace ViscoContact
                             cells_before + (children - 1) * marked[0]
                               - (children - 1) / children * marked[1]);
     };
-    double refine_fraction = parameters.refine_fraction;
+    // A mesh at the bound is only coarsened; otherwise the fraction is scaled
+    // by the share of the predicted growth that fits (with a margin, since
+    // the balance does not scale exactly), a few times at most.
+    double refine_fraction = cells_before < parameters.maximum_cells
+                               ? parameters.refine_fraction
+                               : 0.;
     auto   outcome         = mark(refine_fraction);
     for (unsigned int attempt = 0;
          outcome.second > parameters.maximum_cells && refine_fraction > 0;
          ++attempt)
       {
-        refine_fraction = attempt < 10 ? refine_fraction / 2 : 0.;
-        outcome         = mark(refine_fraction);
+        refine_fraction
+          = attempt < 4 ? 0.9 * refine_fraction
+                            * (double(parameters.maximum_cells) - cells_before)
+                            / (outcome.second - cells_before)
+                        : 0.;
+        outcome = mark(refine_fraction);
       }
     if (!outcome.first)
       return;
+    part.reset();
+    part.emplace(computing_timer, "Mesh adaptation: transfer");
     const auto dofs_before = dof_handler.n_dofs();
 
     // The nodal fields: u and the contact pressure z_i / w_i at the x-dof of
@@ -346,7 +362,9 @@ namespace ViscoContact
     // The new mesh (p4est also rebalances the partition), and everything on
     // it, from the initial state.
     mesh.execute_coarsening_and_refinement();
+    part.reset();
     setup_on_mesh();
+    part.emplace(computing_timer, "Mesh adaptation: transfer");
 
     // u on the new mesh, then the constraints of its hanging nodes.
     VectorType new_pressure(solution);
@@ -378,6 +396,8 @@ namespace ViscoContact
           }
         contact_set.update_pieces();
       }
+
+    part.reset();
 
     // The loads of the next step on the new mesh: the external load (the time
     // loop assembles it only once if it does not depend on t) and the history

@@ -46,25 +46,32 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                 "..", "scripts"))
 from vc_scripts import REPO_ROOT, resolve_executable, set_prm_entries  # noqa
 
-TIME_STEP = 1.0 / 64
+# The scenes: the 2D benchmark with k = 1/64, and (--dimension 3) the cube of
+# parameters/cube_3d.prm with its own k = 1/32.
+SCENES = {2: ("default.prm", 1.0 / 64), 3: ("cube_3d.prm", 1.0 / 32)}
 
 
-def run(executable, subdivisions, levels=0, adaptive=None, scene="default.prm"):
+def run(executable, subdivisions, levels=0, adaptive=None, dimension=2):
     """One run; adaptive = (refine fraction, coarsen fraction, max cells,
     refinement interval)."""
+    scene, time_step = SCENES[dimension]
     with open(os.path.join(REPO_ROOT, "parameters", scene)) as f:
         text = f.read()
     entries = {
         (("Geometry",), "Subdivisions"): str(subdivisions),
         (("Geometry",), "Cell type"): "hypercube",
         (("Geometry",), "Contact refinement levels"): str(levels),
-        (("Time",), "Time step"): repr(TIME_STEP),
+        (("Time",), "Time step"): repr(time_step),
         (("Output",), "Output directory"): "results",
         (("Output",), "Write vtu"): "false",
         (("Output",), "Profile times"): "1",
         (("Output",), "Verbose"): "true",
         (("Output",), "Print timing summary"): "false",
     }
+    if dimension == 3:
+        # One rank: the full space back end with AMG (auto chooses it above
+        # 1500 contact nodes anyway), so that all runs use the same solver.
+        entries[(("Linear solver",), "Method")] = "full space"
     if adaptive:
         entries.update({
             (("Mesh adaptation",), "Adaptive refinement"): "true",
@@ -101,7 +108,8 @@ def run(executable, subdivisions, levels=0, adaptive=None, scene="default.prm"):
         results = os.path.join(workdir, "results")
         profile = [f for f in os.listdir(results) if f.startswith("contact_profile_")]
         with open(os.path.join(results, sorted(profile)[-1])) as f:
-            nodes = sorted(csv.DictReader(f), key=lambda r: float(r["x"]))
+            nodes = sorted(csv.DictReader(f),
+                           key=lambda r: (float(r["x"]), float(r.get("y", 0))))
         with open(os.path.join(results, "time_series.csv")) as f:
             series = list(csv.DictReader(f))
     return {"kind": "adaptive" if adaptive else ("graded" if levels else "uniform"),
@@ -129,17 +137,21 @@ def interpolate(xs, ys, x):
     return ys[-1]
 
 
-def errors(r, reference):
+def errors(r, reference, dimension):
+    r["error_force"] = max(abs(a - b) for a, b in zip(r["force"], reference["force"])) \
+        / reference["force"][-1]
+    r["error_strain"] = abs(r["strain_norm"] - reference["strain_norm"]) \
+        / reference["strain_norm"]
+    # u_nu along the contact edge needs a 1D profile: 2D only.
+    if dimension != 2:
+        r["error_u_nu"] = float("nan")
+        return
     num = den = 0.0
     for x, value, w in zip(r["x"], r["u_nu"], r["weight"]):
         exact = interpolate(reference["x"], reference["u_nu"], x)
         num += w * (value - exact) ** 2
         den += w * exact ** 2
     r["error_u_nu"] = math.sqrt(num / den)
-    r["error_force"] = max(abs(a - b) for a, b in zip(r["force"], reference["force"])) \
-        / reference["force"][-1]
-    r["error_strain"] = abs(r["strain_norm"] - reference["strain_norm"]) \
-        / reference["strain_norm"]
 
 
 def main():
@@ -147,21 +159,35 @@ def main():
     parser.add_argument("--executable")
     parser.add_argument("--output-dir",
                         default=os.path.join(REPO_ROOT, "doc", "adaptivity"))
-    parser.add_argument("--reference", type=int, default=256)
+    parser.add_argument("--reference", type=int)
+    parser.add_argument("--dimension", type=int, default=2, choices=(2, 3))
     args = parser.parse_args()
     executable = resolve_executable(args.executable)
+    d = args.dimension
+    if args.reference is None:
+        args.reference = 256 if d == 2 else 32
 
     print("reference: uniform, Subdivisions = %d ..." % args.reference, flush=True)
-    reference = run(executable, args.reference)
-    runs = [run(executable, n) for n in (8, 16, 32, 64, 128)]
-    runs += [run(executable, n, levels=2) for n in (4, 8, 16, 32, 64)]
-    for interval in (4, 1):
-        for max_cells in (1000, 2000, 4000, 8000):
-            runs.append(run(executable, 16, adaptive=(0.3, 0.03, max_cells, interval)))
-    for fractions in ((0.3, 0.03), (0.15, 0.1)):
-        runs.append(run(executable, 8, adaptive=fractions + (2000, 4)))
+    reference = run(executable, args.reference, dimension=d)
+    if d == 2:
+        runs = [run(executable, n) for n in (8, 16, 32, 64, 128)]
+        runs += [run(executable, n, levels=2) for n in (4, 8, 16, 32, 64)]
+        for interval in (4, 1):
+            for max_cells in (1000, 2000, 4000, 8000):
+                runs.append(run(executable, 16,
+                                adaptive=(0.3, 0.03, max_cells, interval)))
+        for fractions in ((0.3, 0.03), (0.15, 0.1)):
+            runs.append(run(executable, 8, adaptive=fractions + (2000, 4)))
+    else:
+        runs = [run(executable, n, dimension=3) for n in (4, 8, 16)]
+        runs += [run(executable, n, levels=1, dimension=3) for n in (4, 8)]
+        for interval in (2, 1):
+            for max_cells in (500, 1000, 2000, 4000):
+                runs.append(run(executable, 8, dimension=3,
+                                adaptive=(0.3, 0.03, max_cells, interval)))
+    suffix = "" if d == 2 else "_3d"
     for r in runs:
-        errors(r, reference)
+        errors(r, reference, d)
         print("%-8s n = %3d %-9s %5s: %6d dofs (mean %8.1f), %.2f s, errors u_nu "
               "%.3e force %.3e strain %.3e"
               % (r["kind"], r["subdivisions"], r["fractions"], r["max_cells"],
@@ -172,25 +198,30 @@ def main():
     keys = ["kind", "subdivisions", "levels", "fractions", "interval", "max_cells",
             "final_cells", "final_dofs", "mean_dofs", "wall_time",
             "error_u_nu", "error_force", "error_strain"]
-    with open(os.path.join(args.output_dir, "work_precision_mesh.csv"), "w",
+    with open(os.path.join(args.output_dir, "work_precision_mesh%s.csv" % suffix), "w",
               newline="") as f:
         writer = csv.writer(f)
         writer.writerow(keys)
         for r in runs:
             writer.writerow([r[k] for k in keys])
-    lines = ["# Work and precision: uniform, graded and adaptive meshes", "",
-             "Generated by `benchmarks/run_adaptive_meshes.py`. The 2D benchmark "
-             "on quadrilaterals, k = 1/64 in every run; errors against a uniform "
-             "mesh with Subdivisions = %d (%d dofs, the same k, %.1f s): u_nu = "
-             "relative L2(Gamma_3) error of the normal displacement at t = 1; "
-             "force = max over the steps of the error of the total contact force, "
-             "relative to F(1); strain = relative error of ||eps(u)||_L2 at t = 1. "
-             "Graded: Contact refinement levels = 2. Adaptive: from the uniform mesh "
+    scene = ("The 2D benchmark on quadrilaterals, k = 1/64 in every run"
+             if d == 2 else
+             "The 3D cube (parameters/cube_3d.prm) on hexahedra, full space back "
+             "end, k = 1/32 in every run")
+    graded = "Contact refinement levels = %d" % (2 if d == 2 else 1)
+    lines = ["# Work and precision: uniform, graded and adaptive meshes (%dD)" % d, "",
+             "Generated by `benchmarks/run_adaptive_meshes.py%s`. %s; errors against "
+             "a uniform mesh with Subdivisions = %d (%d dofs, the same k, %.1f s): "
+             "u_nu = relative L2(Gamma_3) error of the normal displacement at t = 1 "
+             "(2D only); force = max over the steps of the error of the total "
+             "contact force, relative to F(1); strain = relative error of "
+             "||eps(u)||_L2 at t = 1. Graded: %s. Adaptive: from the uniform mesh "
              "of the Subdivisions listed, adapted every *interval* steps with the "
-             "Refine/Coarsen fractions and Maximum cells listed (Maximum refinement "
-             "level 8, i.e. h >= 1/256). dofs: final (mean over the steps). Wall time: the "
-             "whole process, one rank."
-             % (args.reference, reference["dofs"], reference["wall_time"]), "",
+             "Refine/Coarsen fractions and Maximum cells listed (Maximum "
+             "refinement level 8). dofs: final (mean over the steps). Wall time: "
+             "the whole process, one rank, on a shared machine (+-20 %%)."
+             % (d, "" if d == 2 else " --dimension 3", scene, args.reference,
+                reference["dofs"], reference["wall_time"], graded), "",
              "| mesh | Subdivisions | fractions | interval | Maximum cells | final cells | "
              "dofs (mean) | wall time [s] | error u_nu | error force | error strain |",
              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
@@ -199,7 +230,7 @@ def main():
             r["kind"], r["subdivisions"], r["fractions"], r["interval"], r["max_cells"],
             r["final_cells"], r["final_dofs"], r["mean_dofs"], r["wall_time"],
             r["error_u_nu"], r["error_force"], r["error_strain"]))
-    with open(os.path.join(args.output_dir, "work_precision_mesh.md"), "w") as f:
+    with open(os.path.join(args.output_dir, "work_precision_mesh%s.md" % suffix), "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))
 
@@ -207,14 +238,17 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(2, 3, figsize=(15, 8.4))
+    fig.suptitle("%dD: %s" % (d, scene))
+    start = 16 if d == 2 else 8
     groups = [("uniform", lambda r: True, "o", "uniform"),
-              ("graded", lambda r: True, "s", "graded, 2 levels"),
-              ("adaptive", lambda r: r["subdivisions"] == 16 and r["interval"] == 4,
-               "^", "adaptive from 1/16, every 4 steps"),
-              ("adaptive", lambda r: r["subdivisions"] == 16 and r["interval"] == 1,
-               "v", "adaptive from 1/16, every step"),
-              ("adaptive", lambda r: r["subdivisions"] == 8, "x",
-               "adaptive from 1/8 (0.3/0.03, 0.15/0.1)")]
+              ("graded", lambda r: True, "s", "graded (%s)" % graded),
+              ("adaptive", lambda r: r["subdivisions"] == start and r["interval"] > 1,
+               "^", "adaptive from 1/%d, every %d steps" % (start, 4 if d == 2 else 2)),
+              ("adaptive", lambda r: r["subdivisions"] == start and r["interval"] == 1,
+               "v", "adaptive from 1/%d, every step" % start)]
+    if d == 2:
+        groups.append(("adaptive", lambda r: r["subdivisions"] == 8, "x",
+                       "adaptive from 1/8 (0.3/0.03, 0.15/0.1)"))
     for row, (work, work_label) in enumerate((("mean_dofs", "dofs (mean over the steps)"),
                                               ("wall_time", "wall time [s], whole process"))):
         for ax, key, title in zip(axes[row], ["error_u_nu", "error_force", "error_strain"],
@@ -231,7 +265,7 @@ def main():
         axes[row][0].set_ylabel("error against Subdivisions = %d" % args.reference)
     axes[0][0].legend()
     fig.tight_layout()
-    fig.savefig(os.path.join(args.output_dir, "work_precision_mesh.png"), dpi=100)
+    fig.savefig(os.path.join(args.output_dir, "work_precision_mesh%s.png" % suffix), dpi=100)
 
 
 if __name__ == "__main__":

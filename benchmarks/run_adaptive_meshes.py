@@ -109,7 +109,8 @@ def run(executable, subdivisions, levels=0, adaptive=None, dimension=2):
                 current = int(m.group(1))
             elif line.startswith("Step "):
                 step_dofs.append(current)
-        cells = re.findall(r"-> (\d+) cells", out)
+        cells = [re.search(r"^Mesh: (\d+) ", out, re.M).group(1)]
+        cells += re.findall(r"-> (\d+) cells", out)
         strain = float(re.search(r"\|\|eps\(u\)\|\|_L2 = ([0-9.eE+-]+)", out).group(1))
         results = os.path.join(workdir, "results")
         profile = [f for f in os.listdir(results) if f.startswith("contact_profile_")]
@@ -125,7 +126,7 @@ def run(executable, subdivisions, levels=0, adaptive=None, dimension=2):
             "max_cells": adaptive[2] if adaptive else "",
             "dofs": dofs, "final_dofs": step_dofs[-1],
             "mean_dofs": sum(step_dofs) / len(step_dofs),
-            "final_cells": int(cells[-1]) if cells else subdivisions ** 2,
+            "final_cells": int(cells[-1]),
             "wall_time": wall, "strain_norm": strain,
             "force": [float(r["total_contact_force"]) for r in series],
             "x": [float(r["x"]) for r in nodes],
@@ -258,7 +259,8 @@ def main():
     for row, (work, work_label) in enumerate((("mean_dofs", "dofs (mean over the steps)"),
                                               ("wall_time", "wall time [s], whole process"))):
         for ax, key, title in zip(axes[row], ["error_u_nu", "error_force", "error_strain"],
-                                  ["u_nu on Gamma_3 at t = 1 (rel. L2)",
+                                  ["u_nu on Gamma_3 at t = 1 (rel. L2%s)"
+                                   % ("" if d == 2 else "; 2D only"),
                                    "total contact force, max over t (rel.)",
                                    "||eps(u)||_L2 at t = 1 (rel.)"]):
             for kind, select, marker, label in groups:

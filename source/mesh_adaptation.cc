@@ -41,6 +41,7 @@
 #include <array>
 #include <cstring>
 #include <optional>
+#include <set>
 
 namespace ViscoContact
 {
@@ -309,13 +310,21 @@ namespace ViscoContact
 
     // The nodal fields: u and the contact pressure z_i / w_i at the x-dof of
     // each contact node (zero elsewhere), both with their ghosts, as
-    // SolutionTransfer reads them on the owned cells.
+    // SolutionTransfer reads them on the owned cells. Both must be finite
+    // element functions of the current mesh, i.e. satisfy its hanging-node
+    // constraints (u does): otherwise a hanging vertex next to a contact node
+    // would get one value from its fine cells and another from the coarse
+    // neighbour when that one is refined. The pressure away from Gamma_3 is
+    // never read; on Gamma_3 the constraints change nothing (in 2D a vertex of
+    // Gamma_3 is never hanging, in 3D a hanging one is no contact node).
     VectorType pressure(solution);
     pressure = 0;
     if (contact_enabled)
       for (unsigned int i = 0; i < contact_set.size(); ++i)
         pressure.local_element(contact_set.node(i).local_dofs[0])
           = contact_set.contact_pressure(i);
+    pressure.zero_out_ghost_values();
+    constraints.distribute(pressure);
     pressure.update_ghost_values();
     parallel::distributed::SolutionTransfer<dim, VectorType> nodal_transfer(
       dof_handler);
@@ -332,6 +341,7 @@ namespace ViscoContact
       return record;
     };
     const StressPointTransfer<dim> q1_transfer(stress_quadrature, n_fields);
+    std::set<CellId>               refined_parents; // for the check below
     std::vector<Record>            cell_data(mesh.n_active_cells());
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
       for (unsigned int q = 0; q < n_q; ++q)
@@ -342,8 +352,9 @@ namespace ViscoContact
       data_transfer(
         mesh,
         /*transfer_variable_size_data=*/false,
-        [&](const typename Triangulation<dim>::cell_iterator &,
-            const Record &parent) {
+        [&](const typename Triangulation<dim>::cell_iterator &parent_cell,
+            const Record                                     &parent) {
+          refined_parents.insert(parent_cell->id());
           std::vector<Record> children;
           for (const auto &child : q1_transfer.refine(
                  std::vector<double>(parent.begin(), parent.end())))
@@ -383,6 +394,32 @@ namespace ViscoContact
         unpack_point(cell_data[owned_cells[k]->active_cell_index()].data()
                        + q * n_fields,
                      quadrature_point_history[std::size_t(k) * n_q + q]);
+
+#ifdef DEBUG
+    // A check of the whole transfer in Debug builds: with the implicit
+    // update the stored history is sigma_n - E eps(u_n). On a refined cell
+    // u is transferred exactly, E eps(u) of a Q1 field is Q1 on an affine
+    // cell, and the Q1 transfer of sigma and of the history is exact for
+    // it, so sigma - history = E eps(u) at the children's stress points to
+    // round-off. A wrong order of the children or of the Gauss points would
+    // break it.
+    if (implicit_update() && parameters.mesh_file.empty())
+      for (unsigned int k = 0; k < owned_cells.size(); ++k)
+        if (owned_cells[k]->level() > 0
+            && refined_parents.count(owned_cells[k]->parent()->id()) > 0)
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              const QuadraturePointHistory<dim> &state
+                = quadrature_point_history[std::size_t(k) * n_q + q];
+              const SymmetricTensor<2, dim> elastic
+                = material.elasticity_tensor()
+                  * symmetrize(displacement_gradient_at(solution, k, q));
+              Assert((state.stress - state.history - elastic).norm()
+                       <= 1e-10 * (1 + state.stress.norm()),
+                     ExcMessage("The transfer of the stress points does not "
+                                "reproduce E eps(u) on a refined cell."));
+            }
+#endif
 
     // The contact set: (r, z) from u and the pressure, and the piece they name.
     if (contact_enabled)

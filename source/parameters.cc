@@ -1010,6 +1010,15 @@ namespace ViscoContact
                 "0, and Resume = false, Stop after step = 0, when a "
                 "convergence study runs");
 
+      // A convergence study compares its runs at the levels of their fixed
+      // steps (multiples of the reference step).
+      if (study_enabled)
+        require(time_step_control == TimeStepControl::fixed,
+                "Time",
+                "Time step control",
+                "adaptive",
+                "fixed when a convergence study runs (its runs are compared "
+                "at the levels of their fixed time steps)");
       if (study_enabled)
         require(mesh_file.empty() && global_refinements == 0
                   && contact_refinements == 0,

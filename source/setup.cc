@@ -438,7 +438,8 @@ namespace ViscoContact
               << ", " << controller.maximum_step << "] s";
         if (explicit_history_update())
           pcout << " (at most 0.9 x the stability limit)";
-        pcout << ", first step " << desired_time_step << " s\n";
+        pcout << (parameters.resume ? ", next step " : ", first step ")
+              << desired_time_step << " s\n";
         if (explicit_history_update()
             && controller.maximum_step
                  >= 4 * material.viscosity()

@@ -795,14 +795,15 @@ namespace ViscoContact
                           "1",
                           Patterns::Integer(1),
                           "Write a .vtu file every n-th time step (and always "
-                          "the last one); an integer >= 1.");
+                          "the last one; with adaptive time steps every n-th "
+                          "accepted step); an integer >= 1.");
         prm.declare_entry(
           "Profile times",
           "0.015625, 0.5, 1",
           Patterns::List(Patterns::Double(0)),
           "Times at which the contact profile along Gamma_3 is written to "
-          "contact_profile_NNNN.csv (the step closest to each time). Each "
-          "in [0, End time].");
+          "contact_profile_NNNN.csv (the step closest to each time; adaptive "
+          "time steps land on these times). Each in [0, End time].");
         prm.declare_entry("Print timing summary",
                           "true",
                           Patterns::Bool(),

@@ -17,6 +17,9 @@ namespace ViscoContact
                                      // stress of the next step
     double plastic_multiplier = 0;   // of the last projection onto K, the
                                      // next projection's starting guess
+    SymmetricTensor<2, dim> rate;    // G(sigma_n): the history rate of the
+                                     // last update, for the error estimate
+                                     // (doc/adaptivity.md)
   };
 
   // @sect3{The Perzyna viscoplastic material}

@@ -69,6 +69,15 @@ namespace ViscoContact
       cut_time_step
     };
 
+    // How the time steps are chosen: the schedule of Time step (cut only
+    // when a solve fails), or a step-size controller on an estimate of the
+    // local error of the history update (doc/adaptivity.md).
+    enum class TimeStepControl
+    {
+      fixed,
+      adaptive
+    };
+
     // How a step's linear contact problem is solved (contact_solver.h).
     enum class Method
     {
@@ -171,6 +180,13 @@ namespace ViscoContact
       StressUpdate  stress_update;
       FailurePolicy on_failure;
       double        minimum_time_step;
+      // Adaptive time steps: Time step is the first step, the steps stay in
+      // [Minimum time step, maximum_time_step] (maximum_time_step is End time
+      // if the entry is 0), and the relative error estimate of each step at
+      // most error_tolerance.
+      TimeStepControl time_step_control;
+      double          error_tolerance;
+      double          maximum_time_step;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -28,6 +28,7 @@
 #include "linear_algebra.h"
 #include "material.h"
 #include "parameters.h"
+#include "time_loop.h"
 
 #include <fstream>
 #include <functional>
@@ -190,9 +191,28 @@ namespace ViscoContact
     rescale_history_increment(const double old_step, const double new_step);
     // sigma_n from u_n at every stress point, and the history of the next step
     // with its load.
+    // It also computes error_estimate, the relative estimate of the local
+    // error of the step's history update (doc/adaptivity.md).
     void
     update_stresses(const double current_time_step,
                     const double next_time_step);
+    // With adaptive steps: H_{n+1} = H_n + k_{n+1} G(sigma_n) and its load,
+    // once k_{n+1} is known (explicit update only).
+    void
+    advance_history(const double next_time_step);
+
+    // @sect4{Adaptive time steps}
+    //
+    // The controller's side of the time loop (doc/adaptivity.md): the
+    // controller, the times the steps must land on (Profile times, End
+    // time), and one step with its error test: solved, estimated, and if
+    // rejected repeated from the restored state with a shorter step.
+    TimeStepController
+    time_step_controller() const;
+    std::vector<double>
+    landing_targets() const;
+    ActiveSetResult
+    solve_adaptive_step(const unsigned int n, std::vector<double> &times);
 
     // @sect4{Output}
     //
@@ -218,6 +238,7 @@ namespace ViscoContact
     void
     write_time_series_row(const unsigned int     step,
                           const double           time,
+                          const double           time_step,
                           const ActiveSetResult &result,
                           const double           wall_time);
     void
@@ -345,6 +366,12 @@ namespace ViscoContact
     bool                                     loads_depend_on_time;
     std::vector<QuadraturePointHistory<dim>> quadrature_point_history;
     double                                   max_von_mises = 0;
+    // The relative error estimate of the last stress update, and the
+    // controller's state: the step it wants for the next step before landing
+    // on a target shortens it, and the number of rejected steps.
+    double       error_estimate    = 0;
+    double       desired_time_step = 0;
+    unsigned int n_rejected_steps  = 0;
 
     // The geometry of the stress points, computed once (the mesh does not
     // move), so that the cell loops of the time loop need no FEValues: per

@@ -25,7 +25,7 @@ namespace ViscoContact
     // The version of the file layout, the first value of every header: a
     // resumed run refuses a checkpoint of another version rather than misread
     // it. Bumped whenever the layout of the files changes.
-    constexpr std::uint32_t checkpoint_version = 2;
+    constexpr std::uint32_t checkpoint_version = 3;
 
     // Every rank learns whether any rank saw an MPI error, and which, and all
     // throw the same message. MPI_SUCCESS is 0 and error codes are positive, so
@@ -491,6 +491,12 @@ namespace ViscoContact
         header.write(time);
         header.write_string(name);
       }
+    // The adaptive controller's state (doc/adaptivity.md): the step it wants
+    // next, before landing on a target, and the rejected steps so far. The
+    // next level itself is the last entry of the schedule, and the history
+    // of the stress points was advanced for it.
+    header.write(desired_time_step);
+    header.write<std::uint32_t>(n_rejected_steps);
 
     // The contact state as a displacement-sized vector: each owned contact node
     // writes into the owned entries of its own dofs. The ghost import then
@@ -627,7 +633,9 @@ namespace ViscoContact
     // of the interrupted run (with its cut steps); the levels after it are
     // those of the new schedule, so that without cuts the resumed run makes
     // exactly the steps of an uninterrupted run to the new End time.
-    if (parameters.end_time != times.back())
+    const bool adaptive
+      = parameters.time_step_control == Parameters::TimeStepControl::adaptive;
+    if (!adaptive && parameters.end_time != times.back())
       {
         AssertThrow(parameters.end_time > times[step],
                     ExcMessage(
@@ -665,6 +673,35 @@ namespace ViscoContact
       {
         const double time = header.read<double>();
         times_and_names.emplace_back(time, header.read_string());
+      }
+    desired_time_step = header.read<double>();
+    n_rejected_steps  = header.read<std::uint32_t>();
+    // Adaptive steps: the schedule ends with the next level, which the
+    // controller fitted to the targets of the interrupted run. It is fitted
+    // again to this run's targets; with the same End time and Profile times
+    // it is the same level, and the resumed run repeats the uninterrupted
+    // one exactly. A changed End time (or Profile times) may move it, and
+    // the history is rescaled to it below, as for fixed steps.
+    if (adaptive)
+      {
+        AssertThrow(parameters.end_time >= times[step],
+                    ExcMessage(
+                      "Invalid parameter <End time> in subsection "
+                      "<Time>: value <"
+                      + std::to_string(parameters.end_time)
+                      + ">, but the checkpoint to resume from is at t = "
+                      + std::to_string(times[step])
+                      + "; accepted: an End time after the "
+                        "checkpoint's time."));
+        const double old_next_step
+          = step + 1 < times.size() ? times[step + 1] - times[step] : 0.;
+        times.resize(step + 1);
+        if (times[step] < parameters.end_time * (1 - 1e-12))
+          times.push_back(
+            next_time_level(times[step], desired_time_step, landing_targets()));
+        rescaled_next_step
+          = {old_next_step,
+             step + 1 < times.size() ? times[step + 1] - times[step] : 0.};
       }
 
     // The records of this rank's share go to the owners of their cells. Each

@@ -7,9 +7,10 @@
 //    deal.II's SolutionTransfer (exact where the mesh is refined; the nodal
 //    values of the remaining vertices where it is coarsened), then the
 //    hanging-node constraints of the new mesh;
-//  - the stress points' sigma_n, the history of the next step and the plastic
-//    multiplier: cell data, moved by deal.II's CellDataTransfer with the Q1
-//    transfer of stress_point_transfer.h;
+//  - the stress points' sigma_n, the history of the next step, the rate
+//    G(sigma_n) (adaptive time steps) and the plastic multiplier: cell data,
+//    moved by deal.II's CellDataTransfer with the Q1 transfer of
+//    stress_point_transfer.h;
 //  - the contact set: the nodal contact pressure z_i / w_i is a nodal field
 //    like u and is interpolated with it; the new contact nodes get r = u.nu
 //    from the new u, z = w p from the interpolated pressure, and the piece that
@@ -48,12 +49,14 @@ namespace ViscoContact
   namespace
   {
     // The data of one stress point as doubles: sigma (its independent
-    // components), the history, the plastic multiplier; a hypercube cell has
-    // 2^dim of them. A fixed-size array is plain data, which CellDataTransfer
-    // packs by copying (no serialisation, the same size for every cell).
+    // components), the history, the rate G(sigma) of the last update (for the
+    // error estimate of adaptive time steps), the plastic multiplier; a
+    // hypercube cell has 2^dim of them. A fixed-size array is plain data, which
+    // CellDataTransfer packs by copying (no serialisation, the same size for
+    // every cell).
     template <int dim>
     constexpr unsigned int n_point_fields
-      = 2 * SymmetricTensor<2, dim>::n_independent_components + 1;
+      = 3 * SymmetricTensor<2, dim>::n_independent_components + 1;
     template <int dim>
     using CellRecord
       = std::array<double,
@@ -67,10 +70,11 @@ namespace ViscoContact
         = SymmetricTensor<2, dim>::n_independent_components;
       for (unsigned int i = 0; i < n; ++i)
         {
-          out[i]     = state.stress.access_raw_entry(i);
-          out[n + i] = state.history.access_raw_entry(i);
+          out[i]         = state.stress.access_raw_entry(i);
+          out[n + i]     = state.history.access_raw_entry(i);
+          out[2 * n + i] = state.rate.access_raw_entry(i);
         }
-      out[2 * n] = state.plastic_multiplier;
+      out[3 * n] = state.plastic_multiplier;
     }
 
     template <int dim>
@@ -83,10 +87,11 @@ namespace ViscoContact
         {
           state.stress.access_raw_entry(i)  = in[i];
           state.history.access_raw_entry(i) = in[n + i];
+          state.rate.access_raw_entry(i)    = in[2 * n + i];
         }
       // The multiplier is only the starting guess of the next projection; a
       // fitted value below zero (the multiplier is >= 0) starts from zero.
-      state.plastic_multiplier = std::max(in[2 * n], 0.);
+      state.plastic_multiplier = std::max(in[3 * n], 0.);
     }
   } // namespace
 

@@ -142,7 +142,8 @@ namespace ViscoContact
             time_series_file,
             "step,time,active_set_iterations,unilateral_nodes,"
             "compliance_nodes,no_contact_nodes,total_contact_force,"
-            "max_von_mises,wall_time,krylov_iterations\n");
+            "max_von_mises,wall_time,krylov_iterations,time_step,"
+            "error_estimate\n");
       }
     // The outcome on rank 0 goes to every rank: either all continue or all
     // throw the same message.
@@ -162,8 +163,9 @@ namespace ViscoContact
   // is undone and stops all ranks.
   template <int dim>
   void
-  ViscoplasticContact<dim>::write_time_series_row(const unsigned int     step,
-                                                  const double           time,
+  ViscoplasticContact<dim>::write_time_series_row(const unsigned int step,
+                                                  const double       time,
+                                                  const double       time_step,
                                                   const ActiveSetResult &result,
                                                   const double wall_time)
   {
@@ -176,7 +178,8 @@ namespace ViscoContact
         row << std::setprecision(10) << step << ',' << time << ','
             << result.iterations() << ',' << states[0] << ',' << states[1]
             << ',' << states[2] << ',' << force << ',' << max_von_mises << ','
-            << wall_time << ',' << result.inner_iterations() << '\n';
+            << wall_time << ',' << result.inner_iterations() << ',' << time_step
+            << ',' << error_estimate << '\n';
         problem = FileOutput::append_to_file(time_series_file, row.str());
       }
     FileOutput::agree_on_problem(problem, mpi_communicator);
@@ -503,8 +506,11 @@ namespace ViscoContact
       pcout << "  Newton iterations (implicit scheme): "
             << total_newton_iterations << '\n';
     pcout << "  active-set iterations: " << total_active_set_iterations
-          << " in " << n_time_steps << " steps\n"
-          << "  operator: assembled " << n_operator_assemblies
+          << " in " << n_time_steps << " steps\n";
+    if (parameters.time_step_control == Parameters::TimeStepControl::adaptive)
+      pcout << "  adaptive time steps: " << n_time_steps << " accepted, "
+            << n_rejected_steps << " rejected\n";
+    pcout << "  operator: assembled " << n_operator_assemblies
           << "x, set up by the back end " << statistics.operator_setups
           << "x; external load assembled " << n_external_load_assemblies
           << "x\n"

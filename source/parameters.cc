@@ -4,6 +4,7 @@
 #include "parameters.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace ViscoContact
@@ -523,8 +524,35 @@ namespace ViscoContact
         prm.declare_entry("Minimum time step",
                           "1e-6",
                           Patterns::Double(),
-                          "The smallest time step a cut may reach [s]; in "
-                          "(0, Time step].");
+                          "The smallest time step a cut may reach [s], and "
+                          "with Time step control = adaptive the smallest "
+                          "step the controller takes; in (0, Time step].");
+        prm.declare_entry(
+          "Time step control",
+          "fixed",
+          Patterns::Selection("fixed|adaptive"),
+          "fixed: the steps of Time step (cut only when a solve fails); "
+          "adaptive: Time step is the first step, and each step's length "
+          "follows from an estimate of the local error of the history update "
+          "(the difference between the Euler and the trapezoidal history "
+          "increment, doc/adaptivity.md); a step whose estimate exceeds Error "
+          "tolerance is repeated with a shorter one. The steps land on End "
+          "time and on the Profile times.");
+        prm.declare_entry(
+          "Error tolerance",
+          "1e-3",
+          Patterns::Double(),
+          "With Time step control = adaptive: the bound on each step's "
+          "estimated local error of the history, relative to the stress "
+          "(both in the energy norm of E^-1 over the body); in (0, 1].");
+        prm.declare_entry(
+          "Maximum time step",
+          "0",
+          Patterns::Double(),
+          "With Time step control = adaptive: the largest step [s]; 0: End "
+          "time. The explicit history update never takes more than 0.9 times "
+          "its stability limit 4 lambda / lambda_max(E). 0, or in [Minimum "
+          "time step, End time].");
       }
       prm.leave_subsection();
     }
@@ -554,6 +582,28 @@ namespace ViscoContact
                 "Minimum time step",
                 to_string(minimum_time_step),
                 "0 < Minimum time step <= Time step = " + to_string(time_step));
+        time_step_control = (prm.get("Time step control") == "fixed"
+                               ? TimeStepControl::fixed
+                               : TimeStepControl::adaptive);
+        error_tolerance   = prm.get_double("Error tolerance");
+        require(error_tolerance > 0 && error_tolerance <= 1,
+                "Time",
+                "Error tolerance",
+                to_string(error_tolerance),
+                "0 < Error tolerance <= 1 (relative)");
+        maximum_time_step = prm.get_double("Maximum time step");
+        require(maximum_time_step == 0
+                  || (maximum_time_step >= minimum_time_step
+                      && maximum_time_step <= end_time),
+                "Time",
+                "Maximum time step",
+                to_string(maximum_time_step),
+                "0 (End time) or Minimum time step = "
+                  + to_string(minimum_time_step)
+                  + " <= Maximum time step <= End time = "
+                  + to_string(end_time));
+        if (maximum_time_step == 0)
+          maximum_time_step = end_time;
       }
       prm.leave_subsection();
     }
@@ -745,14 +795,15 @@ namespace ViscoContact
                           "1",
                           Patterns::Integer(1),
                           "Write a .vtu file every n-th time step (and always "
-                          "the last one); an integer >= 1.");
+                          "the last one; with adaptive time steps every n-th "
+                          "accepted step); an integer >= 1.");
         prm.declare_entry(
           "Profile times",
           "0.015625, 0.5, 1",
           Patterns::List(Patterns::Double(0)),
           "Times at which the contact profile along Gamma_3 is written to "
-          "contact_profile_NNNN.csv (the step closest to each time). Each "
-          "in [0, End time].");
+          "contact_profile_NNNN.csv (the step closest to each time; adaptive "
+          "time steps land on these times). Each in [0, End time].");
         prm.declare_entry("Print timing summary",
                           "true",
                           Patterns::Bool(),
@@ -1056,6 +1107,15 @@ namespace ViscoContact
                 "0, and Resume = false, Stop after step = 0, when a "
                 "convergence study runs");
 
+      // A convergence study compares its runs at the levels of their fixed
+      // steps (multiples of the reference step).
+      if (study_enabled)
+        require(time_step_control == TimeStepControl::fixed,
+                "Time",
+                "Time step control",
+                "adaptive",
+                "fixed when a convergence study runs (its runs are compared "
+                "at the levels of their fixed time steps)");
       if (study_enabled)
         require(mesh_file.empty() && global_refinements == 0
                   && contact_refinements == 0,
@@ -1087,9 +1147,14 @@ namespace ViscoContact
                 prm.get({"Output"}, "Profile times"),
                 "times in [0, End time = " + to_string(end_time) + "]");
       // A stop or a checkpoint interval beyond the last step would never
-      // happen. The number of steps is that of time_levels() (time_loop.cc).
-      const unsigned int n_steps = static_cast<unsigned int>(
-        std::ceil(end_time / time_step * (1 - 1e-12)));
+      // happen. The number of steps is that of time_levels() (time_loop.cc);
+      // adaptive steps are not known before the run, and neither is their
+      // number.
+      const unsigned int n_steps
+        = time_step_control == TimeStepControl::adaptive
+            ? std::numeric_limits<unsigned int>::max()
+            : static_cast<unsigned int>(
+              std::ceil(end_time / time_step * (1 - 1e-12)));
       require(stop_after_step <= n_steps,
               "Checkpoint",
               "Stop after step",

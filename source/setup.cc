@@ -395,8 +395,12 @@ namespace ViscoContact
           << reference_cell.to_string() << " cells, " << dof_handler.n_dofs()
           << " displacement dofs, "
           << (contact_enabled ? contact_set.n_global_nodes() : 0)
-          << " contact nodes, " << n_steps << " time steps\n"
-          << "Model: " << (parameters.plasticity ? "viscoplastic" : "elastic")
+          << " contact nodes, ";
+    if (parameters.time_step_control == Parameters::TimeStepControl::adaptive)
+      pcout << "adaptive time steps\n";
+    else
+      pcout << n_steps << " time steps\n";
+    pcout << "Model: " << (parameters.plasticity ? "viscoplastic" : "elastic")
           << ", contact " << (contact_enabled ? "on" : "off") << ", "
           << (parameters.stress_update
                   == Parameters::StressUpdate::explicit_euler
@@ -439,10 +443,31 @@ namespace ViscoContact
         pcout << "Explicit history update: stable for k < 4 lambda / "
                  "lambda_max(E) = "
               << bound << " s; k = " << parameters.time_step << " s\n";
-        if (parameters.time_step >= bound)
+        if (parameters.time_step >= bound
+            && parameters.time_step_control
+                 == Parameters::TimeStepControl::fixed)
           pcout << "WARNING: the time step exceeds the stability limit of the "
                    "explicit history update (doc/model.md, section 3): the "
                    "stresses may oscillate or blow up.\n";
+      }
+    // Adaptive steps: the controller's tolerance and range, with the cap of
+    // the explicit update (time_step_controller()).
+    if (parameters.time_step_control == Parameters::TimeStepControl::adaptive)
+      {
+        const TimeStepController controller = time_step_controller();
+        pcout << "Adaptive time steps: Error tolerance = "
+              << controller.tolerance << ", k in [" << controller.minimum_step
+              << ", " << controller.maximum_step << "] s";
+        if (explicit_history_update())
+          pcout << " (at most 0.9 x the stability limit)";
+        pcout << (parameters.resume ? ", next step " : ", first step ")
+              << desired_time_step << " s\n";
+        if (explicit_history_update()
+            && controller.maximum_step
+                 >= 4 * material.viscosity()
+                      / material.largest_elastic_eigenvalue())
+          pcout << "WARNING: Minimum time step exceeds the stability limit of "
+                   "the explicit history update (doc/model.md, section 3).\n";
       }
     // The uniqueness margin needs products with the compliance S, i.e. the back
     // end for K; Check uniqueness = false skips it. It is collective: every

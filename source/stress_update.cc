@@ -10,6 +10,7 @@
 
 #include "viscoplastic_contact.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -59,6 +60,16 @@ namespace ViscoContact
     const SymmetricTensor<4, dim> &E       = material.elasticity_tensor();
     const unsigned int             n_q     = stress_quadrature.size();
     const unsigned int             n_local = n_cell_vertices * dim;
+    // The error estimate of the step (doc/adaptivity.md) needs the history
+    // rate G(sigma_n) at every stress point. The explicit update evaluates it
+    // anyway for the next history (also after the last step, for the
+    // estimate), the implicit one has it as the history increment divided by
+    // k_n; without plasticity there is no history and no estimate. Per
+    // cell: the sums over its stress points of (E^-1 dG, dG) JxW with
+    // dG = G(sigma_n) - G(sigma_{n-1}), of (E^-1 sigma_n, sigma_n) JxW and of
+    // JxW.
+    const bool estimate = parameters.plasticity && current_time_step > 0;
+    const SymmetricTensor<4, dim> compliance = invert(E);
 
     // The work at the stress points is independent from point to point, so
     // the threads of this rank (as many as deal.II's MultithreadInfo allows:
@@ -70,6 +81,8 @@ namespace ViscoContact
     const unsigned int  chunk_size = 4096;
     std::vector<double> cell_loads(update_history ? chunk_size * n_local : 0);
     std::vector<double> cell_max_von_mises(chunk_size);
+    std::vector<std::array<double, 3>> cell_estimate_sums(estimate ? chunk_size
+                                                                   : 0);
 
     // The stress points of the cells [begin, end) of a chunk starting at
     // first: sigma_n, the history, the cell's load, the largest von Mises
@@ -87,7 +100,8 @@ namespace ViscoContact
                                     n_local)
                 : ArrayView<double>();
           std::fill(cell_vector.begin(), cell_vector.end(), 0.);
-          double max_vm = 0.;
+          double                max_vm = 0.;
+          std::array<double, 3> sums   = {{0., 0., 0.}};
           for (unsigned int q = 0; q < n_q; ++q)
             {
               QuadraturePointHistory<dim> &state
@@ -102,6 +116,9 @@ namespace ViscoContact
               // history is the non-elastic part of sigma_n. Explicit:
               // sigma_n = E eps(u_n) + H_n, with H_n stored by the previous
               // call.
+              // The implicit update's rate: sigma_n = trial + k_n G(sigma_n),
+              // so the history increment is k_n G(sigma_n).
+              SymmetricTensor<2, dim> rate;
               if (implicit)
                 {
                   state.stress = material.implicit_stress_update(
@@ -109,7 +126,11 @@ namespace ViscoContact
                     a,
                     nullptr,
                     &state.plastic_multiplier);
-                  state.history = state.stress - elastic_stress;
+                  const SymmetricTensor<2, dim> new_history
+                    = state.stress - elastic_stress;
+                  if (estimate)
+                    rate = (new_history - state.history) / current_time_step;
+                  state.history = new_history;
                 }
               else
                 state.stress = elastic_stress + state.history;
@@ -124,16 +145,29 @@ namespace ViscoContact
               // with the plastic multiplier as the starting guess of the
               // projection; then the point's contribution
               // -(H_{n+1}, eps(v)) JxW to the next step's load.
+              if (!implicit && (update_history || estimate))
+                rate = material.viscoplastic_rate(state.stress,
+                                                  &state.plastic_multiplier);
               if (update_history)
                 {
-                  state.history
-                    += next_time_step
-                       * material.viscoplastic_rate(state.stress,
-                                                    &state.plastic_multiplier);
+                  state.history += next_time_step * rate;
                   add_stress_point_load(-state.history, k, q, cell_vector);
+                }
+              // The estimate's sums at this point, and the rate kept for the
+              // next step's estimate.
+              if (estimate)
+                {
+                  const double JxW = stress_point_JxW[std::size_t(k) * n_q + q];
+                  const SymmetricTensor<2, dim> change = rate - state.rate;
+                  sums[0] += (compliance * change) * change * JxW;
+                  sums[1] += (compliance * state.stress) * state.stress * JxW;
+                  sums[2] += JxW;
+                  state.rate = rate;
                 }
             }
           cell_max_von_mises[k - first] = max_vm;
+          if (estimate)
+            cell_estimate_sums[k - first] = sums;
         }
     };
 
@@ -141,7 +175,8 @@ namespace ViscoContact
     // into it below.
     if (update_history)
       history_load = 0;
-    double local_max_von_mises = 0;
+    double                local_max_von_mises = 0;
+    std::array<double, 3> local_sums          = {{0., 0., 0.}};
     // Each rank visits the stress points of its own cells only; the record of
     // stress point q of the k-th owned cell is entry k * n_q + q.
     const unsigned int n_cells = owned_cells.size();
@@ -160,6 +195,9 @@ namespace ViscoContact
           {
             local_max_von_mises
               = std::max(local_max_von_mises, cell_max_von_mises[k - first]);
+            if (estimate)
+              for (unsigned int i = 0; i < 3; ++i)
+                local_sums[i] += cell_estimate_sums[k - first][i];
             if (update_history)
               distribute_cell_vector(
                 k,
@@ -176,6 +214,32 @@ namespace ViscoContact
       history_load.compress(VectorOperation::add);
     max_von_mises = Utilities::MPI::max(local_max_von_mises, mpi_communicator);
 
+    // The relative error estimate of the step (doc/adaptivity.md): the
+    // difference between the forward-Euler history increment k_n G(sigma_{n-1})
+    // (backward Euler: k_n G(sigma_n)) and the trapezoidal one
+    // k_n/2 (G(sigma_{n-1}) + G(sigma_n)), in the energy norm
+    // (E^-1 tau, tau)^(1/2) over the body, relative to the stress in the same
+    // norm, but at least to sigma_Y (|Omega| / lambda_max(E))^(1/2), the size
+    // of a stress at the yield limit, so that an unloaded body does not make
+    // the estimate blow up. The sums are added in the order of the cells, so
+    // the estimate does not depend on the number of threads; one sum over the
+    // ranks.
+    error_estimate = 0;
+    if (estimate)
+      {
+        std::array<double, 3> sums = {{0., 0., 0.}};
+        Utilities::MPI::sum(ArrayView<const double>(local_sums.data(), 3),
+                            mpi_communicator,
+                            ArrayView<double>(sums.data(), 3));
+        const double scale
+          = std::max(std::sqrt(sums[1]),
+                     material.yield_stress()
+                       * std::sqrt(sums[2]
+                                   / material.largest_elastic_eigenvalue()));
+        error_estimate = current_time_step / 2 * std::sqrt(sums[0])
+                         / std::max(scale, std::numeric_limits<double>::min());
+      }
+
     // An unstable explicit update ends in stresses that overflow: stop
     // rather than go on with (and write) infinite or NaN fields.
     AssertThrow(std::isfinite(max_von_mises),
@@ -188,6 +252,26 @@ namespace ViscoContact
                   + " s (doc/model.md, section 3); <Time step> in subsection "
                     "<Time> is "
                   + std::to_string(parameters.time_step) + " s."));
+  }
+
+
+
+  // @sect4{ViscoplasticContact::advance_history}
+  //
+  // With adaptive steps the length of the next step is only known once the
+  // estimate of the current one is: update_stresses() then stores G(sigma_n)
+  // at every stress point without updating the history (next_time_step = 0),
+  // and this function completes the explicit update,
+  // H_{n+1} = H_n + k_{n+1} G(sigma_n), and assembles the load of the next
+  // step from it.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::advance_history(const double next_time_step)
+  {
+    TimerOutput::Scope t(computing_timer, "Stress update");
+    for (QuadraturePointHistory<dim> &state : quadrature_point_history)
+      state.history += next_time_step * state.rate;
+    assemble_history_load();
   }
 
 

@@ -40,6 +40,83 @@ namespace ViscoContact
 
 
 
+  // @sect4{control_time_step}
+  //
+  // The elementary (I-) controller of doc/adaptivity.md. The estimate of a
+  // step of length k is the local error of forward Euler, C k^2, so the step
+  // that would just meet the tolerance is k (tol/error)^(1/2); the safety
+  // factor aims below it, so that the next step is rarely rejected, and the
+  // change per step is bounded (growth by at most max_growth, shrinking by at
+  // most max_shrink), since C itself changes from step to step. The growth
+  // is bounded relative to the step the controller wanted for this step, not
+  // to the one taken when landing on a target shortened it: the estimate per
+  // k^2 is the same either way.
+  TimeStepDecision
+  control_time_step(const TimeStepController &controller,
+                    const double              step,
+                    const double              error,
+                    const double              desired_step)
+  {
+    // A step at the minimum is accepted whatever its estimate: there is no
+    // shorter one to try (the run says so).
+    const bool at_minimum = step <= controller.minimum_step * (1 + 1e-12);
+    const bool accepted   = error <= controller.tolerance || at_minimum;
+    // The optimal factor; an estimate of zero (no plasticity, or a history
+    // that does not change) lets the step grow as fast as allowed.
+    const double optimal
+      = error > 0 ? controller.safety * std::sqrt(controller.tolerance / error)
+                  : controller.max_growth;
+    double proposed = step * std::max(controller.max_shrink, optimal);
+    // A rejected step is never repeated with a longer one; an accepted one
+    // grows by at most max_growth relative to what the controller wanted.
+    if (accepted)
+      proposed = std::min(proposed,
+                          controller.max_growth * std::max(step, desired_step));
+    else
+      proposed = std::min(proposed, step);
+    proposed = std::min(std::max(proposed, controller.minimum_step),
+                        controller.maximum_step);
+    return {accepted, proposed};
+  }
+
+
+
+  // @sect4{next_time_level}
+  //
+  // Landing on the targets (End time, the Profile times): with r the distance
+  // to the next target, a step k >= r is shortened to r and the target is
+  // reached exactly (the level is the target itself, not time + r, which may
+  // differ by rounding); a step with r/2 < k < r would leave a remainder
+  // shorter than k, possibly tiny, before the target, so the remainder is
+  // split into two equal steps instead; a step k <= r/2 is taken as it is.
+  // Targets at or before time (within a relative 1e-12 of the last target)
+  // are passed.
+  double
+  next_time_level(const double               time,
+                  const double               step,
+                  const std::vector<double> &targets)
+  {
+    Assert(!targets.empty(), ExcInternalError());
+    const double end       = targets.back();
+    const double tolerance = 1e-12 * end;
+    for (const double target : targets)
+      {
+        if (target <= time + tolerance)
+          continue;
+        const double remainder = target - time;
+        if (step >= remainder - tolerance)
+          return target;
+        if (2 * step > remainder)
+          return time + remainder / 2;
+        return time + step;
+      }
+    // Past the last target: nothing to land on (the caller stops at End
+    // time before).
+    return time + step;
+  }
+
+
+
   // @sect4{print_step_line}
   //
   // One line per step for a verbose run: the step, the time, the active-set
@@ -63,6 +140,32 @@ namespace ViscoContact
         << contact_states[1] << "  no contact " << std::setw(4)
         << contact_states[2] << "  contact force " << std::setprecision(8)
         << total_contact_force << std::endl;
+  }
+
+
+
+  // @sect4{print_adaptive_step_line}
+  //
+  // The line of print_step_line() with the step length and the relative
+  // error estimate appended.
+  void
+  print_adaptive_step_line(ConditionalOStream                &out,
+                           const unsigned int                 step,
+                           const double                       time,
+                           const unsigned int                 iterations,
+                           const std::array<unsigned int, 3> &contact_states,
+                           const double total_contact_force,
+                           const double time_step,
+                           const double error_estimate)
+  {
+    out << "Step " << std::setw(4) << step << "  t = " << std::setw(9)
+        << std::setprecision(6) << time << "  active-set iterations "
+        << std::setw(2) << iterations << "  unilateral " << std::setw(4)
+        << contact_states[0] << "  compliance " << std::setw(4)
+        << contact_states[1] << "  no contact " << std::setw(4)
+        << contact_states[2] << "  contact force " << std::setprecision(8)
+        << total_contact_force << "  k " << std::setprecision(6) << time_step
+        << "  estimate " << std::setprecision(3) << error_estimate << std::endl;
   }
 
 

@@ -9,6 +9,7 @@
 #include "time_loop.h"
 #include "viscoplastic_contact.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 
@@ -91,6 +92,121 @@ namespace ViscoContact
                                               result,
                                               states,
                                               state_file)));
+      }
+  }
+
+
+
+  // @sect4{ViscoplasticContact::time_step_controller}
+  //
+  // The controller of Time step control = adaptive: the tolerance, and the
+  // range of steps. With the explicit update the steps stay below 0.9 times
+  // its stability limit 4 lambda / lambda_max(E) (doc/model.md, section 3):
+  // beyond it the error estimate would not see the instability before the
+  // stresses oscillate. The margin of 10% keeps the steps off the limit,
+  // where the damping of forward Euler vanishes. (If Minimum time step is
+  // above that, the minimum wins; report_scheme_limits() warns.)
+  template <int dim>
+  TimeStepController
+  ViscoplasticContact<dim>::time_step_controller() const
+  {
+    TimeStepController controller;
+    controller.tolerance    = parameters.error_tolerance;
+    controller.minimum_step = parameters.minimum_time_step;
+    controller.maximum_step = parameters.maximum_time_step;
+    if (explicit_history_update())
+      controller.maximum_step
+        = std::min(controller.maximum_step,
+                   0.9 * 4 * material.viscosity()
+                     / material.largest_elastic_eigenvalue());
+    controller.maximum_step
+      = std::max(controller.maximum_step, controller.minimum_step);
+    return controller;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::landing_targets}
+  //
+  // The times the adaptive steps land on exactly: the Profile times (their
+  // profiles are then written at the requested time, not at the closest
+  // step) and End time, sorted.
+  template <int dim>
+  std::vector<double>
+  ViscoplasticContact<dim>::landing_targets() const
+  {
+    std::vector<double> targets;
+    for (const double t : parameters.profile_times)
+      if (t > 0 && t < parameters.end_time)
+        targets.push_back(t);
+    std::sort(targets.begin(), targets.end());
+    targets.push_back(parameters.end_time);
+    return targets;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::solve_adaptive_step}
+  //
+  // One adaptive step: the step with the failure recovery of
+  // solve_step_with_recovery(), the stresses and the error estimate
+  // (update_stresses() with no next step: the history waits for the next
+  // step's length), and the controller's decision. A rejected step is
+  // repeated from the state at its start, restored exactly: u_{n-1}, the
+  // contact state, and every stress-point record (sigma_{n-1}, the history
+  // H_n, the rates and multipliers), copied before the first attempt; the
+  // history increment is then rescaled to the shorter step, as for a cut.
+  // Every rank has the same estimate (a sum over the ranks), so all take the
+  // same decision.
+  template <int dim>
+  ActiveSetResult
+  ViscoplasticContact<dim>::solve_adaptive_step(const unsigned int   n,
+                                                std::vector<double> &times)
+  {
+    const TimeStepController  controller     = time_step_controller();
+    const std::vector<double> targets        = landing_targets();
+    const VectorType          start_solution = solution;
+    const ContactNodes::State start_contact  = contact_set.state();
+    const std::vector<QuadraturePointHistory<dim>> start_points
+      = quadrature_point_history;
+    // The step the stored history H_n was advanced for.
+    const double start_step = times[n] - times[n - 1];
+    while (true)
+      {
+        const ActiveSetResult result = solve_step_with_recovery(n, times);
+        const double          k      = times[n] - times[n - 1];
+        update_stresses(k, 0.);
+        const TimeStepDecision decision
+          = control_time_step(controller, k, error_estimate, desired_time_step);
+        desired_time_step = decision.step;
+        if (decision.accepted)
+          {
+            if (error_estimate > controller.tolerance && parameters.verbose)
+              pcout << "  Step " << n << " is at <Minimum time step> = "
+                    << controller.minimum_step
+                    << " and accepted above <Error tolerance>.\n";
+            return result;
+          }
+
+        // Rejected: the shorter step, fitted to the targets like any other
+        // (it ends before the level it replaces, which was at most a target).
+        ++n_rejected_steps;
+        const double level
+          = next_time_level(times[n - 1], decision.step, targets);
+        if (parameters.verbose)
+          pcout << "  Step " << n << " (t = " << times[n] << ", k = " << k
+                << ") rejected: error estimate " << std::setprecision(3)
+                << error_estimate << " > " << controller.tolerance
+                << "; repeated with k = " << std::setprecision(6)
+                << level - times[n - 1] << '\n';
+        solution = start_solution;
+        solution.update_ghost_values();
+        contact_set.set_state(start_contact);
+        quadrature_point_history = start_points;
+        times.resize(n);
+        times.push_back(level);
+        if (explicit_history_update())
+          rescale_history_increment(start_step, times[n] - times[n - 1]);
       }
   }
 

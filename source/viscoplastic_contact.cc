@@ -274,8 +274,24 @@ namespace ViscoContact
       = time_levels(parameters.end_time, parameters.time_step);
     // The loads at every point and time they will be evaluated: a load that
     // is not finite stops the run here, naming the entry, the point and the
-    // time, before anything is read or written.
+    // time, before anything is read or written. (Adaptive steps are checked
+    // at the levels of Time step; the assembly checks every value it
+    // computes.)
     check_loads(times);
+    // With adaptive steps the schedule holds the accepted levels and the next
+    // one: t_0 = 0 and t_1 after the first step, Time step within the
+    // controller's range and fitted to the targets. Each accepted step
+    // appends the next level (doc/adaptivity.md).
+    const bool adaptive
+      = parameters.time_step_control == Parameters::TimeStepControl::adaptive;
+    if (adaptive)
+      {
+        const TimeStepController controller = time_step_controller();
+        desired_time_step
+          = std::min(std::max(parameters.time_step, controller.minimum_step),
+                     controller.maximum_step);
+        times = {0., next_time_level(0., desired_time_step, landing_targets())};
+      }
     unsigned int first_step = 1;
     if (parameters.resume)
       first_step = resume_from_checkpoint(times) + 1;
@@ -319,14 +335,34 @@ namespace ViscoContact
         // next step, whose length is the distance to the next time level (0
         // after the last step, where no history is needed). Only this part
         // counts as compute time; output is timed apart.
+        //
+        // With adaptive steps the step comes with its error test
+        // (solve_adaptive_step(), which also updates the stresses), and only
+        // then is the next level known: the controller's step fitted to the
+        // targets, with the history advanced for it.
         Timer                 step_timer;
-        const ActiveSetResult result = solve_step_with_recovery(n, times);
-        update_stresses(times[n] - times[n - 1],
-                        n + 1 < times.size() ? times[n + 1] - times[n] : 0.);
+        const ActiveSetResult result = adaptive
+                                         ? solve_adaptive_step(n, times)
+                                         : solve_step_with_recovery(n, times);
+        if (!adaptive)
+          update_stresses(times[n] - times[n - 1],
+                          n + 1 < times.size() ? times[n + 1] - times[n] : 0.);
+        else
+          {
+            times.resize(n + 1);
+            if (times[n] < parameters.end_time * (1 - 1e-12))
+              {
+                times.push_back(next_time_level(times[n],
+                                                desired_time_step,
+                                                landing_targets()));
+                if (explicit_history_update())
+                  advance_history(times[n + 1] - times[n]);
+              }
+          }
         time_loop_compute_time += step_timer.wall_time();
         // A cut step has inserted a level: the number of steps is that of the
-        // current schedule.
-        n_time_steps = times.size() - 1;
+        // current schedule (with adaptive steps: those taken so far).
+        n_time_steps = adaptive ? n : times.size() - 1;
         n_steps_done = n;
         if (step_observer)
           step_observer(n, times[n]);
@@ -337,14 +373,27 @@ namespace ViscoContact
         // The contact profile and the .pvtu record are written by all ranks
         // into shared files.
         const double wall_time = loop_time_offset + loop_timer.wall_time();
-        write_time_series_row(n, times[n], result, wall_time);
-        if (parameters.verbose)
+        write_time_series_row(n,
+                              times[n],
+                              times[n] - times[n - 1],
+                              result,
+                              wall_time);
+        if (parameters.verbose && !adaptive)
           print_step_line(pcout,
                           n,
                           times[n],
                           result.iterations(),
                           count_contact_states(),
                           total_contact_force());
+        if (parameters.verbose && adaptive)
+          print_adaptive_step_line(pcout,
+                                   n,
+                                   times[n],
+                                   result.iterations(),
+                                   count_contact_states(),
+                                   total_contact_force(),
+                                   times[n] - times[n - 1],
+                                   error_estimate);
         if (contact_enabled && is_profile_step(n))
           write_contact_profile(n, times[n]);
         if (parameters.write_vtu

@@ -46,9 +46,11 @@
 #include "mesh.h"
 #include "mpi_tools.h"
 #include "stress_point_transfer.h"
+#include "time_loop.h"
 
 #include "direct_solver.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -1352,6 +1354,97 @@ TEST(MPITools, TextFileInRankOrder)
                                                  "x",
                                                  comm),
                ExceptionBase);
+}
+
+
+
+// @sect3{The time-step controller}
+//
+// control_time_step() and next_time_level() as pure functions
+// (doc/adaptivity.md): the step grows by at most a factor 2 when the
+// estimate is far below the tolerance or zero, follows k (tol/error)^(1/2)
+// times the safety factor 0.9 in between, is rejected above the tolerance
+// (shrinking by at most a factor 5), stays within [minimum, maximum], and
+// lands on the targets exactly, in at most two equal steps. Tolerances:
+// relative 1e-14 (a few roundings).
+TEST(TimeStepController, GrowthShrinkAndCaps)
+{
+  TimeStepController controller;
+  controller.tolerance    = 1e-3;
+  controller.minimum_step = 1e-4;
+  controller.maximum_step = 0.25;
+  const double k          = 0.01;
+  // Zero estimate (no plasticity): the largest growth.
+  TimeStepDecision d = control_time_step(controller, k, 0., k);
+  EXPECT_TRUE(d.accepted);
+  EXPECT_NEAR(d.step, 2 * k, 1e-14 * k);
+  // An estimate 100 times below the tolerance: 0.9 * 10 is above the growth
+  // bound 2.
+  d = control_time_step(controller, k, 1e-5, k);
+  EXPECT_TRUE(d.accepted);
+  EXPECT_NEAR(d.step, 2 * k, 1e-14 * k);
+  // Between: the optimal factor 0.9 (tol/error)^(1/2) = 0.9 * 1.2.
+  d = control_time_step(controller, k, 1e-3 / 1.44, k);
+  EXPECT_TRUE(d.accepted);
+  EXPECT_NEAR(d.step, 0.9 * 1.2 * k, 1e-14 * k);
+  // At the tolerance: accepted, next step 0.9 k.
+  d = control_time_step(controller, k, 1e-3, k);
+  EXPECT_TRUE(d.accepted);
+  EXPECT_NEAR(d.step, 0.9 * k, 1e-14 * k);
+  // Four times the tolerance: rejected, repeated with 0.9 * 0.5 k.
+  d = control_time_step(controller, k, 4e-3, k);
+  EXPECT_FALSE(d.accepted);
+  EXPECT_NEAR(d.step, 0.45 * k, 1e-14 * k);
+  // 10^4 times the tolerance: shrinking is bounded by the factor 0.2.
+  d = control_time_step(controller, k, 10., k);
+  EXPECT_FALSE(d.accepted);
+  EXPECT_NEAR(d.step, 0.2 * k, 1e-14 * k);
+  // The maximum caps growth; the minimum caps shrinking, and a step at the
+  // minimum is accepted whatever its estimate.
+  d = control_time_step(controller, 0.2, 0., 0.2);
+  EXPECT_NEAR(d.step, 0.25, 1e-14);
+  d = control_time_step(controller, 2e-4, 10., 2e-4);
+  EXPECT_FALSE(d.accepted);
+  EXPECT_NEAR(d.step, 1e-4, 1e-18);
+  d = control_time_step(controller, 1e-4, 10., 1e-4);
+  EXPECT_TRUE(d.accepted);
+  EXPECT_NEAR(d.step, 1e-4, 1e-18);
+  // A step shortened to land on a target (0.003 instead of the desired
+  // 0.01) with a small estimate grows relative to the desired step, not to
+  // the short one: 2 * 0.01.
+  d = control_time_step(controller, 0.003, 1e-6, 0.01);
+  EXPECT_TRUE(d.accepted);
+  EXPECT_NEAR(d.step, 0.02, 1e-14);
+}
+
+TEST(TimeStepController, LandsOnTargets)
+{
+  const std::vector<double> targets = {0.5, 1.};
+  // Far from the target: the step as it is.
+  EXPECT_NEAR(next_time_level(0.1, 0.1, targets), 0.2, 1e-15);
+  // A step that reaches or passes the target ends on it, exactly.
+  EXPECT_EQ(next_time_level(0.45, 0.1, targets), 0.5);
+  EXPECT_EQ(next_time_level(0.4, 0.1 * (1 - 1e-14), targets), 0.5);
+  // A step that would leave less than a step before the target: the rest
+  // in two equal steps (0.42 + 0.04, then 0.04 to the target).
+  EXPECT_NEAR(next_time_level(0.42, 0.06, targets), 0.46, 1e-15);
+  EXPECT_EQ(next_time_level(0.46, 0.06, targets), 0.5);
+  // A target just passed (within 1e-12 T) does not stop the next step; the
+  // next target is End time.
+  EXPECT_NEAR(next_time_level(0.5, 0.2, targets), 0.7, 1e-15);
+  EXPECT_EQ(next_time_level(0.9, 0.25, targets), 1.);
+  // Time levels from 0 with a fixed proposal 0.15: never beyond a target,
+  // every target reached exactly, and no step below half the proposal.
+  std::vector<double> levels = {0.};
+  while (levels.back() < 1.)
+    levels.push_back(next_time_level(levels.back(), 0.15, targets));
+  EXPECT_NE(std::find(levels.begin(), levels.end(), 0.5), levels.end());
+  EXPECT_EQ(levels.back(), 1.);
+  for (unsigned int i = 1; i < levels.size(); ++i)
+    {
+      EXPECT_LE(levels[i] - levels[i - 1], 0.15 + 1e-15);
+      EXPECT_GE(levels[i] - levels[i - 1], 0.075 - 1e-15);
+    }
 }
 
 

@@ -78,6 +78,15 @@ namespace ViscoContact
       adaptive
     };
 
+    // How the meshes of the initial cycles (nested iteration on the first
+    // step, doc/adaptivity.md) are made: uniform refinement toward the mesh of
+    // the parameter file, or the indicator of the adaptive meshes.
+    enum class InitialRefinement
+    {
+      global,
+      adaptive
+    };
+
     // How a step's linear contact problem is solved (contact_solver.h).
     enum class Method
     {
@@ -265,6 +274,10 @@ namespace ViscoContact
       double       coarsen_fraction;
       unsigned int maximum_cells;
       unsigned int maximum_refinement_level;
+      // Nested iteration on the first step: solved on initial_cycles coarser
+      // meshes first, each solution the warm start of the next mesh.
+      unsigned int      initial_cycles;
+      InitialRefinement initial_refinement;
 
       static void
       declare_parameters(ParameterHandler &prm);

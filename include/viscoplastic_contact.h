@@ -255,12 +255,25 @@ namespace ViscoContact
     // and the contact pressures carried over, the set-up on the new mesh and
     // the contact set re-established. A resumed adaptive run first rebuilds
     // the checkpoint's mesh.
+    //
+    // Both the adaptation during the run and the initial cycles (nested
+    // iteration on the first step) mark cells and then call
+    // refine_and_transfer(), which changes the mesh, sets everything up on it
+    // and carries u and the contact pressure over, and the stress-point data
+    // if asked to (the initial cycles start every mesh from the initial
+    // history instead).
     bool
     adaptation_due(const unsigned int step, const unsigned int n_steps) const;
     void
     adapt_mesh(const double time);
     Vector<float>
     refinement_indicators() const;
+    bool
+    mark_cells_by_indicators();
+    void
+    refine_and_transfer(const bool transfer_stress_points);
+    void
+    solve_initial_cycles(std::vector<double> &times);
     void
     restore_checkpoint_mesh();
 
@@ -397,6 +410,10 @@ namespace ViscoContact
     ContactSet<dim> contact_set;
     unsigned int    total_active_set_iterations = 0;
     unsigned int    total_inner_iterations      = 0;
+    // Those of the solves of the initial cycles on the coarser meshes, which
+    // total_active_set_iterations does not count.
+    unsigned int initial_cycle_iterations = 0;
+    unsigned int n_initial_cycles         = 0;
 
     // Called after every accepted step (set_step_observer()).
     std::function<void(const unsigned int, const double)> step_observer;

@@ -231,11 +231,8 @@ namespace ViscoContact
   // @sect4{ViscoplasticContact::adapt_mesh}
   //
   // Mark, transfer, refine, set up, restore (the order of step-40/step-75 for
-  // distributed meshes). The marking takes a fixed fraction of the cells with
-  // the largest and the smallest indicators, with p4est's bisection over all
-  // ranks (parallel::distributed::GridRefinement), and refines fewer cells if
-  // the mesh would exceed Maximum cells; cells on Maximum refinement level are
-  // not refined. If nothing is marked the mesh and the state stay as they are.
+  // distributed meshes), then the loads of the next step on the new mesh. If
+  // nothing is marked the mesh and the state stay as they are.
   template <int dim>
   void
   ViscoplasticContact<dim>::adapt_mesh(const double time)
@@ -243,11 +240,45 @@ namespace ViscoContact
     // The timer's sections: the whole adaptation and, within it, its parts
     // (the set-up on the new mesh has its own sections).
     TimerOutput::Scope t(computing_timer, "Mesh adaptation");
+    const auto         cells_before = triangulation->n_global_active_cells();
+    const auto         dofs_before  = dof_handler.n_dofs();
+    if (!mark_cells_by_indicators())
+      return;
+    refine_and_transfer(/*transfer_stress_points=*/true);
+
+    // The loads of the next step on the new mesh: the external load (the time
+    // loop assembles it only once if it does not depend on t) and the history
+    // load of the explicit update from the carried-over history.
+    assemble_external_load(time);
+    if (explicit_history_update())
+      assemble_history_load();
+
+    if (parameters.verbose)
+      pcout << "Mesh adapted at t = " << time << ": " << cells_before << " -> "
+            << triangulation->n_global_active_cells() << " cells, "
+            << dofs_before << " -> " << dof_handler.n_dofs() << " dofs, "
+            << (contact_enabled ? contact_set.n_global_nodes() : 0)
+            << " contact nodes" << std::endl;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::mark_cells_by_indicators}
+  //
+  // The marking takes a fixed fraction of the cells with the largest and the
+  // smallest indicators, with p4est's bisection over all ranks
+  // (parallel::distributed::GridRefinement), and refines fewer cells if the
+  // mesh would exceed Maximum cells; cells on Maximum refinement level are not
+  // refined. Returns whether any cell is marked.
+  template <int dim>
+  bool
+  ViscoplasticContact<dim>::mark_cells_by_indicators()
+  {
+    TimerOutput::Scope t(computing_timer,
+                         "Mesh adaptation: indicators and marking");
     auto &mesh = dynamic_cast<parallel::distributed::Triangulation<dim> &>(
       *triangulation);
     solution.update_ghost_values();
-    std::optional<TimerOutput::Scope> part;
-    part.emplace(computing_timer, "Mesh adaptation: indicators and marking");
     const Vector<float> indicators = refinement_indicators();
     // The marking for a refine fraction, and the number of cells it would
     // give: a refined cell adds 2^dim - 1 cells, a coarsened one removes
@@ -307,11 +338,29 @@ namespace ViscoContact
                         : 0.;
         outcome = mark(refine_fraction);
       }
-    if (!outcome.first)
-      return;
-    part.reset();
+    return outcome.first;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::refine_and_transfer}
+  //
+  // The marked mesh is refined and coarsened, everything is set up on it
+  // (setup_on_mesh(), which leaves the initial state), and the state is
+  // carried over: u and the contact pressure always, the stress-point data if
+  // transfer_stress_points (the adaptation during the run; the initial cycles
+  // keep the initial history of the first step). The loads are left to the
+  // caller.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::refine_and_transfer(
+    const bool transfer_stress_points)
+  {
+    auto &mesh = dynamic_cast<parallel::distributed::Triangulation<dim> &>(
+      *triangulation);
+    std::optional<TimerOutput::Scope> part;
     part.emplace(computing_timer, "Mesh adaptation: transfer");
-    const auto dofs_before = dof_handler.n_dofs();
+    solution.update_ghost_values();
 
     // The nodal fields: u and the contact pressure z_i / w_i at the x-dof of
     // each contact node (zero elsewhere), both with their ghosts, as
@@ -337,7 +386,9 @@ namespace ViscoContact
       std::vector<const VectorType *>{&solution, &pressure});
 
     // The stress-point data, one record per active cell (owned entries set).
-    using Record                 = CellRecord<dim>;
+    using Record = CellRecord<dim>;
+    using DataTransfer
+      = parallel::distributed::CellDataTransfer<dim, dim, std::vector<Record>>;
     const unsigned int n_q       = stress_quadrature.size();
     const unsigned int n_fields  = n_point_fields<dim>;
     const auto         to_record = [](const std::vector<double> &values) {
@@ -347,33 +398,37 @@ namespace ViscoContact
     };
     const StressPointTransfer<dim> q1_transfer(stress_quadrature, n_fields);
     std::set<CellId>               refined_parents; // for the check below
-    std::vector<Record>            cell_data(mesh.n_active_cells());
-    for (unsigned int k = 0; k < owned_cells.size(); ++k)
-      for (unsigned int q = 0; q < n_q; ++q)
-        pack_point(quadrature_point_history[std::size_t(k) * n_q + q],
-                   cell_data[owned_cells[k]->active_cell_index()].data()
-                     + q * n_fields);
-    parallel::distributed::CellDataTransfer<dim, dim, std::vector<Record>>
-      data_transfer(
-        mesh,
-        /*transfer_variable_size_data=*/false,
-        [&](const typename Triangulation<dim>::cell_iterator &parent_cell,
-            const Record                                     &parent) {
-          refined_parents.insert(parent_cell->id());
-          std::vector<Record> children;
-          for (const auto &child : q1_transfer.refine(
-                 std::vector<double>(parent.begin(), parent.end())))
-            children.push_back(to_record(child));
-          return children;
-        },
-        [&](const typename Triangulation<dim>::cell_iterator &,
-            const std::vector<Record> &children) {
-          std::vector<std::vector<double>> values;
-          for (const Record &child : children)
-            values.emplace_back(child.begin(), child.end());
-          return to_record(q1_transfer.coarsen(values));
-        });
-    data_transfer.prepare_for_coarsening_and_refinement(cell_data);
+    std::vector<Record>            cell_data;
+    std::optional<DataTransfer>    data_transfer;
+    if (transfer_stress_points)
+      {
+        cell_data.resize(mesh.n_active_cells());
+        for (unsigned int k = 0; k < owned_cells.size(); ++k)
+          for (unsigned int q = 0; q < n_q; ++q)
+            pack_point(quadrature_point_history[std::size_t(k) * n_q + q],
+                       cell_data[owned_cells[k]->active_cell_index()].data()
+                         + q * n_fields);
+        data_transfer.emplace(
+          mesh,
+          /*transfer_variable_size_data=*/false,
+          [&](const typename Triangulation<dim>::cell_iterator &parent_cell,
+              const Record                                     &parent) {
+            refined_parents.insert(parent_cell->id());
+            std::vector<Record> children;
+            for (const auto &child : q1_transfer.refine(
+                   std::vector<double>(parent.begin(), parent.end())))
+              children.push_back(to_record(child));
+            return children;
+          },
+          [&](const typename Triangulation<dim>::cell_iterator &,
+              const std::vector<Record> &children) {
+            std::vector<std::vector<double>> values;
+            for (const Record &child : children)
+              values.emplace_back(child.begin(), child.end());
+            return to_record(q1_transfer.coarsen(values));
+          });
+        data_transfer->prepare_for_coarsening_and_refinement(cell_data);
+      }
 
     // The new mesh (p4est also rebalances the partition), and everything on
     // it, from the initial state.
@@ -392,13 +447,16 @@ namespace ViscoContact
     solution.update_ghost_values();
 
     // The stress points of the new owned cells, in the order of owned_cells.
-    cell_data.assign(mesh.n_active_cells(), Record());
-    data_transfer.unpack(cell_data);
-    for (unsigned int k = 0; k < owned_cells.size(); ++k)
-      for (unsigned int q = 0; q < n_q; ++q)
-        unpack_point(cell_data[owned_cells[k]->active_cell_index()].data()
-                       + q * n_fields,
-                     quadrature_point_history[std::size_t(k) * n_q + q]);
+    if (transfer_stress_points)
+      {
+        cell_data.assign(mesh.n_active_cells(), Record());
+        data_transfer->unpack(cell_data);
+        for (unsigned int k = 0; k < owned_cells.size(); ++k)
+          for (unsigned int q = 0; q < n_q; ++q)
+            unpack_point(cell_data[owned_cells[k]->active_cell_index()].data()
+                           + q * n_fields,
+                         quadrature_point_history[std::size_t(k) * n_q + q]);
+      }
 
 #ifdef DEBUG
     // A check of the whole transfer in Debug builds: with the implicit
@@ -408,7 +466,8 @@ namespace ViscoContact
     // it, so sigma - history = E eps(u) at the children's stress points to
     // round-off. A wrong order of the children or of the Gauss points would
     // break it.
-    if (implicit_update() && parameters.mesh_file.empty())
+    if (transfer_stress_points && implicit_update()
+        && parameters.mesh_file.empty())
       for (unsigned int k = 0; k < owned_cells.size(); ++k)
         if (owned_cells[k]->level() > 0
             && refined_parents.count(owned_cells[k]->parent()->id()) > 0)
@@ -438,22 +497,82 @@ namespace ViscoContact
           }
         contact_set.update_pieces();
       }
+  }
 
-    part.reset();
 
-    // The loads of the next step on the new mesh: the external load (the time
-    // loop assembles it only once if it does not depend on t) and the history
-    // load of the explicit update from the carried-over history.
-    assemble_external_load(time);
-    if (explicit_history_update())
-      assemble_history_load();
 
-    if (parameters.verbose)
-      pcout << "Mesh adapted at t = " << time << ": " << cells_before << " -> "
-            << mesh.n_global_active_cells() << " cells, " << dofs_before
-            << " -> " << dof_handler.n_dofs() << " dofs, "
-            << (contact_enabled ? contact_set.n_global_nodes() : 0)
-            << " contact nodes" << std::endl;
+  // @sect4{ViscoplasticContact::solve_initial_cycles}
+  //
+  // Nested iteration on the first step (doc/adaptivity.md, "Initial
+  // cycles"). A cold start's active-set iteration overshoots: its first solve,
+  // with every node out of contact, pushes a region of nodes to the rigid
+  // limit that the following iterations release from its edge, some half of
+  // the surplus per iteration, so the count grows with the number of contact
+  // nodes (doc/performance.md). On a mesh twice as coarse the same step costs
+  // less than a quarter, and its contact zone, interpolated to the fine mesh,
+  // is wrong only at the front, within a cell or two of the coarse mesh.
+  //
+  // So step 1 is solved on the first mesh of the cycles, and then, cycle by
+  // cycle, the mesh is refined (every cell, or by the indicator of the
+  // adaptive meshes), u and the contact pressure are carried over by
+  // refine_and_transfer(), the new contact nodes get the pieces the carried
+  // pressure and u name, and step 1 is solved again from there. The history
+  // of step 1 is the initial one on every mesh (setup_on_mesh() leaves it so),
+  // so each re-solve is the same step problem, only warm-started: its
+  // solution is the unique one of the step problem on that mesh, whatever the
+  // start (tests/initial_cycles). The last solve, on the last mesh, is run()'s
+  // step 1; this function leaves the state it starts from.
+  //
+  // The schedule is copied for the coarse solves, so that a step cut on a
+  // coarse mesh does not change the schedule of the run (the cut solve is
+  // still a start). Their iterations are counted apart from those of the
+  // run's steps.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::solve_initial_cycles(std::vector<double> &times)
+  {
+    TimerOutput::Scope t(computing_timer, "Initial cycles");
+    const bool         global
+      = parameters.initial_refinement == Parameters::InitialRefinement::global;
+    for (unsigned int cycle = 0; cycle < parameters.initial_cycles; ++cycle)
+      {
+        std::vector<double>   cycle_times       = times;
+        const unsigned int    iterations_before = total_active_set_iterations;
+        const ActiveSetResult result = solve_step_with_recovery(1, cycle_times);
+        initial_cycle_iterations += result.iterations();
+        ++n_initial_cycles;
+        total_active_set_iterations = iterations_before;
+        if (parameters.verbose)
+          pcout << "Initial cycle " << cycle << ": "
+                << triangulation->n_global_active_cells() << " cells, "
+                << dof_handler.n_dofs() << " dofs, "
+                << (contact_enabled ? contact_set.n_global_nodes() : 0)
+                << " contact nodes, " << result.iterations()
+                << " active-set iterations" << std::endl;
+
+        // The next mesh: every cell refined, or the marking of the adaptive
+        // meshes, whose indicator also looks at the plastic zone of step 1's
+        // stresses (computed here, on the mesh that is left behind).
+        bool marked = true;
+        if (global)
+          {
+            for (const auto &cell : triangulation->active_cell_iterators())
+              if (cell->is_locally_owned())
+                cell->set_refine_flag();
+          }
+        else
+          {
+            if (parameters.plasticity)
+              update_stresses(cycle_times[1] - cycle_times[0], 0.);
+            marked = mark_cells_by_indicators();
+          }
+        if (!marked)
+          break;
+        refine_and_transfer(/*transfer_stress_points=*/false);
+        // The external load of step 1 on the new mesh (the history load of the
+        // initial state is zero, as setup_on_mesh() left it).
+        assemble_external_load(times[1]);
+      }
   }
 
 

@@ -507,6 +507,12 @@ namespace ViscoContact
             << total_newton_iterations << '\n';
     pcout << "  active-set iterations: " << total_active_set_iterations
           << " in " << n_time_steps << " steps\n";
+    // The solves of step 1 on the coarser meshes of the initial cycles (not
+    // in the count above, which is that of the recorded steps).
+    if (n_initial_cycles > 0)
+      pcout << "  initial cycles: " << initial_cycle_iterations
+            << " active-set iterations on " << n_initial_cycles
+            << " coarser meshes\n";
     if (parameters.time_step_control == Parameters::TimeStepControl::adaptive)
       pcout << "  adaptive time steps: " << n_time_steps << " accepted, "
             << n_rejected_steps << " rejected\n";

@@ -926,6 +926,29 @@ namespace ViscoContact
                           "p4est forest (the generated box of m 2^j "
                           "Subdivisions has m^dim trees); an integer in "
                           "[0, 20].");
+        prm.declare_entry(
+          "Initial cycles",
+          "0",
+          Patterns::Integer(),
+          "Nested iteration on the first time step (doc/adaptivity.md, "
+          "\"Initial cycles\"): step 1 is solved on L coarser meshes first, "
+          "each solution (displacement and contact pressure) carried over to "
+          "the next mesh as the starting point of its active-set iteration; "
+          "only the solve on the last mesh is recorded. 0: none. Hypercube "
+          "meshes only; an integer in [0, 20], with Initial refinement = "
+          "global at most Global refinements.");
+        prm.declare_entry(
+          "Initial refinement",
+          "global",
+          Patterns::Selection("global|adaptive"),
+          "How the meshes of the Initial cycles are made. global: the mesh "
+          "of subsection Geometry is the last one; the first cycle runs on "
+          "it with Global refinements - Initial cycles uniform refinements, "
+          "and each cycle refines every cell (no Contact refinement levels). "
+          "adaptive: the mesh of subsection Geometry is the first one, and "
+          "each cycle refines and coarsens it by the indicator of Adaptive "
+          "refinement, within Refine fraction, Coarsen fraction, Maximum "
+          "cells and Maximum refinement level.");
       }
       prm.leave_subsection();
     }
@@ -970,6 +993,16 @@ namespace ViscoContact
                 prm.get("Maximum refinement level"),
                 "an integer in [0, 20]");
         maximum_refinement_level = level;
+        const long cycles        = prm.get_integer("Initial cycles");
+        require(cycles >= 0 && cycles <= 20,
+                "Mesh adaptation",
+                "Initial cycles",
+                prm.get("Initial cycles"),
+                "an integer in [0, 20]");
+        initial_cycles     = cycles;
+        initial_refinement = prm.get("Initial refinement") == "global"
+                               ? InitialRefinement::global
+                               : InitialRefinement::adaptive;
       }
       prm.leave_subsection();
     }
@@ -1137,6 +1170,37 @@ namespace ViscoContact
                 "(adaptive meshes need hypercube cells on p4est: deal.II "
                 "9.4's fully distributed triangulation of triangles and "
                 "tetrahedra cannot refine)");
+      // The initial cycles refine p4est meshes too; with global refinement
+      // the mesh of the parameter file is the finest, reached from one with
+      // Initial cycles fewer uniform refinements, and the contact refinements
+      // would not be nested that way.
+      if (initial_cycles > 0)
+        require(cell_type == CellType::hypercube && !study_enabled,
+                "Mesh adaptation",
+                "Initial cycles",
+                std::to_string(initial_cycles),
+                "0 when Cell type = simplex or a convergence study runs "
+                "(the initial cycles refine hypercube meshes on p4est)");
+      if (initial_cycles > 0 && initial_refinement == InitialRefinement::global)
+        {
+          require(initial_cycles <= global_refinements,
+                  "Mesh adaptation",
+                  "Initial cycles",
+                  std::to_string(initial_cycles),
+                  "at most Global refinements = "
+                    + std::to_string(global_refinements)
+                    + " (subsection <Geometry>) with Initial refinement = "
+                      "global: the first cycle's mesh has Global refinements "
+                      "- Initial cycles uniform refinements");
+          require(contact_refinements == 0,
+                  "Mesh adaptation",
+                  "Initial cycles",
+                  std::to_string(initial_cycles),
+                  "0 when Contact refinement levels > 0 (subsection "
+                  "<Geometry>) with Initial refinement = global (uniform "
+                  "refinement of a graded mesh does not give the graded mesh "
+                  "of the parameter file); or Initial refinement = adaptive");
+        }
       // Entries whose value the run would otherwise ignore without a word.
       // A profile time outside [0, T] has no step near it (the closest step
       // would be the first or the last one, a profile nobody asked for).

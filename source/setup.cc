@@ -33,12 +33,21 @@ namespace ViscoContact
   // with the same cell ids, on any number of ranks; the checkpoints rely on
   // this. The boundary ids the parameter file names are checked there as well,
   // across all ranks.
+  //
+  // With Initial cycles and Initial refinement = global, the mesh of the
+  // parameter file is the last one of the cycles: the run starts on the one
+  // with Initial cycles fewer uniform refinements, whose refinement the cycles
+  // do (solve_initial_cycles()). On p4est both give the same cells with the
+  // same ids.
   template <int dim>
   void
   ViscoplasticContact<dim>::make_grid()
   {
-    TimerOutput::Scope t(computing_timer, "Setup: mesh");
-    triangulation = create_distributed_mesh<dim>(parameters, mpi_communicator);
+    TimerOutput::Scope        t(computing_timer, "Setup: mesh");
+    Parameters::AllParameters first_mesh = parameters;
+    if (parameters.initial_refinement == Parameters::InitialRefinement::global)
+      first_mesh.global_refinements -= parameters.initial_cycles;
+    triangulation = create_distributed_mesh<dim>(first_mesh, mpi_communicator);
   }
 
 
@@ -400,6 +409,16 @@ namespace ViscoContact
       pcout << "adaptive time steps\n";
     else
       pcout << n_steps << " time steps\n";
+    // With initial cycles the mesh above is the first of them (a resumed run
+    // starts on the checkpoint's mesh and runs none).
+    if (parameters.initial_cycles > 0 && !parameters.resume)
+      pcout << "Initial cycles: step 1 on " << parameters.initial_cycles
+            << " coarser meshes first, from this one, "
+            << (parameters.initial_refinement
+                    == Parameters::InitialRefinement::global
+                  ? "refined globally"
+                  : "refined adaptively")
+            << '\n';
     pcout << "Model: " << (parameters.plasticity ? "viscoplastic" : "elastic")
           << ", contact " << (contact_enabled ? "on" : "off") << ", "
           << (parameters.stress_update

@@ -340,7 +340,13 @@ namespace ViscoContact
         // (solve_adaptive_step(), which also updates the stresses), and only
         // then is the next level known: the controller's step fitted to the
         // targets, with the history advanced for it.
-        Timer                 step_timer;
+        Timer step_timer;
+        // With Initial cycles, step 1 is first solved on coarser meshes, each
+        // solution the start of the next (nested iteration,
+        // solve_initial_cycles()); the step below is then the solve on the
+        // last mesh, and its time includes the cycles.
+        if (n == 1 && parameters.initial_cycles > 0)
+          solve_initial_cycles(times);
         const ActiveSetResult result = adaptive
                                          ? solve_adaptive_step(n, times)
                                          : solve_step_with_recovery(n, times);

@@ -1,0 +1,63 @@
+#!/bin/bash
+# Nested iteration on the first step does not change the results: the
+# parameter file (Initial cycles = L, Initial refinement = global) describes
+# the last mesh of the cycles; it runs as it is and with Initial cycles = 0,
+# on the same mesh. The step problem has a unique solution, so the warm start
+# from the coarser meshes must not change it: both runs must give the same
+# time series (all columns but the active-set iterations, the wall time and
+# the Krylov iterations), the same contact profiles and the same final norms,
+# by numdiff absolute 1e-8, relative 1e-8. The cycled run must have printed
+# L cycles, and its step 1 on the last mesh must take at most the active-set
+# iterations of the cold start.
+#   run_initial_cycles.sh EXECUTABLE PRM
+set -u
+here=$(dirname "$0")
+executable=$1 prm=$2
+absolute=1e-8 relative=1e-8
+cycles=$(sed -n 's/^ *set Initial cycles *= *\([0-9]*\).*/\1/p' "$prm")
+
+rm -rf cycles direct
+mkdir -p cycles direct
+cp "$prm" cycles/scene.prm
+sed -e "s/^\( *set Initial cycles *=\).*/\1 0/" "$prm" > direct/scene.prm
+for dir in cycles direct; do
+  (cd "$dir" && "$here/run_mpi.sh" 1 "$executable" scene.prm > output.txt 2> error.txt)
+  status=$?
+  if [ $status -ne 0 ]; then
+    echo "The $dir run failed with exit status $status:"
+    cat "$dir/error.txt"
+    exit 1
+  fi
+  cut -d, -f1,2,4-8,11,12 "$dir/results/time_series.csv" | tr ',' ' ' > "$dir/series.txt"
+  { grep '^  final state:\|^  final contact:\|^Final displacement:' "$dir/output.txt"; } > "$dir/final.txt"
+done
+
+n_cycles=$(grep -c '^Initial cycle [0-9]' cycles/output.txt)
+if [ "$n_cycles" -ne "$cycles" ] || grep -q '^Initial cycle' direct/output.txt; then
+  echo "The cycled run printed $n_cycles initial cycles, not $cycles (or the direct one printed some)."
+  exit 1
+fi
+if ! grep -q "^  initial cycles: .* on $cycles coarser meshes" cycles/output.txt; then
+  echo "The run summary does not count the initial cycles apart."
+  exit 1
+fi
+files="series.txt final.txt"
+for profile in cycles/results/contact_profile_*.csv; do
+  files="$files results/$(basename "$profile")"
+done
+for file in $files; do
+  if ! numdiff -q -a $absolute -r $relative -s ' \t\n=,:;' \
+       cycles/$file direct/$file > /dev/null; then
+    echo "$file differs with and without initial cycles beyond -a $absolute -r $relative:"
+    numdiff -a $absolute -r $relative -s ' \t\n=,:;' cycles/$file direct/$file | head -30
+    exit 1
+  fi
+done
+# Step 1's active-set iterations on the last mesh (column 3 of its row).
+warm=$(awk -F, 'NR == 2 {print $3}' cycles/results/time_series.csv)
+cold=$(awk -F, 'NR == 2 {print $3}' direct/results/time_series.csv)
+if [ -z "$warm" ] || [ -z "$cold" ] || [ "$warm" -gt "$cold" ]; then
+  echo "Step 1 on the last mesh took $warm active-set iterations after the initial cycles, more than the $cold of the cold start."
+  exit 1
+fi
+echo "$cycles initial cycles ($(grep '^Initial cycle [0-9]' cycles/output.txt | sed 's/^Initial cycle [0-9]*: //' | tr '\n' ';')) leave the results unchanged ($files, numdiff -a $absolute -r $relative); step 1 on the last mesh: $warm active-set iterations against $cold cold."

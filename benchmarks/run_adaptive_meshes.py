@@ -11,6 +11,9 @@ the mesh differs:
   Subdivisions = 16, adapted every 4 steps and every step (fractions 0.3 and
   0.03), with Maximum cells = 1000, ..., 8000; and from Subdivisions = 8
   (every 4 steps, fractions 0.3/0.03 and 0.15/0.1, 2000 cells);
+* the same adaptive runs from Subdivisions = 16 with Initial cycles = 4,
+  Initial refinement = adaptive: the mesh is adapted four times on step 1
+  before the step is recorded (kind "adaptive+cycles", 2D only);
 * the reference: a uniform mesh with Subdivisions = 256 (--reference).
 
 With --dimension 3, the cube of parameters/cube_3d.prm (hexahedra, the full
@@ -59,7 +62,7 @@ SCENES = {2: ("default.prm", 1.0 / 64), 3: ("cube_3d.prm", 1.0 / 32)}
 
 def run(executable, subdivisions, levels=0, adaptive=None, dimension=2):
     """One run; adaptive = (refine fraction, coarsen fraction, max cells,
-    refinement interval)."""
+    refinement interval[, initial cycles])."""
     scene, time_step = SCENES[dimension]
     with open(os.path.join(REPO_ROOT, "parameters", scene)) as f:
         text = f.read()
@@ -87,6 +90,12 @@ def run(executable, subdivisions, levels=0, adaptive=None, dimension=2):
             (("Mesh adaptation",), "Maximum cells"): str(adaptive[2]),
             (("Mesh adaptation",), "Maximum refinement level"): "8",
         })
+    cycles = adaptive[4] if adaptive and len(adaptive) > 4 else 0
+    if cycles:
+        entries.update({
+            (("Mesh adaptation",), "Initial cycles"): str(cycles),
+            (("Mesh adaptation",), "Initial refinement"): "adaptive",
+        })
     text = set_prm_entries(text, entries)
     with tempfile.TemporaryDirectory() as workdir:
         prm = os.path.join(workdir, "run.prm")
@@ -107,6 +116,11 @@ def run(executable, subdivisions, levels=0, adaptive=None, dimension=2):
             m = re.match(r"Mesh adapted at .* -> (\d+) dofs", line)
             if m:
                 current = int(m.group(1))
+            # The initial cycles refine before step 1: its mesh is that of
+            # the summary of the last cycle's refinement.
+            m = re.match(r"Initial cycles done: (\d+) cells, (\d+) dofs", line)
+            if m:
+                current = int(m.group(2))
             elif line.startswith("Step "):
                 step_dofs.append(current)
         cells = [re.search(r"^Mesh: (\d+) ", out, re.M).group(1)]
@@ -119,7 +133,8 @@ def run(executable, subdivisions, levels=0, adaptive=None, dimension=2):
                            key=lambda r: (float(r["x"]), float(r.get("y", 0))))
         with open(os.path.join(results, "time_series.csv")) as f:
             series = list(csv.DictReader(f))
-    return {"kind": "adaptive" if adaptive else ("graded" if levels else "uniform"),
+    kind = "adaptive+cycles" if cycles else "adaptive"
+    return {"kind": kind if adaptive else ("graded" if levels else "uniform"),
             "subdivisions": subdivisions, "levels": levels,
             "fractions": "%g/%g" % adaptive[:2] if adaptive else "",
             "interval": adaptive[3] if adaptive else "",
@@ -185,6 +200,10 @@ def main():
                                 adaptive=(0.3, 0.03, max_cells, interval)))
         for fractions in ((0.3, 0.03), (0.15, 0.1)):
             runs.append(run(executable, 8, adaptive=fractions + (2000, 4)))
+        for interval in (4, 1):
+            for max_cells in (1000, 2000, 4000, 8000):
+                runs.append(run(executable, 16,
+                                adaptive=(0.3, 0.03, max_cells, interval, 4)))
     else:
         runs = [run(executable, n, dimension=3) for n in (4, 8, 16)]
         runs += [run(executable, n, levels=1, dimension=3) for n in (4, 8)]
@@ -225,7 +244,10 @@ def main():
              "||eps(u)||_L2 at t = 1. Graded: %s. Adaptive: from the uniform mesh "
              "of the Subdivisions listed, adapted every *interval* steps with the "
              "Refine/Coarsen fractions and Maximum cells listed (Maximum "
-             "refinement level 8). dofs: final (mean over the steps). Wall time: "
+             "refinement level 8); adaptive+cycles: the same, with Initial "
+             "cycles = 4, Initial refinement = adaptive (step 1 solved on four "
+             "meshes adapted by the indicator before it is recorded). dofs: "
+             "final (mean over the steps). Wall time: "
              "the whole process, one rank, on a shared machine (+-20 %%)."
              % ("" if d == 2 else " --dimension 3", scene, args.reference,
                 reference["dofs"], reference["wall_time"], graded), "",
@@ -256,6 +278,10 @@ def main():
     if d == 2:
         groups.append(("adaptive", lambda r: r["subdivisions"] == 8, "x",
                        "adaptive from 1/8 (0.3/0.03, 0.15/0.1)"))
+        groups.append(("adaptive+cycles", lambda r: r["interval"] > 1, "<",
+                       "adaptive from 1/16 + 4 initial cycles, every 4 steps"))
+        groups.append(("adaptive+cycles", lambda r: r["interval"] == 1, ">",
+                       "adaptive from 1/16 + 4 initial cycles, every step"))
     for row, (work, work_label) in enumerate((("mean_dofs", "dofs (mean over the steps)"),
                                               ("wall_time", "wall time [s], whole process"))):
         for ax, key, title in zip(axes[row], ["error_u_nu", "error_force", "error_strain"],

@@ -14,11 +14,12 @@ each cycle and their total, the Krylov iterations of step 1 on the finest
 mesh (full space), the time of step 1 (the time series' wall time: the
 cycles, their set-ups and the last solve) and of the whole process.
 
-Writes <output-dir>/cold_start.{csv,md,png}.
+Writes <output-dir>/cold_start.{csv,md,png}; with --from-csv only the
+table and the figure, from the csv of an earlier invocation.
 
     benchmarks/run_cold_start.py [--executable build/viscoplastic_contact]
                                  [--output-dir doc/performance]
-                                 [--sizes 128,256,512]
+                                 [--sizes 128,256,512] [--from-csv]
 """
 
 import argparse
@@ -77,7 +78,11 @@ def run(executable, n, method, cycles):
     assert len(cycle_iterations) == cycles, out
     final = int(row["active_set_iterations"])
     force = float(row["total_contact_force"])
-    dofs = int(re.search(r"(\d+) displacement dofs", out).group(1))
+    # The dofs of step 1: of the mesh after the cycles (the header shows the
+    # first one).
+    last = re.search(r"^Initial cycles done: \d+ cells, (\d+) dofs", out, re.M)
+    dofs = int(last.group(1) if last else
+               re.search(r"(\d+) displacement dofs", out).group(1))
     return {"n": n, "method": method, "cycles": cycles,
             "first_mesh": n >> cycles, "dofs": dofs,
             "cycle_iterations": cycle_iterations,
@@ -94,12 +99,33 @@ def main():
     parser.add_argument("--output-dir",
                         default=os.path.join(REPO_ROOT, "doc", "performance"))
     parser.add_argument("--sizes", default="128,256,512")
+    parser.add_argument("--from-csv", action="store_true")
     args = parser.parse_args()
     executable = resolve_executable(args.executable)
     sizes = [int(s) for s in args.sizes.split(",")]
+    keys = ["method", "n", "cycles", "first_mesh", "dofs", "final_iterations",
+            "total_iterations", "krylov", "step_time", "wall_time", "force"]
+    csv_file = os.path.join(args.output_dir, "cold_start.csv")
+    if args.from_csv:
+        with open(csv_file) as f:
+            runs = []
+            for row in csv.DictReader(f):
+                r = {k: (row[k] if k == "method" else float(row[k])) for k in keys}
+                for k in ("n", "cycles", "first_mesh", "dofs", "final_iterations",
+                          "total_iterations", "krylov"):
+                    r[k] = int(r[k])
+                r["cycle_iterations"] = [int(i) for i in row["cycle_iterations"].split()]
+                runs.append(r)
+        # With global cycles step 1 runs on the mesh of the cold start, whose
+        # dofs every row gets (a csv of a version that printed only the first
+        # mesh of the cycles is corrected so).
+        for r in runs:
+            r["dofs"] = next(c["dofs"] for c in runs
+                             if c["n"] == r["n"] and c["cycles"] == 0)
+        sizes = []
 
-    runs = []
-    for method in ("condensed", "full space"):
+    runs = runs if args.from_csv else []
+    for method in ("condensed", "full space") if sizes else ():
         for n in sizes:
             for cycles in range(0, int(round(math.log2(n / COARSEST))) + 1):
                 r = run(executable, n, method, cycles)
@@ -111,9 +137,7 @@ def main():
                          r["step_time"], r["wall_time"], r["force"]), flush=True)
 
     os.makedirs(args.output_dir, exist_ok=True)
-    keys = ["method", "n", "cycles", "first_mesh", "dofs", "final_iterations",
-            "total_iterations", "krylov", "step_time", "wall_time", "force"]
-    with open(os.path.join(args.output_dir, "cold_start.csv"), "w", newline="") as f:
+    with open(csv_file, "w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(keys + ["cycle_iterations"])
         for r in runs:

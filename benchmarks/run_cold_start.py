@@ -186,13 +186,15 @@ def main():
         axes[0].plot([r["n"] for r in nested], [r["final_iterations"] for r in nested],
                      marker=marker, linestyle="--",
                      label="%s, nested from %d" % (method, COARSEST))
-        axes[1].plot([r["n"] for r in cold], [r["step_time"] for r in cold],
+        # The whole process: the step time of a run with cycles contains the
+        # set-ups of the finer meshes, the cold run's does not.
+        axes[1].plot([r["n"] for r in cold], [r["wall_time"] for r in cold],
                      marker=marker, label="%s, cold" % method)
-        axes[1].plot([r["n"] for r in nested], [r["step_time"] for r in nested],
+        axes[1].plot([r["n"] for r in nested], [r["wall_time"] for r in nested],
                      marker=marker, linestyle="--",
                      label="%s, nested from %d" % (method, COARSEST))
     axes[0].set_ylabel("active-set iterations of step 1 on N")
-    axes[1].set_ylabel("time of step 1 [s]")
+    axes[1].set_ylabel("whole process [s]")
     for ax in axes:
         ax.set_xscale("log", base=2)
         ax.set_xlabel("N (cells per edge)")

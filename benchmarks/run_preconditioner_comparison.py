@@ -1,0 +1,270 @@
+#!/usr/bin/python3
+"""Preconditioners for one elastic solve of the 3D cube: ML's smoothed
+aggregation as the program configured it, ML with other settings, hypre's
+BoomerAMG through PETSc, and a matrix-free geometric multigrid on the
+hexahedral p4est mesh. Writes doc/performance/preconditioners.md and
+preconditioners.png (read in doc/performance.md, section
+"Preconditioners").
+
+Each size is one process of benchmarks/preconditioner_comparison.cc (build
+it with `make preconditioner_comparison` in a Release build directory),
+which assembles K and b of the scene (parameters/cube_3d.prm on hexahedra,
+parameters/cube_3d_tetrahedra.prm on tetrahedra, Subdivisions = N) once and
+then solves K u = b by CG from zero to the scene's Tolerance (1e-10
+relative) with every preconditioner in turn, checking that all give the
+same u. Two parts:
+
+1. the sweep: many settings of each preconditioner at one size per cell
+   type (--sweep-hexahedra, --sweep-tetrahedra);
+2. the scaling: the preconditioner as the program had it and the best of
+   each kind, across sizes up to more than 1.2M dofs (hexahedra) and 1M
+   (tetrahedra), one process per size, one after the other.
+
+Usage:
+    benchmarks/run_preconditioner_comparison.py
+        [--executable BUILD/preconditioner_comparison]
+        [--sweep-hexahedra 32] [--sweep-tetrahedra 32]
+        [--hexahedra 16,24,32,48,64,80] [--tetrahedra 16,24,32,48,64,69]
+        [--output doc/performance/preconditioners.md]
+    benchmarks/run_preconditioner_comparison.py --figures-only
+
+Times are wall times on whatever machine runs it; compare ratios within
+one invocation.
+"""
+
+import argparse
+import os
+import resource
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__))), "scripts"))
+from vc_scripts import REPO_ROOT  # noqa: E402
+
+SCENES = {"hexahedra": "cube_3d.prm", "tetrahedra": "cube_3d_tetrahedra.prm"}
+
+# The settings of the sweep: (label, variant of preconditioner_comparison).
+# The first is the program's configuration before this comparison: deal.II's
+# AdditionalData for elliptic problems (Chebyshev of degree 2, Amesos-KLU on
+# the coarsest level), aggregation threshold 0.02, the rigid-body modes, and
+# ML's "PDE equations" left at 1.
+ML_BEFORE = "ml:pde=1,thr=0.02"
+SWEEP = [
+    ("ML as configured before", ML_BEFORE),
+    ("ML, PDE equations = 3", "ml:pde=3"),
+    ("ML, PDE equations = 3, threshold 0", "ml:pde=3,thr=0"),
+    ("ML, PDE equations = 3, threshold 0.05", "ml:pde=3,thr=0.05"),
+    ("ML, PDE equations = 3, threshold 0.1", "ml:pde=3,thr=0.1"),
+    ("ML, PDE equations = 3, Chebyshev degree 3", "ml:pde=3,sweeps=3"),
+    ("ML, PDE equations = 3, Chebyshev degree 4", "ml:pde=3,sweeps=4"),
+    ("ML, PDE equations = 3, symmetric Gauss-Seidel x1",
+     "ml:pde=3,smoother=sgs,sweeps=1"),
+    ("ML, PDE equations = 3, symmetric Gauss-Seidel x2",
+     "ml:pde=3,smoother=sgs,sweeps=2"),
+    ("ML, PDE equations = 3, smoother as coarse solver",
+     "ml:pde=3,coarse=smoother"),
+    ("ML, PDE equations = 3, translations only", "ml:pde=3,modes=0"),
+    ("ML, PDE equations = 1, threshold 0", "ml:pde=1,thr=0"),
+    ("ML, PDE equations = 1, Chebyshev degree 4", "ml:pde=1,sweeps=4"),
+    ("BoomerAMG, scalar (block size 1), theta 0.5", "hypre:bs=1,theta=0.5"),
+    ("BoomerAMG, block size 3, theta 0.5", "hypre:bs=3,theta=0.5"),
+    ("BoomerAMG, block size 3, theta 0.7", "hypre:bs=3,theta=0.7"),
+    ("BoomerAMG, block size 3, theta 0.5, nodal 4",
+     "hypre:bs=3,theta=0.5,nodal=4"),
+    ("BoomerAMG, block size 3, theta 0.5, nodal 4, vec interp 2 (rigid modes)",
+     "hypre:bs=3,theta=0.5,nodal=4,vec=2"),
+    ("BoomerAMG, HMIS, ext+i, P_max 4, theta 0.5, bs 3, nodal 4",
+     "hypre:bs=3,theta=0.5,nodal=4,coarsen=HMIS,interp=ext+i,pmax=4"),
+    ("BoomerAMG, HMIS, ext+i, P_max 4, theta 0.6, bs 3, agg. coarsening 1",
+     "hypre:bs=3,theta=0.6,agg=1,coarsen=HMIS,interp=ext+i,pmax=4"),
+    ("GMG matrix-free, Chebyshev degree 4", "gmg:degree=4"),
+    ("GMG matrix-free, Chebyshev degree 3", "gmg:degree=3"),
+    ("GMG matrix-free, Chebyshev degree 5", "gmg:degree=5"),
+    ("GMG, CG on the assembled K", "gmg:degree=4,outer=matrix"),
+]
+
+# The scaling: the configuration before, and the best of each kind.
+SCALING = [
+    ("ML as configured before", ML_BEFORE),
+    ("ML, PDE equations = 3", "ml:pde=3"),
+    ("BoomerAMG, block size 3, theta 0.5", "hypre:bs=3,theta=0.5"),
+    ("GMG matrix-free, Chebyshev degree 4", "gmg:degree=4"),
+]
+
+
+def applies(cells, spec):
+    """The geometric multigrid needs the p4est level hierarchy."""
+    return cells == "hexahedra" or not spec.startswith("gmg")
+
+
+def run(executable, cells, n, variants):
+    """One process: K and b of the scene at Subdivisions = n, then every
+    variant. Returns the rows and the process' peak memory (MB)."""
+    specs = [spec for _, spec in variants if applies(cells, spec)]
+    labels = {spec: label for label, spec in variants}
+    command = [executable, os.path.join(REPO_ROOT, "parameters",
+                                        SCENES[cells]), str(n)] + specs
+    env = dict(os.environ, OMP_NUM_THREADS="1", DEAL_II_NUM_THREADS="1")
+    start = time.time()
+    process = subprocess.Popen(command, stdout=subprocess.PIPE,
+                               stderr=subprocess.STDOUT, text=True, env=env)
+    rows, output = [], []
+    for line in process.stdout:
+        output.append(line)
+        print(line, end="", flush=True)
+        fields = line.rstrip("\n").split("\t")
+        if fields[0] == "RESULT":
+            rows.append({
+                "cells": fields[1], "N": int(fields[2]),
+                "dofs": int(fields[3]), "spec": fields[4],
+                "label": labels[fields[4]], "setup": float(fields[5]),
+                "solve": float(fields[6]), "iterations": int(fields[7]),
+                "memory": float(fields[8]), "difference": float(fields[9]),
+                "converged": fields[10] == "yes"})
+    _, status, usage = os.wait4(process.pid, 0)
+    if status != 0:
+        sys.exit(f"{' '.join(command)} failed:\n{''.join(output[-20:])}")
+    peak = usage.ru_maxrss / 1024
+    for row in rows:
+        row["peak"] = peak
+    print(f"# {cells} N = {n}: {time.time() - start:.1f} s", flush=True)
+    return rows
+
+
+HEADER = ("| cells | N | dofs | preconditioner | set-up [s] | solve [s] | "
+          "CG iterations | set-up + solve [s] | preconditioner memory [MB] | "
+          "process peak [MB] | difference to first |\n"
+          "| --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: "
+          "| ---: |")
+
+
+def table_line(r):
+    return (f"| {r['cells']} | {r['N']} | {r['dofs']} | {r['label']} "
+            f"(`{r['spec']}`) | {r['setup']:.3g} | {r['solve']:.3g} | "
+            f"{r['iterations']}{'' if r['converged'] else ' (not conv.)'} | "
+            f"{r['setup'] + r['solve']:.3g} | {r['memory']:.0f} | "
+            f"{r['peak']:.0f} | {r['difference']:.1e} |")
+
+
+def read_table(path):
+    """The rows of the scaling table of a written preconditioners.md."""
+    rows, in_scaling = [], False
+    with open(path) as f:
+        for line in f:
+            if line.startswith("## "):
+                in_scaling = line.startswith("## Scaling")
+            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            if not in_scaling or len(cells) != 11 or cells[0] not in SCENES:
+                continue
+            label, spec = cells[3].rsplit(" (`", 1)
+            rows.append({"cells": cells[0], "N": int(cells[1]),
+                         "dofs": int(cells[2]), "label": label,
+                         "spec": spec.rstrip("`)"),
+                         "setup": float(cells[4]), "solve": float(cells[5]),
+                         "iterations": int(cells[6].split()[0])})
+    return rows
+
+
+def figures(rows, directory):
+    """CG iterations and set-up + solve time against the dofs, one line per
+    preconditioner and cell type, with an O(n) line."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 2, figsize=(13, 4.8))
+    styles = {"hexahedra": "-", "tetrahedra": "--"}
+    markers = {}
+    for r in rows:
+        markers.setdefault(r["spec"], "osd^v<>"[len(markers) % 7])
+    for cells in SCENES:
+        for spec in markers:
+            series = sorted((r for r in rows
+                             if r["cells"] == cells and r["spec"] == spec),
+                            key=lambda r: r["dofs"])
+            if not series:
+                continue
+            label = f"{cells}: {series[0]['label']}"
+            dofs = [r["dofs"] for r in series]
+            axes[0].semilogx(dofs, [r["iterations"] for r in series],
+                             markers[spec] + styles[cells], label=label)
+            axes[1].loglog(dofs, [r["setup"] + r["solve"] for r in series],
+                           markers[spec] + styles[cells], label=label)
+    if rows:
+        first = min(rows, key=lambda r: r["dofs"])
+        last = max(r["dofs"] for r in rows)
+        t0 = min(r["setup"] + r["solve"] for r in rows
+                 if r["dofs"] == first["dofs"])
+        axes[1].loglog([first["dofs"], last],
+                       [t0, t0 * last / first["dofs"]], "k:", label="O(n)")
+    axes[0].set_ylabel("CG iterations (relative residual 1e-10)")
+    axes[1].set_ylabel("set-up + solve [s]")
+    for ax in axes:
+        ax.set_xlabel("displacement dofs")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    axes[0].set_ylim(bottom=0)
+    fig.tight_layout()
+    fig.savefig(os.path.join(directory, "preconditioners.png"), dpi=110)
+
+
+def main():
+    parser = argparse.ArgumentParser(
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--executable", default=os.path.join(
+        REPO_ROOT, "build", "preconditioner_comparison"))
+    parser.add_argument("--sweep-hexahedra", default="32")
+    parser.add_argument("--sweep-tetrahedra", default="32")
+    parser.add_argument("--hexahedra", default="16,24,32,48,64,80")
+    parser.add_argument("--tetrahedra", default="16,24,32,48,64,69")
+    parser.add_argument("--output", default=os.path.join(
+        REPO_ROOT, "doc", "performance", "preconditioners.md"))
+    parser.add_argument("--figures-only", action="store_true")
+    args = parser.parse_args()
+    if args.figures_only:
+        figures(read_table(args.output), os.path.dirname(args.output))
+        return
+    executable = os.path.abspath(args.executable)
+
+    lines = [
+        "# Preconditioners for the elastic solve",
+        "",
+        "Written by `benchmarks/run_preconditioner_comparison.py` (one "
+        "invocation); `doc/performance.md` reads it. One process per cell "
+        "type and size: the cube's K and b (`cube_3d.prm`, "
+        "`cube_3d_tetrahedra.prm`, Subdivisions = N), then CG from zero to "
+        "a relative residual of 1e-10 with each preconditioner in turn. "
+        "Set-up: building the preconditioner from the assembled K (for the "
+        "geometric multigrid: the level operators, their diagonals, the "
+        "transfer and the smoothers' eigenvalue estimates; it needs no "
+        "assembled matrix at all). Preconditioner memory: growth of the "
+        "resident set over the set-up. Process peak: the whole process, all "
+        "variants (and, with BoomerAMG, a PETSc copy of K). Difference: "
+        "|u - u_first| / |u_first| against the first variant of the "
+        "process.",
+        "",
+    ]
+    for title, variants, sizes in (
+            ("Sweep", SWEEP, {"hexahedra": args.sweep_hexahedra,
+                              "tetrahedra": args.sweep_tetrahedra}),
+            ("Scaling", SCALING, {"hexahedra": args.hexahedra,
+                                  "tetrahedra": args.tetrahedra})):
+        lines += [f"## {title}", "", HEADER]
+        all_rows = []
+        for cells in SCENES:
+            for n in [int(s) for s in sizes[cells].split(",") if s]:
+                for r in run(executable, cells, n, variants):
+                    all_rows.append(r)
+                    lines.append(table_line(r))
+        lines.append("")
+        os.makedirs(os.path.dirname(args.output), exist_ok=True)
+        with open(args.output, "w") as f:
+            f.write("\n".join(lines) + "\n")
+    figures(all_rows, os.path.dirname(args.output))
+
+
+if __name__ == "__main__":
+    main()

@@ -652,6 +652,19 @@ namespace PreconditionerComparison
       }
     result.solve_time = timer.wall_time();
     result.iterations = control.last_step();
+    {
+      VectorType y(u);
+      Timer      product_timer;
+      for (unsigned int i = 0; i < 5; ++i)
+        K.vmult(y, b);
+      const double product = product_timer.wall_time() / 5;
+      product_timer.restart();
+      for (unsigned int i = 0; i < 5; ++i)
+        amg.vmult(y, b);
+      result.note = "K " + std::to_string(1e3 * product) + " ms, cycle "
+                    + std::to_string(1e3 * product_timer.wall_time() / 5)
+                    + " ms";
+    }
     return result;
   }
 
@@ -764,7 +777,8 @@ namespace PreconditionerComparison
   //    row-sum norm hypre suggests for elasticity);
   //  - vec: the interpolation variant that fits the rigid-body modes (0:
   //    none, 1-3 hypre's GM-1/GM-2/LN), with the rigid-body modes as the
-  //    matrix's near null space.
+  //    matrix's near null space;
+  //  - print: 1 prints hypre's statistics of the hierarchy (0).
   template <int dim>
   typename ElasticProblem<dim>::Result
   ElasticProblem<dim>::solve_with_hypre(const Variant &variant, VectorType &u)
@@ -792,6 +806,8 @@ namespace PreconditionerComparison
     option("relax_type_coarse", "Gaussian-elimination");
     if (variant.get("nodal", "0") != "0")
       option("nodal_coarsen", variant.get("nodal", ""));
+    if (variant.get("print", "0") != "0")
+      option("print_statistics", "1");
     const bool use_modes = variant.get("vec", "0") != "0";
     if (use_modes)
       option("vec_interp_variant", variant.get("vec", ""));
@@ -871,6 +887,20 @@ namespace PreconditionerComparison
       }
     result.solve_time = timer.wall_time();
     result.iterations = control.last_step();
+    // Where a CG iteration's time goes: one product with K and one
+    // application of BoomerAMG, each the average of 5.
+    {
+      Timer product_timer;
+      for (unsigned int i = 0; i < 5; ++i)
+        MatMult(petsc_matrix, petsc_b, petsc_u);
+      const double product = product_timer.wall_time() / 5;
+      product_timer.restart();
+      for (unsigned int i = 0; i < 5; ++i)
+        PCApply(pc, petsc_b, petsc_u);
+      result.note = "K " + std::to_string(1e3 * product) + " ms, cycle "
+                    + std::to_string(1e3 * product_timer.wall_time() / 5)
+                    + " ms";
+    }
     {
       const PetscScalar *values;
       VecGetArrayRead(petsc_u, &values);
@@ -1049,7 +1079,19 @@ namespace PreconditionerComparison
       }
     result.solve_time = timer.wall_time();
     result.iterations = control.last_step();
-    u                 = 0;
+    {
+      Timer product_timer;
+      for (unsigned int i = 0; i < 5; ++i)
+        fine_operator.vmult(y, rhs);
+      const double product = product_timer.wall_time() / 5;
+      product_timer.restart();
+      for (unsigned int i = 0; i < 5; ++i)
+        preconditioner.vmult(y, rhs);
+      result.note = "K " + std::to_string(1e3 * product) + " ms, cycle "
+                    + std::to_string(1e3 * product_timer.wall_time() / 5)
+                    + " ms";
+    }
+    u = 0;
     u.copy_locally_owned_data_from(solution);
     return result;
   }
@@ -1091,8 +1133,8 @@ namespace PreconditionerComparison
               << dof_handler.n_dofs() << '\t' << variant.name << '\t'
               << result.setup_time << '\t' << result.solve_time << '\t'
               << result.iterations << '\t' << result.memory << '\t'
-              << difference << '\t' << (result.converged ? "yes" : "no")
-              << std::endl;
+              << difference << '\t' << (result.converged ? "yes" : "no") << '\t'
+              << result.note << std::endl;
       }
     if (petsc_matrix != nullptr)
       pcout << "# PETSc copy of K: " << petsc_copy_time << " s" << std::endl;

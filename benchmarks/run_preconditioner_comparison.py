@@ -100,6 +100,44 @@ def applies(cells, spec):
     return cells == "hexahedra" or not spec.startswith("gmg")
 
 
+def parse_result(line, labels):
+    """A RESULT line of preconditioner_comparison as a row, or None."""
+    fields = line.rstrip("\n").split("\t")
+    if fields[0] != "RESULT":
+        return None
+    return {"cells": fields[1], "N": int(fields[2]),
+            "dofs": int(fields[3]), "spec": fields[4],
+            "label": labels.get(fields[4], fields[4]),
+            "setup": float(fields[5]), "solve": float(fields[6]),
+            "iterations": int(fields[7]), "memory": float(fields[8]),
+            "difference": float(fields[9]), "converged": fields[10] == "yes",
+            "note": fields[11] if len(fields) > 11 else ""}
+
+
+def read_log(path, n_sweep_processes):
+    """The rows of a saved output of this script (its standard output):
+    the first n_sweep_processes processes are the sweep, the others the
+    scaling. The process peak is the program's own VmHWM line."""
+    labels = {spec: label for label, spec in SWEEP + SCALING}
+    blocks = []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("# ") and " dofs, " in line:
+                blocks.append([])
+            elif line.startswith("# peak memory of the process:"):
+                for row in blocks[-1]:
+                    row["peak"] = float(line.split(":")[1].split()[0])
+            else:
+                row = parse_result(line, labels)
+                if row is not None:
+                    blocks[-1].append(row)
+    for block in blocks:
+        for row in block:
+            row.setdefault("peak", float("nan"))
+    return ([r for b in blocks[:n_sweep_processes] for r in b],
+            [r for b in blocks[n_sweep_processes:] for r in b])
+
+
 def run(executable, cells, n, variants):
     """One process: K and b of the scene at Subdivisions = n, then every
     variant. Returns the rows and the process' peak memory (MB)."""
@@ -115,16 +153,9 @@ def run(executable, cells, n, variants):
     for line in process.stdout:
         output.append(line)
         print(line, end="", flush=True)
-        fields = line.rstrip("\n").split("\t")
-        if fields[0] == "RESULT":
-            rows.append({
-                "cells": fields[1], "N": int(fields[2]),
-                "dofs": int(fields[3]), "spec": fields[4],
-                "label": labels[fields[4]], "setup": float(fields[5]),
-                "solve": float(fields[6]), "iterations": int(fields[7]),
-                "memory": float(fields[8]), "difference": float(fields[9]),
-                "converged": fields[10] == "yes",
-                "note": fields[11] if len(fields) > 11 else ""})
+        row = parse_result(line, labels)
+        if row is not None:
+            rows.append(row)
     _, status, usage = os.wait4(process.pid, 0)
     if status != 0:
         sys.exit(f"{' '.join(command)} failed:\n{''.join(output[-20:])}")
@@ -222,6 +253,38 @@ def figures(rows, directory):
     fig.savefig(os.path.join(directory, "preconditioners.png"), dpi=110)
 
 
+INTRODUCTION = [
+    "# Preconditioners for the elastic solve",
+    "",
+    "Written by `benchmarks/run_preconditioner_comparison.py` (one "
+    "invocation); `doc/performance.md` reads it. One process per cell "
+    "type and size: the cube's K and b (`cube_3d.prm`, "
+    "`cube_3d_tetrahedra.prm`, Subdivisions = N), then CG from zero to "
+    "a relative residual of 1e-10 with each preconditioner in turn. "
+    "Set-up: building the preconditioner from the assembled K (for the "
+    "geometric multigrid: the level operators, their diagonals, the "
+    "transfer and the smoothers' eigenvalue estimates; it needs no "
+    "assembled matrix at all). Preconditioner memory: growth of the "
+    "resident set over the set-up. Process peak: the whole process, all "
+    "variants (and, with BoomerAMG, a PETSc copy of K). Difference: "
+    "|u - u_first| / |u_first| against the first variant of the "
+    "process. Last column: one product with K and one application of the "
+    "preconditioner, timed after the solve (a measure of the machine's "
+    "load at that moment, too).",
+    "",
+]
+
+
+def write_output(path, sweep_rows, scaling_rows):
+    lines = list(INTRODUCTION)
+    for title, rows in (("Sweep", sweep_rows), ("Scaling", scaling_rows)):
+        lines += [f"## {title}", "", HEADER] + [table_line(r) for r in rows]
+        lines.append("")
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
 def main():
     parser = argparse.ArgumentParser(
         description=__doc__,
@@ -235,47 +298,34 @@ def main():
     parser.add_argument("--output", default=os.path.join(
         REPO_ROOT, "doc", "performance", "preconditioners.md"))
     parser.add_argument("--figures-only", action="store_true")
+    parser.add_argument("--from-log", default=None,
+                        help="write the tables and the figure from a saved "
+                             "standard output of this script instead of "
+                             "running (e.g. of an interrupted run)")
     args = parser.parse_args()
     if args.figures_only:
         figures(read_table(args.output), os.path.dirname(args.output))
         return
+    sweep_sizes = {"hexahedra": args.sweep_hexahedra,
+                   "tetrahedra": args.sweep_tetrahedra}
+    if args.from_log:
+        n_sweep = sum(len([s for s in sizes.split(",") if s])
+                      for sizes in sweep_sizes.values())
+        sweep_rows, scaling_rows = read_log(args.from_log, n_sweep)
+        write_output(args.output, sweep_rows, scaling_rows)
+        figures(scaling_rows, os.path.dirname(args.output))
+        return
     executable = os.path.abspath(args.executable)
-
-    lines = [
-        "# Preconditioners for the elastic solve",
-        "",
-        "Written by `benchmarks/run_preconditioner_comparison.py` (one "
-        "invocation); `doc/performance.md` reads it. One process per cell "
-        "type and size: the cube's K and b (`cube_3d.prm`, "
-        "`cube_3d_tetrahedra.prm`, Subdivisions = N), then CG from zero to "
-        "a relative residual of 1e-10 with each preconditioner in turn. "
-        "Set-up: building the preconditioner from the assembled K (for the "
-        "geometric multigrid: the level operators, their diagonals, the "
-        "transfer and the smoothers' eigenvalue estimates; it needs no "
-        "assembled matrix at all). Preconditioner memory: growth of the "
-        "resident set over the set-up. Process peak: the whole process, all "
-        "variants (and, with BoomerAMG, a PETSc copy of K). Difference: "
-        "|u - u_first| / |u_first| against the first variant of the "
-        "process.",
-        "",
-    ]
+    results = {"Sweep": [], "Scaling": []}
     for title, variants, sizes in (
-            ("Sweep", SWEEP, {"hexahedra": args.sweep_hexahedra,
-                              "tetrahedra": args.sweep_tetrahedra}),
+            ("Sweep", SWEEP, sweep_sizes),
             ("Scaling", SCALING, {"hexahedra": args.hexahedra,
                                   "tetrahedra": args.tetrahedra})):
-        lines += [f"## {title}", "", HEADER]
-        all_rows = []
         for cells in SCENES:
             for n in [int(s) for s in sizes[cells].split(",") if s]:
-                for r in run(executable, cells, n, variants):
-                    all_rows.append(r)
-                    lines.append(table_line(r))
-        lines.append("")
-        os.makedirs(os.path.dirname(args.output), exist_ok=True)
-        with open(args.output, "w") as f:
-            f.write("\n".join(lines) + "\n")
-    figures(all_rows, os.path.dirname(args.output))
+                results[title] += run(executable, cells, n, variants)
+        write_output(args.output, results["Sweep"], results["Scaling"])
+    figures(results["Scaling"], os.path.dirname(args.output))
 
 
 if __name__ == "__main__":

@@ -57,7 +57,7 @@ GMG_BEST = "gmg:degree=4"
 SWEEP = [
     ("ML as configured before", ML_BEFORE),
     ("ML, PDE equations 3", "ml:pde=3"),
-    ("ML, PDE equations 3, threshold 0 (chosen)", ML_CHOSEN),
+    ("ML, PDE equations 3, threshold 0 (chosen for hexahedra)", ML_CHOSEN),
     ("ML, PDE equations 1, threshold 0", "ml:pde=1,thr=0"),
     ("ML, PDE equations 3, threshold 0.05", "ml:pde=3,thr=0.05"),
     ("ML, PDE equations 3, threshold 0.1", "ml:pde=3,thr=0.1"),
@@ -89,7 +89,7 @@ SWEEP = [
 # the other kinds.
 SCALING = [
     ("ML as configured before", ML_BEFORE),
-    ("ML, PDE equations 3, threshold 0 (chosen)", ML_CHOSEN),
+    ("ML, PDE equations 3, threshold 0 (chosen for hexahedra)", ML_CHOSEN),
     ("BoomerAMG, HMIS, ext+i, P_max 4, block size 3, theta 0.5", HYPRE_BEST),
     ("GMG matrix-free, Chebyshev degree 4", GMG_BEST),
 ]

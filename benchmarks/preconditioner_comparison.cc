@@ -1,8 +1,10 @@
 // benchmarks/preconditioner_comparison.cc: one elastic solve K u = b of a
 // scene of the program, by CG to the scene's Tolerance, with each of several
 // preconditioners in turn: ML's smoothed aggregation (as the full space back
-// end configures it, and with other settings) and hypre's BoomerAMG through
-// PETSc (with and without its options for systems of PDEs). For each it
+// end configures it, and with other settings), hypre's BoomerAMG through
+// PETSc (with and without its options for systems of PDEs), and a
+// matrix-free geometric multigrid on the levels of the p4est hexahedral
+// mesh (as step-37, vector-valued). For each it
 // reports the set-up time, the solve time, the CG iterations and the memory
 // the preconditioner took, and checks that every preconditioner gives the
 // same solution.
@@ -11,11 +13,12 @@
 //
 // SCENE.prm is a parameter file of the program (its mesh, material, boundary
 // parts, loads and Tolerance are used; Subdivisions is replaced by N), and
-// each VARIANT is a preconditioner written as "ml:KEY=VALUE,..." or
-// "hypre:KEY=VALUE,..." (the keys are listed at parse_ml() and
-// parse_hypre() below). One line per variant starts with "RESULT" and has
-// tab-separated fields; benchmarks/run_preconditioner_comparison.py runs
-// the program and writes doc/performance/preconditioners.md from them.
+// each VARIANT is a preconditioner written as "ml:KEY=VALUE,...",
+// "hypre:KEY=VALUE,..." or "gmg:KEY=VALUE,..." (the keys are listed at
+// solve_with_ml(), solve_with_hypre() and solve_with_gmg() below). One line per
+// variant starts with "RESULT" and has tab-separated fields;
+// benchmarks/run_preconditioner_comparison.py runs the program and writes
+// doc/performance/preconditioners.md from them.
 //
 // The mesh, the element and the quadrature are those of the program
 // (create_distributed_mesh() of the project's library, Q1 or P1, the stress

@@ -136,9 +136,10 @@ namespace ViscoContact
     const MatrixType                   *A         = nullptr;
     bool                                symmetric = true;
     std::unique_ptr<Epetra_MultiVector> rigid_body_modes;
-    std::optional<SparseDirectSolver>   factorization;
-    VectorType                          b;
-    double                              b_norm = 0;
+    bool node_blocks = true; // a vertex's dim dofs are consecutive rows
+    std::optional<SparseDirectSolver> factorization;
+    VectorType                        b;
+    double                            b_norm = 0;
 
     // The two AMG preconditioners, each built when first needed after
     // set_operator(): one of A alone, for the solves without contact, and
@@ -198,7 +199,7 @@ namespace ViscoContact
                        "tangent) on the projected operator, preconditioned by ")
            + (factorization ? factorization->description()
                             : "ML AMG of the step operator with the "
-                                              "rigid-body modes");
+                              "rigid-body modes");
   }
 
 
@@ -255,6 +256,10 @@ namespace ViscoContact
             Assert(c < dim, ExcInternalError());
             const Point<dim> &x           = support_points.at(dof);
             (*rigid_body_modes)[c][local] = 1.; // translation along e_c
+            // Rows in blocks of dim, one block per vertex, in component
+            // order: what "PDE equations" = dim assumes below.
+            if (c != static_cast<unsigned int>(local) % dim)
+              node_blocks = false;
             // In 2D the rotation is the field (-x_2, x_1) = cross(e_3, x).
             if (dim == 2)
               (*rigid_body_modes)[2][local] = (c == 0 ? -x[1] : x[0]);
@@ -270,22 +275,47 @@ namespace ViscoContact
                     = (d == c2 ? x[c1] : (d == c1 ? -x[c2] : 0.));
               }
           }
+        // Every rank must give ML the same number of PDE equations.
+        node_blocks
+          = (Utilities::MPI::min(node_blocks ? 1 : 0, communicator) == 1);
       }
 
     // The AMG settings: ML's defaults for elliptic (symmetric) or for
-    // nonsymmetric problems, linear elements, two smoother sweeps and an
-    // aggregation threshold of 0.02.
+    // nonsymmetric problems, linear elements, Chebyshev smoothing of degree
+    // 2, Amesos-KLU on the coarsest level. On quadrilaterals and hexahedra
+    // two more settings make the iteration counts (nearly) independent of
+    // the mesh, measured by benchmarks/run_preconditioner_comparison.py
+    // (doc/performance.md, "Preconditioners"):
+    //  - aggregation threshold 0 (it was 0.02): every matrix entry counts as
+    //    a connection when ML forms its aggregates. With 0.02 CG took 18,
+    //    32, 45 iterations for the cube's elastic solve on hexahedra at 15k,
+    //    108k, 824k dofs; with these two settings 16, 20, 21;
+    //  - "PDE equations" = dim: ML aggregates nodes, the dim dofs of a
+    //    vertex together, as the rigid-body modes need (deal.II 9.4's
+    //    AdditionalData leaves ML's default, 1: every dof its own node). A
+    //    vertex's dofs are consecutive in deal.II's numbering of the
+    //    vector-valued Q1/P1 element; node_blocks, computed with the modes,
+    //    checks it, and if it did not hold ML would aggregate dofs.
+    // On triangles and tetrahedra the same settings cut the elastic solve's
+    // iterations at 824k dofs (53 to 36) but cost more CG iterations in the
+    // active-set solves of the cube up to 108k dofs (184 instead of 157 per
+    // step at 108k, with the AMG of the step operator), so simplices keep
+    // the previous settings. Chebyshev degree 3 or 4 and symmetric
+    // Gauss-Seidel took fewer iterations but not less time, a smoother as
+    // coarse solver more iterations.
+    const bool simplex = dof_handler.get_fe().reference_cell().is_simplex();
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
     data.elliptic              = symmetric;
     data.higher_order_elements = false;
     data.smoother_sweeps       = 2;
-    data.aggregation_threshold = 0.02;
+    data.aggregation_threshold = (simplex ? 0.02 : 0.);
     // Let deal.II translate these settings into ML's parameter list (its
     // constant-mode output is not needed), then replace the null space by
     // the rigid-body modes and build the hierarchy.
     Teuchos::ParameterList              ml_parameters;
     std::unique_ptr<Epetra_MultiVector> unused_constant_modes;
     data.set_parameters(ml_parameters, unused_constant_modes, matrix);
+    ml_parameters.set("PDE equations", (node_blocks && !simplex) ? dim : 1);
     ml_parameters.set("null space: type", "pre-computed");
     ml_parameters.set("null space: dimension", rigid_body_modes->NumVectors());
     ml_parameters.set("null space: vectors", rigid_body_modes->Values());

@@ -20,6 +20,7 @@ table and the figure, from the csv of an earlier invocation.
     benchmarks/run_cold_start.py [--executable build/viscoplastic_contact]
                                  [--output-dir doc/performance]
                                  [--sizes 128,256,512] [--from-csv]
+                                 [--methods condensed,full space]
 """
 
 import argparse
@@ -99,6 +100,8 @@ def main():
     parser.add_argument("--output-dir",
                         default=os.path.join(REPO_ROOT, "doc", "performance"))
     parser.add_argument("--sizes", default="128,256,512")
+    parser.add_argument("--methods", default="condensed,full space",
+                        help="the back ends to run, comma-separated")
     parser.add_argument("--from-csv", action="store_true")
     args = parser.parse_args()
     executable = resolve_executable(args.executable)
@@ -125,7 +128,7 @@ def main():
         sizes = []
 
     runs = runs if args.from_csv else []
-    for method in ("condensed", "full space") if sizes else ():
+    for method in args.methods.split(",") if sizes else ():
         for n in sizes:
             for cycles in range(0, int(round(math.log2(n / COARSEST))) + 1):
                 r = run(executable, n, method, cycles)

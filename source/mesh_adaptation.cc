@@ -521,12 +521,14 @@ namespace ViscoContact
   // so each re-solve is the same step problem, only warm-started: its
   // solution is the unique one of the step problem on that mesh, whatever the
   // start (tests/initial_cycles). The last solve, on the last mesh, is run()'s
-  // step 1; this function leaves the state it starts from.
+  // step 1; this function leaves its starting point: the mesh, the state
+  // carried over to it, and its external load.
   //
   // The schedule is copied for the coarse solves, so that a step cut on a
   // coarse mesh does not change the schedule of the run (the cut solve is
-  // still a start). Their iterations are counted apart from those of the
-  // run's steps.
+  // still a start). Their active-set iterations are counted apart from those
+  // of the run's steps, and their Newton and inner iterations not at all, so
+  // that the run summary's counts are those of the recorded steps.
   template <int dim>
   void
   ViscoplasticContact<dim>::solve_initial_cycles(std::vector<double> &times)
@@ -536,12 +538,17 @@ namespace ViscoContact
       = parameters.initial_refinement == Parameters::InitialRefinement::global;
     for (unsigned int cycle = 0; cycle < parameters.initial_cycles; ++cycle)
       {
-        std::vector<double>   cycle_times       = times;
-        const unsigned int    iterations_before = total_active_set_iterations;
+        std::vector<double>               cycle_times = times;
+        const std::array<unsigned int, 3> counts_before{
+          {total_active_set_iterations,
+           total_newton_iterations,
+           total_inner_iterations}};
         const ActiveSetResult result = solve_step_with_recovery(1, cycle_times);
         initial_cycle_iterations += result.iterations();
         ++n_initial_cycles;
-        total_active_set_iterations = iterations_before;
+        total_active_set_iterations = counts_before[0];
+        total_newton_iterations     = counts_before[1];
+        total_inner_iterations      = counts_before[2];
         if (parameters.verbose)
           pcout << "Initial cycle " << cycle << ": "
                 << triangulation->n_global_active_cells() << " cells, "

@@ -46,16 +46,12 @@ import csv
 import math
 import os
 import re
-import subprocess
 import sys
-import tempfile
-import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                 "..", "scripts"))
-from vc_scripts import REPO_ROOT, resolve_executable, set_prm_entries  # noqa
-
-# The scenes: the 2D benchmark with k = 1/64, and (--dimension 3) the cube of
+from vc_scripts import (REPO_ROOT, resolve_executable,  # noqa: E402
+                        run_in_temporary_directory, set_prm_entries)
 # parameters/cube_3d.prm with its own k = 1/32.
 SCENES = {2: ("default.prm", 1.0 / 64), 3: ("cube_3d.prm", 1.0 / 32)}
 
@@ -97,17 +93,7 @@ def run(executable, subdivisions, levels=0, adaptive=None, dimension=2):
             (("Mesh adaptation",), "Initial refinement"): "adaptive",
         })
     text = set_prm_entries(text, entries)
-    with tempfile.TemporaryDirectory() as workdir:
-        prm = os.path.join(workdir, "run.prm")
-        with open(prm, "w") as f:
-            f.write(text)
-        start = time.perf_counter()
-        result = subprocess.run([executable, prm], cwd=workdir,
-                                capture_output=True, text=True)
-        wall = time.perf_counter() - start
-        if result.returncode != 0:
-            raise RuntimeError(result.stdout[-2000:] + result.stderr[-2000:])
-        out = result.stdout
+    with run_in_temporary_directory(executable, text) as (workdir, out, wall):
         dofs = int(out.split(" displacement dofs")[0].split()[-1])
         # The dofs of each step: the initial count until the first
         # adaptation, then the count after each.

@@ -28,15 +28,12 @@ import csv
 import math
 import os
 import re
-import subprocess
 import sys
-import tempfile
-import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                 "..", "scripts"))
-from vc_scripts import REPO_ROOT, resolve_executable, set_prm_entries  # noqa
-
+from vc_scripts import (REPO_ROOT, resolve_executable,  # noqa: E402
+                        run_in_temporary_directory, set_prm_entries)
 COARSEST = 32  # cells per edge of the first mesh of the longest nested iteration
 
 
@@ -60,17 +57,7 @@ def run(executable, n, method, cycles):
         (("Output",), "Print timing summary"): "false",
     }
     text = set_prm_entries(text, entries)
-    with tempfile.TemporaryDirectory() as workdir:
-        prm = os.path.join(workdir, "run.prm")
-        with open(prm, "w") as f:
-            f.write(text)
-        start = time.perf_counter()
-        result = subprocess.run([executable, prm], cwd=workdir,
-                                capture_output=True, text=True)
-        wall = time.perf_counter() - start
-        if result.returncode != 0:
-            raise RuntimeError(result.stdout[-2000:] + result.stderr[-2000:])
-        out = result.stdout
+    with run_in_temporary_directory(executable, text) as (workdir, out, wall):
         with open(os.path.join(workdir, "results", "time_series.csv")) as f:
             row = list(csv.DictReader(f))[0]
     cycle_iterations = [int(m) for m in

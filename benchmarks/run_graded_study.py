@@ -27,15 +27,12 @@ import argparse
 import csv
 import math
 import os
-import subprocess
 import sys
-import tempfile
-import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                 "..", "scripts"))
-from vc_scripts import REPO_ROOT, resolve_executable, set_prm_entries  # noqa
-
+from vc_scripts import (REPO_ROOT, resolve_executable,  # noqa: E402
+                        run_in_temporary_directory, set_prm_entries)
 TIME_STEP = 1.0 / 64
 
 
@@ -53,17 +50,8 @@ def run(executable, subdivisions, levels):
         (("Output",), "Verbose"): "false",
         (("Output",), "Print timing summary"): "false",
     })
-    with tempfile.TemporaryDirectory() as workdir:
-        prm = os.path.join(workdir, "run.prm")
-        with open(prm, "w") as f:
-            f.write(text)
-        start = time.perf_counter()
-        result = subprocess.run([executable, prm], cwd=workdir,
-                                capture_output=True, text=True)
-        wall = time.perf_counter() - start
-        if result.returncode != 0:
-            raise RuntimeError(result.stdout[-2000:] + result.stderr[-2000:])
-        dofs = int(result.stdout.split(" displacement dofs")[0].split()[-1])
+    with run_in_temporary_directory(executable, text) as (workdir, out, wall):
+        dofs = int(out.split(" displacement dofs")[0].split()[-1])
         results = os.path.join(workdir, "results")
         profile = [f for f in os.listdir(results) if f.startswith("contact_profile_")]
         with open(os.path.join(results, sorted(profile)[-1])) as f:

@@ -34,7 +34,6 @@ one invocation.
 
 import argparse
 import os
-import resource
 import subprocess
 import sys
 import time

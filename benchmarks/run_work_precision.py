@@ -38,15 +38,13 @@ import argparse
 import csv
 import os
 import re
-import subprocess
 import sys
-import tempfile
-import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                 "..", "scripts"))
 from vc_scripts import (REPO_ROOT, add_executable_argument,  # noqa: E402
-                        resolve_executable, set_prm_entries)
+                        resolve_executable, run_in_temporary_directory,
+                        set_prm_entries)
 
 # (label, {(subsection path, entry): value}): the meshes to compare on.
 MESH_VARIANTS = [
@@ -87,16 +85,7 @@ def run_once(executable, overrides, control, time_step, tolerance):
     }
     entries.update(overrides)
     text = set_prm_entries(text, entries)
-    with tempfile.TemporaryDirectory() as workdir:
-        prm = os.path.join(workdir, "run.prm")
-        with open(prm, "w") as f:
-            f.write(text)
-        start = time.perf_counter()
-        result = subprocess.run([executable, prm], cwd=workdir,
-                                capture_output=True, text=True)
-        wall = time.perf_counter() - start
-        if result.returncode != 0:
-            raise RuntimeError(result.stdout[-2000:] + result.stderr[-2000:])
+    with run_in_temporary_directory(executable, text) as (workdir, out, wall):
         with open(os.path.join(workdir, "results", "time_series.csv")) as f:
             rows = list(csv.DictReader(f))
     force = {}
@@ -109,9 +98,9 @@ def run_once(executable, overrides, control, time_step, tolerance):
     if missing:
         raise RuntimeError("no step at t = %s" % missing)
     norms = re.search(r"\|\|eps\(u\)\|\|_L2 = ([^,]+), \|\|sigma\|\|_L2 = ([^,]+),",
-                      result.stdout)
+                      out)
     rejected = re.search(r"adaptive time steps: \d+ accepted, (\d+) rejected",
-                         result.stdout)
+                         out)
     return {
         "control": control,
         "time_step": time_step if control == "fixed" else float("nan"),

@@ -2,8 +2,12 @@
 doc/make_figures.py): editing a deal.II parameter file and finding the
 program."""
 
+import contextlib
 import os
 import re
+import subprocess
+import tempfile
+import time
 
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DEFAULT_EXECUTABLE = os.path.join("build", "viscoplastic_contact")
@@ -73,3 +77,22 @@ def add_executable_argument(parser):
     parser.add_argument("--executable", default=None,
                         help="program to run (default: $VC_EXECUTABLE or "
                              "build/viscoplastic_contact in the repo root)")
+
+
+@contextlib.contextmanager
+def run_in_temporary_directory(executable, prm_text):
+    """Runs the program on a parameter file in a fresh temporary directory
+    (relative output directories land there) and yields (directory, standard
+    output, wall time in seconds) while the directory still exists; a failed
+    run raises RuntimeError with the end of its output."""
+    with tempfile.TemporaryDirectory() as workdir:
+        prm = os.path.join(workdir, "run.prm")
+        with open(prm, "w") as f:
+            f.write(prm_text)
+        start = time.perf_counter()
+        result = subprocess.run([executable, prm], cwd=workdir,
+                                capture_output=True, text=True)
+        wall = time.perf_counter() - start
+        if result.returncode != 0:
+            raise RuntimeError(result.stdout[-2000:] + result.stderr[-2000:])
+        yield workdir, result.stdout, wall

@@ -628,40 +628,6 @@ namespace ViscoContact
     header.check(step == checkpoint.step);
     times = header.read_vector<double>();
     header.check(step < times.size());
-    std::pair<double, double> rescaled_next_step(0., 0.);
-    // End time is the one entry of the scene a resumed run may change (to go
-    // further, or to stop earlier). The levels up to the checkpoint stay those
-    // of the interrupted run (with its cut steps); the levels after it are
-    // those of the new schedule, so that without cuts the resumed run makes
-    // exactly the steps of an uninterrupted run to the new End time.
-    const bool adaptive
-      = parameters.time_step_control == Parameters::TimeStepControl::adaptive;
-    if (!adaptive && parameters.end_time != times.back())
-      {
-        AssertThrow(parameters.end_time > times[step],
-                    ExcMessage(
-                      "Invalid parameter <End time> in subsection "
-                      "<Time>: value <"
-                      + std::to_string(parameters.end_time)
-                      + ">, but the checkpoint to resume from is at t = "
-                      + std::to_string(times[step])
-                      + "; accepted: an End time after the "
-                        "checkpoint's time."));
-        const std::vector<double> levels
-          = time_levels(parameters.end_time, parameters.time_step);
-        const double old_next_step
-          = step + 1 < times.size() ? times[step + 1] - times[step] : 0.;
-        times.resize(step + 1);
-        for (const double t : levels)
-          if (t > times[step] * (1 + 1e-12) + 1e-300)
-            times.push_back(t);
-        // The explicit update stored the history of the next step for the
-        // old schedule's next step length (0 after its last step); it is
-        // rescaled below, once the stress points are restored.
-        rescaled_next_step
-          = {old_next_step,
-             step + 1 < times.size() ? times[step + 1] - times[step] : 0.};
-      }
     loop_time_offset            = header.read<double>();
     time_loop_compute_time      = header.read<double>();
     total_active_set_iterations = header.read<std::uint32_t>();
@@ -677,15 +643,28 @@ namespace ViscoContact
       }
     desired_time_step = header.read<double>();
     n_rejected_steps  = header.read<std::uint32_t>();
-    // Adaptive steps: the schedule ends with the next level, which the
-    // controller fitted to the targets of the interrupted run. It is fitted
-    // again to this run's targets; with the same End time and Profile times
-    // it is the same level, and the resumed run repeats the uninterrupted
-    // one exactly. A changed End time (or Profile times) may move it, and
-    // the history is rescaled to it below, as for fixed steps.
-    if (adaptive)
+
+    // End time is the one entry of the scene a resumed run may change (to go
+    // further, or to stop earlier). The levels up to the checkpoint stay those
+    // of the interrupted run (with its cut steps); the levels after it are
+    // those of the new schedule: with fixed steps the levels of an
+    // uninterrupted run to the new End time, with adaptive steps the next
+    // level fitted again to this run's targets (the schedule of an adaptive
+    // run ends with the next level, which the controller fitted to the
+    // targets of the interrupted run; with the same End time and Profile
+    // times it is the same level). So without cuts the resumed run repeats
+    // the uninterrupted one exactly. If the next step's length changes, the
+    // history the explicit update stored for the old one is rescaled below,
+    // once the stress points are restored.
+    const bool adaptive
+      = parameters.time_step_control == Parameters::TimeStepControl::adaptive;
+    std::pair<double, double> rescaled_next_step(0., 0.);
+    if (adaptive || parameters.end_time != times.back())
       {
-        AssertThrow(parameters.end_time >= times[step],
+        // An adaptive run may end at the checkpoint; a fixed schedule always
+        // has a level after it.
+        AssertThrow(adaptive ? parameters.end_time >= times[step]
+                             : parameters.end_time > times[step],
                     ExcMessage(
                       "Invalid parameter <End time> in subsection "
                       "<Time>: value <"
@@ -697,7 +676,14 @@ namespace ViscoContact
         const double old_next_step
           = step + 1 < times.size() ? times[step + 1] - times[step] : 0.;
         times.resize(step + 1);
-        if (times[step] < parameters.end_time * (1 - 1e-12))
+        if (!adaptive)
+          {
+            for (const double t :
+                 time_levels(parameters.end_time, parameters.time_step))
+              if (t > times[step] * (1 + 1e-12) + 1e-300)
+                times.push_back(t);
+          }
+        else if (times[step] < parameters.end_time * (1 - 1e-12))
           times.push_back(
             next_time_level(times[step], desired_time_step, landing_targets()));
         rescaled_next_step

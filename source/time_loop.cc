@@ -117,6 +117,30 @@ namespace ViscoContact
 
 
 
+  namespace
+  {
+    // The part of the line per step that fixed and adaptive steps share,
+    // without the end of the line.
+    void
+    print_step_line_start(ConditionalOStream                &out,
+                          const unsigned int                 step,
+                          const double                       time,
+                          const unsigned int                 iterations,
+                          const std::array<unsigned int, 3> &contact_states,
+                          const double total_contact_force)
+    {
+      out << "Step " << std::setw(4) << step << "  t = " << std::setw(9)
+          << std::setprecision(6) << time << "  active-set iterations "
+          << std::setw(2) << iterations << "  unilateral " << std::setw(4)
+          << contact_states[0] << "  compliance " << std::setw(4)
+          << contact_states[1] << "  no contact " << std::setw(4)
+          << contact_states[2] << "  contact force " << std::setprecision(8)
+          << total_contact_force;
+    }
+  } // namespace
+
+
+
   // @sect4{print_step_line}
   //
   // One line per step for a verbose run: the step, the time, the active-set
@@ -133,13 +157,13 @@ namespace ViscoContact
                   const std::array<unsigned int, 3> &contact_states,
                   const double                       total_contact_force)
   {
-    out << "Step " << std::setw(4) << step << "  t = " << std::setw(9)
-        << std::setprecision(6) << time << "  active-set iterations "
-        << std::setw(2) << iterations << "  unilateral " << std::setw(4)
-        << contact_states[0] << "  compliance " << std::setw(4)
-        << contact_states[1] << "  no contact " << std::setw(4)
-        << contact_states[2] << "  contact force " << std::setprecision(8)
-        << total_contact_force << std::endl;
+    print_step_line_start(out,
+                          step,
+                          time,
+                          iterations,
+                          contact_states,
+                          total_contact_force);
+    out << std::endl;
   }
 
 
@@ -158,14 +182,14 @@ namespace ViscoContact
                            const double time_step,
                            const double error_estimate)
   {
-    out << "Step " << std::setw(4) << step << "  t = " << std::setw(9)
-        << std::setprecision(6) << time << "  active-set iterations "
-        << std::setw(2) << iterations << "  unilateral " << std::setw(4)
-        << contact_states[0] << "  compliance " << std::setw(4)
-        << contact_states[1] << "  no contact " << std::setw(4)
-        << contact_states[2] << "  contact force " << std::setprecision(8)
-        << total_contact_force << "  k " << std::setprecision(6) << time_step
-        << "  estimate " << std::setprecision(3) << error_estimate << std::endl;
+    print_step_line_start(out,
+                          step,
+                          time,
+                          iterations,
+                          contact_states,
+                          total_contact_force);
+    out << "  k " << std::setprecision(6) << time_step << "  estimate "
+        << std::setprecision(3) << error_estimate << std::endl;
   }
 
 

@@ -48,6 +48,8 @@ import os
 import re
 import sys
 
+import numpy
+
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                 "..", "scripts"))
 from vc_scripts import (REPO_ROOT, resolve_executable,  # noqa: E402
@@ -135,16 +137,6 @@ def run(executable, subdivisions, levels=0, adaptive=None, dimension=2):
             "weight": [float(r["weight"]) for r in nodes]}
 
 
-def interpolate(xs, ys, x):
-    if x <= xs[0]:
-        return ys[0]
-    for i in range(1, len(xs)):
-        if x <= xs[i]:
-            t = (x - xs[i - 1]) / (xs[i] - xs[i - 1])
-            return (1 - t) * ys[i - 1] + t * ys[i]
-    return ys[-1]
-
-
 def errors(r, reference, dimension):
     r["error_force"] = max(abs(a - b) for a, b in zip(r["force"], reference["force"])) \
         / reference["force"][-1]
@@ -156,7 +148,7 @@ def errors(r, reference, dimension):
         return
     num = den = 0.0
     for x, value, w in zip(r["x"], r["u_nu"], r["weight"]):
-        exact = interpolate(reference["x"], reference["u_nu"], x)
+        exact = numpy.interp(x, reference["x"], reference["u_nu"])
         num += w * (value - exact) ** 2
         den += w * exact ** 2
     r["error_u_nu"] = math.sqrt(num / den)

@@ -29,6 +29,8 @@ import math
 import os
 import sys
 
+import numpy
+
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                 "..", "scripts"))
 from vc_scripts import (REPO_ROOT, resolve_executable,  # noqa: E402
@@ -66,20 +68,10 @@ def run(executable, subdivisions, levels):
             "weight": [float(r["weight"]) for r in nodes]}
 
 
-def interpolate(xs, ys, x):
-    if x <= xs[0]:
-        return ys[0]
-    for i in range(1, len(xs)):
-        if x <= xs[i]:
-            t = (x - xs[i - 1]) / (xs[i] - xs[i - 1])
-            return (1 - t) * ys[i - 1] + t * ys[i]
-    return ys[-1]
-
-
 def relative_error(run, reference, key):
     num = den = 0.0
     for x, value, w in zip(run["x"], run[key], run["weight"]):
-        exact = interpolate(reference["x"], reference[key], x)
+        exact = numpy.interp(x, reference["x"], reference[key])
         num += w * (value - exact) ** 2
         den += w * exact ** 2
     return math.sqrt(num / den)

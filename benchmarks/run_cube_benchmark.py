@@ -117,6 +117,7 @@ def make_prm(cell_type, subdivisions, steps, method="full space"):
         (("Output",), "Write vtu"): "false",
         (("Output",), "Verbose"): "false",
         (("Output",), "Print timing summary"): "true",
+        (("Output",), "Profile times"): "",
         (("Linear solver",), "Method"): method,
     })
 
@@ -185,17 +186,19 @@ def write_outputs(rows, output_dir, command_line, method="full space"):
              "* *figure of merit*: time per step / one solve (the program's "
              "\"ratio step / solve\").",
              "* *speed-up*: time per step on 1 rank / on 2 ranks.",
+             "* *peak memory*: VmHWM summed over the ranks; *bytes per dof*: "
+             "that sum over the displacement dofs.",
              "* *phases*: wall time per step of each TimerOutput section "
              "(maximum over ranks).", "",
              "| cells | type | dofs | ranks | active-set it./step | Krylov it./solve | "
              "solve [s] | time/step [s] | figure of merit | us per dof and step "
              "| contact problem /step [s] | stress update /step [s] | "
-             "peak memory [MB] | speed-up 2/1 |",
-             "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+             "peak memory [MB] | bytes per dof | speed-up 2/1 |",
+             "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for row in rows:
         steps = row["steps"]
         lines.append("| %d | %s | %d | %d | %.2f | %.1f | %.3g | %.3g | %.2f | %.3g | "
-                     "%.3g | %.3g | %.0f | %s |" % (
+                     "%.3g | %.3g | %.0f | %.0f | %s |" % (
                          row["cells"], "hex" if row["cell_type"] == "hypercube" else "tet",
                          row["dofs"], row["ranks"], row["active_set_per_step"],
                          row["krylov_per_solve"], row["elastic_solve"],
@@ -204,6 +207,7 @@ def write_outputs(rows, output_dir, command_line, method="full space"):
                          row["sections"].get(PHASES[0], 0) / steps,
                          row["sections"].get(PHASES[1], 0) / steps,
                          row["peak_memory_mb"],
+                         row["peak_memory_mb"] * 2**20 / row["dofs"],
                          ("%.2f" % row["speedup_2_over_1"])
                          if "speedup_2_over_1" in row else ""))
     with open(os.path.join(output_dir, "cube_benchmark.md"), "w") as f:

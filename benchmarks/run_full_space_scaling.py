@@ -6,18 +6,24 @@ its figures (read in doc/performance.md).
 
 The scene is the 3D cube (parameters/cube_3d.prm on hexahedra,
 parameters/cube_3d_tetrahedra.prm on tetrahedra) with Method = full space,
-Preconditioner = amg and the explicit update, the first 8 steps of
-k = 1/32 (End time = 0.25: the contact zone grows from none to about a
-fifth of the bottom at the rigid limit), without the uniqueness check (a
-Lanczos iteration at set-up, not part of a step) and without file output.
-Each size is one process; the program's own "Cost measurement" block gives,
-measured in that process, the average time step and one solve with the
-elastic operator from a zero start to the same Tolerance (1e-10): their
-ratio is "elastic solves per step".
+Preconditioner = amg and the explicit update: the full run of the parameter
+file (32 steps of k = 1/32 up to T = 1; --end-time 0.25 runs the first 8,
+where the contact zone forms and the first step is a cold start), without
+the uniqueness check (a Lanczos iteration at set-up, not part of a step)
+and without file output. On hexahedra the first step is solved on 2
+coarser meshes first (Initial cycles = 2, nested iteration, so the mesh
+N is N/4 subdivisions refined twice; --initial-cycles 0 turns it off);
+the fully distributed meshes of tetrahedra cannot be refined, so they
+start cold. Each size is one process; the program's own "Cost
+measurement" block gives, measured in that process, the average time step
+(the initial cycles included) and one solve with the elastic operator from
+a zero start to the same Tolerance (1e-10): their ratio is "elastic solves
+per step".
 
 Usage:
     benchmarks/run_full_space_scaling.py [--executable build/viscoplastic_contact]
-        [--hexahedra 16,24,32,48] [--tetrahedra 8,12,16,24]
+        [--hexahedra 16,24,32,48] [--tetrahedra 16,24,32]
+        [--end-time 1] [--initial-cycles 2]
         [--baseline OTHER_BUILD/viscoplastic_contact --baseline-sizes 32]
         [--output doc/performance/full_space.md]
     benchmarks/run_full_space_scaling.py --figures-only
@@ -29,6 +35,7 @@ one invocation.
 
 import argparse
 import os
+import re
 import sys
 import tempfile
 
@@ -43,18 +50,34 @@ from vc_scripts import (REPO_ROOT, add_executable_argument,  # noqa: E402
 SCENES = {"hexahedra": "cube_3d.prm", "tetrahedra": "cube_3d_tetrahedra.prm"}
 
 
-def cube(cells, n):
+def initial_cycles_for(cells, n, initial_cycles):
+    """The initial cycles a run of N subdivisions gets: none on tetrahedra,
+    and only as many as N can be halved."""
+    if cells != "hexahedra":
+        return 0
+    cycles = 0
+    while cycles < initial_cycles and n % (2 ** (cycles + 1)) == 0:
+        cycles += 1
+    return cycles
+
+
+def cube(cells, n, end_time, cycles):
     return scene(SCENES[cells], {
-        (("Geometry",), "Subdivisions"): str(n),
-        (("Time",), "End time"): "0.25",
+        (("Geometry",), "Subdivisions"): str(n // 2 ** cycles),
+        (("Geometry",), "Global refinements"): str(cycles),
+        (("Mesh adaptation",), "Initial cycles"): str(cycles),
+        (("Time",), "End time"): end_time,
         (("Linear solver",), "Method"): "full space",
         (("Linear solver",), "Preconditioner"): "amg",
         (("Contact",), "Check uniqueness"): "false",
     })
 
 
-def measure(executable, cells, n, work, tag):
-    row = run(executable, cube(cells, n), work, f"{tag}_{cells}_{n}")
+def measure(executable, cells, n, work, tag, end_time, initial_cycles):
+    cycles = initial_cycles_for(cells, n, initial_cycles)
+    row = run(executable, cube(cells, n, end_time, cycles), work,
+              f"{tag}_{cells}_{n}")
+    row["cycles"] = cycles
     out = row["output"]
     row["solves"] = number(r"back end: (\d+) solves", out)
     row["setups"] = number(r"set up by the back end (\d+)x", out)
@@ -109,6 +132,30 @@ def figures(results, directory):
     fig.savefig(os.path.join(directory, "full_space_scaling.png"), dpi=110)
 
 
+def phase_table(results):
+    """Where the time of the largest run went: its TimerOutput sections
+    (wall time, the share of the whole run), as the program printed them."""
+    rows = [r for rs in results.values() for r in rs]
+    if not rows:
+        return []
+    largest = max(rows, key=lambda r: r["dofs"])
+    sections = re.findall(r"^\| ([A-Za-z][^|]*?)\s+\|\s+(\d+) \|"
+                          r"\s+([0-9.e+-]+)s \|\s+([0-9.e+-]+)% \|",
+                          largest["output"], re.M)
+    cells = next(c for c, rs in results.items() if largest in rs)
+    lines = ["", f"## Phases of the largest run ({cells}, "
+             f"{largest['dofs']} dofs)", "",
+             "The program's TimerOutput sections (one process); \"Solve: "
+             "contact problem\" holds the active-set iterations with their "
+             f"CG solves and the {largest['setups']:.0f} AMG set-ups of the "
+             "step operator.", "",
+             "| phase | calls | wall time [s] | share |",
+             "| --- | ---: | ---: | ---: |"]
+    for name, calls, wall, share in sections:
+        lines.append(f"| {name} | {calls} | {float(wall):.3g} | {share}% |")
+    return lines
+
+
 def read_table(path):
     """The rows of the first table of a written full_space.md, as figures()
     needs them."""
@@ -116,15 +163,15 @@ def read_table(path):
     with open(path) as f:
         for line in f:
             cells = [c.strip() for c in line.strip().strip("|").split("|")]
-            if len(cells) != 15 or cells[0] not in SCENES:
+            if len(cells) != 16 or cells[0] not in SCENES:
                 continue
             results.setdefault(cells[0], []).append({
-                "dofs": int(cells[2]),
-                "krylov_per_solve": float(cells[5]),
-                "elastic_krylov": float(cells[7]),
-                "step_ms": 1000 * float(cells[9]),
-                "solve_ms": 1000 * float(cells[10]),
-                "step_per_solve": float(cells[11]),
+                "dofs": int(cells[3]),
+                "krylov_per_solve": float(cells[6]),
+                "elastic_krylov": float(cells[8]),
+                "step_ms": 1000 * float(cells[10]),
+                "solve_ms": 1000 * float(cells[11]),
+                "step_per_solve": float(cells[12]),
             })
     return results
 
@@ -134,7 +181,9 @@ def main():
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     add_executable_argument(parser)
     parser.add_argument("--hexahedra", default="16,24,32,48")
-    parser.add_argument("--tetrahedra", default="8,12,16,24")
+    parser.add_argument("--tetrahedra", default="16,24,32")
+    parser.add_argument("--end-time", default="1")
+    parser.add_argument("--initial-cycles", type=int, default=2)
     parser.add_argument("--baseline", default=None)
     parser.add_argument("--baseline-sizes", default="32")
     parser.add_argument("--output", default=os.path.join(
@@ -152,27 +201,32 @@ def main():
         "",
         "Written by `benchmarks/run_full_space_scaling.py`; "
         "`doc/performance.md` reads it. The cube (`cube_3d.prm`, "
-        "`cube_3d_tetrahedra.prm`), full space back end with AMG, 8 explicit "
-        "steps of k = 1/32, one process each. \"Elastic solves per step\": "
-        "the average time step over one solve with the elastic operator "
-        "from zero to the same Tolerance, both measured in that process.",
+        "`cube_3d_tetrahedra.prm`), full space back end with AMG, explicit "
+        f"steps of k = 1/32 up to T = {args.end_time}, one process each; "
+        "\"initial cycles\": the coarser meshes on which the first step was "
+        "solved first (nested iteration; none on tetrahedra). \"Elastic "
+        "solves per step\": the average time step (initial cycles included) "
+        "over one solve with the elastic operator from zero to the same "
+        "Tolerance, both measured in that process.",
         "",
-        "| cells | N | dofs | contact nodes | active-set its per step | "
-        "CG its per active-set solve | CG its per step | CG its, elastic "
-        "solve | AMG set-ups | time step [s] | elastic solve [s] | elastic "
-        "solves per step | peak memory [MB] | bytes per dof | whole "
+        "| cells | N | initial cycles | dofs | contact nodes | active-set its "
+        "per step | CG its per active-set solve | CG its per step | CG its, "
+        "elastic solve | AMG set-ups | time step [s] | elastic solve [s] | "
+        "elastic solves per step | peak memory [MB] | bytes per dof | whole "
         "process [s] |",
-        "|" + " ---: |" * 15,
+        "|" + " ---: |" * 16,
     ]
     results = {}
     with tempfile.TemporaryDirectory() as work:
         for cells in ("hexahedra", "tetrahedra"):
             results[cells] = []
             for n in [int(s) for s in sizes[cells].split(",") if s]:
-                r = measure(executable, cells, n, work, "this")
+                r = measure(executable, cells, n, work, "this",
+                            args.end_time, args.initial_cycles)
                 results[cells].append(r)
                 cells_line = (
-                    f"| {cells} | {n} | {r['dofs']} | {r['contact_nodes']} | "
+                    f"| {cells} | {n} | {r['cycles']} | {r['dofs']} | "
+                    f"{r['contact_nodes']} | "
                     f"{r['iterations'] / r['steps']:.2f} | "
                     f"{r['krylov_per_solve']:.1f} | {r['krylov_per_step']:.0f} | "
                     f"{r['elastic_krylov']:.0f} | {r['setups']:.0f} | "
@@ -194,8 +248,10 @@ def main():
             baseline = resolve_executable(args.baseline)
             for cells in ("hexahedra",):
                 for n in [int(s) for s in args.baseline_sizes.split(",") if s]:
-                    this = measure(executable, cells, n, work, "pair")
-                    old = measure(baseline, cells, n, work, "baseline")
+                    this = measure(executable, cells, n, work, "pair",
+                                   args.end_time, args.initial_cycles)
+                    old = measure(baseline, cells, n, work, "baseline",
+                                  args.end_time, args.initial_cycles)
                     line = (f"| {cells} | {n} | {this['step_per_solve']:.2f} | "
                             f"{old['step_per_solve']:.2f} | "
                             f"{this['krylov_per_step']:.0f} | "
@@ -203,6 +259,7 @@ def main():
                             f"{this['step_ms'] / old['step_ms']:.2f} |")
                     lines.append(line)
                     print(line, flush=True)
+    lines += phase_table(results)
     os.makedirs(os.path.dirname(args.output), exist_ok=True)
     with open(args.output, "w") as f:
         f.write("\n".join(lines) + "\n")

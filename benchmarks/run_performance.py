@@ -59,6 +59,17 @@ def number(pattern, text):
     return float(match.group(1)) if match else float("nan")
 
 
+def last_number(pattern, text):
+    """The last match, for lines printed once per mesh (the initial cycles
+    print the coarser meshes first)."""
+    matches = re.findall(pattern, text)
+    if not matches:
+        return float("nan")
+    last = matches[-1]
+    # A pattern with alternative groups gives a tuple: the one that matched.
+    return float(last if isinstance(last, str) else next(g for g in last if g))
+
+
 def section(name, text):
     """Wall time [s] of a TimerOutput section (nan if absent)."""
     return number(re.escape(name) + r"\s*\|\s*\d+\s*\|\s*([0-9.e+-]+)s", text)
@@ -89,10 +100,13 @@ def run(executable, prm_text, work, name, threads=None):
     if status != 0:
         print(out[-3000:])
         sys.exit(f"error: run {name} failed")
-    dofs = number(r"Mesh: \d+ \w+ cells, (\d+) displacement dofs", out)
+    # The mesh of the run: after the initial cycles, if any, the last one.
+    dofs = last_number(r"(?:Mesh: \d+ \w+ cells, (\d+) displacement dofs"
+                       r"|Initial cycles done: \d+ cells, (\d+) dofs)", out)
     return {
         "dofs": int(dofs),
-        "contact_nodes": int(number(r"displacement dofs, (\d+) contact nodes", out)),
+        "contact_nodes": int(last_number(
+            r"(?:displacement dofs|\d+ dofs), (\d+) contact nodes", out)),
         "wall": wall,
         "memory_mb": usage.ru_maxrss / 1024.,
         "bytes_per_dof": usage.ru_maxrss * 1024. / dofs,

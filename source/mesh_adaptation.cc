@@ -580,11 +580,12 @@ namespace ViscoContact
         // initial state is zero, as setup_on_mesh() left it).
         assemble_external_load(times[1]);
       }
-    if (parameters.verbose)
-      pcout << "Initial cycles done: " << triangulation->n_global_active_cells()
-            << " cells, " << dof_handler.n_dofs() << " dofs, "
-            << (contact_enabled ? contact_set.n_global_nodes() : 0)
-            << " contact nodes for step 1" << std::endl;
+    // The mesh of the run from here on, which the "Mesh:" line of the header
+    // (the first mesh of the cycles) does not show.
+    pcout << "Initial cycles done: " << triangulation->n_global_active_cells()
+          << " cells, " << dof_handler.n_dofs() << " dofs, "
+          << (contact_enabled ? contact_set.n_global_nodes() : 0)
+          << " contact nodes for step 1" << std::endl;
   }
 
 

@@ -78,6 +78,7 @@
 
 #include <deal.II/numerics/vector_tools.h>
 
+#include "constraints.h"
 #include "loads.h"
 #include "material.h"
 #include "mesh.h"
@@ -394,17 +395,11 @@ namespace PreconditionerComparison
     dof_handler.distribute_dofs(*fe);
     locally_owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
-    constraints.reinit(locally_relevant_dofs);
-    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
-    const Functions::ZeroFunction<dim>                  zero(dim);
-    std::map<types::boundary_id, const Function<dim> *> clamped;
-    for (const auto id : parameters.clamped_ids)
-      clamped[id] = &zero;
-    VectorTools::interpolate_boundary_values(mapping,
-                                             dof_handler,
-                                             clamped,
-                                             constraints);
-    constraints.close();
+    make_displacement_constraints(mapping,
+                                  dof_handler,
+                                  parameters.clamped_ids,
+                                  locally_relevant_dofs,
+                                  constraints);
 
     DynamicSparsityPattern dsp(locally_relevant_dofs);
     DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);

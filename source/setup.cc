@@ -17,6 +17,7 @@
 
 #include <deal.II/numerics/vector_tools.h>
 
+#include "constraints.h"
 #include "mesh.h"
 #include "viscoplastic_contact.h"
 
@@ -114,17 +115,11 @@ namespace ViscoContact
       // Gamma_1 get u = 0, which is homogeneous, so the same constraints serve
       // every displacement and every right-hand side of the run. Hanging nodes
       // appear where the mesh is refined toward Gamma_3.
-      constraints.reinit(locally_relevant_dofs);
-      DoFTools::make_hanging_node_constraints(dof_handler, constraints);
-      const Functions::ZeroFunction<dim>                  zero(dim);
-      std::map<types::boundary_id, const Function<dim> *> clamped;
-      for (const auto id : parameters.clamped_ids)
-        clamped[id] = &zero;
-      VectorTools::interpolate_boundary_values(mapping,
-                                               dof_handler,
-                                               clamped,
-                                               constraints);
-      constraints.close();
+      make_displacement_constraints(mapping,
+                                    dof_handler,
+                                    parameters.clamped_ids,
+                                    locally_relevant_dofs,
+                                    constraints);
 
       // The sparsity pattern of the owned cells, without the entries that the
       // constraints eliminate (distribute_local_to_global() never writes them).
@@ -615,6 +610,46 @@ namespace ViscoContact
 
 
 
+  // @sect4{make_displacement_constraints}
+  //
+  // Hanging nodes first, then u = 0 on Gamma_1 (interpolate_boundary_values
+  // leaves dofs already constrained as they are).
+  template <int dim>
+  void
+  make_displacement_constraints(
+    const Mapping<dim>                    &mapping,
+    const DoFHandler<dim>                 &dof_handler,
+    const std::vector<types::boundary_id> &clamped_ids,
+    const IndexSet                        &locally_relevant_dofs,
+    AffineConstraints<double>             &constraints)
+  {
+    constraints.reinit(locally_relevant_dofs);
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    const Functions::ZeroFunction<dim>                  zero(dim);
+    std::map<types::boundary_id, const Function<dim> *> clamped;
+    for (const auto id : clamped_ids)
+      clamped[id] = &zero;
+    VectorTools::interpolate_boundary_values(mapping,
+                                             dof_handler,
+                                             clamped,
+                                             constraints);
+    constraints.close();
+  }
+
+
+
   template class ViscoplasticContact<2>;
   template class ViscoplasticContact<3>;
+  template void
+  make_displacement_constraints(const Mapping<2> &,
+                                const DoFHandler<2> &,
+                                const std::vector<types::boundary_id> &,
+                                const IndexSet &,
+                                AffineConstraints<double> &);
+  template void
+  make_displacement_constraints(const Mapping<3> &,
+                                const DoFHandler<3> &,
+                                const std::vector<types::boundary_id> &,
+                                const IndexSet &,
+                                AffineConstraints<double> &);
 } // namespace ViscoContact

@@ -16,18 +16,10 @@ executable=$1 prm=$2
 absolute=1e-8 relative=1e-8
 cycles=$(sed -n 's/^ *set Initial cycles *= *\([0-9]*\).*/\1/p' "$prm")
 
-rm -rf cycles direct
-mkdir -p cycles direct
-cp "$prm" cycles/scene.prm
-sed -e "s/^\( *set Initial cycles *=\).*/\1 0/" "$prm" > direct/scene.prm
+"$here/run_scene_variant.sh" cycles "$executable" "$prm" || exit 1
+"$here/run_scene_variant.sh" direct "$executable" "$prm" \
+  "s/^\( *set Initial cycles *=\).*/\1 0/" || exit 1
 for dir in cycles direct; do
-  (cd "$dir" && "$here/run_mpi.sh" 1 "$executable" scene.prm > output.txt 2> error.txt)
-  status=$?
-  if [ $status -ne 0 ]; then
-    echo "The $dir run failed with exit status $status:"
-    cat "$dir/error.txt"
-    exit 1
-  fi
   cut -d, -f1,2,4-8,11,12 "$dir/results/time_series.csv" | tr ',' ' ' > "$dir/series.txt"
   { grep '^  final state:\|^  final contact:\|^Final displacement:' "$dir/output.txt"; } > "$dir/final.txt"
 done

@@ -14,18 +14,10 @@ here=$(dirname "$0")
 executable=$1 prm=$2
 absolute=1e-12 relative=1e-10
 
-rm -rf adapted fixed
-mkdir -p adapted fixed
-cp "$prm" adapted/scene.prm
-sed -e "s/^\( *set Adaptive refinement *=\).*/\1 false/" "$prm" > fixed/scene.prm
+"$here/run_scene_variant.sh" adapted "$executable" "$prm" || exit 1
+"$here/run_scene_variant.sh" fixed "$executable" "$prm" \
+  "s/^\( *set Adaptive refinement *=\).*/\1 false/" || exit 1
 for dir in adapted fixed; do
-  (cd "$dir" && "$here/run_mpi.sh" 1 "$executable" scene.prm > output.txt 2> error.txt)
-  status=$?
-  if [ $status -ne 0 ]; then
-    echo "The $dir run failed with exit status $status:"
-    cat "$dir/error.txt"
-    exit 1
-  fi
   cut -d, -f1-8 "$dir/results/time_series.csv" | tr ',' ' ' > "$dir/series.txt"
   { grep '^  final state:' "$dir/output.txt"
     sed -n 's/^Final displacement: .*\(max norm .*\)/\1/p' "$dir/output.txt"; } > "$dir/final.txt"

@@ -25,7 +25,9 @@ namespace ViscoContact
   //  - cholmod: CHOLMOD's supernodal Cholesky factorisation K = L L^T, on
   //    one rank. It needs about half of the memory and work of an LU
   //    factorisation and solves many right-hand sides at once with dense
-  //    (BLAS-3) kernels. An unsymmetric operator (the tangent) is
+  //    (BLAS-3) kernels; a single right-hand side is solved on the
+  //    rank's threads, subtree by subtree of the elimination tree
+  //    (supernodal_solve.h). An unsymmetric operator (the tangent) is
   //    factorised by UMFPACK instead;
   //  - umfpack: UMFPACK's LU factorisation, on one rank;
   //  - mumps: MUMPS through Trilinos' Amesos, distributed over all ranks
@@ -91,6 +93,12 @@ namespace ViscoContact
     // solutions. Collective.
     void
     solve(std::vector<double> &columns, const unsigned int n_columns) const;
+
+    // Single right-hand sides are solved with a CHOLMOD factor on threads,
+    // subtree by subtree of its elimination tree (supernodal_solve.h): how
+    // many subtrees the last factorisation gave (0: not this way).
+    std::size_t
+    n_threaded_subtrees() const;
 
     // What was factorised, for the run's header and summary.
     std::string

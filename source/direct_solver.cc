@@ -14,6 +14,7 @@
 #include <deal.II/base/utilities.h>
 
 #include "direct_solver.h"
+#include "supernodal_solve.h"
 
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
@@ -175,7 +176,8 @@ namespace ViscoContact
       last_block = false;
       last_factor.reinit(0, 0);
       last_order.clear();
-      in_use = Parameters::DirectSolver::automatic;
+      threaded_solve = SupernodalSolve();
+      in_use         = Parameters::DirectSolver::automatic;
     }
 
     // The three factorisations, and the solve with whichever is in use
@@ -217,6 +219,11 @@ namespace ViscoContact
     mutable cholmod_dense *cholmod_solution    = nullptr;
     mutable cholmod_dense *cholmod_workspace_y = nullptr;
     mutable cholmod_dense *cholmod_workspace_e = nullptr;
+    // The single right-hand side solves with CHOLMOD's factor, on threads
+    // (supernodal_solve.h), and the permuted right-hand side of a whole
+    // solve.
+    SupernodalSolve             threaded_solve;
+    mutable std::vector<double> permuted;
 
     // The last block of the CHOLMOD factor when the elimination order ends
     // with the requested rows (has_last_block()), the requested row of each
@@ -310,6 +317,21 @@ namespace ViscoContact
     what = "CHOLMOD supernodal Cholesky, "
            + std::to_string(static_cast<std::size_t>(cholmod.lnz))
            + " nonzeros in the factor";
+    // The elimination tree of the factor, cut for the threaded solves of
+    // single right-hand sides (it stays empty where they would not pay).
+    static_assert(sizeof(SuiteSparse_long) == sizeof(std::int64_t),
+                  "CHOLMOD's long integers are 64 bits wide");
+    const cholmod_factor   &L = *cholmod_factor_;
+    SupernodalSolve::Factor factor;
+    factor.n       = L.n;
+    factor.n_super = L.nsuper;
+    factor.super   = static_cast<const std::int64_t *>(L.super);
+    factor.pi      = static_cast<const std::int64_t *>(L.pi);
+    factor.px      = static_cast<const std::int64_t *>(L.px);
+    factor.rows    = static_cast<const std::int64_t *>(L.s);
+    factor.values  = static_cast<const double *>(L.x);
+    if (L.is_super && L.is_ll)
+      threaded_solve.initialize(factor);
     if (last_block)
       {
         read_last_block(last_rows);
@@ -631,15 +653,40 @@ namespace ViscoContact
   // overwritten by A^{-1} values (sys = CHOLMOD_A), L^{-1} values
   // (CHOLMOD_L) or L^{-T} values (CHOLMOD_Lt): a whole solve, or the two
   // halves of one without the permutations, which the caller then applies
-  // (values is in the elimination order). A dense-matrix header is put
-  // around the caller's array, and cholmod_l_solve2() writes into the
-  // solution it keeps between calls, which is copied back column by column.
+  // (values is in the elimination order). One right-hand side goes to the
+  // threaded solves where the factor was cut for them (supernodal_solve.h).
+  // Otherwise a dense-matrix header is put around the caller's array, and
+  // cholmod_l_solve2() writes into the solution it keeps between calls,
+  // which is copied back column by column.
   void
   SparseDirectSolver::Implementation::solve_with_factor(
     const int         sys,
     double           *values,
     const std::size_t n_columns) const
   {
+    // One right-hand side: the threaded solves, and the permutations for a
+    // whole solve, ((P b)_k = b_{Perm[k]}).
+    if (n_columns == 1 && !threaded_solve.empty())
+      {
+        if (sys == CHOLMOD_L)
+          threaded_solve.forward(values);
+        else if (sys == CHOLMOD_Lt)
+          threaded_solve.backward(values);
+        else
+          {
+            Assert(sys == CHOLMOD_A, ExcNotImplemented());
+            const auto *order
+              = static_cast<const SuiteSparse_long *>(cholmod_factor_->Perm);
+            permuted.resize(n);
+            for (std::size_t k = 0; k < n; ++k)
+              permuted[k] = values[order[k]];
+            threaded_solve.forward(permuted.data());
+            threaded_solve.backward(permuted.data());
+            for (std::size_t k = 0; k < n; ++k)
+              values[order[k]] = permuted[k];
+          }
+        return;
+      }
     cholmod_dense rhs;
     rhs.nrow     = n;
     rhs.ncol     = n_columns;
@@ -828,6 +875,14 @@ namespace ViscoContact
       = static_cast<const SuiteSparse_long *>(impl.cholmod_factor_->Perm);
     for (std::size_t k = 0; k < impl.n; ++k)
       x.local_element(order[k]) = impl.forward[k];
+  }
+
+
+
+  std::size_t
+  SparseDirectSolver::n_threaded_subtrees() const
+  {
+    return implementation->threaded_solve.n_subtrees();
   }
 
 

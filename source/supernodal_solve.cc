@@ -1,0 +1,458 @@
+// Forward and backward solves with a supernodal Cholesky factor, with the
+// independent subtrees of its elimination tree on threads (the header,
+// supernodal_solve.h, says why and how).
+
+#include <deal.II/base/parallel.h>
+
+#include "supernodal_solve.h"
+
+#include <algorithm>
+#include <queue>
+#include <utility>
+
+namespace ViscoContact
+{
+  // @sect4{Cutting the elimination tree}
+  //
+  // The parent of a supernode is the supernode of its first off-diagonal
+  // row; a supernode without one is a root. The cut starts from the roots
+  // and moves the heaviest subtree's root into the top part until no
+  // subtree holds more than a 1/32 of the factor's entries: enough pieces
+  // to balance two or more threads, while in the usual trees the top part
+  // stays a few separators.
+  void
+  SupernodalSolve::initialize(const Factor &factor_in)
+  {
+    factor                      = factor_in;
+    const std::size_t ns        = factor.n_super;
+    const auto        n_columns = [&](const std::size_t s) {
+      return std::size_t(factor.super[s + 1] - factor.super[s]);
+    };
+    const auto n_rows = [&](const std::size_t s) {
+      return std::size_t(factor.pi[s + 1] - factor.pi[s]);
+    };
+
+    std::vector<std::size_t> supernode_of_column(factor.n);
+    for (std::size_t s = 0; s < ns; ++s)
+      for (auto j = factor.super[s]; j < factor.super[s + 1]; ++j)
+        supernode_of_column[j] = s;
+    constexpr std::size_t                 no_parent = std::size_t(-1);
+    std::vector<std::size_t>              parent(ns, no_parent);
+    std::vector<std::vector<std::size_t>> children(ns);
+    double                                total_work = 0;
+    max_rows                                         = 0;
+    // The parents, the children, and the work: entries of the blocks.
+    for (std::size_t s = 0; s < ns; ++s)
+      {
+        const double work = double(n_rows(s)) * n_columns(s);
+        total_work += work;
+        max_rows = std::max(max_rows, n_rows(s));
+        if (n_rows(s) > n_columns(s))
+          {
+            parent[s]
+              = supernode_of_column[factor.rows[factor.pi[s] + n_columns(s)]];
+            children[parent[s]].push_back(s);
+          }
+      }
+
+    // The cut into stages: the first cuts the whole tree, each further one
+    // the top part the previous left, as long as that gives at least two
+    // subtrees with a tenth of what is left (in 2D the top part is a few
+    // chains of separators that branch). A supernode's subtree, -1 while it
+    // is in the top part.
+    std::vector<char>         in_top(ns, 1);
+    std::vector<std::int64_t> subtree_of(ns, -1);
+    double                    work_in_top = total_work;
+    subtree_supernodes.clear();
+    stage_begin.assign(1, 0);
+    for (unsigned int stage = 0; stage < 8; ++stage)
+      {
+        // The work of each subtree of the top part (which is closed under
+        // taking parents), and the cut of it.
+        std::vector<double> work_below(ns, 0.);
+        for (std::size_t s = 0; s < ns; ++s)
+          if (in_top[s])
+            {
+              work_below[s] += double(n_rows(s)) * n_columns(s);
+              if (parent[s] != no_parent)
+                work_below[parent[s]] += work_below[s];
+            }
+        std::priority_queue<std::pair<double, std::size_t>> heaviest;
+        for (std::size_t s = 0; s < ns; ++s)
+          if (in_top[s] && parent[s] == no_parent)
+            heaviest.emplace(work_below[s], s);
+        std::vector<char> stays_in_top(ns, 0);
+        double            work_staying = 0;
+        while (!heaviest.empty() && heaviest.top().first > work_in_top / 32)
+          {
+            const std::size_t s = heaviest.top().second;
+            heaviest.pop();
+            stays_in_top[s] = 1;
+            work_staying += double(n_rows(s)) * n_columns(s);
+            for (const std::size_t child : children[s])
+              if (in_top[child])
+                heaviest.emplace(work_below[child], child);
+          }
+        // A top part of more than half the factor after the first cut (3D
+        // meshes, whose separators are large dense blocks) leaves too little
+        // to share: CHOLMOD's own solve, with its BLAS kernels, is faster
+        // there. The solver stays empty.
+        if (stage == 0 && work_staying > total_work / 2)
+          {
+            *this = SupernodalSolve();
+            return;
+          }
+        if (heaviest.size() < 2
+            || work_in_top - work_staying < work_in_top / 10)
+          break;
+        // The new subtrees, heaviest first (so that threads start with the
+        // large pieces); each supernode joins its parent's subtree
+        // (descending, parents first).
+        while (!heaviest.empty())
+          {
+            subtree_of[heaviest.top().second] = subtree_supernodes.size();
+            subtree_supernodes.emplace_back();
+            heaviest.pop();
+          }
+        for (std::size_t s = ns; s-- > 0;)
+          if (in_top[s] && !stays_in_top[s] && subtree_of[s] < 0)
+            subtree_of[s] = subtree_of[parent[s]];
+        for (std::size_t s = 0; s < ns; ++s)
+          if (in_top[s] && !stays_in_top[s])
+            subtree_supernodes[subtree_of[s]].push_back(s);
+        in_top.swap(stays_in_top);
+        work_in_top = work_staying;
+        stage_begin.push_back(subtree_supernodes.size());
+      }
+    top_supernodes.clear();
+    for (std::size_t s = 0; s < ns; ++s)
+      if (in_top[s])
+        top_supernodes.push_back(s);
+
+    // Where each off-diagonal update goes: a row of the same subtree (or of
+    // the top part, for the top's own supernodes), or, for a row further up
+    // (a later stage or the top part), the subtree's buffer.
+    const std::size_t n_subtrees = subtree_supernodes.size();
+    target.assign(factor.rows, factor.rows + factor.pi[ns]);
+    top_rows.assign(n_subtrees, {});
+    top_buffers.assign(n_subtrees, {});
+    for (std::size_t t = 0; t < n_subtrees; ++t)
+      {
+        const auto outside = [&](const std::int64_t row) {
+          return subtree_of[supernode_of_column[row]] != std::int64_t(t);
+        };
+        std::vector<std::int64_t> &rows_above = top_rows[t];
+        for (const std::size_t s : subtree_supernodes[t])
+          for (auto k = factor.pi[s] + std::int64_t(n_columns(s));
+               k < factor.pi[s + 1];
+               ++k)
+            if (outside(factor.rows[k]))
+              rows_above.push_back(factor.rows[k]);
+        std::sort(rows_above.begin(), rows_above.end());
+        rows_above.erase(std::unique(rows_above.begin(), rows_above.end()),
+                         rows_above.end());
+        for (const std::size_t s : subtree_supernodes[t])
+          for (auto k = factor.pi[s] + std::int64_t(n_columns(s));
+               k < factor.pi[s + 1];
+               ++k)
+            if (outside(factor.rows[k]))
+              target[k] = -1
+                          - (std::lower_bound(rows_above.begin(),
+                                              rows_above.end(),
+                                              factor.rows[k])
+                             - rows_above.begin());
+        top_buffers[t].resize(rows_above.size());
+      }
+  }
+
+
+
+  bool
+  SupernodalSolve::empty() const
+  {
+    return factor.n_super == 0;
+  }
+
+
+
+  std::size_t
+  SupernodalSolve::n_subtrees() const
+  {
+    return subtree_supernodes.size();
+  }
+
+
+
+  // @sect4{One supernode of the forward solve}
+  //
+  // The block's part of y and zeros for its off-diagonal rows go into work;
+  // then the columns in groups of four: the group's triangle, and the rest
+  // of the four columns times their solved values subtracted from the rows
+  // below in one pass (one pass over the block, as it is stored, and work
+  // read once per four columns). Then work's off-diagonal rows, -L_off x,
+  // go to their rows, or to the subtree's buffer (which collects L_off x)
+  // where the row belongs to the top part.
+  namespace
+  {
+    constexpr std::size_t group = 4;
+  }
+
+  namespace
+  {
+    // work[i] -= sum_j column_j[i] work[j] for the rows i in [begin, end)
+    // and the columns j in [j0, j_end) of a block with n_rows rows, four
+    // columns at a time.
+    void
+    subtract_columns(const double     *block,
+                     const std::size_t n_rows,
+                     const std::size_t j0,
+                     const std::size_t j_end,
+                     const std::size_t begin,
+                     const std::size_t end,
+                     double           *work)
+    {
+      if (j_end - j0 == group)
+        {
+          const double *c0 = block + j0 * n_rows, *c1 = c0 + n_rows,
+                       *c2 = c1 + n_rows, *c3 = c2 + n_rows;
+          const double x0 = work[j0], x1 = work[j0 + 1], x2 = work[j0 + 2],
+                       x3 = work[j0 + 3];
+          for (std::size_t i = begin; i < end; ++i)
+            work[i] -= c0[i] * x0 + c1[i] * x1 + c2[i] * x2 + c3[i] * x3;
+        }
+      else
+        for (std::size_t j = j0; j < j_end; ++j)
+          {
+            const double *column = block + j * n_rows;
+            for (std::size_t i = begin; i < end; ++i)
+              work[i] -= column[i] * work[j];
+          }
+    }
+
+    // work[j] -= sum_i column_j[i] work[i] for the columns j in [j0, j_end)
+    // and the rows i in [begin, end), four columns at a time (each sum in
+    // the order of the rows).
+    void
+    subtract_dot_products(const double     *block,
+                          const std::size_t n_rows,
+                          const std::size_t j0,
+                          const std::size_t j_end,
+                          const std::size_t begin,
+                          const std::size_t end,
+                          double           *work)
+    {
+      if (j_end - j0 == group)
+        {
+          const double *c0 = block + j0 * n_rows, *c1 = c0 + n_rows,
+                       *c2 = c1 + n_rows, *c3 = c2 + n_rows;
+          double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+          for (std::size_t i = begin; i < end; ++i)
+            {
+              s0 += c0[i] * work[i];
+              s1 += c1[i] * work[i];
+              s2 += c2[i] * work[i];
+              s3 += c3[i] * work[i];
+            }
+          work[j0] -= s0;
+          work[j0 + 1] -= s1;
+          work[j0 + 2] -= s2;
+          work[j0 + 3] -= s3;
+        }
+      else
+        for (std::size_t j = j0; j < j_end; ++j)
+          {
+            const double *column = block + j * n_rows;
+            double        sum    = 0;
+            for (std::size_t i = begin; i < end; ++i)
+              sum += column[i] * work[i];
+            work[j] -= sum;
+          }
+    }
+
+    // Blocks of the top part with at least this many off-diagonal entries
+    // share their off-diagonal rows (forward) or columns (backward) among
+    // the threads, in pieces of a fixed size.
+    constexpr std::size_t shared_block_entries = 16384;
+    constexpr std::size_t rows_per_piece       = 128;
+    constexpr std::size_t columns_per_piece    = 8;
+  } // namespace
+
+  void
+  SupernodalSolve::forward_supernode(const std::size_t s,
+                                     double           *y,
+                                     double           *top_buffer,
+                                     double           *work) const
+  {
+    const std::size_t first  = factor.super[s];
+    const std::size_t n_cols = factor.super[s + 1] - first;
+    const std::size_t n_rows = factor.pi[s + 1] - factor.pi[s];
+    const double     *block  = factor.values + factor.px[s];
+    std::copy_n(y + first, n_cols, work);
+    std::fill(work + n_cols, work + n_rows, 0.);
+    // A large block of the top part: its triangle first, then the
+    // off-diagonal rows in pieces on threads. Each row sees the same
+    // operations in the same order either way.
+    const bool shared = top_buffer == nullptr
+                        && (n_rows - n_cols) * n_cols >= shared_block_entries;
+    const std::size_t rows_now = shared ? n_cols : n_rows;
+    for (std::size_t j0 = 0; j0 < n_cols; j0 += group)
+      {
+        const std::size_t j_end = std::min(j0 + group, n_cols);
+        for (std::size_t j = j0; j < j_end; ++j)
+          {
+            const double *column = block + j * n_rows;
+            work[j] /= column[j];
+            for (std::size_t i = j + 1; i < j_end; ++i)
+              work[i] -= column[i] * work[j];
+          }
+        subtract_columns(block, n_rows, j0, j_end, j_end, rows_now, work);
+      }
+    if (shared)
+      dealii::parallel::apply_to_subranges(
+        std::size_t(0),
+        (n_rows - n_cols + rows_per_piece - 1) / rows_per_piece,
+        [&](const std::size_t begin, const std::size_t end) {
+          for (std::size_t piece = begin; piece < end; ++piece)
+            {
+              const std::size_t i0 = n_cols + piece * rows_per_piece,
+                                i1 = std::min(i0 + rows_per_piece, n_rows);
+              for (std::size_t j0 = 0; j0 < n_cols; j0 += group)
+                subtract_columns(block,
+                                 n_rows,
+                                 j0,
+                                 std::min(j0 + group, n_cols),
+                                 i0,
+                                 i1,
+                                 work);
+            }
+        },
+        1);
+    std::copy_n(work, n_cols, y + first);
+    const std::int64_t *to = target.data() + factor.pi[s];
+    for (std::size_t i = n_cols; i < n_rows; ++i)
+      if (to[i] >= 0)
+        y[to[i]] += work[i];
+      else
+        top_buffer[-1 - to[i]] -= work[i];
+  }
+
+
+
+  // @sect4{One supernode of the backward solve}
+  //
+  // The rows below the block are already solved (they are later in the
+  // order) and are gathered into work with the block's own part of y. Then
+  // the groups of four columns from the last one: the dot products of the
+  // four columns with the solved values below the group in one pass, then
+  // the group's triangle from its last column.
+  void
+  SupernodalSolve::backward_supernode(const std::size_t s,
+                                      const bool        top,
+                                      double           *x,
+                                      double           *work) const
+  {
+    const std::size_t   first  = factor.super[s];
+    const std::size_t   n_cols = factor.super[s + 1] - first;
+    const std::size_t   n_rows = factor.pi[s + 1] - factor.pi[s];
+    const double       *block  = factor.values + factor.px[s];
+    const std::int64_t *rows   = factor.rows + factor.pi[s];
+    std::copy_n(x + first, n_cols, work);
+    for (std::size_t i = n_cols; i < n_rows; ++i)
+      work[i] = x[rows[i]];
+    // A large block of the top part: the off-diagonal rows' share of every
+    // column first, pieces of columns on threads (each column's sum in the
+    // same order either way), then the triangle.
+    const bool shared
+      = top && (n_rows - n_cols) * n_cols >= shared_block_entries;
+    const std::size_t rows_now = shared ? n_cols : n_rows;
+    if (shared)
+      dealii::parallel::apply_to_subranges(
+        std::size_t(0),
+        (n_cols + columns_per_piece - 1) / columns_per_piece,
+        [&](const std::size_t begin, const std::size_t end) {
+          const std::size_t j_end = std::min(end * columns_per_piece, n_cols);
+          for (std::size_t j0 = begin * columns_per_piece; j0 < j_end;
+               j0 += group)
+            subtract_dot_products(block,
+                                  n_rows,
+                                  j0,
+                                  std::min(j0 + group, j_end),
+                                  n_cols,
+                                  n_rows,
+                                  work);
+        },
+        1);
+    const std::size_t n_groups = (n_cols + group - 1) / group;
+    for (std::size_t g = n_groups; g-- > 0;)
+      {
+        const std::size_t j0 = g * group, j_end = std::min(j0 + group, n_cols);
+        subtract_dot_products(block, n_rows, j0, j_end, j_end, rows_now, work);
+        for (std::size_t j = j_end; j-- > j0;)
+          {
+            const double *column = block + j * n_rows;
+            double        sum    = work[j];
+            for (std::size_t i = j + 1; i < j_end; ++i)
+              sum -= column[i] * work[i];
+            work[j] = sum / column[j];
+          }
+      }
+    std::copy_n(work, n_cols, x + first);
+  }
+
+
+
+  // @sect4{The two solves}
+  void
+  SupernodalSolve::forward(double *y) const
+  {
+    for (std::size_t stage = 0; stage + 1 < stage_begin.size(); ++stage)
+      {
+        dealii::parallel::apply_to_subranges(
+          stage_begin[stage],
+          stage_begin[stage + 1],
+          [&](const std::size_t begin, const std::size_t end) {
+            std::vector<double> work(max_rows);
+            for (std::size_t t = begin; t < end; ++t)
+              {
+                std::vector<double> &buffer = top_buffers[t];
+                std::fill(buffer.begin(), buffer.end(), 0.);
+                for (const std::size_t s : subtree_supernodes[t])
+                  forward_supernode(s, y, buffer.data(), work.data());
+              }
+          },
+          1);
+        // The subtrees' updates of the rows further up, in subtree order.
+        for (std::size_t t = stage_begin[stage]; t < stage_begin[stage + 1];
+             ++t)
+          for (std::size_t k = 0; k < top_rows[t].size(); ++k)
+            y[top_rows[t][k]] -= top_buffers[t][k];
+      }
+    // The top part, which only updates its own rows.
+    std::vector<double> work(max_rows);
+    for (const std::size_t s : top_supernodes)
+      forward_supernode(s, y, nullptr, work.data());
+  }
+
+
+
+  void
+  SupernodalSolve::backward(double *x) const
+  {
+    std::vector<double> work(max_rows);
+    for (auto s = top_supernodes.rbegin(); s != top_supernodes.rend(); ++s)
+      backward_supernode(*s, true, x, work.data());
+    for (std::size_t stage = stage_begin.size() - 1; stage-- > 0;)
+      dealii::parallel::apply_to_subranges(
+        stage_begin[stage],
+        stage_begin[stage + 1],
+        [&](const std::size_t begin, const std::size_t end) {
+          std::vector<double> work(max_rows);
+          for (std::size_t t = begin; t < end; ++t)
+            for (auto s = subtree_supernodes[t].rbegin();
+                 s != subtree_supernodes[t].rend();
+                 ++s)
+              backward_supernode(*s, false, x, work.data());
+        },
+        1);
+  }
+} // namespace ViscoContact

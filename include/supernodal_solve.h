@@ -74,7 +74,7 @@ namespace ViscoContact
     void
     forward_supernode(const std::size_t s,
                       double           *y,
-                      double           *top_buffer,
+                      double           *buffer_above,
                       double           *work) const;
     void
     backward_supernode(const std::size_t s,
@@ -90,12 +90,13 @@ namespace ViscoContact
     std::vector<std::size_t> stage_begin;
     std::vector<std::size_t> top_supernodes;
     // Where the forward solve puts each off-diagonal entry's update: its row
-    // (>= 0), or -1 - k for entry k of the subtree's top buffer. Indexed
+    // (>= 0), or -1 - k for entry k of the subtree's buffer above. Indexed
     // like rows.
     std::vector<std::int64_t> target;
-    // The top rows each subtree updates, and the buffers for them.
-    std::vector<std::vector<std::int64_t>>   top_rows;
-    mutable std::vector<std::vector<double>> top_buffers;
+    // The rows further up (later stages, the top part) that each subtree
+    // updates, and the buffers for them.
+    std::vector<std::vector<std::int64_t>>   rows_above;
+    mutable std::vector<std::vector<double>> buffers_above;
     std::size_t                              max_rows = 0;
   };
 } // namespace ViscoContact

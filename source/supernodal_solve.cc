@@ -11,8 +11,10 @@
 #include <utility>
 
 // GCC on x86-64 compiles the solve's two kernels for two instruction sets
-// (see below); elsewhere they are compiled once.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+// (see below); elsewhere, and under AddressSanitizer (whose start-up may come
+// after the loader's choice of version), they are compiled once.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) \
+  && !defined(__SANITIZE_ADDRESS__)
 #  define VC_KERNEL_CLONES \
     __attribute__((target_clones("arch=x86-64-v3", "default")))
 #else
@@ -28,7 +30,7 @@ namespace ViscoContact
   // and moves the heaviest subtree's root into the top part until no
   // subtree holds more than a 1/32 of the factor's entries: enough pieces
   // to balance two or more threads, while in the usual trees the top part
-  // stays a few separators.
+  // stays a few separators. Then the top part is cut again (stages).
   void
   SupernodalSolve::initialize(const Factor &factor_in)
   {
@@ -143,34 +145,32 @@ namespace ViscoContact
     // (a later stage or the top part), the subtree's buffer.
     const std::size_t n_subtrees = subtree_supernodes.size();
     target.assign(factor.rows, factor.rows + factor.pi[ns]);
-    top_rows.assign(n_subtrees, {});
-    top_buffers.assign(n_subtrees, {});
+    rows_above.assign(n_subtrees, {});
+    buffers_above.assign(n_subtrees, {});
     for (std::size_t t = 0; t < n_subtrees; ++t)
       {
         const auto outside = [&](const std::int64_t row) {
           return subtree_of[supernode_of_column[row]] != std::int64_t(t);
         };
-        std::vector<std::int64_t> &rows_above = top_rows[t];
+        std::vector<std::int64_t> &rows = rows_above[t];
         for (const std::size_t s : subtree_supernodes[t])
           for (auto k = factor.pi[s] + std::int64_t(n_columns(s));
                k < factor.pi[s + 1];
                ++k)
             if (outside(factor.rows[k]))
-              rows_above.push_back(factor.rows[k]);
-        std::sort(rows_above.begin(), rows_above.end());
-        rows_above.erase(std::unique(rows_above.begin(), rows_above.end()),
-                         rows_above.end());
+              rows.push_back(factor.rows[k]);
+        std::sort(rows.begin(), rows.end());
+        rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
         for (const std::size_t s : subtree_supernodes[t])
           for (auto k = factor.pi[s] + std::int64_t(n_columns(s));
                k < factor.pi[s + 1];
                ++k)
             if (outside(factor.rows[k]))
-              target[k] = -1
-                          - (std::lower_bound(rows_above.begin(),
-                                              rows_above.end(),
-                                              factor.rows[k])
-                             - rows_above.begin());
-        top_buffers[t].resize(rows_above.size());
+              target[k]
+                = -1
+                  - (std::lower_bound(rows.begin(), rows.end(), factor.rows[k])
+                     - rows.begin());
+        buffers_above[t].resize(rows.size());
       }
   }
 
@@ -200,7 +200,7 @@ namespace ViscoContact
   // below in one pass (one pass over the block, as it is stored, and work
   // read once per four columns). Then work's off-diagonal rows, -L_off x,
   // go to their rows, or to the subtree's buffer (which collects L_off x)
-  // where the row belongs to the top part.
+  // where the row lies further up (a later stage or the top part).
   namespace
   {
     constexpr std::size_t group = 4;
@@ -293,7 +293,7 @@ namespace ViscoContact
   void
   SupernodalSolve::forward_supernode(const std::size_t s,
                                      double           *y,
-                                     double           *top_buffer,
+                                     double           *buffer_above,
                                      double           *work) const
   {
     const std::size_t first  = factor.super[s];
@@ -305,7 +305,7 @@ namespace ViscoContact
     // A large block of the top part: its triangle first, then the
     // off-diagonal rows in pieces on threads. Each row sees the same
     // operations in the same order either way.
-    const bool shared = top_buffer == nullptr
+    const bool shared = buffer_above == nullptr
                         && (n_rows - n_cols) * n_cols >= shared_block_entries;
     const std::size_t rows_now = shared ? n_cols : n_rows;
     for (std::size_t j0 = 0; j0 < n_cols; j0 += group)
@@ -346,7 +346,7 @@ namespace ViscoContact
       if (to[i] >= 0)
         y[to[i]] += work[i];
       else
-        top_buffer[-1 - to[i]] -= work[i];
+        buffer_above[-1 - to[i]] -= work[i];
   }
 
 
@@ -427,7 +427,7 @@ namespace ViscoContact
             std::vector<double> work(max_rows);
             for (std::size_t t = begin; t < end; ++t)
               {
-                std::vector<double> &buffer = top_buffers[t];
+                std::vector<double> &buffer = buffers_above[t];
                 std::fill(buffer.begin(), buffer.end(), 0.);
                 for (const std::size_t s : subtree_supernodes[t])
                   forward_supernode(s, y, buffer.data(), work.data());
@@ -437,8 +437,8 @@ namespace ViscoContact
         // The subtrees' updates of the rows further up, in subtree order.
         for (std::size_t t = stage_begin[stage]; t < stage_begin[stage + 1];
              ++t)
-          for (std::size_t k = 0; k < top_rows[t].size(); ++k)
-            y[top_rows[t][k]] -= top_buffers[t][k];
+          for (std::size_t k = 0; k < rows_above[t].size(); ++k)
+            y[rows_above[t][k]] -= buffers_above[t][k];
       }
     // The top part, which only updates its own rows.
     std::vector<double> work(max_rows);

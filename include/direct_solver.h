@@ -96,7 +96,8 @@ namespace ViscoContact
 
     // Single right-hand sides are solved with a CHOLMOD factor on threads,
     // subtree by subtree of its elimination tree (supernodal_solve.h): how
-    // many subtrees the last factorisation gave (0: not this way).
+    // many subtrees the last factorisation gave (0: none, e.g. where
+    // CHOLMOD's own solve is kept, or for other factorisations).
     std::size_t
     n_threaded_subtrees() const;
 

@@ -321,17 +321,19 @@ namespace ViscoContact
     // single right-hand sides (it stays empty where they would not pay).
     static_assert(sizeof(SuiteSparse_long) == sizeof(std::int64_t),
                   "CHOLMOD's long integers are 64 bits wide");
-    const cholmod_factor   &L = *cholmod_factor_;
-    SupernodalSolve::Factor factor;
-    factor.n       = L.n;
-    factor.n_super = L.nsuper;
-    factor.super   = static_cast<const std::int64_t *>(L.super);
-    factor.pi      = static_cast<const std::int64_t *>(L.pi);
-    factor.px      = static_cast<const std::int64_t *>(L.px);
-    factor.rows    = static_cast<const std::int64_t *>(L.s);
-    factor.values  = static_cast<const double *>(L.x);
+    const cholmod_factor &L = *cholmod_factor_;
     if (L.is_super && L.is_ll)
-      threaded_solve.initialize(factor);
+      {
+        SupernodalSolve::Factor factor;
+        factor.n       = L.n;
+        factor.n_super = L.nsuper;
+        factor.super   = static_cast<const std::int64_t *>(L.super);
+        factor.pi      = static_cast<const std::int64_t *>(L.pi);
+        factor.px      = static_cast<const std::int64_t *>(L.px);
+        factor.rows    = static_cast<const std::int64_t *>(L.s);
+        factor.values  = static_cast<const double *>(L.x);
+        threaded_solve.initialize(factor);
+      }
     if (last_block)
       {
         read_last_block(last_rows);

@@ -15,7 +15,9 @@
 #include "parameters.h"
 
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace ViscoContact
 {
@@ -129,6 +131,22 @@ namespace ViscoContact
                      const Vector<double>  &x,
                      Vector<double>        &y)
       = 0;
+
+    // What a checkpoint must keep of the back end for a resumed run to
+    // repeat the uninterrupted one: one value per contact node of this rank,
+    // or nothing (the same answer on every rank). The full space back end
+    // gives the normal stiffness its AMG of the step operator was built for
+    // (infinite at fixed nodes), since that AMG is rebuilt only when enough
+    // nodes have changed; restore_checkpoint_state() builds it again.
+    virtual std::optional<std::vector<double>>
+    checkpoint_state() const
+    {
+      return std::nullopt;
+    }
+    virtual void
+    restore_checkpoint_state(const ContactSet<dim> &,
+                             const std::vector<double> &)
+    {}
 
     // The counts so far, for the run summary.
     const Statistics &

@@ -207,6 +207,9 @@ namespace ViscoContact
     {
       unsigned int max_iterations;
       double       tolerance; // of every linear solve for fixed pieces
+      // Start each step from the state extrapolated from the last two steps
+      // (ViscoplasticContact::predict_step_start()).
+      bool predicted_start;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -33,6 +33,7 @@
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -160,6 +161,10 @@ namespace ViscoContact
     // its parts.
     ActiveSetResult
     solve_step_with_recovery(const unsigned int n, std::vector<double> &times);
+    // The start of step n extrapolated from steps n-1 and n-2 (Predicted
+    // start): u and the contact nodes' pieces, from previous_step_start.
+    void
+    predict_step_start(const unsigned int n, const std::vector<double> &times);
     // b_n = (f_n, v) - (H_n, eps(v)), from its two parts.
     void
     assemble_right_hand_side(const double time);
@@ -287,6 +292,10 @@ namespace ViscoContact
                      const double               wall_time);
     unsigned int
     resume_from_checkpoint(std::vector<double> &times);
+    // The bytes of a cell's record in a checkpoint file: the cell id, the
+    // values of the vectors at the cell's dofs, its stress-point records.
+    std::size_t
+    checkpoint_record_size() const;
 
     // @sect4{Stress-point helpers}
     //
@@ -365,6 +374,20 @@ namespace ViscoContact
     VectorType external_load;
     VectorType history_load;
     VectorType system_rhs;
+
+    // u and the contact forces z at the start of the last accepted step
+    // (u_{n-2} and z_{n-2} while step n is solved), which predict_step_start()
+    // extrapolates from; empty on a new mesh, whose first step starts from
+    // u_{n-1}. pieces_predictable: the contact nodes may take the pieces of the
+    // prediction (false where the uniqueness check found the step problem may
+    // have several solutions).
+    struct StepStart
+    {
+      VectorType          displacement;
+      std::vector<double> contact_forces;
+    };
+    std::optional<StepStart> previous_step_start;
+    bool                     pieces_predictable = true;
 
     // Material, loads, and the state at the stress points of the locally owned
     // cells. quadrature_point_history is a flat array: the record of stress

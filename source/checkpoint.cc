@@ -25,7 +25,7 @@ namespace ViscoContact
     // The version of the file layout, the first value of every header: a
     // resumed run refuses a checkpoint of another version rather than misread
     // it. Bumped whenever the layout of the files changes.
-    constexpr std::uint32_t checkpoint_version = 3;
+    constexpr std::uint32_t checkpoint_version = 4;
 
     // Every rank learns whether any rank saw an MPI error, and which, and all
     // throw the same message. MPI_SUCCESS is 0 and error codes are positive, so
@@ -435,6 +435,24 @@ namespace ViscoContact
 
 
 
+  // @sect4{ViscoplasticContact::checkpoint_record_size}
+  //
+  // The four vectors of write_checkpoint() at the cell's dofs (u, the contact
+  // state, u_{n-1}, the nodes' history), then the stress points;
+  // QuadraturePointHistory holds only doubles, so the payload after the key
+  // is a whole number of doubles.
+  template <int dim>
+  std::size_t
+  ViscoplasticContact<dim>::checkpoint_record_size() const
+  {
+    static_assert(sizeof(QuadraturePointHistory<dim>) % sizeof(double) == 0);
+    return sizeof(CellId::binary_type)
+           + 4 * fe->n_dofs_per_cell() * sizeof(double)
+           + stress_quadrature.size() * sizeof(QuadraturePointHistory<dim>);
+  }
+
+
+
   // @sect4{ViscoplasticContact::write_checkpoint}
   //
   // The mesh is not stored: it is rebuilt from the parameter file, which
@@ -445,9 +463,12 @@ namespace ViscoContact
   // the displacement values at the cell's dofs, the contact state at the
   // cell's dofs (the piece + 1 at the x-dof of a contact node, its force z
   // at the y-dof, zero elsewhere: the warm start of the next active set, so
-  // that its iterations are those of the uninterrupted run), and the state
-  // of every stress point (sigma_n, the history of the next step, the
-  // plastic multiplier).
+  // that its iterations are those of the uninterrupted run), the start of
+  // step n (u_{n-1}, and z_{n-1} at the x-dof of a contact node: what the
+  // predicted start of the next step extrapolates from; zero if there is
+  // none) with the back end's value per contact node at its y-dof
+  // (ContactSolver::checkpoint_state()), and the state of every stress point
+  // (sigma_n, the history of the next step, the plastic multiplier).
   //
   // Storing values per cell means that a dof shared by several cells is stored
   // several times. In exchange, everything a cell needs travels with the cell's
@@ -497,6 +518,12 @@ namespace ViscoContact
     // of the stress points was advanced for it.
     header.write(desired_time_step);
     header.write<std::uint32_t>(n_rejected_steps);
+    // Whether there is a start of the step to predict from, and whether the
+    // back end has a state of its own (both the same on every rank).
+    const std::optional<std::vector<double>> back_end_state
+      = contact_enabled ? contact_solver->checkpoint_state() : std::nullopt;
+    header.write<std::uint32_t>(previous_step_start.has_value());
+    header.write<std::uint32_t>(back_end_state.has_value());
 
     // The contact state as a displacement-sized vector: each owned contact node
     // writes into the owned entries of its own dofs. The ghost import then
@@ -513,18 +540,35 @@ namespace ViscoContact
             = contact_set.z[i];
         }
     contact_state.update_ghost_values();
+    // The start of step n in the same form: u_{n-1}, and per contact node
+    // z_{n-1} at its x-dof and the back end's value at its y-dof.
+    VectorType start_displacement(solution), node_history(solution);
+    start_displacement = 0;
+    node_history       = 0;
+    if (previous_step_start)
+      start_displacement = previous_step_start->displacement;
+    for (unsigned int i = 0; i < contact_set.size() && contact_enabled; ++i)
+      {
+        const auto &dofs = contact_set.node(i).local_dofs;
+        if (previous_step_start)
+          node_history.local_element(dofs[0])
+            = previous_step_start->contact_forces[i];
+        if (back_end_state)
+          node_history.local_element(dofs[1]) = (*back_end_state)[i];
+      }
+    start_displacement.update_ghost_values();
+    node_history.update_ghost_values();
 
-    // A record: the cell id in binary form, the dofs_per_cell values of u and
-    // of the contact state, in the cell's dof order, and the n_q stress-point
-    // records of the cell, copied as raw bytes (QuadraturePointHistory is plain
-    // data: two symmetric tensors and a double).
+    // A record: the cell id in binary form, the dofs_per_cell values of u, of
+    // the contact state, of u_{n-1} and of the nodes' history, in the cell's
+    // dof order, and the n_q stress-point records of the cell, copied as
+    // raw bytes (QuadraturePointHistory is plain data: two symmetric tensors
+    // and a double).
     using Key                        = CellId::binary_type;
     const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
     const unsigned int n_q           = stress_quadrature.size();
-    const std::size_t  record_size   = sizeof(Key)
-                                    + 2 * dofs_per_cell * sizeof(double)
-                                    + n_q * sizeof(QuadraturePointHistory<dim>);
-    std::vector<char> records(owned_cells.size() * record_size);
+    const std::size_t  record_size   = checkpoint_record_size();
+    std::vector<char>  records(owned_cells.size() * record_size);
     std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
     char                                *out = records.data();
     // The cells in the order of owned_cells; (*vector)(dof) reads owned and
@@ -536,7 +580,8 @@ namespace ViscoContact
         std::memcpy(out, &key, sizeof(Key));
         out += sizeof(Key);
         owned_cells[k]->get_dof_indices(dof_indices);
-        for (const VectorType *vector : {&solution, &contact_state})
+        for (const VectorType *vector :
+             {&solution, &contact_state, &start_displacement, &node_history})
           for (const types::global_dof_index dof : dof_indices)
             {
               const double value = (*vector)(dof);
@@ -606,16 +651,14 @@ namespace ViscoContact
       = checkpoint_file(parameters.directory, checkpoint.step);
 
     // The record size follows from dim, the element and the stress quadrature,
-    // exactly as write_checkpoint() computed it; QuadraturePointHistory holds
-    // only doubles, so a record's payload after the key is n_doubles doubles.
+    // as for write_checkpoint(); a record's payload after the key is n_doubles
+    // doubles.
     using Key                        = CellId::binary_type;
     const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
     const unsigned int n_q           = stress_quadrature.size();
-    const unsigned int n_doubles
-      = 2 * dofs_per_cell
-        + n_q * sizeof(QuadraturePointHistory<dim>) / sizeof(double);
-    const std::size_t record_size = sizeof(Key) + n_doubles * sizeof(double);
-    std::vector<char> header_bytes, share;
+    const std::size_t  record_size   = checkpoint_record_size();
+    const unsigned int n_doubles = (record_size - sizeof(Key)) / sizeof(double);
+    std::vector<char>  header_bytes, share;
     read_record_file(file, header_bytes, share, record_size, mpi_communicator);
 
     // The header is checked field by field against this run: version, dimension
@@ -641,8 +684,10 @@ namespace ViscoContact
         const double time = header.read<double>();
         times_and_names.emplace_back(time, header.read_string());
       }
-    desired_time_step = header.read<double>();
-    n_rejected_steps  = header.read<std::uint32_t>();
+    desired_time_step             = header.read<double>();
+    n_rejected_steps              = header.read<std::uint32_t>();
+    const bool has_step_start     = header.read<std::uint32_t>() == 1;
+    const bool has_back_end_state = header.read<std::uint32_t>() == 1;
 
     // End time is the one entry of the scene a resumed run may change (to go
     // further, or to stop earlier). The levels up to the checkpoint stay those
@@ -721,9 +766,12 @@ namespace ViscoContact
     // owned dof lies on at least one owned cell). A cell whose record is
     // missing, duplicated or of the wrong size marks the checkpoint as
     // incomplete.
-    VectorType contact_state(solution);
-    contact_state = 0;
-    solution      = 0;
+    VectorType contact_state(solution), start_displacement(solution),
+      node_history(solution);
+    contact_state      = 0;
+    start_displacement = 0;
+    node_history       = 0;
+    solution           = 0;
     std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
     bool                                 complete = true;
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
@@ -742,11 +790,14 @@ namespace ViscoContact
             {
               solution(dof_indices[i])      = values[i];
               contact_state(dof_indices[i]) = values[dofs_per_cell + i];
+              start_displacement(dof_indices[i])
+                = values[2 * dofs_per_cell + i];
+              node_history(dof_indices[i]) = values[3 * dofs_per_cell + i];
             }
         // The stress-point records go back to their place k * n_q + q, byte for
         // byte.
         std::memcpy(&quadrature_point_history[std::size_t(k) * n_q],
-                    values.data() + 2 * dofs_per_cell,
+                    values.data() + 4 * dofs_per_cell,
                     n_q * sizeof(QuadraturePointHistory<dim>));
       }
     // The decision is reduced over the ranks, so that all throw if any cell was
@@ -782,6 +833,24 @@ namespace ViscoContact
           }
         header.check(Utilities::MPI::min(pieces_valid ? 1 : 0, mpi_communicator)
                      == 1);
+      }
+    // The start of the checkpoint's step, for the prediction of the next one,
+    // unless the interrupted run had none (its step was the first on its
+    // mesh); and the back end's state, from which it rebuilds what it had.
+    std::vector<double> back_end_state;
+    for (unsigned int i = 0; i < contact_set.size() && contact_enabled; ++i)
+      back_end_state.push_back(
+        node_history.local_element(contact_set.node(i).local_dofs[1]));
+    if (has_back_end_state && contact_enabled)
+      contact_solver->restore_checkpoint_state(contact_set, back_end_state);
+    if (has_step_start)
+      {
+        previous_step_start.emplace();
+        previous_step_start->displacement = start_displacement;
+        previous_step_start->displacement.update_ghost_values();
+        for (unsigned int i = 0; i < contact_set.size() && contact_enabled; ++i)
+          previous_step_start->contact_forces.push_back(
+            node_history.local_element(contact_set.node(i).local_dofs[0]));
       }
 
     // The explicit update's history load is not stored: it is assembled from

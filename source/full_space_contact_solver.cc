@@ -98,6 +98,11 @@ namespace ViscoContact
                         const ContactSet<dim> &contact) override;
     void
     finish(const ContactSet<dim> &contact, VectorType &u) override;
+    std::optional<std::vector<double>>
+    checkpoint_state() const override;
+    void
+    restore_checkpoint_state(const ContactSet<dim>     &contact,
+                             const std::vector<double> &state) override;
 
   private:
     using Apply = std::function<void(VectorType &, const VectorType &)>;
@@ -417,6 +422,38 @@ namespace ViscoContact
     contact_amg_stiffness = stiffness;
     contact_amg_built     = true;
     ++this->counts.operator_setups;
+  }
+
+
+
+  // @sect4{FullSpaceContactSolver::checkpoint_state}
+  //
+  // Which AMG the next solve would use depends on the pieces it was built
+  // for, not only on the current ones; a resumed run that built it for its
+  // first pieces would precondition differently and end within Tolerance of
+  // the uninterrupted run, not equal to it. So the stiffness it was built for
+  // goes into the checkpoint, and the resumed run builds the same AMG.
+  template <int dim>
+  std::optional<std::vector<double>>
+  FullSpaceContactSolver<dim>::checkpoint_state() const
+  {
+    if (!contact_amg_built)
+      return std::nullopt;
+    return contact_amg_stiffness;
+  }
+
+
+
+  template <int dim>
+  void
+  FullSpaceContactSolver<dim>::restore_checkpoint_state(
+    const ContactSet<dim>     &contact,
+    const std::vector<double> &state)
+  {
+    if (factorization)
+      return;
+    contact_amg_built = false;
+    update_contact_amg(contact, state);
   }
 
 

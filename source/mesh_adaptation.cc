@@ -613,10 +613,8 @@ namespace ViscoContact
       = read_checkpoint_record(parameters.directory,
                                0,
                                parameters.result_entries);
-    using Key = CellId::binary_type;
-    const std::size_t size
-      = sizeof(Key) + 2 * fe->n_dofs_per_cell() * sizeof(double)
-        + stress_quadrature.size() * sizeof(QuadraturePointHistory<dim>);
+    using Key              = CellId::binary_type;
+    const std::size_t size = checkpoint_record_size();
     std::vector<char> header, share;
     read_record_file(checkpoint_file(parameters.directory, checkpoint.step),
                      header,

@@ -674,6 +674,20 @@ namespace ViscoContact
           "normal displacements (condensed back end). The iteration stops "
           "when no contact node changes its piece and the last solve met "
           "this tolerance; in (0, 1e-2].");
+        prm.declare_entry(
+          "Predicted start",
+          "true",
+          Patterns::Bool(),
+          "Start each time step from the state extrapolated from the last two "
+          "steps: the displacement u_{n-1} + (k_n/k_{n-1}) (u_{n-1} - u_{n-2}) "
+          "as the first guess of the Krylov solves (full space back end) and "
+          "of Newton's iteration (implicit update), and every contact node on "
+          "the piece of its extrapolated (r, z). The result is the same as "
+          "from u_{n-1} and the previous pieces; only the iterations are "
+          "fewer. Where the uniqueness check found that the step problem may "
+          "have several solutions, the nodes keep the previous step's pieces "
+          "(the branch the run is on). false: every step starts from u_{n-1} "
+          "and the previous step's pieces.");
       }
       prm.leave_subsection();
     }
@@ -683,8 +697,9 @@ namespace ViscoContact
     {
       prm.enter_subsection("Active set solver");
       {
-        max_iterations = prm.get_integer("Maximum iterations");
-        tolerance      = prm.get_double("Tolerance");
+        max_iterations  = prm.get_integer("Maximum iterations");
+        tolerance       = prm.get_double("Tolerance");
+        predicted_start = prm.get_bool("Predicted start");
         require(tolerance > 0 && tolerance <= 1e-2,
                 "Active set solver",
                 "Tolerance",

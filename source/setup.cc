@@ -63,10 +63,13 @@ namespace ViscoContact
   // initial one (u = 0, zero stresses and history, every contact node at
   // r = z = 0): run() starts from it, and after a change of the mesh the
   // caller carries the state over (adapt_mesh(), resume_from_checkpoint()).
+  // The start of the previous step is not carried over, so the first step on
+  // a new mesh starts from u_{n-1} (predict_step_start()).
   template <int dim>
   void
   ViscoplasticContact<dim>::setup_on_mesh()
   {
+    previous_step_start.reset();
     setup_system();
     setup_stress_points();
     setup_contact();
@@ -497,6 +500,9 @@ namespace ViscoContact
               << eigenvalue
               << ", steepest softening of the contact law = " << softening
               << '\n';
+        // Several solutions possible: a predicted start must not move the
+        // run to another branch (predict_step_start()).
+        pieces_predictable = eigenvalue > softening;
         if (eigenvalue <= softening)
           pcout << "WARNING: the contact law softens more than the body can "
                    "carry (doc/model.md, section 4): the step problem may "

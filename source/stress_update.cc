@@ -69,7 +69,10 @@ namespace ViscoContact
     // dG = G(sigma_n) - G(sigma_{n-1}), of (E^-1 sigma_n, sigma_n) JxW and of
     // JxW.
     const bool estimate = parameters.plasticity && current_time_step > 0;
-    const SymmetricTensor<4, dim> compliance = invert(E);
+    // E^-1, inverted at unit scale: the inverse of E itself would overflow in
+    // its intermediate products for a Young's modulus near the largest double.
+    const double modulus = material.largest_elastic_eigenvalue();
+    const SymmetricTensor<4, dim> compliance = invert(E / modulus) / modulus;
 
     // The work at the stress points is independent from point to point, so
     // the threads of this rank (as many as deal.II's MultithreadInfo allows:

@@ -53,6 +53,7 @@ namespace ViscoContact
         // The right-hand side depends on t_n, which a cut has changed.
         const double k = times[n] - times[n - 1];
         assemble_right_hand_side(times[n]);
+        predict_step_start(n, times);
         const ActiveSetResult result
           = (implicit_update() ? solve_implicit_step(k)
                                : solve_explicit_step());
@@ -93,6 +94,51 @@ namespace ViscoContact
                                               states,
                                               state_file)));
       }
+  }
+
+
+
+  // @sect4{ViscoplasticContact::predict_step_start}
+  //
+  // With Predicted start, step n starts from the linear extrapolation of the
+  // last two steps instead of from u_{n-1}: u = u_{n-1} + (k_n / k_{n-1})
+  // (u_{n-1} - u_{n-2}) is the first guess of the full space back end's
+  // Krylov solves and of the implicit update's Newton iteration, and every
+  // contact node goes to the piece that the extrapolated r = u.nu_i and
+  // z_{n-1} + (k_n / k_{n-1}) (z_{n-1} - z_{n-2}) name. While the front of the
+  // rigid zone moves, the nodes it reaches in this step are then on the rigid
+  // piece from the first active-set iteration on, instead of being found one
+  // batch per iteration.
+  //
+  // The start changes the iterations, not the result, as long as the step
+  // problem has one solution (doc/model.md, section 4). Where the uniqueness
+  // check found that it may have several, the nodes keep the previous step's
+  // pieces, which keeps the run on the branch it is on; the displacement is
+  // still extrapolated, which only changes where the Krylov solves start.
+  // Called at every attempt of the step, on the state at its start (restored
+  // after a failed attempt), with the attempt's k_n.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::predict_step_start(const unsigned int         n,
+                                               const std::vector<double> &times)
+  {
+    if (!parameters.predicted_start || !previous_step_start || n < 2)
+      return;
+    const double ratio
+      = (times[n] - times[n - 1]) / (times[n - 1] - times[n - 2]);
+    solution.zero_out_ghost_values();
+    solution.sadd(1 + ratio, -ratio, previous_step_start->displacement);
+    solution.update_ghost_values();
+    if (!contact_enabled || !pieces_predictable)
+      return;
+    const std::vector<double> &earlier_forces
+      = previous_step_start->contact_forces;
+    for (unsigned int i = 0; i < contact_set.size(); ++i)
+      {
+        contact_set.r[i] = contact_set.normal_component(solution, i);
+        contact_set.z[i] += ratio * (contact_set.z[i] - earlier_forces[i]);
+      }
+    contact_set.update_pieces();
   }
 
 

@@ -27,12 +27,7 @@ if [ "$n_adaptations" -lt 1 ] || grep -q '^Mesh adapted at' fixed/output.txt; th
   echo "The adapted run did not change its mesh (or the fixed one did)."
   exit 1
 fi
-for file in series.txt final.txt; do
-  if ! numdiff -q -a $absolute -r $relative -s ' \t\n=,:;' \
-       adapted/$file fixed/$file > /dev/null; then
-    echo "$file differs between the adapted and the fixed mesh beyond -a $absolute -r $relative:"
-    numdiff -a $absolute -r $relative -s ' \t\n=,:;' adapted/$file fixed/$file | head -30
-    exit 1
-  fi
-done
+"$here/compare_scene_variants.sh" adapted fixed \
+  "between the adapted and the fixed mesh" $absolute $relative \
+  series.txt final.txt || exit 1
 echo "$n_adaptations adaptations ($(grep '^Mesh adapted at' adapted/output.txt | tail -1 | sed 's/.*: //')) leave the results unchanged: $(($(wc -l < adapted/series.txt) - 1)) steps of time_series.csv and $(cat adapted/final.txt | tr '\n' ' ')(numdiff -a $absolute -r $relative)."

@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 namespace ViscoContact
 {
@@ -244,17 +245,22 @@ namespace ViscoContact
       }
 
     // An unstable explicit update ends in stresses that overflow: stop
-    // rather than go on with (and write) infinite or NaN fields.
-    AssertThrow(std::isfinite(max_von_mises),
-                ExcMessage(
-                  "The stresses are no longer finite (NaN or Inf). With the "
-                  "explicit history update this means the time step is too "
-                  "large: it is stable for k < 4 lambda / lambda_max(E) = "
-                  + std::to_string(4 * material.viscosity()
-                                   / material.largest_elastic_eigenvalue())
-                  + " s (doc/model.md, section 3); <Time step> in subsection "
-                    "<Time> is "
-                  + std::to_string(parameters.time_step) + " s."));
+    // rather than go on with (and write) infinite or NaN fields. The limit
+    // and the step are printed with 6 significant digits (a fixed format
+    // would print a tiny limit as 0).
+    if (!std::isfinite(max_von_mises))
+      {
+        std::ostringstream message;
+        message << "The stresses are no longer finite (NaN or Inf). With the "
+                   "explicit history update this means the time step is too "
+                   "large: it is stable for k < 4 lambda / lambda_max(E) = "
+                << 4 * material.viscosity()
+                     / material.largest_elastic_eigenvalue()
+                << " s (doc/model.md, section 3); <Time step> in subsection "
+                   "<Time> is "
+                << parameters.time_step << " s.";
+        AssertThrow(false, ExcMessage(message.str()));
+      }
   }
 
 

@@ -519,9 +519,13 @@ namespace ViscoContact
     header.write(desired_time_step);
     header.write<std::uint32_t>(n_rejected_steps);
     // Whether there is a start of the step to predict from, and whether the
-    // back end has a state of its own (both the same on every rank).
+    // back end has a state of its own (both the same on every rank). The
+    // implicit update sets up a new operator in every Newton iteration, so
+    // nothing the back end built lives on into the next step.
     const std::optional<std::vector<double>> back_end_state
-      = contact_enabled ? contact_solver->checkpoint_state() : std::nullopt;
+      = contact_enabled && !implicit_update()
+          ? contact_solver->checkpoint_state()
+          : std::nullopt;
     header.write<std::uint32_t>(previous_step_start.has_value());
     header.write<std::uint32_t>(back_end_state.has_value());
 

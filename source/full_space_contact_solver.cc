@@ -450,6 +450,7 @@ namespace ViscoContact
     const ContactSet<dim>     &contact,
     const std::vector<double> &state)
   {
+    // A run resumed with Preconditioner = direct uses no AMG.
     if (factorization)
       return;
     contact_amg_built = false;

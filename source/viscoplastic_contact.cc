@@ -348,14 +348,18 @@ namespace ViscoContact
         if (n == 1 && parameters.initial_cycles > 0)
           solve_initial_cycles(times);
         // u_{n-1} and z_{n-1}: once step n is accepted, the start the next
-        // step's prediction extrapolates from (predict_step_start()). Not the
-        // initial state u_0 = 0: a load already present at t = 0 makes the
-        // first step a jump, not a piece of a smooth path to extrapolate.
-        StepStart             step_start{solution, contact_set.z};
+        // step's prediction extrapolates from (predict_step_start()), copied
+        // only if there is a prediction. Not the initial state u_0 = 0: a
+        // load already present at t = 0 makes the first step a jump, not a
+        // piece of a smooth path to extrapolate.
+        const bool keep_step_start = parameters.predicted_start && n > 1;
+        StepStart  step_start;
+        if (keep_step_start)
+          step_start = {solution, contact_set.z};
         const ActiveSetResult result = adaptive
                                          ? solve_adaptive_step(n, times)
                                          : solve_step_with_recovery(n, times);
-        if (n > 1)
+        if (keep_step_start)
           previous_step_start = std::move(step_start);
         if (!adaptive)
           update_stresses(times[n] - times[n - 1],

@@ -25,10 +25,14 @@
 #include "contact_solver.h"
 #include "direct_solver.h"
 
+#include <Epetra_CrsMatrix.h>
+#include <Epetra_Import.h>
 #include <Epetra_Map.h>
 #include <Epetra_MultiVector.h>
+#include <Epetra_Vector.h>
 #include <Teuchos_ParameterList.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -49,8 +53,9 @@ namespace ViscoContact
   // fixed nodes (a constraint among the components of a node, for any
   // normal). The operator is applied around A, which never changes within a
   // step problem; the preconditioner P M^{-1} P + (I - P) uses an AMG cycle
-  // of the step operator (with a penalty for the fixed nodes, rebuilt when
-  // enough nodes have changed, update_contact_amg()) or the factorisation
+  // of the step operator (its matrix with the fixed nodes' normal
+  // directions removed, rebuilt when enough nodes have changed,
+  // update_contact_amg()) or the factorisation
   // M^{-1} of A built by set_operator(). Both are
   // symmetric when A is, and positive definite as long as the uniqueness
   // condition (doc/model.md, section 4) holds: CG then; GMRES for the
@@ -107,8 +112,13 @@ namespace ViscoContact
   private:
     using Apply = std::function<void(VectorType &, const VectorType &)>;
 
+    // The six (three in 2D) rigid-body modes at the locally owned rows.
     void
-    build_amg(const MatrixType &matrix, TrilinosWrappers::PreconditionAMG &amg);
+    compute_rigid_body_modes(const Epetra_Map &row_map);
+    void
+    build_amg(const Epetra_CrsMatrix            &matrix,
+              const Epetra_MultiVector          &null_space,
+              TrilinosWrappers::PreconditionAMG &amg);
     // The AMG of the step operator of the current pieces, rebuilt when
     // enough nodes have changed their stiffness since it was last built.
     void
@@ -148,16 +158,17 @@ namespace ViscoContact
 
     // The two AMG preconditioners, each built when first needed after
     // set_operator(): one of A alone, for the solves without contact, and
-    // one of the step operator A + sum_i k_i nu_i nu_i^T of the pieces
-    // the nodes were on when it was built (k_i the normal stiffness of a
-    // sloped piece, or a penalty for a fixed node), held in contact_matrix.
-    // contact_amg_stiffness keeps those k_i of this rank's nodes, to tell
-    // how many nodes have changed since.
-    TrilinosWrappers::PreconditionAMG operator_amg, contact_amg;
-    bool                              operator_amg_built = false;
-    bool                              contact_amg_built  = false;
-    MatrixType                        contact_matrix;
-    std::vector<double>               contact_amg_stiffness;
+    // one of the step operator of the pieces the nodes were on when it was
+    // built (update_contact_amg()), held in contact_matrix with its near-null
+    // space contact_modes. contact_amg_stiffness keeps the normal stiffness
+    // of this rank's nodes it was built for (infinite at fixed nodes), to
+    // tell how many nodes have changed since.
+    TrilinosWrappers::PreconditionAMG   operator_amg, contact_amg;
+    bool                                operator_amg_built = false;
+    bool                                contact_amg_built  = false;
+    std::unique_ptr<Epetra_CrsMatrix>   contact_matrix;
+    std::unique_ptr<Epetra_MultiVector> contact_modes;
+    std::vector<double>                 contact_amg_stiffness;
 
     // Work vectors of the projected operator and preconditioner, which the
     // Krylov method applies once per iteration each: allocated once here
@@ -209,121 +220,115 @@ namespace ViscoContact
 
 
 
-  // @sect4{FullSpaceContactSolver::build_amg}
+  // @sect4{FullSpaceContactSolver::compute_rigid_body_modes}
   //
   // Elasticity needs the near-null space of the operator without Dirichlet
   // conditions, the dim translations and the dim(dim-1)/2 infinitesimal
   // rotations, given to ML per locally owned dof (deal.II 9.4's
   // AdditionalData only takes translations, so the parameter list is
-  // completed by hand). An unsymmetric tangent gets ML's settings for
-  // nonsymmetric problems.
-  //
-  // Smoothed aggregation builds its coarse spaces from these modes; with the
-  // translations alone they could not represent the rotations of parts of
-  // the body, the low-energy modes of elasticity.
+  // completed by hand in build_amg()). Smoothed aggregation builds its
+  // coarse spaces from these modes; with the translations alone they could
+  // not represent the rotations of parts of the body, the low-energy modes
+  // of elasticity. The modes depend on the mesh and the dofs only, not on
+  // the operator, so they are computed once and reused for every operator.
   template <int dim>
   void
-  FullSpaceContactSolver<dim>::build_amg(const MatrixType &matrix,
+  FullSpaceContactSolver<dim>::compute_rigid_body_modes(
+    const Epetra_Map &row_map)
+  {
+    // The location of every dof, and which vector component each locally
+    // owned dof belongs to.
+    std::map<types::global_dof_index, Point<dim>> support_points;
+    DoFTools::map_dofs_to_support_points(mapping, dof_handler, support_points);
+    std::vector<IndexSet> component_dofs(dim);
+    for (unsigned int c = 0; c < dim; ++c)
+      component_dofs[c]
+        = DoFTools::extract_dofs(dof_handler,
+                                 dof_handler.get_fe().component_mask(
+                                   FEValuesExtractors::Scalar(c)));
+    // Three modes in 2D (two translations, one rotation), six in 3D, laid
+    // out like the rows of the matrix, so that ML can read them next to it.
+    const unsigned int n_modes = (dim == 2 ? 3 : 6);
+    rigid_body_modes = std::make_unique<Epetra_MultiVector>(row_map, n_modes);
+    // Per locally owned row: find its component c, then write component c
+    // of each mode at the row's support point x.
+    for (int local = 0; local < row_map.NumMyElements(); ++local)
+      {
+        const types::global_dof_index dof = row_map.GID64(local);
+        unsigned int                  c   = 0;
+        while (c < dim && !component_dofs[c].is_element(dof))
+          ++c;
+        Assert(c < dim, ExcInternalError());
+        const Point<dim> &x           = support_points.at(dof);
+        (*rigid_body_modes)[c][local] = 1.; // translation along e_c
+        // Rows in blocks of dim, one block per vertex, in component order:
+        // what "PDE equations" = dim assumes in build_amg().
+        if (c != static_cast<unsigned int>(local) % dim)
+          node_blocks = false;
+        // In 2D the rotation is the field (-x_2, x_1) = cross(e_3, x).
+        if (dim == 2)
+          (*rigid_body_modes)[2][local] = (c == 0 ? -x[1] : x[0]);
+        else
+          {
+            // In 3D, mode 3 + d is the rotation about e_d, the field
+            // cross(x, e_d) (the sign of a null-space vector does not matter
+            // to ML); component c of it is x_{c+1} for d = c + 2, -x_{c+2}
+            // for d = c + 1 and 0 for d = c, indices mod 3.
+            const unsigned int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+            for (unsigned int d = 0; d < 3; ++d)
+              (*rigid_body_modes)[3 + d][local]
+                = (d == c2 ? x[c1] : (d == c1 ? -x[c2] : 0.));
+          }
+      }
+    // Every rank must give ML the same number of PDE equations.
+    node_blocks = (Utilities::MPI::min(node_blocks ? 1 : 0, communicator) == 1);
+  }
+
+
+
+  // @sect4{FullSpaceContactSolver::build_amg}
+  //
+  // The AMG settings: ML's defaults for elliptic (symmetric) or for
+  // nonsymmetric problems, linear elements, Chebyshev smoothing of degree 2,
+  // Amesos-KLU on the coarsest level, and two more settings that make the
+  // iteration counts (nearly) independent of the mesh, measured by
+  // benchmarks/run_preconditioner_comparison.py (doc/performance.md,
+  // "Preconditioners"):
+  //  - aggregation threshold 0 (it was 0.02): every matrix entry counts as a
+  //    connection when ML forms its aggregates. With 0.02 CG took 18, 32, 45
+  //    iterations for the cube's elastic solve on hexahedra at 15k, 108k,
+  //    824k dofs (23, 34, 53 on tetrahedra); with these two settings 16, 20,
+  //    21 (24, 33, 36);
+  //  - "PDE equations" = dim: ML aggregates nodes, the dim dofs of a vertex
+  //    together, as the rigid-body modes need (deal.II 9.4's AdditionalData
+  //    leaves ML's default, 1: every dof its own node). A vertex's dofs are
+  //    consecutive in deal.II's numbering of the vector-valued Q1/P1
+  //    element; node_blocks, computed with the modes, checks it, and if it
+  //    did not hold ML would aggregate dofs.
+  // Chebyshev degree 3 or 4 and symmetric Gauss-Seidel took fewer iterations
+  // but not less time, a smoother as coarse solver more iterations. An
+  // unsymmetric tangent gets ML's settings for nonsymmetric problems.
+  template <int dim>
+  void
+  FullSpaceContactSolver<dim>::build_amg(const Epetra_CrsMatrix   &matrix,
+                                         const Epetra_MultiVector &null_space,
                                          TrilinosWrappers::PreconditionAMG &amg)
   {
-    // The modes depend on the mesh and the dofs only, not on the operator,
-    // so they are computed for the first operator and reused for every
-    // tangent.
-    if (!rigid_body_modes)
-      {
-        // The location of every dof, and which vector component each locally
-        // owned dof belongs to.
-        std::map<types::global_dof_index, Point<dim>> support_points;
-        DoFTools::map_dofs_to_support_points(mapping,
-                                             dof_handler,
-                                             support_points);
-        std::vector<IndexSet> component_dofs(dim);
-        for (unsigned int c = 0; c < dim; ++c)
-          component_dofs[c]
-            = DoFTools::extract_dofs(dof_handler,
-                                     dof_handler.get_fe().component_mask(
-                                       FEValuesExtractors::Scalar(c)));
-        // Three modes in 2D (two translations, one rotation), six in 3D,
-        // laid out like the rows of the matrix, so that ML can read them
-        // next to it.
-        const unsigned int n_modes = (dim == 2 ? 3 : 6);
-        const Epetra_Map  &row_map = matrix.trilinos_matrix().RowMap();
-        rigid_body_modes
-          = std::make_unique<Epetra_MultiVector>(row_map, n_modes);
-        // Per locally owned row: find its component c, then write component
-        // c of each mode at the row's support point x.
-        for (int local = 0; local < row_map.NumMyElements(); ++local)
-          {
-            const types::global_dof_index dof = row_map.GID64(local);
-            unsigned int                  c   = 0;
-            while (c < dim && !component_dofs[c].is_element(dof))
-              ++c;
-            Assert(c < dim, ExcInternalError());
-            const Point<dim> &x           = support_points.at(dof);
-            (*rigid_body_modes)[c][local] = 1.; // translation along e_c
-            // Rows in blocks of dim, one block per vertex, in component
-            // order: what "PDE equations" = dim assumes below.
-            if (c != static_cast<unsigned int>(local) % dim)
-              node_blocks = false;
-            // In 2D the rotation is the field (-x_2, x_1) = cross(e_3, x).
-            if (dim == 2)
-              (*rigid_body_modes)[2][local] = (c == 0 ? -x[1] : x[0]);
-            else
-              {
-                // In 3D, mode 3 + d is the rotation about e_d, the field
-                // cross(x, e_d) (the sign of a null-space vector does not
-                // matter to ML); component c of it is x_{c+1} for d = c + 2,
-                // -x_{c+2} for d = c + 1 and 0 for d = c, indices mod 3.
-                const unsigned int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
-                for (unsigned int d = 0; d < 3; ++d)
-                  (*rigid_body_modes)[3 + d][local]
-                    = (d == c2 ? x[c1] : (d == c1 ? -x[c2] : 0.));
-              }
-          }
-        // Every rank must give ML the same number of PDE equations.
-        node_blocks
-          = (Utilities::MPI::min(node_blocks ? 1 : 0, communicator) == 1);
-      }
-
-    // The AMG settings: ML's defaults for elliptic (symmetric) or for
-    // nonsymmetric problems, linear elements, Chebyshev smoothing of degree
-    // 2, Amesos-KLU on the coarsest level. On quadrilaterals and hexahedra
-    // two more settings make the iteration counts (nearly) independent of
-    // the mesh, measured by benchmarks/run_preconditioner_comparison.py
-    // (doc/performance.md, "Preconditioners"):
-    //  - aggregation threshold 0 (it was 0.02): every matrix entry counts as
-    //    a connection when ML forms its aggregates. With 0.02 CG took 18,
-    //    32, 45 iterations for the cube's elastic solve on hexahedra at 15k,
-    //    108k, 824k dofs; with these two settings 16, 20, 21;
-    //  - "PDE equations" = dim: ML aggregates nodes, the dim dofs of a
-    //    vertex together, as the rigid-body modes need (deal.II 9.4's
-    //    AdditionalData leaves ML's default, 1: every dof its own node). A
-    //    vertex's dofs are consecutive in deal.II's numbering of the
-    //    vector-valued Q1/P1 element; node_blocks, computed with the modes,
-    //    checks it, and if it did not hold ML would aggregate dofs.
-    // On triangles and tetrahedra the same settings cut the elastic solve's
-    // iterations at 824k dofs (53 to 36) but cost more CG iterations in the
-    // active-set solves of the cube up to 108k dofs (184 instead of 157 per
-    // step at 108k, with the AMG of the step operator), so simplices keep
-    // the previous settings. Chebyshev degree 3 or 4 and symmetric
-    // Gauss-Seidel took fewer iterations but not less time, a smoother as
-    // coarse solver more iterations.
-    const bool simplex = dof_handler.get_fe().reference_cell().is_simplex();
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
     data.elliptic              = symmetric;
     data.higher_order_elements = false;
     data.smoother_sweeps       = 2;
-    data.aggregation_threshold = (simplex ? 0.02 : 0.);
+    data.aggregation_threshold = 0.;
     // Let deal.II translate these settings into ML's parameter list (its
     // constant-mode output is not needed), then replace the null space by
-    // the rigid-body modes and build the hierarchy.
+    // the given modes and build the hierarchy.
     Teuchos::ParameterList              ml_parameters;
     std::unique_ptr<Epetra_MultiVector> unused_constant_modes;
     data.set_parameters(ml_parameters, unused_constant_modes, matrix);
-    ml_parameters.set("PDE equations", (node_blocks && !simplex) ? dim : 1);
+    ml_parameters.set("PDE equations", node_blocks ? dim : 1);
     ml_parameters.set("null space: type", "pre-computed");
-    ml_parameters.set("null space: dimension", rigid_body_modes->NumVectors());
-    ml_parameters.set("null space: vectors", rigid_body_modes->Values());
+    ml_parameters.set("null space: dimension", null_space.NumVectors());
+    ml_parameters.set("null space: vectors", null_space.Values());
     amg.initialize(matrix, ml_parameters);
   }
 
@@ -348,6 +353,8 @@ namespace ViscoContact
     symmetric          = is_symmetric;
     operator_amg_built = false;
     contact_amg_built  = false;
+    if (!factorization && !rigid_body_modes)
+      compute_rigid_body_modes(matrix.trilinos_matrix().RowMap());
     if (factorization)
       {
         factorization->factorize(matrix, is_symmetric);
@@ -364,12 +371,19 @@ namespace ViscoContact
   // normal displacement is fixed. A preconditioner of A alone treats those
   // as free: with a few hundred fixed nodes, CG needs about twice as many
   // iterations per digit as for A (measured in doc/performance.md). So the
-  // AMG is built for A + sum_i k_i nu_i nu_i^T instead: k_i = w_i s_i on a
-  // sloped piece, and a penalty of 1000 nu^T A_ii nu on a fixed node, which
-  // makes its normal direction as stiff as a Dirichlet condition for the
-  // AMG's purposes (the Krylov method still projects it exactly). Each term
-  // only touches the node's own dim x dim block, which is in the sparsity
-  // pattern, so the matrix is a copy of A with a few entries added.
+  // AMG is built for the matrix of the projected operator itself,
+  //   P (A + sum_i w_i s_i nu_i nu_i^T) P + sum_{i fixed} d_i nu_i nu_i^T,
+  // d_i = nu_i^T A_ii nu_i: at a fixed node the normal direction is removed
+  // from its rows and columns, as a Dirichlet condition would be, and comes
+  // back only on the node's own diagonal block, with the node's stiffness as
+  // scale. Its near-null space is P applied to the rigid-body modes, which
+  // the constrained operator no longer has in its null space. (Earlier, a
+  // penalty 1000 nu^T A_ii nu at the fixed nodes with the unprojected modes
+  // took 30% more CG iterations on tetrahedra: the coarse spaces carried the
+  // fixed normal components, and the AMG settings had to differ on
+  // simplices; doc/performance.md.) Every change touches only entries in
+  // the pattern of A: the node's dim x dim blocks, and the columns of its
+  // dofs.
   //
   // Building an AMG costs about 20 CG iterations, so it is not rebuilt for
   // every set of pieces: only when more than 1% of the contact nodes (over
@@ -394,31 +408,145 @@ namespace ViscoContact
     if (contact_amg_built && changed <= 0.01 * contact.n_global_nodes())
       return;
 
-    // A, plus k_i nu_i nu_i^T in the block of every node with a stiffness;
-    // a fixed node (infinite k_i) gets the penalty 1000 nu^T A_ii nu.
-    contact_matrix.copy_from(*A);
+    // The AMG keeps a reference to its matrix: release it before the matrix
+    // is replaced. The entries of the copy of A are changed in place, which
+    // deal.II's interface does not offer, hence Epetra's.
+    contact_amg.clear();
+    contact_matrix = std::make_unique<Epetra_CrsMatrix>(A->trilinos_matrix());
+    Epetra_CrsMatrix &matrix = *contact_matrix;
+    const auto node_row      = [&](const unsigned int i, const unsigned int c) {
+      return matrix.RowMap().LID(
+        static_cast<long long>(contact.node(i).dofs[c]));
+    };
+    // k nu_i nu_i^T into the diagonal block of node i.
+    const auto add_to_block = [&](const unsigned int i, const double k) {
+      const auto &node = contact.node(i);
+      int         columns[dim];
+      double      values[dim];
+      for (unsigned int d = 0; d < dim; ++d)
+        columns[d] = matrix.ColMap().LID(static_cast<long long>(node.dofs[d]));
+      for (unsigned int c = 0; c < dim; ++c)
+        {
+          for (unsigned int d = 0; d < dim; ++d)
+            values[d] = k * node.normal[c] * node.normal[d];
+          const int error
+            = matrix.SumIntoMyValues(node_row(i, c), dim, values, columns);
+          AssertThrow(error == 0, ExcTrilinosError(error));
+        }
+    };
     for (unsigned int i = 0; i < contact.size(); ++i)
-      if (stiffness[i] != 0)
+      if (stiffness[i] != 0 && !std::isinf(stiffness[i]))
+        add_to_block(i, stiffness[i]);
+
+    // The columns: mark the dofs of the fixed nodes with their normal
+    // component and the node (its global number + 1) and bring the marks to
+    // the columns of this rank's rows, fixed nodes of other ranks included.
+    Epetra_Vector owned_normal(matrix.DomainMap()),
+      owned_node(matrix.DomainMap());
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      if (std::isinf(stiffness[i]))
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            owned_normal[node_row(i, c)] = contact.node(i).normal[c];
+            owned_node[node_row(i, c)]
+              = static_cast<double>(contact.first_global_index() + i + 1);
+          }
+    Epetra_Vector column_normal(matrix.ColMap()), column_node(matrix.ColMap());
+    if (matrix.Importer() != nullptr)
+      {
+        column_normal.Import(owned_normal, *matrix.Importer(), Insert);
+        column_node.Import(owned_node, *matrix.Importer(), Insert);
+      }
+    else // the columns are the owned dofs, in the same order
+      {
+        column_normal = owned_normal;
+        column_node   = owned_node;
+      }
+    // M P, row by row: in the columns of each fixed node j, the row's
+    // entries a lose their normal part, a -= (a . nu_j) nu_j.
+    std::vector<std::pair<double, double>> node_sums; // (node, a . nu_j)
+    for (int row = 0; row < matrix.NumMyRows(); ++row)
+      {
+        int     n;
+        double *values;
+        int    *columns;
+        matrix.ExtractMyRowView(row, n, values, columns);
+        node_sums.clear();
+        for (int e = 0; e < n; ++e)
+          if (const double j = column_node[columns[e]]; j != 0)
+            {
+              auto sum
+                = std::find_if(node_sums.begin(),
+                               node_sums.end(),
+                               [j](const auto &s) { return s.first == j; });
+              if (sum == node_sums.end())
+                sum = node_sums.insert(node_sums.end(), {j, 0.});
+              sum->second += values[e] * column_normal[columns[e]];
+            }
+        for (const auto &[j, sum] : node_sums)
+          for (int e = 0; e < n; ++e)
+            if (column_node[columns[e]] == j)
+              values[e] -= sum * column_normal[columns[e]];
+      }
+    // P (M P): the dim rows of each fixed node lose their normal part
+    // column by column. The rows of a vertex have the same columns (the
+    // vector-valued element couples all components of neighbouring
+    // vertices), which is checked.
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      if (std::isinf(stiffness[i]))
         {
           const auto &node = contact.node(i);
-          double      k    = stiffness[i];
-          if (std::isinf(k))
-            {
-              k = 0;
-              for (unsigned int c = 0; c < dim; ++c)
-                for (unsigned int d = 0; d < dim; ++d)
-                  k += node.normal[c] * A->el(node.dofs[c], node.dofs[d])
-                       * node.normal[d];
-              k *= 1000;
-            }
+          int         n[dim];
+          double     *values[dim];
+          int        *columns[dim];
           for (unsigned int c = 0; c < dim; ++c)
-            for (unsigned int d = 0; d < dim; ++d)
-              contact_matrix.add(node.dofs[c],
-                                 node.dofs[d],
-                                 k * node.normal[c] * node.normal[d]);
+            {
+              matrix.ExtractMyRowView(node_row(i, c),
+                                      n[c],
+                                      values[c],
+                                      columns[c]);
+              AssertThrow(n[c] == n[0]
+                            && std::equal(columns[c],
+                                          columns[c] + n[c],
+                                          columns[0]),
+                          ExcMessage("The rows of a contact node's "
+                                     "components do not have the same "
+                                     "columns."));
+            }
+          for (int e = 0; e < n[0]; ++e)
+            {
+              double sum = 0;
+              for (unsigned int c = 0; c < dim; ++c)
+                sum += node.normal[c] * values[c][e];
+              for (unsigned int c = 0; c < dim; ++c)
+                values[c][e] -= sum * node.normal[c];
+            }
+          // d_i nu_i nu_i^T, d_i = nu_i^T A_ii nu_i, back on the diagonal.
+          double d = 0;
+          for (unsigned int c = 0; c < dim; ++c)
+            for (unsigned int e = 0; e < dim; ++e)
+              d += node.normal[c] * A->el(node.dofs[c], node.dofs[e])
+                   * node.normal[e];
+          add_to_block(i, d);
         }
-    contact_matrix.compress(VectorOperation::add);
-    build_amg(contact_matrix, contact_amg);
+
+    // The near-null space of the constrained operator: the rigid-body modes
+    // without their normal components at the fixed nodes.
+    contact_modes = std::make_unique<Epetra_MultiVector>(*rigid_body_modes);
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      if (std::isinf(stiffness[i]))
+        for (int mode = 0; mode < contact_modes->NumVectors(); ++mode)
+          {
+            double normal_part = 0;
+            for (unsigned int c = 0; c < dim; ++c)
+              normal_part += contact.node(i).normal[c]
+                             * (*contact_modes)[mode][node_row(i, c)];
+            for (unsigned int c = 0; c < dim; ++c)
+              (*contact_modes)[mode][node_row(i, c)]
+                -= normal_part * contact.node(i).normal[c];
+          }
+
+    build_amg(matrix, *contact_modes, contact_amg);
     contact_amg_stiffness = stiffness;
     contact_amg_built     = true;
     ++this->counts.operator_setups;
@@ -640,7 +768,8 @@ namespace ViscoContact
     };
     // The preconditioner: the factorisation of A, or the AMG of the step
     // operator of (nearly) these pieces, the fixed nodes marked by an
-    // infinite stiffness (update_contact_amg() puts a penalty there).
+    // infinite stiffness (update_contact_amg() removes their normal
+    // directions).
     Apply preconditioner;
     if (factorization)
       preconditioner = [&](VectorType &dst, const VectorType &src) {
@@ -730,7 +859,7 @@ namespace ViscoContact
       {
         if (!operator_amg_built)
           {
-            build_amg(*A, operator_amg);
+            build_amg(A->trilinos_matrix(), *rigid_body_modes, operator_amg);
             operator_amg_built = true;
             ++this->counts.operator_setups;
           }

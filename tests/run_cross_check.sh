@@ -37,3 +37,21 @@ if ! numdiff -q -a "$absolute" -r "$relative" expected.txt observed.txt > /dev/n
   exit 1
 fi
 echo "$(wc -l < observed.txt) steps on $n rank(s) match $reference (numdiff -a $absolute -r $relative)."
+
+# A header line "# Krylov iterations per solve at most: X" bounds the
+# back end's Krylov iterations per solve (its run summary, "back end: S
+# solves, K Krylov iterations").
+bound=$(sed -n 's/^# Krylov iterations per solve at most: *//p' "$prm")
+if [ -n "$bound" ]; then
+  counts=$(sed -n 's/^ *back end: \([0-9]*\) solves, \([0-9]*\) Krylov iterations.*/\1 \2/p' output.txt)
+  if [ -z "$counts" ]; then
+    echo "The run printed no line \"back end: S solves, K Krylov iterations\"."
+    exit 1
+  fi
+  read -r solves iterations <<< "$counts"
+  if ! awk -v s="$solves" -v k="$iterations" -v b="$bound" 'BEGIN { exit !(k <= b * s) }'; then
+    echo "$iterations Krylov iterations in $solves solves: more than $bound per solve."
+    exit 1
+  fi
+  echo "$iterations Krylov iterations in $solves solves (at most $bound per solve)."
+fi

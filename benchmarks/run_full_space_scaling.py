@@ -126,7 +126,8 @@ def figures(results, directory):
         ax.set_xlabel("displacement dofs")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8)
-    axes[1].set_ylim(bottom=0)
+    # Headroom above the curves for the legend.
+    axes[1].set_ylim(bottom=0, top=1.5 * axes[1].get_ylim()[1])
     axes[2].set_ylim(bottom=0)
     fig.tight_layout()
     fig.savefig(os.path.join(directory, "full_space_scaling.png"), dpi=110)

@@ -83,6 +83,7 @@
 #include "material.h"
 #include "mesh.h"
 #include "parameters.h"
+#include "rigid_body_modes.h"
 
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Map.h>
@@ -549,18 +550,11 @@ namespace PreconditionerComparison
       {
         const unsigned int index
           = locally_owned_dofs.index_within_set(row_map.GID64(local));
-        const unsigned int c          = owned_components[index];
-        const Point<dim>  &x          = owned_support_points[index];
-        (*rigid_body_modes)[c][local] = 1.;
-        if (dim == 2)
-          (*rigid_body_modes)[2][local] = (c == 0 ? -x[1] : x[0]);
-        else
-          {
-            const unsigned int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
-            for (unsigned int d = 0; d < 3; ++d)
-              (*rigid_body_modes)[3 + d][local]
-                = (d == c2 ? x[c1] : (d == c1 ? -x[c2] : 0.));
-          }
+        const unsigned int c     = owned_components[index];
+        const Point<dim>  &x     = owned_support_points[index];
+        const auto         modes = rigid_body_mode_components(c, x);
+        for (unsigned int mode = 0; mode < modes.size(); ++mode)
+          (*rigid_body_modes)[mode][local] = modes[mode];
       }
     modes_time = timer.wall_time();
   }

@@ -24,6 +24,7 @@
 
 #include "contact_solver.h"
 #include "direct_solver.h"
+#include "rigid_body_modes.h"
 
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Import.h>
@@ -259,26 +260,14 @@ namespace ViscoContact
         while (c < dim && !component_dofs[c].is_element(dof))
           ++c;
         Assert(c < dim, ExcInternalError());
-        const Point<dim> &x           = support_points.at(dof);
-        (*rigid_body_modes)[c][local] = 1.; // translation along e_c
+        const Point<dim> &x     = support_points.at(dof);
+        const auto        modes = rigid_body_mode_components(c, x);
+        for (unsigned int mode = 0; mode < modes.size(); ++mode)
+          (*rigid_body_modes)[mode][local] = modes[mode];
         // Rows in blocks of dim, one block per vertex, in component order:
         // what "PDE equations" = dim assumes in build_amg().
         if (c != static_cast<unsigned int>(local) % dim)
           node_blocks = false;
-        // In 2D the rotation is the field (-x_2, x_1) = cross(e_3, x).
-        if (dim == 2)
-          (*rigid_body_modes)[2][local] = (c == 0 ? -x[1] : x[0]);
-        else
-          {
-            // In 3D, mode 3 + d is the rotation about e_d, the field
-            // cross(x, e_d) (the sign of a null-space vector does not matter
-            // to ML); component c of it is x_{c+1} for d = c + 2, -x_{c+2}
-            // for d = c + 1 and 0 for d = c, indices mod 3.
-            const unsigned int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
-            for (unsigned int d = 0; d < 3; ++d)
-              (*rigid_body_modes)[3 + d][local]
-                = (d == c2 ? x[c1] : (d == c1 ? -x[c2] : 0.));
-          }
       }
     // Every rank must give ML the same number of PDE equations.
     node_blocks = (Utilities::MPI::min(node_blocks ? 1 : 0, communicator) == 1);

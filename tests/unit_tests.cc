@@ -46,6 +46,7 @@
 #include "material.h"
 #include "mesh.h"
 #include "mpi_tools.h"
+#include "rigid_body_modes.h"
 #include "stress_point_transfer.h"
 #include "time_loop.h"
 
@@ -1514,6 +1515,63 @@ TEST(TimeStepController, LandsOnTargets)
     }
 }
 
+
+
+// The near-null space given to ML: every mode is a rigid motion, so it
+// changes no distance to first order, (v(x) - v(y)) . (x - y) = 0 for any
+// two points; the dim translations are the unit vectors, and in 3D the
+// three rotations are independent (about three different axes).
+template <int dim>
+void
+check_rigid_body_modes()
+{
+  std::vector<Point<dim>> points(3);
+  for (unsigned int p = 0; p < points.size(); ++p)
+    for (unsigned int d = 0; d < dim; ++d)
+      points[p][d] = std::sin(1.7 * p + 0.9 * d + 0.4) * (1 + p);
+  const auto field = [](const Point<dim> &y, const unsigned int mode) {
+    Tensor<1, dim> v;
+    for (unsigned int c = 0; c < dim; ++c)
+      v[c] = rigid_body_mode_components(c, y)[mode];
+    return v;
+  };
+  const unsigned int n_modes = (dim == 2 ? 3 : 6);
+  for (unsigned int mode = 0; mode < n_modes; ++mode)
+    {
+      for (unsigned int p = 0; p < points.size(); ++p)
+        for (unsigned int q = 0; q < points.size(); ++q)
+          EXPECT_NEAR((field(points[p], mode) - field(points[q], mode))
+                        * (points[p] - points[q]),
+                      0.,
+                      1e-14)
+            << "mode " << mode;
+      if (mode < dim)
+        for (unsigned int c = 0; c < dim; ++c)
+          EXPECT_EQ(field(points[0], mode)[c], c == mode ? 1. : 0.);
+      else
+        // A rotation vanishes at the origin and not at the points.
+        EXPECT_GT(field(points[1], mode).norm(), 1e-3) << "mode " << mode;
+    }
+  if constexpr (dim == 3)
+    {
+      // No two rotations are parallel at a point away from every axis.
+      for (unsigned int a = 3; a < 6; ++a)
+        for (unsigned int b = a + 1; b < 6; ++b)
+          EXPECT_GT(
+            cross_product_3d(field(points[1], a), field(points[1], b)).norm(),
+            1e-3);
+    }
+}
+
+TEST(RigidBodyModes, RigidMotionsIn2D)
+{
+  check_rigid_body_modes<2>();
+}
+
+TEST(RigidBodyModes, RigidMotionsIn3D)
+{
+  check_rigid_body_modes<3>();
+}
 
 
 int

@@ -430,6 +430,9 @@ namespace ViscoContact
     // The columns: mark the dofs of the fixed nodes with their normal
     // component and the node (its global number + 1) and bring the marks to
     // the columns of this rank's rows, fixed nodes of other ranks included.
+    // The marks are written at row indices: deal.II builds square matrices
+    // with the same map for rows and domain.
+    Assert(matrix.RowMap().SameAs(matrix.DomainMap()), ExcInternalError());
     Epetra_Vector owned_normal(matrix.DomainMap()),
       owned_node(matrix.DomainMap());
     for (unsigned int i = 0; i < contact.size(); ++i)

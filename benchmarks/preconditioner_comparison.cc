@@ -78,6 +78,7 @@
 
 #include <deal.II/numerics/vector_tools.h>
 
+#include "blas_threads.h"
 #include "constraints.h"
 #include "loads.h"
 #include "material.h"
@@ -1149,9 +1150,11 @@ main(int argc, char **argv)
 {
   using namespace dealii;
   using namespace PreconditionerComparison;
-  // One thread per process: the comparison is of the preconditioners on one
-  // core, as the program's back end runs them per MPI rank.
+  // One thread per process, the BLAS's too: the comparison is of the
+  // preconditioners on one core, as the program's back end runs them per
+  // MPI rank.
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  ViscoContact::set_blas_threads(1);
   try
     {
       AssertThrow(argc >= 4,

@@ -13,6 +13,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
 
+#include "blas_threads.h"
 #include "direct_solver.h"
 #include "supernodal_solve.h"
 
@@ -141,10 +142,9 @@ namespace ViscoContact
       cholmod_l_start(&cholmod);
       cholmod.print      = 0;
       cholmod.supernodal = CHOLMOD_SUPERNODAL;
-      // CHOLMOD's own strategy for the fill-reducing order: AMD, and METIS's
-      // nested dissection only when AMD leaves a factor with much fill and
-      // work, as in 3D. (Trying both always costs a METIS run that does not
-      // pay in 2D: at 526k dofs 1.7 s of analysis for 10% fewer flops.)
+      // CHOLMOD's own strategy for the fill-reducing order (of the graph of
+      // the nodes, see analyze()): AMD, and METIS's nested dissection only
+      // when AMD leaves a factor with much fill and work.
       cholmod.nmethods  = 0;
       cholmod.postorder = 1;
     }
@@ -187,8 +187,7 @@ namespace ViscoContact
     factorize_cholmod(const MatrixType                &A,
                       const std::vector<unsigned int> &last_rows);
     cholmod_factor *
-    analyze_with_last_rows(cholmod_sparse                  &matrix,
-                           const std::vector<unsigned int> &last_rows);
+    analyze(cholmod_sparse &matrix, const std::vector<unsigned int> &last_rows);
     void
     read_last_block(const std::vector<unsigned int> &last_rows);
     void
@@ -284,13 +283,16 @@ namespace ViscoContact
 
     // The symbolic analysis (the ordering and the structure of the factor),
     // then the numeric factorisation.
-    cholmod_factor_ = last_rows.empty()
-                        ? cholmod_l_analyze(&matrix, &cholmod)
-                        : analyze_with_last_rows(matrix, last_rows);
+    cholmod_factor_ = analyze(matrix, last_rows);
     AssertThrow(cholmod_factor_ != nullptr,
                 ExcMessage("CHOLMOD's analysis of the operator failed: "
                            + cholmod_status_message(cholmod.status)));
-    const int ok = cholmod_l_factorize(&matrix, cholmod_factor_, &cholmod);
+    int ok = 0;
+    {
+      // The dense kernels of the supernodes on the rank's threads.
+      const BlasThreadsOfRank threads;
+      ok = cholmod_l_factorize(&matrix, cholmod_factor_, &cholmod);
+    }
     // A pivot that is not positive stops CHOLMOD early: factor->minor is the
     // column where it stopped. For an elastic operator this means it has a
     // null space, most likely rigid motions that no clamped boundary
@@ -343,43 +345,188 @@ namespace ViscoContact
 
 
 
-  // @sect4{An elimination order that ends with given rows}
+  // @sect4{The elimination order}
   //
-  // The condensed back end wants the contact dofs eliminated last: then the
-  // last block of the factor is the Cholesky factor of the operator's Schur
-  // complement on them, which is all the contact problem needs. CHOLMOD
-  // first finds its best fill-reducing order for the whole matrix (AMD or
-  // METIS, as for any factorisation); the requested rows are then moved to
-  // the end of it, in their relative order, and the matrix is analysed
-  // again with this order given. Fill only grows by what the requested rows
-  // would have had anyway as the last separator of the body.
+  // The order is found on the graph of the nodes rather than of the dofs:
+  // the dofs of a node (the dim displacement components of a vertex) have
+  // the same rows and columns in A, so they are best eliminated together,
+  // and the graph of the nodes has a dim-th of the vertices and about a
+  // dim^2-th of the edges. CHOLMOD's own strategy orders it: AMD, and METIS's
+  // nested dissection as well where AMD leaves a factor with much work per
+  // entry. Seen on the nodes, that test tries METIS in 3D, where it pays,
+  // and not in 2D, where it does not (at 526k dofs METIS takes 0.9 s
+  // longer than AMD and saves 0.3 s of the factorisation).
   //
-  // CHOLMOD post-orders the elimination tree of a given order, which keeps
-  // the order as long as the requested rows form its top (they do when the
-  // body is connected). The result is checked; if the requested rows are
-  // not last, the analysis is repeated without post-ordering, which takes
-  // the order exactly as given.
+  // The condensed back end also wants the contact dofs eliminated last:
+  // then the last block of the factor is the Cholesky factor of the
+  // operator's Schur complement on them, which is all the contact problem
+  // needs. Their nodes are moved to the end of the order, in their relative
+  // order; fill only grows by what the requested rows would have had anyway
+  // as the last separator of the body.
+  //
+  // CHOLMOD analyses the matrix with the order given and post-orders the
+  // elimination tree, which keeps the order as long as the requested rows
+  // form its top (they do when the body is connected). The result is
+  // checked; if the requested rows are not last, the analysis is repeated
+  // without post-ordering, which takes the order exactly as given.
+  namespace
+  {
+    // The nodes: maximal runs of consecutive rows with the same pattern in
+    // the symmetric matrix (of which matrix holds the lower triangle,
+    // column by column) and all requested or none. Returns the first row of
+    // each node, and one past the last row at the end.
+    std::vector<SuiteSparse_long>
+    find_nodes(const cholmod_sparse &matrix, const std::vector<char> &is_last)
+    {
+      const auto  n     = static_cast<SuiteSparse_long>(matrix.ncol);
+      const auto *start = static_cast<const SuiteSparse_long *>(matrix.p);
+      const auto *row   = static_cast<const SuiteSparse_long *>(matrix.i);
+      // Each row's entries up to its diagonal (the lower triangle read by
+      // rows), as the columns where they are.
+      std::vector<SuiteSparse_long> left_start(n + 1, 0);
+      for (SuiteSparse_long k = 0; k < start[n]; ++k)
+        ++left_start[row[k] + 1];
+      for (SuiteSparse_long i = 0; i < n; ++i)
+        left_start[i + 1] += left_start[i];
+      std::vector<SuiteSparse_long> left(start[n]);
+      std::vector<SuiteSparse_long> fill(left_start.begin(),
+                                         left_start.end() - 1);
+      for (SuiteSparse_long j = 0; j < n; ++j)
+        for (SuiteSparse_long k = start[j]; k < start[j + 1]; ++k)
+          left[fill[row[k]]++] = j;
+      // Rows a and a + 1 have the same pattern if column a from its
+      // diagonal down is a, a + 1, then column a + 1 below its diagonal,
+      // and row a + 1 up to its diagonal is row a up to its diagonal, then
+      // a + 1 (all in increasing order).
+      const auto same_node = [&](const SuiteSparse_long a) {
+        const SuiteSparse_long b = a + 1;
+        return is_last[a] == is_last[b]
+               && start[a + 1] - start[a] == start[b + 1] - start[b] + 1
+               && row[start[a]] == a && row[start[a] + 1] == b
+               && std::equal(row + start[a] + 1,
+                             row + start[a + 1],
+                             row + start[b])
+               && left_start[b + 1] - left_start[b]
+                    == left_start[a + 1] - left_start[a] + 1
+               && std::equal(left.begin() + left_start[a],
+                             left.begin() + left_start[a + 1],
+                             left.begin() + left_start[b]);
+      };
+      std::vector<SuiteSparse_long> first_rows;
+      for (SuiteSparse_long i = 0; i < n; ++i)
+        if (i == 0 || !same_node(i - 1))
+          first_rows.push_back(i);
+      first_rows.push_back(n);
+      return first_rows;
+    }
+
+
+
+    // The pattern of the graph of the nodes, as a symmetric CHOLMOD matrix
+    // (the upper triangle with the diagonal, column by column), whose
+    // arrays the two vectors hold.
+    void
+    node_graph(const cholmod_sparse                &matrix,
+               const std::vector<SuiteSparse_long> &first_rows,
+               std::vector<SuiteSparse_long>       &column_start,
+               std::vector<SuiteSparse_long>       &rows,
+               cholmod_sparse                      &graph)
+    {
+      const auto  n     = static_cast<SuiteSparse_long>(matrix.ncol);
+      const auto *start = static_cast<const SuiteSparse_long *>(matrix.p);
+      const auto *row   = static_cast<const SuiteSparse_long *>(matrix.i);
+      const auto  nodes = static_cast<SuiteSparse_long>(first_rows.size() - 1);
+      std::vector<SuiteSparse_long> node_of_row(n);
+      for (SuiteSparse_long g = 0; g < nodes; ++g)
+        std::fill(node_of_row.begin() + first_rows[g],
+                  node_of_row.begin() + first_rows[g + 1],
+                  g);
+      // Each entry (i, j), i >= j, of A's lower triangle gives the entry
+      // (node of j, node of i) of the graph's upper triangle (the node
+      // order follows the row order);
+      // the columns collect them with repetitions, then are sorted and made
+      // unique.
+      column_start.assign(nodes + 1, 0);
+      for (SuiteSparse_long j = 0; j < n; ++j)
+        for (SuiteSparse_long k = start[j]; k < start[j + 1]; ++k)
+          ++column_start[node_of_row[row[k]] + 1];
+      for (SuiteSparse_long g = 0; g < nodes; ++g)
+        column_start[g + 1] += column_start[g];
+      rows.resize(column_start[nodes]);
+      std::vector<SuiteSparse_long> fill(column_start.begin(),
+                                         column_start.end() - 1);
+      for (SuiteSparse_long j = 0; j < n; ++j)
+        for (SuiteSparse_long k = start[j]; k < start[j + 1]; ++k)
+          rows[fill[node_of_row[row[k]]]++] = node_of_row[j];
+      SuiteSparse_long kept = 0;
+      for (SuiteSparse_long g = 0; g < nodes; ++g)
+        {
+          const auto first = rows.begin() + column_start[g];
+          const auto last  = rows.begin() + column_start[g + 1];
+          std::sort(first, last);
+          const auto unique_end = std::unique(first, last);
+          column_start[g]       = kept;
+          kept
+            = std::copy(first, unique_end, rows.begin() + kept) - rows.begin();
+        }
+      column_start[nodes] = kept;
+      rows.resize(kept);
+
+      graph.nrow   = nodes;
+      graph.ncol   = nodes;
+      graph.nzmax  = rows.size();
+      graph.p      = column_start.data();
+      graph.i      = rows.data();
+      graph.nz     = nullptr;
+      graph.x      = nullptr;
+      graph.z      = nullptr;
+      graph.stype  = 1;
+      graph.itype  = CHOLMOD_LONG;
+      graph.xtype  = CHOLMOD_PATTERN;
+      graph.dtype  = CHOLMOD_DOUBLE;
+      graph.sorted = 1;
+      graph.packed = 1;
+    }
+  } // namespace
+
+
+
   cholmod_factor *
-  SparseDirectSolver::Implementation::analyze_with_last_rows(
+  SparseDirectSolver::Implementation::analyze(
     cholmod_sparse                  &matrix,
     const std::vector<unsigned int> &last_rows)
   {
-    cholmod_factor *best = cholmod_l_analyze(&matrix, &cholmod);
-    if (best == nullptr)
-      return nullptr;
-    // The order: the rows not requested, in CHOLMOD's order, then the
-    // requested rows, also in CHOLMOD's order.
     std::vector<char> is_last(n, 0);
     for (const unsigned int row : last_rows)
       is_last[row] = 1;
-    const auto *best_order = static_cast<const SuiteSparse_long *>(best->Perm);
+
+    // CHOLMOD's order of the nodes.
+    const std::vector<SuiteSparse_long> first_rows
+      = find_nodes(matrix, is_last);
+    std::vector<SuiteSparse_long> graph_start, graph_rows;
+    cholmod_sparse                graph;
+    node_graph(matrix, first_rows, graph_start, graph_rows, graph);
+    cholmod_factor *node_factor = cholmod_l_analyze(&graph, &cholmod);
+    if (node_factor == nullptr)
+      return nullptr;
+    const auto *node_order
+      = static_cast<const SuiteSparse_long *>(node_factor->Perm);
+
+    // The order of the rows: the nodes without requested rows, then those
+    // with, each in CHOLMOD's order, and each node's rows together.
     std::vector<SuiteSparse_long> order;
     order.reserve(n);
     for (const bool last : {false, true})
-      for (std::size_t k = 0; k < n; ++k)
-        if (bool(is_last[best_order[k]]) == last)
-          order.push_back(best_order[k]);
-    cholmod_l_free_factor(&best, &cholmod);
+      for (std::size_t k = 0; k < graph.ncol; ++k)
+        {
+          const SuiteSparse_long node = node_order[k];
+          if (bool(is_last[first_rows[node]]) == last)
+            for (SuiteSparse_long i = first_rows[node];
+                 i < first_rows[node + 1];
+                 ++i)
+              order.push_back(i);
+        }
+    cholmod_l_free_factor(&node_factor, &cholmod);
 
     // Analyse with the given order, with and then (if needed) without
     // post-ordering; the common block's settings are restored afterwards.
@@ -394,7 +541,7 @@ namespace ViscoContact
         cholmod.postorder = postorder;
         factor
           = cholmod_l_analyze_p(&matrix, order.data(), nullptr, 0, &cholmod);
-        if (factor == nullptr)
+        if (factor == nullptr || last_rows.empty())
           break;
         const auto *final_order
           = static_cast<const SuiteSparse_long *>(factor->Perm);
@@ -411,8 +558,8 @@ namespace ViscoContact
     cholmod.nmethods           = saved_methods;
     cholmod.method[0].ordering = saved_ordering;
     cholmod.postorder          = saved_postorder;
-    // Should neither work (it cannot, short of a CHOLMOD change), the
-    // factorisation of the best order is used, without a last block.
+    // Should neither work (it cannot, short of a CHOLMOD change), CHOLMOD
+    // orders the whole matrix itself, without a last block.
     return factor != nullptr ? factor : cholmod_l_analyze(&matrix, &cholmod);
   }
 
@@ -690,14 +837,18 @@ namespace ViscoContact
         return;
       }
     cholmod_dense rhs;
-    rhs.nrow     = n;
-    rhs.ncol     = n_columns;
-    rhs.nzmax    = n * n_columns;
-    rhs.d        = n;
-    rhs.x        = values;
-    rhs.z        = nullptr;
-    rhs.xtype    = CHOLMOD_REAL;
-    rhs.dtype    = CHOLMOD_DOUBLE;
+    rhs.nrow  = n;
+    rhs.ncol  = n_columns;
+    rhs.nzmax = n * n_columns;
+    rhs.d     = n;
+    rhs.x     = values;
+    rhs.z     = nullptr;
+    rhs.xtype = CHOLMOD_REAL;
+    rhs.dtype = CHOLMOD_DOUBLE;
+    // Many right-hand sides are solved with dense kernels, on the rank's
+    // threads.
+    const std::unique_ptr<BlasThreadsOfRank> threads
+      = n_columns > 1 ? std::make_unique<BlasThreadsOfRank>() : nullptr;
     const int ok = cholmod_l_solve2(sys,
                                     cholmod_factor_,
                                     &rhs,

@@ -8,6 +8,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include "blas_threads.h"
 #include "convergence_study.h"
 #include "file_output.h"
 #include "stop_signals.h"
@@ -71,6 +72,9 @@ main(int argc, char **argv)
   // is complete, not when a buffer of several kB is full. std::cout writes
   // through C's stdout (synchronised with stdio), so this covers it too.
   std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
+  // The BLAS runs on one thread; the sparse factorisation gives it the
+  // rank's threads for its dense kernels (blas_threads.h).
+  set_blas_threads(1);
   // SIGTERM, SIGINT and SIGUSR1 stop the run after the current time step,
   // with a checkpoint (stop_signals.h). Installed once MPI is up: Open MPI's
   // start-up sets its own handlers.

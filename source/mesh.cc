@@ -359,6 +359,44 @@ namespace ViscoContact
 
 
 
+  // @sect4{coarser_equivalent_box}
+  //
+  // The generated box of Subdivisions = m 2^j squares (cubes) per edge is
+  // the box of m per edge refined j times, where refinement reproduces it:
+  // always for hypercubes, for triangles cut by "/" or backslash (the
+  // children of the two triangles of a square are the two triangles of
+  // each of its four half-size squares, cut the same way; tetrahedra are
+  // refined into other shapes than Kuhn's). Returns the parameters of the
+  // coarse box and j, taking at most max_refinements factors of 2 out of
+  // Subdivisions (none for a Gmsh mesh and the other simplex patterns).
+  namespace
+  {
+    std::pair<Parameters::AllParameters, unsigned int>
+    coarser_equivalent_box(const Parameters::AllParameters &parameters,
+                           const unsigned int               max_refinements)
+    {
+      using Pattern = Parameters::SimplexPattern;
+      const bool refinement_reproduces_box
+        = parameters.mesh_file.empty()
+          && (parameters.cell_type == Parameters::CellType::hypercube
+              || (parameters.dimension == 2
+                  && (parameters.simplex_pattern == Pattern::slash
+                      || parameters.simplex_pattern == Pattern::backslash)));
+      Parameters::AllParameters coarse_parameters = parameters;
+      unsigned int              box_refinements   = 0;
+      if (refinement_reproduces_box)
+        while (coarse_parameters.subdivisions % 2 == 0
+               && box_refinements < max_refinements)
+          {
+            coarse_parameters.subdivisions /= 2;
+            ++box_refinements;
+          }
+      return {coarse_parameters, box_refinements};
+    }
+  } // namespace
+
+
+
   // @sect4{create_distributed_mesh}
   //
   // Hypercube meshes live on p4est: every rank holds the coarse mesh, p4est
@@ -369,10 +407,17 @@ namespace ViscoContact
   // same mesh.
   //
   // A simplex mesh is built and refined as a serial mesh, partitioned by
-  // METIS, and each rank keeps its part. (The serial mesh exists on every
-  // rank during set-up only; for meshes beyond a few million cells,
+  // METIS, and each rank keeps its part. A generated box of triangles is
+  // also built from fewer coarse cells and refined, at most four times:
+  // deal.II 9.4's fully distributed mesh takes time in its coarse cells (its
+  // set-up sorts the cells with a search among the coarse cells in every
+  // comparison) and in its levels (it rebuilds the id of every cell on
+  // every level), and four refinements balance the two. (Measured at N =
+  // 512, 524k triangles: the mesh takes 1.8 s with four, 2.1 s with all
+  // nine, 2.5 s with none.) The serial mesh exists on every rank during
+  // set-up only; for meshes beyond a few million cells,
   // create_description_from_triangulation_in_groups() would build it once
-  // per node.) On one rank both are the one-rank case of the same classes.
+  // per node. On one rank both are the one-rank case of the same classes.
   template <int dim>
   std::unique_ptr<parallel::DistributedTriangulationBase<dim>>
   create_distributed_mesh(const Parameters::AllParameters &parameters,
@@ -383,8 +428,11 @@ namespace ViscoContact
       {
         // Simplices: build and refine the whole mesh serially, identically
         // on every rank.
+        const auto [coarse_parameters, box_refinements]
+          = coarser_equivalent_box(parameters, 4);
         Triangulation<dim> serial_mesh;
-        create_coarse_mesh(parameters, serial_mesh);
+        create_coarse_mesh(coarse_parameters, serial_mesh);
+        serial_mesh.refine_global(box_refinements);
         refine_mesh(parameters, serial_mesh);
         // Partition it into one part per rank (METIS sets the subdomain ids
         // of the cells), and turn it into the description of this rank's
@@ -403,19 +451,11 @@ namespace ViscoContact
       }
     else
       {
-        // Hypercubes: take factors of 2 out of the number of subdivisions of
-        // the generated box; a Gmsh mesh is used as it is.
-        Parameters::AllParameters coarse_parameters = parameters;
-        unsigned int              box_refinements   = 0;
-        if (parameters.mesh_file.empty())
-          while (coarse_parameters.subdivisions % 2 == 0)
-            {
-              coarse_parameters.subdivisions /= 2;
-              ++box_refinements;
-            }
         // The coarse mesh, identical on every rank, becomes p4est's forest;
-        // the factors of 2 return as global refinements, which p4est
-        // distributes.
+        // the factors of 2 taken out of the subdivisions return as global
+        // refinements, which p4est distributes.
+        const auto [coarse_parameters, box_refinements]
+          = coarser_equivalent_box(parameters, numbers::invalid_unsigned_int);
         Triangulation<dim> coarse_mesh;
         create_coarse_mesh(coarse_parameters, coarse_mesh);
         auto distributed_mesh

@@ -4,6 +4,7 @@
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/base/utilities.h>
 
@@ -11,6 +12,7 @@
 
 #include <deal.II/numerics/data_out.h>
 
+#include "blas_threads.h"
 #include "file_output.h"
 #include "mpi_tools.h"
 #include "viscoplastic_contact.h"
@@ -565,8 +567,18 @@ namespace ViscoContact
     Utilities::System::get_memory_stats(memory);
     const double peak_memory
       = Utilities::MPI::sum(double(memory.VmHWM) / 1024., mpi_communicator);
+    // The threads of each rank: the stress update's and the solves', and
+    // the BLAS's in the sparse factorisation (1 where the BLAS has none).
+    unsigned int factorisation_threads = 1;
+    {
+      const BlasThreadsOfRank threads;
+      factorisation_threads = blas_threads();
+    }
     pcout << std::setprecision(4)
           << "Cost measurement (wall time, maximum over the ranks):\n"
+          << "  threads per rank: " << MultithreadInfo::n_threads()
+          << " (BLAS in the sparse factorisation: " << factorisation_threads
+          << ")\n"
           << "  average time step (without output): " << step_time * 1e3
           << " ms\n"
           << "  one solve with the step operator, no contact: "

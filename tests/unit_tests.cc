@@ -40,6 +40,7 @@
 #include <gtest/gtest.h>
 
 #include "active_set.h"
+#include "blas_threads.h"
 #include "condensed_system.h"
 #include "contact_law.h"
 #include "contact_set.h"
@@ -1151,32 +1152,50 @@ shifted_grid_laplacian(const unsigned int side, MatrixType &A)
 
 
 
-// The elimination order that ends with given rows (CHOLMOD, one rank): a
-// 5-point Laplacian on a 12 x 12 grid plus a shift, the rows of the grid's
-// bottom line requested last in a scrambled order. The last block L_c of
-// the factor must give A^{-1} on these rows as L_c^{-T} L_c^{-1}, and the
-// split solve with a change of the last block must equal a solve with the
-// corresponding right-hand side: A^{-1} (b - f) for f on the last rows is
-// the forward half of b, the change -L_c^{-1} f_c, and the backward half.
-TEST(SparseDirectSolver, LastBlockOfTheCholeskyFactor)
+// The same Laplacian for two displacement-like components per grid point
+// (unknowns 2 (j * side + i) and 2 (j * side + i) + 1), coupled by the SPD
+// block [[2, 1], [1, 3]]: A kron B, so that the two rows of a grid point
+// have the same pattern, as the dim rows of a vertex of the program's
+// operator have.
+void
+shifted_grid_laplacian_with_blocks(const unsigned int side, MatrixType &A)
 {
-  if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
-    return; // CHOLMOD factorises on one rank only
-  const MPI_Comm     comm = MPI_COMM_WORLD;
-  const unsigned int side = 12, n = side * side;
-  IndexSet           owned = complete_index_set(n);
-  MatrixType         A;
-  shifted_grid_laplacian(side, A);
-  const auto index = [&](const int i, const int j) {
-    return static_cast<unsigned int>(j * side + i);
-  };
+  MatrixType scalar;
+  shifted_grid_laplacian(side, scalar);
+  const MPI_Comm         comm  = MPI_COMM_WORLD;
+  const unsigned int     n     = 2 * side * side;
+  const IndexSet         owned = complete_index_set(n);
+  DynamicSparsityPattern dsp(n, n, owned);
+  const double           block[2][2] = {{2., 1.}, {1., 3.}};
+  for (const auto &entry : scalar)
+    for (unsigned int a = 0; a < 2; ++a)
+      for (unsigned int b = 0; b < 2; ++b)
+        dsp.add(2 * entry.row() + a, 2 * entry.column() + b);
+  A.reinit(owned, owned, dsp, comm);
+  for (const auto &entry : scalar)
+    for (unsigned int a = 0; a < 2; ++a)
+      for (unsigned int b = 0; b < 2; ++b)
+        A.set(2 * entry.row() + a,
+              2 * entry.column() + b,
+              entry.value() * block[a][b]);
+  A.compress(VectorOperation::insert);
+}
 
-  // The bottom line, every third entry first.
-  std::vector<unsigned int> last_rows;
-  for (unsigned int start = 0; start < 3; ++start)
-    for (unsigned int i = start; i < side; i += 3)
-      last_rows.push_back(index(i, 0));
 
+
+// The elimination order that ends with given rows (CHOLMOD, one rank): the
+// last block L_c of the factor must give A^{-1} on these rows as
+// L_c^{-T} L_c^{-1}, and the split solve with a change of the last block
+// must equal a solve with the corresponding right-hand side: A^{-1} (b - f)
+// for f on the last rows is the forward half of b, the change
+// -L_c^{-1} f_c, and the backward half.
+void
+check_last_block(const MatrixType                &A,
+                 const std::vector<unsigned int> &last_rows)
+{
+  const MPI_Comm     comm  = MPI_COMM_WORLD;
+  const unsigned int n     = A.m();
+  const IndexSet     owned = complete_index_set(n);
   SparseDirectSolver solver(Parameters::DirectSolver::cholmod, comm);
   solver.factorize(A, true, last_rows);
   ASSERT_TRUE(solver.has_last_block()) << solver.description();
@@ -1229,6 +1248,41 @@ TEST(SparseDirectSolver, LastBlockOfTheCholeskyFactor)
   solver.backward_solve(f_last, split);
   split -= expected;
   EXPECT_LE(split.linfty_norm(), 1e-12 * expected.linfty_norm());
+}
+
+
+// A 5-point Laplacian on a 12 x 12 grid plus a shift, the rows of the
+// grid's bottom line requested last in a scrambled order.
+TEST(SparseDirectSolver, LastBlockOfTheCholeskyFactor)
+{
+  if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+    return; // CHOLMOD factorises on one rank only
+  const unsigned int side = 12;
+  MatrixType         A;
+  shifted_grid_laplacian(side, A);
+  // The bottom line, every third entry first.
+  std::vector<unsigned int> last_rows;
+  for (unsigned int start = 0; start < 3; ++start)
+    for (unsigned int i = start; i < side; i += 3)
+      last_rows.push_back(i);
+  check_last_block(A, last_rows);
+}
+
+// The same with two rows per grid point, which the elimination order keeps
+// together, except on the bottom line: there only the second row of each
+// point is requested (as the contact dofs are the normal components only).
+TEST(SparseDirectSolver, LastBlockWithTwoRowsPerGridPoint)
+{
+  if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+    return;
+  const unsigned int side = 12;
+  MatrixType         A;
+  shifted_grid_laplacian_with_blocks(side, A);
+  std::vector<unsigned int> last_rows;
+  for (unsigned int start = 0; start < 3; ++start)
+    for (unsigned int i = start; i < side; i += 3)
+      last_rows.push_back(2 * i + 1);
+  check_last_block(A, last_rows);
 }
 
 
@@ -1571,6 +1625,29 @@ TEST(RigidBodyModes, RigidMotionsIn2D)
 TEST(RigidBodyModes, RigidMotionsIn3D)
 {
   check_rigid_body_modes<3>();
+}
+
+
+
+// The BLAS's threads (blas_threads.h): a scope gives a BLAS with threads
+// (OpenBLAS built with pthreads, which scripts/install_dependencies.sh
+// installs) the rank's threads and restores the number before at its end;
+// a BLAS without threads stays at one.
+TEST(BlasThreads, ScopeGivesTheRanksThreadsAndRestores)
+{
+  MultithreadInfo::set_thread_limit(2);
+  const unsigned int rank_threads = MultithreadInfo::n_threads();
+  // Whether the BLAS has threads to set at all.
+  set_blas_threads(2);
+  const bool threaded = (blas_threads() == 2);
+  set_blas_threads(1);
+  ASSERT_EQ(blas_threads(), 1u);
+  {
+    const BlasThreadsOfRank threads;
+    EXPECT_EQ(blas_threads(), threaded ? rank_threads : 1u);
+  }
+  EXPECT_EQ(blas_threads(), 1u);
+  MultithreadInfo::set_thread_limit();
 }
 
 

@@ -11,6 +11,9 @@ Three groups of runs, each a separate process, one after the other:
    "Setup: back end for K" is the sparse factorisation alone (and its
    analysis), the figure the set-up of the compliance is measured against.
    The full space back end runs the same scene up to --full-space-limit.
+   With --baseline, the condensed case at the largest N then runs --pairs
+   more times, each time this build and the baseline one after the other:
+   the spread of the ratio over the pairs is the noise of a shared machine.
 2. The 2D benchmark (parameters/default.prm) at h = k = 1/N, no file output,
    with DEAL_II_NUM_THREADS = 1 and 2: what the threads of the stress update
    save, in one invocation.
@@ -23,12 +26,17 @@ measurement" block (average time step, one solve, one stress update) and the
 active-set iterations. With --baseline EXECUTABLE every run of groups 1 and 2
 is repeated with another build (e.g. an earlier commit), right after the run
 of the current one, and the table gets the ratio of the whole-process times.
+The baseline runs with OPENBLAS_NUM_THREADS=1: builds before the threaded
+factorisation were measured with the serial OpenBLAS their install script
+chose, and a threaded OpenBLAS would otherwise run every one of their BLAS
+calls on all cores (the current program sets its BLAS threads itself, so the
+variable does not change it).
 
 Usage:
     benchmarks/run_performance.py [--executable build/viscoplastic_contact]
         [--baseline OTHER_BUILD/viscoplastic_contact]
         [--static-sizes 128,256,512] [--full-space-limit 256]
-        [--benchmark-sizes 256] [--cube-sizes 16,24,32]
+        [--benchmark-sizes 256] [--cube-sizes 16,24,32] [--pairs 5]
         [--output doc/performance/tables.md]
 
 Times are wall times on whatever machine runs it; compare the ratios within
@@ -38,6 +46,7 @@ one invocation, not absolute times across invocations.
 import argparse
 import os
 import re
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -75,7 +84,7 @@ def section(name, text):
     return number(re.escape(name) + r"\s*\|\s*\d+\s*\|\s*([0-9.e+-]+)s", text)
 
 
-def run(executable, prm_text, work, name, threads=None):
+def run(executable, prm_text, work, name, threads=None, blas_threads=None):
     """Runs one parameter file; returns the parsed measurements."""
     directory = os.path.join(work, name)
     prm_text = set_prm_entries(prm_text, {
@@ -91,6 +100,8 @@ def run(executable, prm_text, work, name, threads=None):
     env = dict(os.environ)
     if threads is not None:
         env["DEAL_II_NUM_THREADS"] = str(threads)
+    if blas_threads is not None:
+        env["OPENBLAS_NUM_THREADS"] = str(blas_threads)
     start = time.perf_counter()
     child = subprocess.Popen([executable, prm], stdout=subprocess.PIPE,
                              stderr=subprocess.STDOUT, text=True, env=env)
@@ -154,6 +165,9 @@ def main():
     parser.add_argument("--full-space-limit", type=int, default=256)
     parser.add_argument("--benchmark-sizes", default="256")
     parser.add_argument("--cube-sizes", default="16,24,32")
+    parser.add_argument("--pairs", type=int, default=5,
+                        help="paired runs of the largest static scene against "
+                             "the baseline (0: none)")
     parser.add_argument("--output", default=os.path.join(REPO_ROOT, "doc", "performance", "tables.md"))
     args = parser.parse_args()
     executable = resolve_executable(args.executable)
@@ -206,8 +220,49 @@ def main():
                      f"| {row['krylov']:.0f} | {row['memory_mb']:.0f} "
                      f"| {row['bytes_per_dof']:.0f} |")
             add_row(lines, cells, row, baseline and (
-                lambda: run(baseline, text, work, f"static_{n}_{method[0]}_baseline")))
+                lambda: run(baseline, text, work, f"static_{n}_{method[0]}_baseline",
+                            blas_threads=1)))
     lines.append("")
+
+    # 1b. Paired runs of the largest static scene, condensed, against the
+    # baseline: one pair is one sample of a shared machine's noise.
+    static_sizes = sizes(args.static_sizes)
+    if baseline and args.pairs > 0 and static_sizes:
+        n = static_sizes[-1]
+        text = scene("elastic.prm", {(("Geometry",), "Subdivisions"): str(n),
+                                     (("Time",), "End time"): repr(1. / 64),
+                                     (("Linear solver",), "Method"): "condensed"})
+        lines += [f"## 2D static scene at N = {n}: paired runs", "",
+                  f"The condensed case of table 1, run {args.pairs} more times, "
+                  "each time this build with and without the contact boundary "
+                  "(factorisation and set-up as in table 1) and then the "
+                  "baseline (with `OPENBLAS_NUM_THREADS=1`, as above); the "
+                  "last row is the median of each column.", "",
+                  "| pair | whole process [s] | factorisation [s] | set-up [s] "
+                  "| set-up / factorisation | baseline whole process [s] "
+                  "| this / baseline |",
+                  "| ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+        samples = []
+        for pair in range(1, args.pairs + 1):
+            this = run(executable, text, work, f"static_{n}_pair_{pair}")
+            no_contact = run(executable, set_prm_entries(text, {
+                (("Boundary",), "Contact boundary ids"): ""}), work,
+                f"static_{n}_pair_{pair}_nocontact")
+            old = run(baseline, text, work, f"static_{n}_pair_{pair}_baseline",
+                      blas_threads=1)
+            samples.append((this["wall"], no_contact["back_end"],
+                            this["back_end"],
+                            this["back_end"] / no_contact["back_end"],
+                            old["wall"], this["wall"] / old["wall"]))
+            cells = (f"| {pair} | " + " | ".join(
+                f"{value:.3f}" if k in (3, 5) else f"{value:.2f}"
+                for k, value in enumerate(samples[-1])) + " |")
+            lines.append(cells)
+            print(cells, flush=True)
+        medians = [statistics.median(column) for column in zip(*samples)]
+        lines += ["| median | " + " | ".join(
+            f"{value:.3f}" if k in (3, 5) else f"{value:.2f}"
+            for k, value in enumerate(medians)) + " |", ""]
 
     # 2. The benchmark with one and two threads.
     lines += table("2D benchmark: the stress update on one and two threads",
@@ -233,7 +288,7 @@ def main():
                      f"| {row['iterations'] / row['steps']:.2f} | {row['memory_mb']:.0f} |")
             add_row(lines, cells, row, baseline and (
                 lambda: run(baseline, text, work, f"benchmark_{n}_{threads}_baseline",
-                            threads)))
+                            threads, blas_threads=1)))
     lines.append("")
 
     # 3. The cube.

@@ -18,35 +18,15 @@ namespace ViscoContact
     using SetThreads = void (*)(int);
     using GetThreads = int (*)();
 
-    // OpenBLAS's two functions, or null with another BLAS.
-    SetThreads
-    openblas_set_num_threads()
+    // A function of the libraries loaded, by name, or null where none has
+    // it: OpenBLAS's openblas_set/get_num_threads (no other BLAS has them)
+    // and OpenMP's omp_set_num_threads and omp_get_max_threads (for the
+    // calling thread; only CHOLMOD brings in an OpenMP runtime).
+    template <typename Function>
+    Function
+    function_named(const char *name)
     {
-      return reinterpret_cast<SetThreads>(
-        dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-    }
-
-    GetThreads
-    openblas_get_num_threads()
-    {
-      return reinterpret_cast<GetThreads>(
-        dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-    }
-
-    // OpenMP's two functions for the calling thread, or null without an
-    // OpenMP runtime.
-    SetThreads
-    omp_set_num_threads()
-    {
-      return reinterpret_cast<SetThreads>(
-        dlsym(RTLD_DEFAULT, "omp_set_num_threads"));
-    }
-
-    GetThreads
-    omp_get_max_threads()
-    {
-      return reinterpret_cast<GetThreads>(
-        dlsym(RTLD_DEFAULT, "omp_get_max_threads"));
+      return reinterpret_cast<Function>(dlsym(RTLD_DEFAULT, name));
     }
   } // namespace
 
@@ -55,7 +35,7 @@ namespace ViscoContact
   unsigned int
   set_blas_threads(const unsigned int n_threads)
   {
-    const SetThreads set = openblas_set_num_threads();
+    const auto set = function_named<SetThreads>("openblas_set_num_threads");
     if (set == nullptr)
       return 1;
     const unsigned int previous = blas_threads();
@@ -68,7 +48,7 @@ namespace ViscoContact
   unsigned int
   blas_threads()
   {
-    const GetThreads get = openblas_get_num_threads();
+    const auto get = function_named<GetThreads>("openblas_get_num_threads");
     return get != nullptr ? std::max(get(), 1) : 1;
   }
 
@@ -78,8 +58,8 @@ namespace ViscoContact
     : previous(set_blas_threads(dealii::MultithreadInfo::n_threads()))
     , previous_openmp(0)
   {
-    const SetThreads set = omp_set_num_threads();
-    const GetThreads get = omp_get_max_threads();
+    const auto set = function_named<SetThreads>("omp_set_num_threads");
+    const auto get = function_named<GetThreads>("omp_get_max_threads");
     if (set != nullptr && get != nullptr)
       {
         previous_openmp = get();
@@ -93,7 +73,7 @@ namespace ViscoContact
   {
     set_blas_threads(previous);
     if (previous_openmp > 0)
-      omp_set_num_threads()(previous_openmp);
+      function_named<SetThreads>("omp_set_num_threads")(previous_openmp);
   }
 
 } // namespace ViscoContact

@@ -1251,38 +1251,39 @@ check_last_block(const MatrixType                &A,
 }
 
 
-// A 5-point Laplacian on a 12 x 12 grid plus a shift, the rows of the
-// grid's bottom line requested last in a scrambled order.
+// The rows requested last: those of the grid's bottom line in a scrambled
+// order (every third grid point first), and with several rows per grid
+// point only its last one (as the contact dofs are the normal components
+// only).
+std::vector<unsigned int>
+bottom_line_rows(const unsigned int side, const unsigned int rows_per_point)
+{
+  std::vector<unsigned int> rows;
+  for (unsigned int start = 0; start < 3; ++start)
+    for (unsigned int i = start; i < side; i += 3)
+      rows.push_back(rows_per_point * (i + 1) - 1);
+  return rows;
+}
+
+// A 5-point Laplacian on a 12 x 12 grid plus a shift.
 TEST(SparseDirectSolver, LastBlockOfTheCholeskyFactor)
 {
   if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
     return; // CHOLMOD factorises on one rank only
-  const unsigned int side = 12;
-  MatrixType         A;
-  shifted_grid_laplacian(side, A);
-  // The bottom line, every third entry first.
-  std::vector<unsigned int> last_rows;
-  for (unsigned int start = 0; start < 3; ++start)
-    for (unsigned int i = start; i < side; i += 3)
-      last_rows.push_back(i);
-  check_last_block(A, last_rows);
+  MatrixType A;
+  shifted_grid_laplacian(12, A);
+  check_last_block(A, bottom_line_rows(12, 1));
 }
 
 // The same with two rows per grid point, which the elimination order keeps
-// together, except on the bottom line: there only the second row of each
-// point is requested (as the contact dofs are the normal components only).
+// together, except on the bottom line, where only one of them is requested.
 TEST(SparseDirectSolver, LastBlockWithTwoRowsPerGridPoint)
 {
   if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
     return;
-  const unsigned int side = 12;
-  MatrixType         A;
-  shifted_grid_laplacian_with_blocks(side, A);
-  std::vector<unsigned int> last_rows;
-  for (unsigned int start = 0; start < 3; ++start)
-    for (unsigned int i = start; i < side; i += 3)
-      last_rows.push_back(2 * i + 1);
-  check_last_block(A, last_rows);
+  MatrixType A;
+  shifted_grid_laplacian_with_blocks(12, A);
+  check_last_block(A, bottom_line_rows(12, 2));
 }
 
 

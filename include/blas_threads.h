@@ -31,8 +31,8 @@ namespace ViscoContact
   // same scope CHOLMOD's own OpenMP loops (which scatter the updates
   // between supernodes) run on the calling thread only: a second pool of
   // threads would compete with the BLAS's for the cores.
-  // (At 526k dofs this took the set-up of the 2D static scene from 2.5 s
-  // to 2.35 s in the median of five paired runs, with less spread.)
+  // (At 526k dofs, by hand, five paired runs: the set-up of the 2D static
+  // scene took 2.36 s against 2.58 s in the median, with less spread.)
   class BlasThreadsOfRank
   {
   public:

@@ -28,6 +28,7 @@
 #include <umfpack.h>
 
 #include <algorithm>
+#include <optional>
 #include <utility>
 
 namespace ViscoContact
@@ -847,8 +848,9 @@ namespace ViscoContact
     rhs.dtype = CHOLMOD_DOUBLE;
     // Many right-hand sides are solved with dense kernels, on the rank's
     // threads.
-    const std::unique_ptr<BlasThreadsOfRank> threads
-      = n_columns > 1 ? std::make_unique<BlasThreadsOfRank>() : nullptr;
+    std::optional<BlasThreadsOfRank> threads;
+    if (n_columns > 1)
+      threads.emplace();
     const int ok = cholmod_l_solve2(sys,
                                     cholmod_factor_,
                                     &rhs,

@@ -25,9 +25,15 @@ namespace ViscoContact
   // z_i = w_i (o + s r_i), i.e. the row
   //   z_i / (w_i s) + (S z)_i = d_i + o / s,
   // a node on a vertical piece at r = beta has (S z)_i = d_i - beta, and a
-  // node on a flat piece (s = 0) has the known force z_i = w_i o. Only the
-  // unknown forces enter the dense system, whose LU factorisation is kept
-  // while the pieces do not change (in most time steps they do not).
+  // node on a flat piece (s = 0) has the known force z_i = w_i o.
+  //
+  // A node's row depends on its own piece only. The dense matrix of the
+  // rows is factorised for the pieces of one iteration (the base) and kept;
+  // when some nodes move to pieces with other rows, the matrix changes in
+  // those rows only, and the solve corrects the base's with a small dense
+  // system on the changed rows (the Sherman-Morrison-Woodbury formula)
+  // instead of factorising again, until so many rows have changed that a
+  // new factorisation is cheaper.
   class CondensedContactSystem
   {
   public:
@@ -51,18 +57,72 @@ namespace ViscoContact
 
     const FullMatrix<double> &
     compliance() const;
+    // How often the dense matrix was factorised, and how often a solve
+    // corrected a kept factorisation for changed rows instead.
     unsigned int
     n_factorizations() const;
+    unsigned int
+    n_updated_solves() const;
 
   private:
+    // Row i of the dense matrix: S(i, :) + diagonal e_i^T for a node whose
+    // force is unknown (diagonal 1 / (w_i s) on a sloped piece, 0 on a
+    // vertical one), diagonal e_i^T alone for a node whose force is known
+    // (diagonal S(i, i), the scale of the other rows).
+    struct Row
+    {
+      bool   unknown_force;
+      double diagonal;
+      bool
+      operator==(const Row &other) const
+      {
+        return unknown_force == other.unknown_force
+               && diagonal == other.diagonal;
+      }
+    };
+    Row
+    row(const unsigned int node, const unsigned int piece) const;
+
+    void
+    factorize(const std::vector<unsigned int> &pieces);
+    void
+    solve_with_factorization(Vector<double> &x) const;
+    void
+    compute_responses(const std::vector<unsigned int> &nodes);
+    double
+    changed_row_times(const unsigned int a, const Vector<double> &x) const;
+    bool
+    update_changed_rows(const std::vector<unsigned int> &pieces);
+    void
+    apply_inverse(Vector<double> &x) const;
+
     std::optional<ContactLaw> contact_law;
     FullMatrix<double>        S;
     std::vector<double>       w;
 
-    LAPACKFullMatrix<double>  system_matrix;
-    std::vector<unsigned int> factorized_pieces;
-    std::vector<unsigned int> unknown_nodes;
-    unsigned int              factorization_count = 0;
+    // The base: the rows it was factorised for, its nodes of unknown force
+    // (row and column a of factorized_matrix belong to unknown_nodes[a]),
+    // those of known force, and the LU factorisation of the block of the
+    // unknown ones (the rows of known forces are diagonal and need none).
+    std::vector<Row>          factorized_rows;
+    std::vector<unsigned int> unknown_nodes, known_nodes;
+    LAPACKFullMatrix<double>  factorized_matrix;
+
+    // Since the base: the responses M_0^{-1} e_j of the base matrix M_0 to
+    // a unit entry at node j, kept for every node whose row has changed in
+    // some solve (response_of_node[j], or -1), the nodes whose rows differ
+    // now, their new rows, and the LU factorisation of the small matrix
+    // I + V Y of the Woodbury formula (V: the changes of those rows, Y: the
+    // responses) for the pieces it was built for.
+    std::vector<Vector<double>> responses;
+    std::vector<int>            response_of_node;
+    std::vector<unsigned int>   changed_nodes;
+    std::vector<Row>            changed_rows;
+    LAPACKFullMatrix<double>    capacitance;
+    std::vector<unsigned int>   updated_pieces;
+
+    unsigned int factorization_count = 0;
+    unsigned int updated_solve_count = 0;
   };
 } // namespace ViscoContact
 

@@ -698,6 +698,144 @@ TEST(ActiveSetSolver, CoupledNodesMatchExhaustiveEnumeration)
 
 
 
+namespace
+{
+  // The dense problem of the given pieces solved twice: by a system that
+  // has solved earlier pieces (and may correct its kept factorisation for
+  // the rows that changed) and by a new one, which factorises. Both must
+  // find the same forces and normal displacements, up to rounding, and
+  // meet the pieces' equations to the defect a factorisation leaves.
+  void
+  expect_same_as_new_factorisation(CondensedContactSystem          &updated,
+                                   const std::vector<unsigned int> &pieces,
+                                   const FullMatrix<double>        &S,
+                                   const std::vector<double>       &w,
+                                   const Vector<double>            &d,
+                                   const ContactLaw &law = benchmark_law)
+  {
+    CondensedContactSystem new_system;
+    new_system.reinit(law, S, w);
+    Vector<double> r, z, r_new, z_new;
+    const double   defect     = updated.solve(pieces, d, r, z);
+    const double   new_defect = new_system.solve(pieces, d, r_new, z_new);
+    EXPECT_LE(new_defect, 1e-14);
+    EXPECT_LE(defect, 1e-14);
+    for (unsigned int i = 0; i < w.size(); ++i)
+      {
+        EXPECT_NEAR(z[i], z_new[i], 1e-12 * z_new.linfty_norm()) << i;
+        EXPECT_NEAR(r[i], r_new[i], 1e-12 * r_new.linfty_norm()) << i;
+      }
+  }
+} // namespace
+
+
+
+// Changed pieces without a new factorisation: the Woodbury correction of
+// the kept one for rows that changed between the pieces' kinds (a known
+// force becoming unknown and back, sloped to vertical, softening to
+// hardening), for changes added and taken back, must give what a new
+// factorisation gives; a change of more than a quarter of the rows
+// factorises again.
+TEST(CondensedContactSystem, ChangedRowsAgreeWithANewFactorisation)
+{
+  const unsigned int  m = 60;
+  FullMatrix<double>  S(m, m);
+  std::vector<double> w(m);
+  Vector<double>      d(m);
+  for (unsigned int i = 0; i < m; ++i)
+    {
+      for (unsigned int j = 0; j < m; ++j)
+        S(i, j) = 0.004 * std::exp(-std::abs(double(i) - double(j)) / 2);
+      w[i] = 0.02 + 0.005 * (i % 3);
+      d[i] = 0.02 * std::sin(0.37 * i);
+    }
+  // Every node on piece i % 4: out of contact (a known force), the
+  // hardening and the softening slope, the rigid limit.
+  std::vector<unsigned int> pieces(m);
+  for (unsigned int i = 0; i < m; ++i)
+    pieces[i] = i % 4;
+  CondensedContactSystem system;
+  system.reinit(benchmark_law, S, w);
+  expect_same_as_new_factorisation(system, pieces, S, w, d);
+  ASSERT_EQ(system.n_factorizations(), 1u);
+
+  // Three nodes change kind: a known force becomes unknown, an unknown one
+  // known, a sloped piece vertical.
+  const std::vector<unsigned int> base = pieces;
+  pieces[0]                            = 1;
+  pieces[1]                            = 0;
+  pieces[2]                            = 3;
+  expect_same_as_new_factorisation(system, pieces, S, w, d);
+  // Ten more, each to the next piece.
+  for (unsigned int i = 10; i < 20; ++i)
+    pieces[i] = (pieces[i] + 1) % 4;
+  expect_same_as_new_factorisation(system, pieces, S, w, d);
+  // The first three back as in the factorisation, one more changed.
+  for (unsigned int i = 0; i < 3; ++i)
+    pieces[i] = base[i];
+  pieces[30] = 2;
+  expect_same_as_new_factorisation(system, pieces, S, w, d);
+  EXPECT_EQ(system.n_factorizations(), 1u);
+  EXPECT_EQ(system.n_updated_solves(), 3u);
+
+  // Half of the nodes change: a new factorisation.
+  for (unsigned int i = 0; i < m; i += 2)
+    pieces[i] = (pieces[i] + 2) % 4;
+  expect_same_as_new_factorisation(system, pieces, S, w, d);
+  EXPECT_EQ(system.n_factorizations(), 2u);
+  EXPECT_EQ(system.n_updated_solves(), 3u);
+}
+
+
+
+namespace
+{
+  // The kept factorisation is for node 0 on a nearly flat piece (slope
+  // `slope`, so the diagonal 1 / (w_0 slope) dwarfs the compliance), the
+  // new pieces put that node at the rigid limit, where its row is the row
+  // of S alone: a well-conditioned matrix, but the Woodbury correction
+  // cancels the large diagonal. Returns how often the system factorised.
+  unsigned int
+  factorisations_after_leaving_a_nearly_flat_piece(const double slope)
+  {
+    const ContactLaw law({0., 0.006}, {0., slope, -100.}, {0., 0.}, true, 0.01);
+    const unsigned int  m = 20;
+    FullMatrix<double>  S(m, m);
+    std::vector<double> w(m, 0.03);
+    Vector<double>      d(m);
+    for (unsigned int i = 0; i < m; ++i)
+      {
+        S(i, i) = 0.01;
+        if (i > 0)
+          S(i, i - 1) = S(i - 1, i) = 0.002;
+        d[i] = 0.004 + 0.0001 * i;
+      }
+    std::vector<unsigned int> pieces(m, 2);
+    pieces[0] = 1;
+    CondensedContactSystem system;
+    system.reinit(law, S, w);
+    Vector<double> r, z;
+    system.solve(pieces, d, r, z);
+    pieces[0] = 3;
+    expect_same_as_new_factorisation(system, pieces, S, w, d, law);
+    return system.n_factorizations();
+  }
+} // namespace
+
+
+
+// A moderately large diagonal in the kept factorisation leaves a defect
+// that one step of iterative refinement removes; a much larger one cannot
+// be corrected, and the solve must notice by its defect and factorise the
+// new pieces' matrix instead.
+TEST(CondensedContactSystem, CancellingCorrectionIsRefinedOrReplaced)
+{
+  EXPECT_EQ(factorisations_after_leaving_a_nearly_flat_piece(1e-4), 1u);
+  EXPECT_EQ(factorisations_after_leaving_a_nearly_flat_piece(1e-10), 2u);
+}
+
+
+
 // The condensation on a finite element problem: the plane-stress benchmark
 // body (6 x 6 squares split into triangles, clamped at x = 0, pressed down
 // by (0, -15) on the top, the benchmark law on the bottom). Reference: with

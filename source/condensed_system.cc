@@ -6,6 +6,8 @@
 
 #include <deal.II/base/exceptions.h>
 
+#include <deal.II/lac/exceptions.h>
+
 #include "condensed_system.h"
 
 #include <utility>
@@ -52,10 +54,10 @@ namespace ViscoContact
   // r_i = d_i - (S z)_i gives z_i / (w_i s) + (S z)_i = d_i + o / s; on a
   // vertical piece at beta, r_i = beta gives (S z)_i = d_i - beta; on a flat
   // piece (s = 0) the force z_i = w_i o is known, written as the row
-  // S_ii z_i = S_ii w_i o. With softening slopes (s < 0) the diagonal
-  // 1 / (w_i s) is negative and the matrix, though symmetric for symmetric
-  // S, need not be definite; for a tangent S is not even symmetric. Hence a
-  // general LU factorisation with pivoting.
+  // |S_ii| z_i = |S_ii| w_i o (the scale of the other rows). With softening
+  // slopes (s < 0) the diagonal 1 / (w_i s) is negative and the matrix, though
+  // symmetric for symmetric S, need not be definite; for a tangent S is not
+  // even symmetric. Hence a general LU factorisation with pivoting.
   CondensedContactSystem::Row
   CondensedContactSystem::row(const unsigned int node,
                               const unsigned int piece_index) const
@@ -65,7 +67,8 @@ namespace ViscoContact
       return {true, 0.};
     if (piece.slope != 0)
       return {true, 1. / (w[node] * piece.slope)};
-    return {false, S(node, node)};
+    const double scale = std::abs(S(node, node));
+    return {false, scale > 0 ? scale : 1.};
   }
 
 
@@ -263,8 +266,18 @@ namespace ViscoContact
           capacitance(a, b)
             = (a == b ? 1. : 0.) + changed_row_times(a, response);
       }
+    // A singular I + V Y means a singular matrix of the pieces, or a
+    // correction that cancelled all digits: factorising the pieces' own
+    // matrix tells which.
     if (k > 0)
-      capacitance.compute_lu_factorization();
+      try
+        {
+          capacitance.compute_lu_factorization();
+        }
+      catch (const LACExceptions::ExcSingular &)
+        {
+          return false;
+        }
     updated_pieces = pieces;
     return true;
   }
@@ -313,7 +326,7 @@ namespace ViscoContact
       factorize(pieces);
 
     // The right-hand side of each row: d_i plus the piece's constant,
-    // -beta on a vertical piece and o / s on a sloped one; S_ii w_i o for a
+    // -beta on a vertical piece and o / s on a sloped one; |S_ii| w_i o for a
     // known force.
     z.reinit(m);
     for (unsigned int i = 0; i < m; ++i)
@@ -324,7 +337,7 @@ namespace ViscoContact
         else if (piece.slope != 0)
           z[i] = d[i] + piece.intercept / piece.slope;
         else
-          z[i] = S(i, i) * w[i] * piece.intercept;
+          z[i] = row(i, pieces[i]).diagonal * w[i] * piece.intercept;
       }
     apply_inverse(z);
 
@@ -371,13 +384,13 @@ namespace ViscoContact
     if (!changed_nodes.empty())
       {
         ++updated_solve_count;
-        if (defect > largest_updated_defect)
+        if (!(defect <= largest_updated_defect))
           {
             apply_inverse(residual);
             z += residual;
             defect = defect_of_forces();
           }
-        if (defect > largest_updated_defect)
+        if (!(defect <= largest_updated_defect))
           {
             factorize(pieces);
             return solve(pieces, d, r, z);

@@ -68,7 +68,7 @@ namespace ViscoContact
     // Row i of the dense matrix: S(i, :) + diagonal e_i^T for a node whose
     // force is unknown (diagonal 1 / (w_i s) on a sloped piece, 0 on a
     // vertical one), diagonal e_i^T alone for a node whose force is known
-    // (diagonal S(i, i), the scale of the other rows).
+    // (diagonal |S(i, i)|, the scale of the other rows, or 1 if zero).
     struct Row
     {
       bool   unknown_force;

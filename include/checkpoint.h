@@ -3,6 +3,8 @@
 
 #include <deal.II/base/mpi.h>
 
+#include "output_folder.h"
+
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -19,7 +21,8 @@ namespace ViscoContact
   //
   // A checkpoint of step n is one file,
   //   <Output directory>/checkpoint/step_NNNNNN.bin,
-  // written by all ranks together through MPI I/O, and the text file
+  // written by all ranks together (OutputFolder::stage_collectively()),
+  // and the text file
   // checkpoint/checkpoint.info that names the last complete one. The file
   // holds a header (the same for all ranks) and one fixed-size record per
   // cell of the mesh, keyed by the cell's id: its displacement values, its
@@ -29,7 +32,7 @@ namespace ViscoContact
   // MPITools::exchange_records() delivers every record to the rank that
   // now owns the cell.
   //
-  // The file is written under a temporary name and renamed when complete;
+  // The file is staged as a temporary and renamed when complete;
   // checkpoint.info is renamed only after that, and the file of the
   // previous checkpoint is deleted only after that. A run killed at any
   // moment therefore leaves a checkpoint.info that names a complete file.
@@ -139,39 +142,40 @@ namespace ViscoContact
     std::vector<std::string> entries;
   };
 
-  // <Output directory>/checkpoint, and the file of a step in it.
-  std::filesystem::path
-  checkpoint_directory(const std::string &output_directory);
-  std::filesystem::path
-  checkpoint_file(const std::string &output_directory, const unsigned int step);
+  // The checkpoint folder, its record and the file of a step, relative to
+  // the output folder.
+  extern const char *const checkpoint_folder;
+  extern const char *const checkpoint_info;
+  std::string
+  checkpoint_name(const unsigned int step);
 
   // Collective. A file of the header (rank 0's) followed by the records of
-  // all ranks in rank order, each record_size bytes; under a temporary
-  // name, renamed when complete.
+  // all ranks in rank order, each record_size bytes, staged in the output
+  // folder (committed by the caller).
   void
-  write_record_file(const std::filesystem::path &file,
-                    const std::vector<char>     &header,
-                    const std::vector<char>     &local_records,
-                    const std::uint64_t          record_size,
-                    const MPI_Comm               communicator);
+  write_record_file(OutputFolder            &folder,
+                    const std::string       &name,
+                    const std::vector<char> &header,
+                    const std::vector<char> &local_records,
+                    const std::uint64_t      record_size,
+                    const MPI_Comm           communicator);
 
   // Collective. The header, and an equal share of the records for each
   // rank (whatever the number of ranks that wrote them).
   void
-  read_record_file(const std::filesystem::path &file,
-                   std::vector<char>           &header,
-                   std::vector<char>           &record_share,
-                   const std::uint64_t          record_size,
-                   const MPI_Comm               communicator);
+  read_record_file(const std::string  &file,
+                   std::vector<char>  &header,
+                   std::vector<char>  &record_share,
+                   const std::uint64_t record_size,
+                   const MPI_Comm      communicator);
 
   // Collective. After the checkpoint file is complete: rank 0 publishes
   // the record and removes the file of the previous checkpoint
   // (previous_step, if not numbers::invalid_unsigned_int).
   void
-  publish_checkpoint(const std::string      &output_directory,
+  publish_checkpoint(OutputFolder           &folder,
                      const CheckpointRecord &record,
-                     const unsigned int      previous_step,
-                     const MPI_Comm          communicator);
+                     const unsigned int      previous_step);
 
   // The last complete checkpoint; throws with a message that names the
   // Resume entry if there is none or it was written for another problem
@@ -182,12 +186,15 @@ namespace ViscoContact
                          const std::uint64_t             n_dofs,
                          const std::vector<std::string> &entries);
 
-  // Keep the header and the rows of steps <= step of time_series.csv (the
-  // rows of a resumed run's later steps are written again).
-  // Returns an empty string or the message of a failed write.
-  std::string
-  truncate_time_series(const std::filesystem::path &file,
-                       const unsigned int           step);
+  // Collective, after the folder is prepared: time_series.csv keeps its
+  // header and the rows of steps <= step (the rows of a resumed run's later
+  // steps are written again). A series that was deleted gets its header
+  // back (header is the header line), with a warning that the rows up to
+  // the checkpoint are lost.
+  void
+  truncate_time_series(OutputFolder      &folder,
+                       const std::string &header,
+                       const unsigned int step);
 } // namespace ViscoContact
 
 #endif

@@ -82,6 +82,8 @@ namespace ViscoContact
     };
     Row
     row(const unsigned int node, const unsigned int piece) const;
+    bool
+    is_flat(const unsigned int node, const ContactLawPiece &piece) const;
 
     void
     factorize(const std::vector<unsigned int> &pieces);

@@ -99,12 +99,12 @@ namespace ViscoContact
     void
     add_normal(VectorType &v, const unsigned int i, const double value) const;
 
-    // The contact profile along Gamma_3, one line per node, written by all
-    // ranks into one file (collective): the coordinates, the time, u_nu,
-    // the pressures of the layer, of the foundation and in all, the nodal
-    // force, the weight and the status.
-    void
-    write_profile(const std::string &file, const double time) const;
+    // This rank's block of the contact profile along Gamma_3 (rank 0's with
+    // the header), one line per node: the coordinates, the time, u_nu, the
+    // pressures of the layer, of the foundation and in all, the nodal force,
+    // the weight and the status.
+    std::string
+    profile_text(const double time) const;
 
     // The nodal contact fields of the output at the contact nodes of this
     // rank (zero elsewhere): contact pressure z/w, its parts carried by the

@@ -5,9 +5,11 @@
 #include <deal.II/base/mpi.h>
 
 #include "mpi_tools.h"
+#include "output_folder.h"
 #include "parameters.h"
 #include "viscoplastic_contact.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -103,7 +105,9 @@ namespace ViscoContact
     const Parameters::AllParameters parameters;
     const MPI_Comm                  communicator;
     ConditionalOStream              pcout;
-    std::vector<Run>                runs;
+    // The study's folder: convergence.csv and runs/, one folder per run.
+    std::unique_ptr<OutputFolder> folder;
+    std::vector<Run>              runs;
   };
 } // namespace ViscoContact
 

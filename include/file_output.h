@@ -11,23 +11,20 @@ namespace ViscoContact
 
   // @sect3{Writing files safely}
   //
-  // Every file the program writes goes through the functions of this
-  // namespace (or, for the files all ranks write together, through
-  // MPITools::write_blocks_collectively(), which uses the same rules):
-  //  - a file is written under a temporary name (FILE.tmp) and renamed to
-  //    its name only when it is complete, so that no truncated file is ever
-  //    left under a final name;
-  //  - a failed write returns a message that names the file and the
-  //    system's reason (strerror(errno), "No space left on device" on a full
-  //    disk), and removes the temporary file;
+  // The helpers that every writer uses; the files of a run go through
+  // OutputFolder (output_folder.h), which stages and commits them.
   //  - agree_on_problem() turns a failure that one rank saw into the same
   //    exception on every rank, so that no rank waits in a collective call
-  //    for another that gave up.
+  //    for another that gave up;
+  //  - write_file() writes a file outside a run's folder (the parameter
+  //    file of --print-parameters): to a temporary created exclusively next
+  //    to it, renamed into place when complete, replacing an existing file
+  //    only if asked to.
   //
   // For the tests, the environment variable VISCOPLASTIC_CONTACT_FAIL_WRITE
   // makes writes fail as on a full disk: every file whose name contains its
-  // value (on the last rank, for files all ranks write together); with the
-  // value PATTERN:N from the N-th such write on.
+  // value (on the last rank of a group, for files ranks write together);
+  // with the value PATTERN:N from the N-th such write on.
   namespace FileOutput
   {
     // True if the test switch VISCOPLASTIC_CONTACT_FAIL_WRITE is set and its
@@ -35,20 +32,15 @@ namespace ViscoContact
     bool
     simulate_failure(const std::string &file);
 
-    // Writes content to file (temporary name, then rename). Returns an empty
-    // string on success, otherwise the message. With durable = true the data
-    // reach the disk (fsync) before the rename. Not collective.
-    std::string
-    write_file_atomically(const std::string &file,
-                          const std::string &content,
-                          const bool         durable = false);
-
-    // Appends text to file (created if missing). A failed append is undone
-    // (the file is cut back to its old length), so that the file never ends
-    // in a partial line. Returns an empty string or the message. Not
+    // Writes content to file through a temporary in the same folder,
+    // created exclusively. An existing file is replaced only with replace =
+    // true (a symbolic link under the name is replaced, never followed).
+    // Returns an empty string on success, otherwise the message. Not
     // collective.
     std::string
-    append_to_file(const std::string &file, const std::string &text);
+    write_file(const std::string &file,
+               const std::string &content,
+               const bool         replace);
 
     // Collective: if any rank has a non-empty problem, every rank throws
     // the message of the lowest such rank; otherwise nothing happens.

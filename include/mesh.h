@@ -67,6 +67,19 @@ namespace ViscoContact
   refine_mesh(const Parameters::AllParameters &parameters,
               Triangulation<dim>              &triangulation);
 
+  // The checks of a Gmsh file (mesh_checks.cc), each stopping with a
+  // message that names the Mesh file entry, the file and what is wrong:
+  // every node id defined once; and, on the mesh as read, finite
+  // coordinates of a sane extent, cells with distinct nodes and positive,
+  // non-negligible Jacobians at every corner, no coincident nodes (a crack),
+  // and conforming faces (no hanging node).
+  void
+  check_gmsh_node_ids(const std::string &file);
+  template <int dim>
+  void
+  check_coarse_mesh(const Triangulation<dim> &triangulation,
+                    const std::string        &file);
+
   template <int dim>
   void
   check_boundary_ids(const Parameters::AllParameters &parameters,

@@ -196,6 +196,10 @@ namespace ViscoContact
       TimeStepControl time_step_control;
       double          error_tolerance;
       double          maximum_time_step;
+      // The bound on the number of steps of a run (and of each run of a
+      // convergence study): a schedule beyond it is refused before anything
+      // is written.
+      unsigned int max_steps;
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -229,6 +233,10 @@ namespace ViscoContact
       parse_parameters(ParameterHandler &prm);
     };
 
+    // The most .vtu records a run writes (each a .pvtu file with its
+    // pieces, listed in solution.pvd): beyond it the schedule is refused.
+    constexpr unsigned int max_output_records = 10000;
+
     struct Output
     {
       std::string         directory;
@@ -237,8 +245,11 @@ namespace ViscoContact
       std::vector<double> profile_times;
       bool                print_timing_summary;
       bool                verbose;
-      bool                overwrite;         // remove an earlier run's files
-      std::string         parsed_parameters; // the complete parsed file
+      bool                overwrite; // remove an earlier run's files
+      // The parameter file being run (set by main(), not an entry): a run
+      // never removes or replaces it.
+      std::string parameter_file;
+      std::string parsed_parameters; // the complete parsed file
       // Every entry that changes the result, as "Subsection/Entry = value":
       // all but the Output and Checkpoint entries and End time (a resumed
       // run may go further). Stored with a checkpoint and compared on resume.

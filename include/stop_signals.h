@@ -1,6 +1,8 @@
 #ifndef viscoplastic_contact_stop_signals_h
 #define viscoplastic_contact_stop_signals_h
 
+#include <deal.II/base/mpi.h>
+
 #include <string>
 
 namespace ViscoContact
@@ -13,9 +15,10 @@ namespace ViscoContact
   // 128 + the signal's number. A second signal stops it at once (the
   // default action of the signal).
   //
-  // The handler only records the signal; the time loop asks once per step,
-  // and the ranks agree on the answer with a maximum over the ranks, so that
-  // all stop after the same step even if only one rank got the signal.
+  // The handler only records the signal; the time loop asks once per step
+  // and the set-up between its phases, and the ranks agree on the answer
+  // with a maximum over the ranks, so that all stop at the same point even
+  // if only one rank got the signal.
   namespace StopSignals
   {
     // Installs the handler for SIGTERM, SIGINT and SIGUSR1.
@@ -30,8 +33,16 @@ namespace ViscoContact
     std::string
     name(const int signal);
 
+    // Collective, between the phases of the set-up: if any rank has
+    // received a signal, every rank says so (rank 0 prints where the run
+    // stopped: phase) and throws Stopped. Nothing is saved: there is no
+    // step to save yet.
+    void
+    stop_if_received(const MPI_Comm communicator, const std::string &phase);
+
     // Thrown by the time loop on every rank after the checkpoint of the
-    // step at which it stopped; main() turns it into the exit status.
+    // step at which it stopped (or by stop_if_received() during the
+    // set-up); main() turns it into the exit status.
     struct Stopped
     {
       int signal;

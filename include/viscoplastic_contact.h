@@ -27,6 +27,7 @@
 #include "contact_solver.h"
 #include "linear_algebra.h"
 #include "material.h"
+#include "output_folder.h"
 #include "parameters.h"
 #include "time_loop.h"
 
@@ -226,11 +227,20 @@ namespace ViscoContact
     // is either reduced over the ranks (counts, forces, norms: written by rank
     // 0) or each rank's own part of one file (written collectively).
     void
-    check_output_directory() const;
+    check_output_directory();
     void
     check_memory_estimate() const;
+    // The .vtu records of n_steps steps fit on the disk of the output folder
+    // (a lower estimate of their size), or all ranks stop with the entries
+    // that make them.
     void
-    prepare_output_directory();
+    check_output_volume(const unsigned int n_steps) const;
+    // Step n (starting at time) is within Maximum number of steps, and its
+    // record within the bound on .vtu records.
+    void
+    check_step_count(const unsigned int n, const double time) const;
+    void
+    prepare_output_directory(const unsigned int resume_step);
     void
     output_results(const unsigned int step,
                    const double       time,
@@ -239,7 +249,7 @@ namespace ViscoContact
     write_vtu_pieces(const DataOut<dim>          &data_out,
                      const DataOutBase::VtkFlags &flags,
                      const std::string           &stem,
-                     const unsigned int           step) const;
+                     const unsigned int           step);
     void
     write_time_series_row(const unsigned int     step,
                           const double           time,
@@ -247,7 +257,7 @@ namespace ViscoContact
                           const ActiveSetResult &result,
                           const double           wall_time);
     void
-    write_contact_profile(const unsigned int step, const double time) const;
+    write_contact_profile(const unsigned int step, const double time);
     void
     print_run_summary();
 
@@ -441,11 +451,12 @@ namespace ViscoContact
     // Called after every accepted step (set_step_observer()).
     std::function<void(const unsigned int, const double)> step_observer;
 
-    // Output records: the .pvd list (kept on rank 0), the time series (open on
-    // rank 0 only), the time spent in the time loop without output, and the
-    // step counters a checkpoint stores and a resumed run restores.
+    // The output folder (created by run() before the set-up, which checks
+    // and locks it), the .pvd list (kept on rank 0), the time spent in the
+    // time loop without output, and the step counters a checkpoint stores and
+    // a resumed run restores.
+    std::unique_ptr<OutputFolder>               output_folder;
     std::vector<std::pair<double, std::string>> times_and_names;
-    std::string                                 time_series_file; // rank 0
     double                                      time_loop_compute_time = 0;
     unsigned int                                n_time_steps           = 0;
     unsigned int                                n_steps_done           = 0;

@@ -245,6 +245,29 @@ namespace ViscoContact
           }
         if (moved[0] == 0)
           pieces_settled = true;
+        // Settled pieces whose linear solves no longer improve (three solves
+        // in a row without halving the residual): the accuracy of the linear
+        // problem is exhausted, and more iterations would only repeat it.
+        const std::size_t n = result.history.size();
+        if (n >= 3 && moved[0] == 0)
+          {
+            bool stagnant = true;
+            for (std::size_t j = n - 2; j < n; ++j)
+              stagnant = stagnant && result.history[j].changed_nodes == 0
+                         && result.history[j - 1].changed_nodes == 0
+                         && result.history[j].linear_residual
+                              > 0.5 * result.history[j - 1].linear_residual;
+            if (stagnant)
+              {
+                std::ostringstream reason;
+                reason << "The pieces of the contact law settled, but the "
+                          "linear solves stagnate at a relative residual of "
+                       << report.residual << ", above Tolerance = " << tolerance
+                       << " in subsection <Active set solver>.";
+                result.failure = reason.str();
+                return result;
+              }
+          }
       }
     // Out of iterations: the caller cuts the time step or stops the run with
     // this reason, which names the parameters that bound the iteration.

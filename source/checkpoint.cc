@@ -1,6 +1,6 @@
-// Checkpoints: the record file written and read by all ranks through MPI
-// I/O, the published record of the last complete checkpoint, and the
-// checkpoint of ViscoplasticContact<dim> itself.
+// Checkpoints: the record file written and read by all ranks, the published
+// record of the last complete checkpoint, and the checkpoint of
+// ViscoplasticContact<dim> itself.
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
@@ -14,9 +14,16 @@
 #include "time_loop.h"
 #include "viscoplastic_contact.h"
 
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
 #include <fstream>
+#include <iostream>
 #include <iomanip>
 #include <sstream>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace ViscoContact
 {
@@ -27,22 +34,43 @@ namespace ViscoContact
     // it. Bumped whenever the layout of the files changes.
     constexpr std::uint32_t checkpoint_version = 4;
 
-    // Every rank learns whether any rank saw an MPI error, and which, and all
-    // throw the same message. MPI_SUCCESS is 0 and error codes are positive, so
-    // the maximum over the ranks is an error code as soon as one rank has one.
-    // Without this, a rank that failed alone would throw while the others wait
-    // in the next collective call.
+    // Every rank learns whether any rank saw an error (an errno), and which,
+    // and all throw the same message. Without this, a rank that failed alone
+    // would throw while the others wait in the next collective call.
     void
-    agree_on_errors(const int                    error,
-                    const std::filesystem::path &file,
-                    const std::string           &what,
-                    const MPI_Comm               communicator)
+    agree_on_errors(const int          error,
+                    const std::string &file,
+                    const std::string &what,
+                    const MPI_Comm     communicator)
     {
       const int first_error = Utilities::MPI::max(error, communicator);
-      AssertThrow(first_error == MPI_SUCCESS,
-                  ExcMessage(what + " the checkpoint file " + file.string()
-                             + " failed: " + MPITools::error_string(first_error)
-                             + "."));
+      AssertThrow(first_error == 0,
+                  ExcMessage(what + " the checkpoint file " + file
+                             + " failed: " + std::strerror(first_error) + "."));
+    }
+
+    // Reads size bytes at offset; 0 or the errno (EIO for a file that ends
+    // too early).
+    int
+    read_at(const int         descriptor,
+            char             *data,
+            const std::size_t size,
+            const off_t       offset)
+    {
+      std::size_t done = 0;
+      while (done < size)
+        {
+          const ssize_t n
+            = ::pread(descriptor, data + done, size - done, offset + done);
+          if (n < 0 && errno == EINTR)
+            continue;
+          if (n < 0)
+            return errno;
+          if (n == 0)
+            return EIO;
+          done += n;
+        }
+      return 0;
     }
   } // namespace
 
@@ -95,23 +123,19 @@ namespace ViscoContact
 
   // @sect4{File names}
   //
-  // All checkpoints of a run live in the subdirectory checkpoint/ of its output
-  // directory; a step's file has a six-digit number, so that the files sort by
+  // All checkpoints of a run live in the folder checkpoint/ of its output
+  // folder; a step's file has a six-digit number, so that the files sort by
   // step.
-  std::filesystem::path
-  checkpoint_directory(const std::string &output_directory)
-  {
-    return std::filesystem::path(output_directory) / "checkpoint";
-  }
+  const char *const checkpoint_folder = "checkpoint";
+  const char *const checkpoint_info   = "checkpoint/checkpoint.info";
 
-
-
-  std::filesystem::path
-  checkpoint_file(const std::string &output_directory, const unsigned int step)
+  std::string
+  checkpoint_name(const unsigned int step)
   {
     std::ostringstream name;
-    name << "step_" << std::setw(6) << std::setfill('0') << step << ".bin";
-    return checkpoint_directory(output_directory) / name.str();
+    name << checkpoint_folder << "/step_" << std::setw(6) << std::setfill('0')
+         << step << ".bin";
+    return name.str();
   }
 
 
@@ -125,14 +149,15 @@ namespace ViscoContact
   // before trusting it. The total number of records is a sum over the ranks;
   // the prefix with the header is built on every rank but only rank 0's is
   // written. Where each rank's records go (the sum of the sizes of the lower
-  // ranks' blocks) and the writing under a temporary name are the business of
-  // MPITools::write_blocks_collectively().
+  // ranks' blocks) and the staging under a temporary name are the business
+  // of OutputFolder::stage_collectively().
   void
-  write_record_file(const std::filesystem::path &file,
-                    const std::vector<char>     &header,
-                    const std::vector<char>     &local_records,
-                    const std::uint64_t          record_size,
-                    const MPI_Comm               communicator)
+  write_record_file(OutputFolder            &folder,
+                    const std::string       &name,
+                    const std::vector<char> &header,
+                    const std::vector<char> &local_records,
+                    const std::uint64_t      record_size,
+                    const MPI_Comm           communicator)
   {
     const std::uint64_t n_records
       = Utilities::MPI::sum(std::uint64_t(local_records.size() / record_size),
@@ -145,102 +170,86 @@ namespace ViscoContact
     prefix.append(header.begin(), header.end());
     append(n_records);
     append(record_size);
-    MPITools::write_blocks_collectively(file.string(),
-                                        prefix,
-                                        local_records.data(),
-                                        local_records.size(),
-                                        communicator);
+    folder.stage_collectively(name,
+                              prefix,
+                              local_records.data(),
+                              local_records.size(),
+                              communicator);
   }
 
 
 
   // @sect4{read_record_file}
   //
-  // A value of type T at the given offset, read by this rank alone. The error
-  // is sticky: after the first failure nothing more is read, and the caller
-  // decides once, collectively, what to do with it.
-  template <typename T>
-  T
-  read_value(MPI_File handle, const MPI_Offset offset, int &error)
-  {
-    T value{};
-    if (error == MPI_SUCCESS)
-      error = MPI_File_read_at(handle,
-                               offset,
-                               &value,
-                               sizeof(T),
-                               MPI_CHAR,
-                               MPI_STATUS_IGNORE);
-    return value;
-  }
-
-
-
-  // The reader of write_record_file(): every rank opens the file, reads and
-  // checks the header and the counts, and then reads its own equal share of the
+  // Every rank opens the file (never following a link), reads and checks
+  // the header and the counts, and then reads its own equal share of the
   // records, records [n_total rank / n_ranks, n_total (rank + 1) / n_ranks).
   // How many ranks wrote the file does not matter: the records are of fixed
-  // size, and which rank ends up owning which cell is sorted out by the caller.
+  // size, and which rank ends up owning which cell is sorted out by the
+  // caller. Errors are sticky and agreed on by all ranks, so that all throw
+  // together.
   void
-  read_record_file(const std::filesystem::path &file,
-                   std::vector<char>           &header,
-                   std::vector<char>           &record_share,
-                   const std::uint64_t          record_size,
-                   const MPI_Comm               communicator)
+  read_record_file(const std::string  &file,
+                   std::vector<char>  &header,
+                   std::vector<char>  &record_share,
+                   const std::uint64_t record_size,
+                   const MPI_Comm      communicator)
   {
-    // The file is opened by all ranks together (MPI_File_open is collective);
-    // if it cannot be opened, all ranks throw.
-    MPI_File handle;
-    int      error = MPI_File_open(communicator,
-                              file.c_str(),
-                              MPI_MODE_RDONLY,
-                              MPI_INFO_NULL,
-                              &handle);
+    const int descriptor
+      = ::open(file.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+    int         error = descriptor < 0 ? errno : 0;
+    struct stat status;
+    if (error == 0 && ::fstat(descriptor, &status) != 0)
+      error = errno;
     agree_on_errors(error, file, "Opening", communicator);
-    MPI_Offset file_size = 0;
-    MPI_File_get_size(handle, &file_size);
+    const std::uint64_t file_size = status.st_size;
 
     // The header size comes first. Before anything else is trusted, the header
     // must fit into the file with the three 64-bit sizes.
-    const std::uint64_t header_size
-      = read_value<std::uint64_t>(handle, 0, error);
+    std::uint64_t header_size = 0, n_total = 0, stored_size = 0;
+    error = read_at(descriptor,
+                    reinterpret_cast<char *>(&header_size),
+                    sizeof(header_size),
+                    0);
     const bool header_fits
-      = header_size + 3 * sizeof(std::uint64_t) <= std::uint64_t(file_size);
+      = error == 0
+        && header_size
+             <= file_size - std::min(file_size, 3 * sizeof(std::uint64_t));
     header.resize(header_fits ? header_size : 0);
-    if (error == MPI_SUCCESS && header_fits)
-      error = MPI_File_read_at(handle,
-                               sizeof(std::uint64_t),
-                               header.data(),
-                               header_size,
-                               MPI_CHAR,
-                               MPI_STATUS_IGNORE);
-    // After the header: the number of records and the record size.
-    const MPI_Offset    counts = sizeof(std::uint64_t) + header_size;
-    const std::uint64_t n_total
-      = header_fits ? read_value<std::uint64_t>(handle, counts, error) : 0;
-    const std::uint64_t stored_size
-      = header_fits ? read_value<std::uint64_t>(handle, counts + 8, error) : 0;
-    const MPI_Offset records_start = counts + 2 * sizeof(std::uint64_t);
+    const off_t counts = sizeof(std::uint64_t) + header.size();
+    if (header_fits)
+      error = read_at(descriptor, header.data(), header_size, 8);
+    if (header_fits && error == 0)
+      error = read_at(descriptor,
+                      reinterpret_cast<char *>(&n_total),
+                      sizeof(n_total),
+                      counts);
+    if (header_fits && error == 0)
+      error = read_at(descriptor,
+                      reinterpret_cast<char *>(&stored_size),
+                      sizeof(stored_size),
+                      counts + 8);
+    const std::uint64_t records_start = counts + 2 * sizeof(std::uint64_t);
     // The file is consistent if it was read without error, its records have the
     // size this program expects (it depends on dim, the element and the stress
     // points of the cell type), and the file is exactly as long as the header
     // says. This is reduced over the ranks (all read the same bytes, but an I/O
     // error may hit one rank only), so that all ranks throw together.
     const bool consistent
-      = Utilities::MPI::min(error == MPI_SUCCESS && header_fits
-                                && stored_size == record_size
-                                && records_start + n_total * record_size
-                                     == std::uint64_t(file_size)
-                              ? 1
-                              : 0,
-                            communicator)
+      = Utilities::MPI::min(
+          error == 0 && header_fits && stored_size == record_size
+              && n_total <= file_size / std::max<std::uint64_t>(record_size, 1)
+              && records_start + n_total * record_size == file_size
+            ? 1
+            : 0,
+          communicator)
         == 1;
     if (!consistent)
       {
-        MPI_File_close(&handle);
+        ::close(descriptor);
         AssertThrow(false,
                     ExcMessage(
-                      "The checkpoint file " + file.string()
+                      "The checkpoint file " + file
                       + " is damaged, or does not belong to this scene "
                         "or to this version of the program."));
       }
@@ -252,25 +261,11 @@ namespace ViscoContact
     const std::uint64_t begin = n_total * rank / n_ranks;
     const std::uint64_t end   = n_total * (rank + 1) / n_ranks;
     record_share.resize((end - begin) * record_size);
-    // The collective read needs every rank, with the same number of calls:
-    // either all read or none. transfer_in_pieces() splits the read into pieces
-    // below the int range of MPI counts and makes every rank call
-    // MPI_File_read_at_all equally often, also a rank with an empty share.
-    error = Utilities::MPI::max(error, communicator);
-    if (error == MPI_SUCCESS)
-      error = MPITools::transfer_in_pieces(
-        record_share.size(),
-        communicator,
-        [&](const std::size_t start, const int n) {
-          return MPI_File_read_at_all(handle,
-                                      records_start + begin * record_size
-                                        + start,
-                                      record_share.data() + start,
-                                      n,
-                                      MPI_CHAR,
-                                      MPI_STATUS_IGNORE);
-        });
-    MPI_File_close(&handle);
+    error = read_at(descriptor,
+                    record_share.data(),
+                    record_share.size(),
+                    records_start + begin * record_size);
+    ::close(descriptor);
     agree_on_errors(error, file, "Reading", communicator);
   }
 
@@ -278,51 +273,33 @@ namespace ViscoContact
 
   // @sect4{publish_checkpoint}
   //
-  // The rename of checkpoint.info is atomic on POSIX file systems.
-  //
   // Rank 0 alone writes checkpoint.info: a few lines of text (step, time,
-  // ranks, dofs) under a temporary name, then renamed over the old one, so a
-  // reader sees either the old or the new record, never a partial one. Only
-  // once the new record is in place is the previous checkpoint's file removed;
-  // a failure to remove it leaves a stale file behind and is not an error. The
-  // file just published is never removed, even if the previous step has the
-  // same number. Rank 0's outcome is broadcast so that all ranks throw together
-  // if publishing failed.
+  // ranks, dofs, the entries), staged and renamed over the old one (rename is
+  // atomic on POSIX file systems), so a reader sees either the old or the new
+  // record, never a partial one; the rename reaches the disk before the
+  // commit returns, so the record never names a file that a crash of the
+  // machine could lose. Only once the new record is in place is the previous
+  // checkpoint's file removed; a failure to remove it leaves a stale file
+  // behind and is not an error. The file just published is never removed,
+  // even if the previous step has the same number.
   void
-  publish_checkpoint(const std::string      &output_directory,
+  publish_checkpoint(OutputFolder           &folder,
                      const CheckpointRecord &record,
-                     const unsigned int      previous_step,
-                     const MPI_Comm          communicator)
+                     const unsigned int      previous_step)
   {
-    std::string problem;
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      {
-        const std::filesystem::path directory
-          = checkpoint_directory(output_directory);
-        const std::filesystem::path info = directory / "checkpoint.info";
-        const std::filesystem::path temporary
-          = directory / "checkpoint.info.tmp";
-        // Written to the disk (fsync) before the rename: the record must never
-        // name a file that a crash of the machine could lose.
-        std::ostringstream out;
-        out << std::setprecision(17) << "step " << record.step << '\n'
-            << "time " << record.time << '\n'
-            << "ranks " << record.n_ranks << '\n'
-            << "dofs " << record.n_dofs << '\n';
-        for (const std::string &entry : record.entries)
-          out << "entry " << entry << '\n';
-        problem = FileOutput::write_file_atomically(info.string(),
-                                                    out.str(),
-                                                    /*durable=*/true);
-        std::error_code error;
-        if (problem.empty() && previous_step != numbers::invalid_unsigned_int
-            && previous_step != record.step)
-          std::filesystem::remove(checkpoint_file(output_directory,
-                                                  previous_step),
-                                  error);
-      }
-    problem = Utilities::MPI::broadcast(communicator, problem, 0);
-    AssertThrow(problem.empty(), ExcMessage(problem));
+    std::ostringstream out;
+    out << std::setprecision(17) << "step " << record.step << '\n'
+        << "time " << record.time << '\n'
+        << "ranks " << record.n_ranks << '\n'
+        << "dofs " << record.n_dofs << '\n';
+    for (const std::string &entry : record.entries)
+      out << "entry " << entry << '\n';
+    if (Utilities::MPI::this_mpi_process(folder.get_communicator()) == 0)
+      folder.stage(checkpoint_info, out.str(), OutputFolder::Replace::own);
+    folder.commit(/*durable=*/true);
+    if (previous_step != numbers::invalid_unsigned_int
+        && previous_step != record.step)
+      folder.remove(checkpoint_name(previous_step));
   }
 
 
@@ -340,7 +317,7 @@ namespace ViscoContact
                          const std::vector<std::string> &entries)
   {
     const std::filesystem::path info
-      = checkpoint_directory(output_directory) / "checkpoint.info";
+      = std::filesystem::path(output_directory) / checkpoint_info;
     std::ifstream    in(info);
     CheckpointRecord record;
     std::string      key_step, key_time, key_ranks, key_dofs;
@@ -403,34 +380,54 @@ namespace ViscoContact
 
   // @sect4{truncate_time_series}
   //
-  // Called on rank 0 by a resumed run: the rows the interrupted run wrote after
-  // its checkpoint are dropped, since the resumed run computes those steps
-  // again and appends their rows. The file is small (one row per step) and is
-  // read and rewritten as a whole.
-  std::string
-  truncate_time_series(const std::filesystem::path &file,
-                       const unsigned int           step)
+  // Called by a resumed run: the rows the interrupted run wrote after its
+  // checkpoint are dropped, since the resumed run computes those steps again
+  // and appends their rows. The file is small (one row per step); rank 0
+  // reads it and stages the kept rows (never following a link).
+  void
+  truncate_time_series(OutputFolder      &folder,
+                       const std::string &header,
+                       const unsigned int step)
   {
-    std::ifstream            in(file);
-    std::vector<std::string> kept;
-    std::string              line;
-    while (std::getline(in, line))
+    const std::string name = "time_series.csv";
+    if (Utilities::MPI::this_mpi_process(folder.get_communicator()) == 0)
       {
-        if (kept.empty())
+        std::string content;
+        const int   descriptor = ::open(folder.path(name).c_str(),
+                                      O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+        char        buffer[65536];
+        ssize_t     n = 0;
+        while (descriptor >= 0
+               && ((n = ::read(descriptor, buffer, sizeof(buffer))) > 0
+                   || (n < 0 && errno == EINTR)))
+          if (n > 0)
+            content.append(buffer, n);
+        if (descriptor >= 0)
+          ::close(descriptor);
+        std::istringstream lines(content);
+        std::string        line, text;
+        bool               first = true;
+        while (std::getline(lines, line))
           {
-            kept.push_back(line); // the header
-            continue;
+            // The header, and the complete rows up to the checkpoint.
+            if (first)
+              text += line + '\n';
+            else if (!line.empty()
+                     && std::strtoul(line.c_str(), nullptr, 10) <= step)
+              text += line + '\n';
+            first = false;
           }
-        const unsigned int row_step
-          = std::stoul(line.substr(0, line.find(',')));
-        if (row_step <= step)
-          kept.push_back(line);
+        if (text.empty())
+          {
+            std::cerr << "Warning: " << folder.path(name)
+                      << " was missing or empty; it starts again with its "
+                         "header, and the rows of steps 1 to "
+                      << step << " are lost." << std::endl;
+            text = header;
+          }
+        folder.stage(name, text, OutputFolder::Replace::own);
       }
-    in.close();
-    std::string text;
-    for (const std::string &row : kept)
-      text += row + '\n';
-    return FileOutput::write_file_atomically(file.string(), text);
+    folder.commit();
   }
 
 
@@ -484,11 +481,9 @@ namespace ViscoContact
                                              const double wall_time)
   {
     TimerOutput::Scope t(computing_timer, "Checkpoint");
-    // Rank 0 creates the directory; the collective write below opens the file
-    // in it.
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-      std::filesystem::create_directories(
-        checkpoint_directory(parameters.directory));
+    // The folder and the two files go into the manifest before they exist.
+    output_folder->create_folder(checkpoint_folder);
+    output_folder->record_files({checkpoint_name(step), checkpoint_info});
 
     // The header: what identifies the file (version, dim, step), the schedule,
     // the run's wall time and compute time so far, the iteration counters, the
@@ -599,14 +594,16 @@ namespace ViscoContact
                     n_q * sizeof(QuadraturePointHistory<dim>));
         out += n_q * sizeof(QuadraturePointHistory<dim>);
       }
-    // Collective: the file is complete (and renamed) before the record of the
-    // checkpoint is published, and only then is the previous checkpoint's file
-    // removed.
-    write_record_file(checkpoint_file(parameters.directory, step),
+    // Collective: the file is complete (written and renamed, the rename on
+    // the disk) before the record of the checkpoint is published, and only
+    // then is the previous checkpoint's file removed.
+    write_record_file(*output_folder,
+                      checkpoint_name(step),
                       header.bytes,
                       records,
                       record_size,
                       mpi_communicator);
+    output_folder->commit(/*durable=*/true);
 
     CheckpointRecord record;
     record.step    = step;
@@ -614,10 +611,7 @@ namespace ViscoContact
     record.n_ranks = Utilities::MPI::n_mpi_processes(mpi_communicator);
     record.n_dofs  = dof_handler.n_dofs();
     record.entries = parameters.result_entries;
-    publish_checkpoint(parameters.directory,
-                       record,
-                       last_checkpoint_step,
-                       mpi_communicator);
+    publish_checkpoint(*output_folder, record, last_checkpoint_step);
     last_checkpoint_step = step;
   }
 
@@ -651,8 +645,8 @@ namespace ViscoContact
       = read_checkpoint_record(parameters.directory,
                                dof_handler.n_dofs(),
                                parameters.result_entries);
-    const std::filesystem::path file
-      = checkpoint_file(parameters.directory, checkpoint.step);
+    const std::string file
+      = output_folder->path(checkpoint_name(checkpoint.step));
 
     // The record size follows from dim, the element and the stress quadrature,
     // as for write_checkpoint(); a record's payload after the key is n_doubles
@@ -668,7 +662,7 @@ namespace ViscoContact
     // The header is checked field by field against this run: version, dimension
     // and step. The schedule replaces the one computed from the parameter file,
     // since the interrupted run may have cut steps.
-    ByteReader header(header_bytes, file.string());
+    ByteReader header(header_bytes, file);
     header.check(header.read<std::uint32_t>() == checkpoint_version);
     header.check(header.read<std::uint32_t>() == dim);
     const unsigned int step = header.read<std::uint32_t>();
@@ -867,14 +861,8 @@ namespace ViscoContact
                                 rescaled_next_step.second);
     else if (explicit_history_update())
       assemble_history_load();
-    // Rank 0 removes the rows after the checkpoint from time_series.csv, which
-    // the resumed run then appends to.
-    std::string problem;
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-      problem = truncate_time_series(std::filesystem::path(parameters.directory)
-                                       / "time_series.csv",
-                                     step);
-    FileOutput::agree_on_problem(problem, mpi_communicator);
+    // The rows of time_series.csv after the checkpoint are removed once the
+    // output folder is prepared (prepare_output_directory()).
     last_checkpoint_step = step;
     n_steps_done         = step;
     pcout << "Resuming from the checkpoint of step " << step

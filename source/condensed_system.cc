@@ -23,6 +23,10 @@ namespace ViscoContact
     // at most one step of iterative refinement (a factorisation leaves a few
     // 1e-15).
     constexpr double largest_updated_defect = 1e-14;
+
+    // The slope, relative to a node's stiffness, below which a piece is
+    // flat at the node (is_flat()).
+    constexpr double flat_slope = 1e-13;
   } // namespace
 
 
@@ -65,10 +69,26 @@ namespace ViscoContact
     const ContactLawPiece &piece = contact_law->piece(piece_index);
     if (piece.vertical)
       return {true, 0.};
-    if (piece.slope != 0)
+    if (!is_flat(node, piece))
       return {true, 1. / (w[node] * piece.slope)};
     const double scale = std::abs(S(node, node));
     return {false, scale > 0 ? scale : 1.};
+  }
+
+
+
+  // A piece counts as flat at a node (a known force w_i o) where its slope
+  // is below flat_slope times the node's stiffness k_i = 1 / (w_i S_ii): the
+  // force w_i s r_i it leaves out is then below the rounding of the forces
+  // the body carries, while 1 / (w_i s) would overflow the rows for slopes
+  // like 1e-300.
+  bool
+  CondensedContactSystem::is_flat(const unsigned int     node,
+                                  const ContactLawPiece &piece) const
+  {
+    return !piece.vertical
+           && std::abs(piece.slope) * w[node] * std::abs(S(node, node))
+                <= flat_slope;
   }
 
 
@@ -334,7 +354,7 @@ namespace ViscoContact
         const ContactLawPiece &piece = contact_law->piece(pieces[i]);
         if (piece.vertical)
           z[i] = d[i] - piece.r_lower;
-        else if (piece.slope != 0)
+        else if (!is_flat(i, piece))
           z[i] = d[i] + piece.intercept / piece.slope;
         else
           z[i] = row(i, pieces[i]).diagonal * w[i] * piece.intercept;
@@ -345,10 +365,20 @@ namespace ViscoContact
     // forces exactly and computing r = d - S z: for a node of unknown force
     // how far r_i is from the piece's relation, r_i = beta on a vertical
     // piece, r_i = (z_i / w_i - o) / s on a sloped one (this is the row's
-    // residual), zero for a known force. The defect is its largest entry
-    // relative to the size of the normal displacements involved (the
-    // larger of |d|_inf and the gap; 1 if both vanish), the condensed back
-    // end's "linear residual".
+    // residual, which the refinement below corrects), zero for a known
+    // force. The defect is its largest entry relative to the size of the
+    // normal displacements involved (the larger of |d|_inf and the gap; 1 if
+    // both vanish), the condensed back end's "linear residual".
+    //
+    // On a nearly flat piece the row's residual divides the rounding of the
+    // pressure z_i / w_i by the small slope s (c2 = 1e-6 left 6e-8 of
+    // rounding, and the active set could never meet its tolerance). The
+    // defect therefore measures the row in the node's own stiffness: the
+    // pressure residual z_i / w_i - o - s r_i = -s residual_i divided by
+    // |s| + k_i, where k_i = 1 / (w_i S_ii) is the pressure the body needs
+    // to move the node by a unit. For |s| >> k_i this is the residual in r;
+    // for s -> 0 it is the pressure's residual in displacement units, the
+    // accuracy the body's stiffness allows.
     double scale = std::max(d.linfty_norm(), contact_law->gap());
     if (!(scale > 0))
       scale = 1;
@@ -357,21 +387,29 @@ namespace ViscoContact
       for (unsigned int i = 0; i < m; ++i)
         {
           const ContactLawPiece &piece = contact_law->piece(pieces[i]);
-          if (!piece.vertical && piece.slope == 0)
+          if (is_flat(i, piece))
             z[i] = w[i] * piece.intercept;
         }
       r.reinit(m);
       S.vmult(r, z);
       r.sadd(-1., 1., d);
+      double largest = 0;
       for (unsigned int i = 0; i < m; ++i)
         {
           const ContactLawPiece &piece = contact_law->piece(pieces[i]);
-          residual[i] = piece.vertical ? r[i] - piece.r_lower
-                            : piece.slope != 0.
-                              ? r[i] - (z[i] / w[i] - piece.intercept) / piece.slope
-                              : 0.;
+          const bool             flat  = is_flat(i, piece);
+          residual[i]            = piece.vertical ? r[i] - piece.r_lower
+                                       : !flat
+                                         ? r[i] - (z[i] / w[i] - piece.intercept) / piece.slope
+                                         : 0.;
+          const double stiffness = S(i, i) > 0 ? 1. / (w[i] * S(i, i)) : 0.;
+          const double weight
+            = piece.vertical || flat
+                    ? 1.
+                    : std::abs(piece.slope) / (std::abs(piece.slope) + stiffness);
+          largest = std::max(largest, std::abs(residual[i]) * weight);
         }
-      return residual.linfty_norm() / scale;
+      return largest / scale;
     };
     double defect = defect_of_forces();
 

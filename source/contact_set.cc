@@ -15,7 +15,6 @@
 #include <deal.II/fe/fe_values.h>
 
 #include "contact_set.h"
-#include "mpi_tools.h"
 
 #include <algorithm>
 #include <iomanip>
@@ -348,12 +347,11 @@ namespace ViscoContact
   // lines follow Gamma_3; on several, each rank's block does. One line per
   // node: its coordinates, the time, u_nu, the pressures of the layer, of
   // the foundation and in all, the nodal force, the weight and the status.
-  // The file is written collectively (mpi_tools.cc), so no rank collects the
+  // The caller writes the blocks collectively, so no rank collects the
   // others' lines.
   template <int dim>
-  void
-  ContactSet<dim>::write_profile(const std::string &file,
-                                 const double       time) const
+  std::string
+  ContactSet<dim>::profile_text(const double time) const
   {
     std::ostringstream out;
     out << std::setprecision(10);
@@ -375,7 +373,7 @@ namespace ViscoContact
             << contact_pressure(i) << ',' << z[i] << ',' << weight(i) << ','
             << status(i) << '\n';
       }
-    MPITools::write_text_collectively(file, out.str(), communicator);
+    return out.str();
   }
 
 

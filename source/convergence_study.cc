@@ -61,6 +61,7 @@ namespace ViscoContact
     run_parameters.write_vtu                 = false;
     run_parameters.verbose                   = false;
     run_parameters.print_timing_summary      = false;
+    run_parameters.overwrite                 = false;
     run_parameters.check_uniqueness          = false;
     run_parameters.profile_times.clear();
     run_parameters.directory = parameters.directory + "/runs/" + name;
@@ -187,6 +188,18 @@ namespace ViscoContact
   void
   ConvergenceStudy<dim>::run()
   {
+    // The study's folder is checked and prepared first (with Overwrite =
+    // true the earlier study's files go now: the runs' set-ups come later);
+    // each run then writes into a folder of its own below runs/.
+    folder = std::make_unique<OutputFolder>(parameters.directory,
+                                            parameters.overwrite
+                                              ? OutputFolder::Mode::overwrite
+                                              : OutputFolder::Mode::new_run,
+                                            parameters.parameter_file,
+                                            communicator);
+    folder->prepare();
+    folder->create_folder("runs");
+
     const unsigned int n_runs = parameters.study_subdivisions.size();
     runs.resize(n_runs);
     // The coarse runs, one after the other on all ranks.
@@ -197,6 +210,7 @@ namespace ViscoContact
         run.time_step    = parameters.study_time_steps[r];
         std::ostringstream name;
         name << "h_1_" << run.subdivisions << "_k_" << run.time_step;
+        folder->create_folder("runs/" + name.str());
         pcout << "Convergence study: run " << r + 1 << " of " << n_runs
               << ", h = 1/" << run.subdivisions << ", k = " << run.time_step
               << std::endl;
@@ -240,6 +254,7 @@ namespace ViscoContact
           << parameters.reference_subdivisions
           << ", k = " << parameters.reference_time_step << std::endl;
     // The reference run, with its own observer.
+    folder->create_folder("runs/reference");
     ViscoplasticContact<dim> reference(
       parameters_for(parameters.reference_subdivisions,
                      parameters.reference_time_step,
@@ -518,13 +533,11 @@ namespace ViscoContact
     const unsigned int            reference_steps,
     const double                  reference_wall_time) const
   {
-    // Rank 0 writes the table (under a temporary name, then renamed); all
-    // ranks learn whether that worked.
-    std::string problem;
+    // Rank 0 writes the table (staged, then committed); all ranks learn
+    // whether that worked.
+    folder->record_files({"convergence.csv"});
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       {
-        // The table goes into the study's output directory, created if need be.
-        std::filesystem::create_directories(parameters.directory);
         std::ostringstream csv;
         csv << "h,k,subdivisions,dofs,steps,compared_levels,wall_time,error_u,"
                "error_sigma,error,order_u,order_sigma,order\n"
@@ -613,12 +626,9 @@ namespace ViscoContact
                       << std::setprecision(2) << std::setw(7) << order_total
                       << std::defaultfloat << '\n';
           }
-        problem = FileOutput::write_file_atomically(
-          (std::filesystem::path(parameters.directory) / "convergence.csv")
-            .string(),
-          csv.str());
+        folder->stage("convergence.csv", csv.str());
       }
-    FileOutput::agree_on_problem(problem, communicator);
+    folder->commit();
   }
 
 

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
+#include <filesystem>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -18,38 +19,6 @@ namespace ViscoContact
 {
   namespace FileOutput
   {
-    namespace
-    {
-      // The message of a failed write, the same wording everywhere.
-      std::string
-      failure(const std::string &file, const int error_number)
-      {
-        return "Writing the file " + file
-               + " failed: " + std::strerror(error_number) + ".";
-      }
-
-      // write() may write less than asked for (a signal, a nearly full
-      // disk): repeat until everything is written or an error is reported.
-      bool
-      write_all(const int descriptor, const std::string &text)
-      {
-        std::size_t done = 0;
-        while (done < text.size())
-          {
-            const ssize_t n
-              = ::write(descriptor, text.data() + done, text.size() - done);
-            if (n < 0 && errno == EINTR)
-              continue;
-            if (n <= 0)
-              return false;
-            done += n;
-          }
-        return true;
-      }
-    } // namespace
-
-
-
     // The value is PATTERN or PATTERN:N: the writes of files whose name
     // contains PATTERN fail, from the N-th such write on (the first, without
     // N). N lets a test fail a file that is written repeatedly (the time
@@ -76,66 +45,75 @@ namespace ViscoContact
 
 
 
-    // @sect4{write_file_atomically}
+    // @sect4{write_file}
     //
-    // POSIX calls rather than a stream, since they say why they failed
-    // (errno). close() is checked too: on network file systems a full disk
-    // is often reported only there.
+    // mkstemp() creates the temporary exclusively (O_EXCL) with a random
+    // name in the target's folder, so the rename stays within one file
+    // system and no link planted under a predictable name is followed.
+    // rename() replaces the name itself (a link under it, not its target).
     std::string
-    write_file_atomically(const std::string &file,
-                          const std::string &content,
-                          const bool         durable)
+    write_file(const std::string &file,
+               const std::string &content,
+               const bool         replace)
     {
-      const std::string temporary = file + ".tmp";
-      const int         descriptor
-        = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      const std::filesystem::path target(file);
+      std::string                 pattern = (target.parent_path()
+                             / ("." + target.filename().string() + ".XXXXXX"))
+                              .string();
+      const int descriptor = ::mkstemp(pattern.data());
       if (descriptor < 0)
-        return failure(file, errno);
-      int error = 0;
-      if (simulate_failure(file))
-        error = ENOSPC;
-      else if (!write_all(descriptor, content))
-        error = errno;
-      else if (durable && ::fsync(descriptor) != 0)
-        error = errno;
-      if (::close(descriptor) != 0 && error == 0)
-        error = errno;
-      if (error == 0 && std::rename(temporary.c_str(), file.c_str()) != 0)
-        error = errno;
-      if (error != 0)
+        return "Writing the file " + file + " failed: " + std::strerror(errno)
+               + ".";
+      int         error = simulate_failure(file) ? ENOSPC : 0;
+      std::size_t done  = 0;
+      while (error == 0 && done < content.size())
         {
-          // No partial file is left behind, under either name.
-          ::unlink(temporary.c_str());
-          return failure(file, error);
+          const ssize_t n
+            = ::write(descriptor, content.data() + done, content.size() - done);
+          if (n < 0 && errno == EINTR)
+            continue;
+          if (n <= 0)
+            error = (n < 0 ? errno : EIO);
+          else
+            done += n;
         }
-      return "";
-    }
-
-
-
-    // @sect4{append_to_file}
-    std::string
-    append_to_file(const std::string &file, const std::string &text)
-    {
-      const int descriptor
-        = ::open(file.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-      if (descriptor < 0)
-        return failure(file, errno);
-      struct stat status;
-      const off_t old_size
-        = (::fstat(descriptor, &status) == 0 ? status.st_size : -1);
-      int error = 0;
-      if (simulate_failure(file))
-        error = ENOSPC;
-      else if (!write_all(descriptor, text))
+      if (error == 0 && ::fchmod(descriptor, 0644) != 0)
         error = errno;
-      // A partly written row is removed again: the file ends after the last
-      // complete row.
-      if (error != 0 && old_size >= 0)
-        (void)!::ftruncate(descriptor, old_size);
+      if (error == 0 && ::fsync(descriptor) != 0)
+        error = errno;
       if (::close(descriptor) != 0 && error == 0)
         error = errno;
-      return error == 0 ? "" : failure(file, error);
+      if (error == 0 && replace
+          && std::rename(pattern.c_str(), file.c_str()) != 0)
+        error = errno;
+      // Without replacing: renameat2(RENAME_NOREPLACE), or where the file
+      // system does not offer it, a hard link (which fails if the name
+      // exists) and the removal of the temporary.
+      bool linked = false;
+      if (error == 0 && !replace
+          && ::renameat2(AT_FDCWD,
+                         pattern.c_str(),
+                         AT_FDCWD,
+                         file.c_str(),
+                         RENAME_NOREPLACE)
+               != 0)
+        {
+          error = errno;
+          if (error == EINVAL || error == ENOSYS || error == EOPNOTSUPP)
+            {
+              error  = ::link(pattern.c_str(), file.c_str()) == 0 ? 0 : errno;
+              linked = (error == 0);
+            }
+        }
+      if (error != 0 || linked)
+        ::unlink(pattern.c_str());
+      if (error == EEXIST)
+        return "The file " + file
+               + " exists and is not replaced (--force replaces it).";
+      if (error != 0)
+        return "Writing the file " + file + " failed: " + std::strerror(error)
+               + ".";
+      return "";
     }
 
 

@@ -11,6 +11,7 @@
 #include "blas_threads.h"
 #include "convergence_study.h"
 #include "file_output.h"
+#include "output_folder.h"
 #include "stop_signals.h"
 #include "parameters.h"
 #include "viscoplastic_contact.h"
@@ -86,7 +87,12 @@ main(int argc, char **argv)
   // one rank returning an error code is enough.
   const auto stop_all_ranks = [&]() {
     if (several_ranks)
-      MPI_Abort(MPI_COMM_WORLD, 1);
+      {
+        // MPI_Abort runs no destructors: the output folders' temporaries
+        // and lock go first (not collective).
+        OutputFolder::release_all();
+        MPI_Abort(MPI_COMM_WORLD, 1);
+      }
     return 1;
   };
   // The problem lives outside the try block: if an error reaches main()
@@ -135,7 +141,10 @@ main(int argc, char **argv)
               return 0;
             }
           const std::string &file = files[0];
-          if (std::filesystem::exists(file) && !force)
+          std::error_code    error;
+          if (std::filesystem::symlink_status(file, error).type()
+                != std::filesystem::file_type::not_found
+              && !force)
             {
               std::cerr << "Error: the file <" << file
                         << "> exists; --print-parameters does not overwrite "
@@ -144,8 +153,10 @@ main(int argc, char **argv)
                         << std::endl;
               return 1;
             }
+          // Written without replacing anything unless --force: a file that
+          // appears under the name meanwhile is not overwritten either.
           const std::string problem
-            = FileOutput::write_file_atomically(file, text.str());
+            = FileOutput::write_file(file, text.str(), force);
           if (!problem.empty())
             {
               std::cerr << "Error: " << problem << std::endl;
@@ -188,6 +199,7 @@ main(int argc, char **argv)
       }
       Parameters::AllParameters parameters;
       parameters.parse_parameters(prm);
+      parameters.parameter_file = first;
       // A mesh file is found relative to the parameter file that names it.
       if (!parameters.mesh_file.empty()
           && std::filesystem::path(parameters.mesh_file).is_relative())

@@ -296,6 +296,8 @@ namespace ViscoContact
                                  "nothing for the generated box."));
         // The reader's own complaint, whatever its type, becomes part of the
         // message; an empty mesh is an error too.
+        // A node id defined twice would silently replace the first node.
+        check_gmsh_node_ids(file);
         std::string reader_message;
         try
           {
@@ -309,6 +311,12 @@ namespace ViscoContact
             std::ostringstream info;
             exc.print_info(info);
             reader_message = info.str();
+            // deal.II's internal errors describe deal.II, not the file.
+            if (reader_message.find("This exception -- which is used in many "
+                                    "places")
+                != std::string::npos)
+              reader_message = "it cannot build a mesh from the file's cells "
+                               "(they do not form a valid mesh).";
           }
         catch (const std::exception &exc)
           {
@@ -334,6 +342,8 @@ namespace ViscoContact
                         + (simplex ? "simplices" : "quadrilaterals/hexahedra")
                         + " only, as <Cell type> = "
                         + (simplex ? "simplex" : "hypercube") + " requires."));
+        // Coordinates, cells, coincident nodes, conformity.
+        check_coarse_mesh(triangulation, file);
         return;
       }
 

@@ -616,7 +616,7 @@ namespace ViscoContact
     using Key              = CellId::binary_type;
     const std::size_t size = checkpoint_record_size();
     std::vector<char> header, share;
-    read_record_file(checkpoint_file(parameters.directory, checkpoint.step),
+    read_record_file(output_folder->path(checkpoint_name(checkpoint.step)),
                      header,
                      share,
                      size,

@@ -13,81 +13,156 @@
 #include <deal.II/numerics/data_out.h>
 
 #include "blas_threads.h"
+#include "checkpoint.h"
 #include "file_output.h"
-#include "mpi_tools.h"
+#include "output_folder.h"
 #include "viscoplastic_contact.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
-#include <regex>
 #include <iomanip>
 #include <sstream>
+#include <sys/statvfs.h>
 
 namespace ViscoContact
 {
   namespace
   {
-    // The files and folders a run writes into its Output directory, and the
-    // temporary names they have while they are written. Nothing else in the
-    // directory is ever touched.
-    std::vector<std::filesystem::path>
-    files_of_a_run(const std::filesystem::path &directory)
-    {
-      static const std::regex names(
-        "(parameters\\.prm|solution\\.pvd|time_series\\.csv|"
-        "convergence\\.csv|(solution|failed_step)_[0-9]+(\\.[0-9]+)?\\."
-        "(vtu|pvtu)|contact_profile_[0-9]+\\.csv|checkpoint|runs)(\\.tmp)?");
-      std::vector<std::filesystem::path> files;
-      std::error_code                    error;
-      if (!std::filesystem::is_directory(directory, error))
-        return files;
-      for (const auto &entry :
-           std::filesystem::directory_iterator(directory, error))
-        if (std::regex_match(entry.path().filename().string(), names))
-          files.push_back(entry.path());
-      std::sort(files.begin(), files.end());
-      return files;
-    }
+    // The first line of time_series.csv: what the columns are.
+    const std::string time_series_header
+      = "step,time,active_set_iterations,unilateral_nodes,compliance_nodes,"
+        "no_contact_nodes,total_contact_force,max_von_mises,wall_time,"
+        "krylov_iterations,time_step,error_estimate\n";
   } // namespace
 
 
 
   // @sect4{ViscoplasticContact::check_output_directory}
   //
-  // The first thing run() does: a new run refuses an Output directory with
-  // another run's files, unless Overwrite = true (then
-  // prepare_output_directory() removes them once the set-up has succeeded). Old
-  // solution_0200.vtu files next to a new solution.pvd of 64 steps, or an old
-  // checkpoint that a later Resume would take up, would be mistaken for results
-  // of the new run. Only reading here; rank 0 looks, all ranks agree.
+  // The first thing run() does: the output folder is looked at (and, if it
+  // exists, locked for this run) before any work is done. A new run refuses
+  // a folder with another run's files unless Overwrite = true, and every run
+  // refuses a folder another run is using or files in the way that the
+  // program did not write (output_folder.h). Old solution_0200.vtu files next
+  // to a new solution.pvd of 64 steps, or an old checkpoint that a later
+  // Resume would take up, would be mistaken for results of the new run.
+  // Nothing in the folder changes here.
   template <int dim>
   void
-  ViscoplasticContact<dim>::check_output_directory() const
+  ViscoplasticContact<dim>::check_output_directory()
   {
+    const OutputFolder::Mode mode
+      = parameters.resume      ? OutputFolder::Mode::resume
+        : parameters.overwrite ? OutputFolder::Mode::overwrite
+                               : OutputFolder::Mode::new_run;
+    output_folder = std::make_unique<OutputFolder>(parameters.directory,
+                                                   mode,
+                                                   parameters.parameter_file,
+                                                   mpi_communicator);
+  }
+
+
+
+  // @sect4{ViscoplasticContact::check_output_volume}
+  //
+  // Before anything is written: do the .vtu records of the run fit on the
+  // disk? Their size follows from the mesh: deal.II writes every field at
+  // every vertex of every cell (3 coordinates, the displacement, two stress
+  // tensors, five scalar fields and the contact status, as 4-byte floats),
+  // plus the connectivity. zlib compresses that by a factor 1.5 to 3 on
+  // these fields; a quarter of the raw size is taken as a lower estimate, so
+  // that only output that certainly does not fit is refused. With adaptive
+  // steps the number of records is not known before the run.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::check_output_volume(
+    const unsigned int n_steps) const
+  {
+    if (!parameters.write_vtu
+        || parameters.time_step_control
+             == Parameters::TimeStepControl::adaptive)
+      return;
+    const double records
+      = 2 + std::floor(n_steps / double(parameters.interval));
+    const double cells     = triangulation->n_global_active_cells();
+    const double per_point = 3 + dim + dim * (dim + 1) + 6;
+    const double raw_bytes
+      = cells * reference_cell.n_vertices() * (4 * per_point + 8) + 9 * cells;
+    const double bytes = records * raw_bytes / 4;
+
     std::string problem;
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0
-        && !parameters.resume && !parameters.overwrite)
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
-        const auto files = files_of_a_run(parameters.directory);
-        if (!files.empty())
+        // The file system of the folder, or of its nearest existing parent.
+        std::filesystem::path folder
+          = std::filesystem::absolute(parameters.directory);
+        std::error_code error;
+        while (!std::filesystem::exists(folder, error)
+               && folder.has_parent_path() && folder != folder.parent_path())
+          folder = folder.parent_path();
+        struct statvfs status;
+        if (::statvfs(folder.c_str(), &status) == 0)
           {
-            std::string list;
-            for (unsigned int i = 0; i < std::min<std::size_t>(4, files.size());
-                 ++i)
-              list += (i > 0 ? ", " : "") + files[i].filename().string();
-            if (files.size() > 4)
-              list += " and " + std::to_string(files.size() - 4) + " more";
-            problem = "Invalid parameter <Output directory> in subsection "
-                      "<Output>: value <"
-                      + parameters.directory
-                      + "> holds the files of another run (" + list
-                      + "); accepted: a directory without them, or Overwrite "
-                        "= true in subsection Output to remove them first "
-                        "(or Resume = true in subsection Checkpoint to "
-                        "continue that run).";
+            const double available
+              = double(status.f_bavail) * double(status.f_frsize);
+            if (bytes > available)
+              {
+                std::ostringstream message;
+                message << std::setprecision(3)
+                        << "Invalid parameter <Output interval> in subsection "
+                           "<Output>: value <"
+                        << parameters.interval
+                        << ">; with Time step = " << parameters.time_step
+                        << " and End time = " << parameters.end_time
+                        << " the run writes " << records
+                        << " .vtu records of at least " << raw_bytes / 4e6
+                        << " MB each, " << bytes / 1e9
+                        << " GB, but the file system of <"
+                        << parameters.directory << "> has " << available / 1e9
+                        << " GB free; accepted: output that fits (a larger "
+                           "Output interval, or Write vtu = false).";
+                problem = message.str();
+              }
           }
       }
     FileOutput::agree_on_problem(problem, mpi_communicator);
+  }
+
+
+
+  // @sect4{ViscoplasticContact::check_step_count}
+  //
+  // Adaptive steps and cut steps make schedules whose length is only known
+  // as the run goes; they are held to the same bounds as fixed schedules.
+  // Every rank has the same n, so all ranks throw together.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::check_step_count(const unsigned int n,
+                                             const double       time) const
+  {
+    std::ostringstream message;
+    message << std::setprecision(6);
+    if (n > parameters.max_steps)
+      message << "Invalid parameter <Maximum number of steps> in subsection "
+                 "<Time>: value <"
+              << parameters.max_steps << ">; step " << n
+              << " (from t = " << time
+              << ") would exceed it before End time = " << parameters.end_time
+              << "; accepted: a bound the run reaches End time within (a "
+                 "larger Maximum number of steps, or for adaptive steps a "
+                 "larger Error tolerance or Minimum time step).";
+    else if (parameters.write_vtu
+             && 2 + n / parameters.interval > Parameters::max_output_records)
+      message << "Invalid parameter <Output interval> in subsection "
+                 "<Output>: value <"
+              << parameters.interval << ">; step " << n
+              << " would write more than " << Parameters::max_output_records
+              << " .vtu records; accepted: at most "
+              << Parameters::max_output_records
+              << " records in a run (a larger Output interval, or Write vtu "
+                 "= false).";
+    AssertThrow(message.str().empty(), ExcMessage(message.str()));
   }
 
 
@@ -96,60 +171,33 @@ namespace ViscoContact
   //
   // Called once the input is known to be good (parameters parsed, mesh,
   // boundary parts and a requested checkpoint checked), so a bad run never
-  // touches an earlier run's results. Rank 0 creates the directory, writes
-  // the complete parsed parameter file for reproducibility and opens the
-  // time series; the other ranks learn whether that worked, so that all
-  // stop together.
-  //
-  // Only rank 0 touches the file system here; the .vtu files, the contact
-  // profiles and the checkpoints that follow are written by all ranks into this
-  // directory.
+  // touches an earlier run's results. The folder is created (or, with
+  // Overwrite = true, the earlier run's files are removed; with Resume, those
+  // of the steps after the checkpoint); then the complete parsed parameter
+  // file goes in for reproducibility (unless the parameter file being run is
+  // that file) and the time series starts with its header, or, resumed, is
+  // cut back to the checkpoint's step.
   template <int dim>
   void
-  ViscoplasticContact<dim>::prepare_output_directory()
+  ViscoplasticContact<dim>::prepare_output_directory(
+    const unsigned int resume_step)
   {
-    const std::filesystem::path directory(parameters.directory);
-    std::string                 problem;
+    output_folder->prepare(resume_step);
+    output_folder->record_files({"parameters.prm", "time_series.csv"});
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
-        std::error_code error;
-        // With Overwrite = true, the earlier run's files go now, after the
-        // set-up of this run succeeded and before anything of it is written.
-        if (!parameters.resume && parameters.overwrite)
-          for (const auto &file : files_of_a_run(directory))
-            if (!error)
-              std::filesystem::remove_all(file, error);
-        if (error)
-          problem = "Invalid parameter <Output directory> in subsection "
-                    "<Output>: value <"
-                    + parameters.directory
-                    + ">; the files of the earlier run cannot be removed ("
-                    + error.message() + ").";
-        else if (std::filesystem::create_directories(directory, error), error)
-          problem = "Invalid parameter <Output directory> in subsection "
-                    "<Output>: value <"
-                    + parameters.directory + ">; it cannot be created ("
-                    + error.message() + ").";
-        // The parameter file as parsed, with every default filled in: the
-        // run can be repeated from its output directory alone.
-        if (problem.empty())
-          problem = FileOutput::write_file_atomically(
-            (directory / "parameters.prm").string(),
-            parameters.parsed_parameters);
-        // A new series gets its header; a resumed one continues below the
-        // rows that resume_from_checkpoint() kept.
-        time_series_file = (directory / "time_series.csv").string();
-        if (problem.empty() && !parameters.resume)
-          problem = FileOutput::write_file_atomically(
-            time_series_file,
-            "step,time,active_set_iterations,unilateral_nodes,"
-            "compliance_nodes,no_contact_nodes,total_contact_force,"
-            "max_von_mises,wall_time,krylov_iterations,time_step,"
-            "error_estimate\n");
+        if (!output_folder->is_parameter_file("parameters.prm"))
+          output_folder->stage("parameters.prm",
+                               parameters.parsed_parameters,
+                               parameters.resume
+                                 ? OutputFolder::Replace::own
+                                 : OutputFolder::Replace::never);
+        if (!parameters.resume)
+          output_folder->stage("time_series.csv", time_series_header);
       }
-    // The outcome on rank 0 goes to every rank: either all continue or all
-    // throw the same message.
-    FileOutput::agree_on_problem(problem, mpi_communicator);
+    output_folder->commit();
+    if (parameters.resume)
+      truncate_time_series(*output_folder, time_series_header, resume_step);
   }
 
 
@@ -182,7 +230,7 @@ namespace ViscoContact
             << ',' << states[2] << ',' << force << ',' << max_von_mises << ','
             << wall_time << ',' << result.inner_iterations() << ',' << time_step
             << ',' << error_estimate << '\n';
-        problem = FileOutput::append_to_file(time_series_file, row.str());
+        problem = output_folder->append("time_series.csv", row.str());
       }
     FileOutput::agree_on_problem(problem, mpi_communicator);
   }
@@ -195,19 +243,24 @@ namespace ViscoContact
   // Gamma_3 (contact_set.h), written by all ranks into one file.
   //
   // Collective: each rank formats the lines of its own contact nodes, and the
-  // blocks are written with MPI I/O in rank order at offsets from a prefix sum,
-  // so no rank gathers the others' nodes (mpi_tools.h).
+  // blocks are written in rank order at offsets from a prefix sum, so no rank
+  // gathers the others' nodes (OutputFolder::stage_collectively()).
   template <int dim>
   void
   ViscoplasticContact<dim>::write_contact_profile(const unsigned int step,
-                                                  const double       time) const
+                                                  const double       time)
   {
     std::ostringstream name;
     name << "contact_profile_" << std::setw(4) << std::setfill('0') << step
          << ".csv";
-    contact_set.write_profile(
-      (std::filesystem::path(parameters.directory) / name.str()).string(),
-      time);
+    output_folder->record_files({name.str()});
+    const std::string text = contact_set.profile_text(time);
+    output_folder->stage_collectively(name.str(),
+                                      "",
+                                      text.data(),
+                                      text.size(),
+                                      mpi_communicator);
+    output_folder->commit();
   }
 
 
@@ -346,20 +399,20 @@ namespace ViscoContact
     const std::string record = write_vtu_pieces(data_out, flags, stem, step);
     // Only rank 0 keeps the list of records and rewrites solution.pvd with it
     // after every record; the list goes into the checkpoints, so that a resumed
-    // run extends the same .pvd file.
-    std::string problem;
+    // run extends the same .pvd file. The record and the .pvd list are
+    // committed together, once every piece is in place.
     if (stem == "solution"
         && Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
         times_and_names.emplace_back(time, record);
         std::ostringstream pvd;
         DataOutBase::write_pvd_record(pvd, times_and_names);
-        problem = FileOutput::write_file_atomically(
-          (std::filesystem::path(parameters.directory) / "solution.pvd")
-            .string(),
-          pvd.str());
+        output_folder->record_files({"solution.pvd"});
+        output_folder->stage("solution.pvd",
+                             pvd.str(),
+                             OutputFolder::Replace::own);
       }
-    FileOutput::agree_on_problem(problem, mpi_communicator);
+    output_folder->commit();
   }
 
 
@@ -367,23 +420,23 @@ namespace ViscoContact
   // @sect4{ViscoplasticContact::write_vtu_pieces}
   //
   // What DataOut::write_vtu_with_pvtu_record() does, with deal.II's file
-  // names, but through the program's own writers: deal.II's writes the files
-  // under their final names and throws on the rank that sees an I/O error,
-  // while the others wait in the next collective call (a hang on a full
-  // disk), and it leaves a truncated file behind.
+  // names, but through the output folder: deal.II's writes the files under
+  // their final names with MPI I/O and throws on the rank that sees an I/O
+  // error, while the others wait in the next collective call (a hang on a
+  // full disk), and it leaves a truncated file behind.
   //
   // The ranks form at most 8 groups of consecutive ranks; each group writes
-  // one .vtu file with MPI I/O (MPITools::write_blocks_collectively(): the
-  // XML header from the group's first rank, the patches of every rank, the
-  // footer from the last rank; temporary name, then rename). Then rank 0
-  // writes the .pvtu record that lists the pieces. Every failure is agreed
-  // on by all ranks before anyone throws.
+  // one .vtu file (OutputFolder::stage_collectively(): the XML header from
+  // the group's first rank, the patches of every rank, the footer from the
+  // last rank), and the pieces are committed together. Then rank 0 stages
+  // the .pvtu record that lists them, which output_results() commits with
+  // the .pvd list.
   template <int dim>
   std::string
   ViscoplasticContact<dim>::write_vtu_pieces(const DataOut<dim> &data_out,
                                              const DataOutBase::VtkFlags &flags,
                                              const std::string           &stem,
-                                             const unsigned int step) const
+                                             const unsigned int           step)
   {
     // DataOut keeps its patches and field names protected; this class only
     // opens them to the writer below.
@@ -407,6 +460,11 @@ namespace ViscoContact
     const auto        piece_name = [&](const unsigned int g) {
       return record + "." + Utilities::int_to_string(g, n_digits) + ".vtu";
     };
+    std::vector<std::string> pieces;
+    for (unsigned int g = 0; g < n_files; ++g)
+      pieces.push_back(piece_name(g));
+    output_folder->record_files(pieces);
+    output_folder->record_files({record + ".pvtu"});
 
     // This rank's part of its group's file: the header on the group's first
     // rank, the patches, the footer on its last rank.
@@ -429,31 +487,22 @@ namespace ViscoContact
                                 block);
     if (last_of_group)
       DataOutBase::write_vtu_footer(block);
-    const std::string text    = block.str();
-    std::string       problem = MPITools::try_write_blocks_collectively(
-      (std::filesystem::path(parameters.directory) / piece_name(group))
-        .string(),
-      header.str(),
-      text.data(),
-      text.size(),
-      group_communicator);
+    const std::string text = block.str();
+    output_folder->stage_collectively(piece_name(group),
+                                      header.str(),
+                                      text.data(),
+                                      text.size(),
+                                      group_communicator);
     MPI_Comm_free(&group_communicator);
-    FileOutput::agree_on_problem(problem, mpi_communicator);
+    output_folder->commit();
 
     // The .pvtu record, once every piece is in place.
     if (rank == 0)
       {
-        std::vector<std::string> pieces;
-        for (unsigned int g = 0; g < n_files; ++g)
-          pieces.push_back(piece_name(g));
         std::ostringstream pvtu;
         data_out.write_pvtu_record(pvtu, pieces);
-        problem = FileOutput::write_file_atomically(
-          (std::filesystem::path(parameters.directory) / (record + ".pvtu"))
-            .string(),
-          pvtu.str());
+        output_folder->stage(record + ".pvtu", pvtu.str());
       }
-    FileOutput::agree_on_problem(problem, mpi_communicator);
     return record + ".pvtu";
   }
 

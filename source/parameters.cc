@@ -553,6 +553,14 @@ namespace ViscoContact
           "time. The explicit history update never takes more than 0.9 times "
           "its stability limit 4 lambda / lambda_max(E). 0, or in [Minimum "
           "time step, End time].");
+        prm.declare_entry(
+          "Maximum number of steps",
+          "1000000",
+          Patterns::Integer(1, 1000000000),
+          "The most time steps a run may take: a schedule of more steps "
+          "(End time / Time step; for each run of a convergence study too) "
+          "is refused before anything is written, and adaptive steps stop "
+          "with an error there. An integer in [1, 1e9].");
       }
       prm.leave_subsection();
     }
@@ -604,6 +612,7 @@ namespace ViscoContact
                   + to_string(end_time));
         if (maximum_time_step == 0)
           maximum_time_step = end_time;
+        max_steps = prm.get_integer("Maximum number of steps");
       }
       prm.leave_subsection();
     }
@@ -1225,15 +1234,66 @@ namespace ViscoContact
                 "Profile times",
                 prm.get({"Output"}, "Profile times"),
                 "times in [0, End time = " + to_string(end_time) + "]");
-      // A stop or a checkpoint interval beyond the last step would never
-      // happen. The number of steps is that of time_levels() (time_loop.cc);
-      // adaptive steps are not known before the run, and neither is their
-      // number.
+      // Schedules beyond Maximum number of steps (or beyond the range of the
+      // step counter, where t_n = n k no longer gives distinct times) and
+      // more than max_output_records .vtu records are refused. The number of
+      // steps is that of time_levels() (time_loop.cc), computed in floating
+      // point before it is converted; adaptive steps are not known before
+      // the run, and neither is their number (the time loop bounds them).
+      const auto steps_of = [&](const double time_step) {
+        return std::ceil(end_time / time_step * (1 - 1e-12));
+      };
+      const auto require_steps = [&](const double       steps,
+                                     const std::string &subsection,
+                                     const std::string &entry,
+                                     const double       value) {
+        std::ostringstream message;
+        message << "a schedule of at most Maximum number of steps = "
+                << max_steps
+                << " (subsection <Time>) steps; with End time = " << end_time
+                << " it has " << steps
+                << " steps (a larger time step, an earlier End time, or a "
+                   "larger Maximum number of steps if the run is meant to be "
+                   "that long)";
+        require(steps <= max_steps,
+                subsection,
+                entry,
+                to_string(value),
+                message.str());
+      };
+      if (time_step_control == TimeStepControl::fixed && !study_enabled)
+        require_steps(steps_of(time_step), "Time", "Time step", time_step);
+      if (study_enabled)
+        {
+          require_steps(steps_of(reference_time_step),
+                        "Convergence study",
+                        "Reference time step",
+                        reference_time_step);
+          for (const double k : study_time_steps)
+            require_steps(steps_of(k), "Convergence study", "Time steps", k);
+        }
       const unsigned int n_steps
-        = time_step_control == TimeStepControl::adaptive
+        = time_step_control == TimeStepControl::adaptive || study_enabled
             ? std::numeric_limits<unsigned int>::max()
-            : static_cast<unsigned int>(
-              std::ceil(end_time / time_step * (1 - 1e-12)));
+            : static_cast<unsigned int>(steps_of(time_step));
+      if (write_vtu && time_step_control == TimeStepControl::fixed
+          && !study_enabled)
+        {
+          const double records = 2 + std::floor(n_steps / double(interval));
+          std::ostringstream message;
+          message << "at most " << max_output_records
+                  << " .vtu records in a run; Time step = " << time_step
+                  << " and End time = " << end_time << " make " << n_steps
+                  << " steps, and Output interval = " << interval << " writes "
+                  << records
+                  << " records (a larger Output interval, or Write vtu = "
+                     "false)";
+          require(records <= max_output_records,
+                  "Output",
+                  "Output interval",
+                  std::to_string(interval),
+                  message.str());
+        }
       require(stop_after_step <= n_steps,
               "Checkpoint",
               "Stop after step",

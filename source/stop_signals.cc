@@ -4,7 +4,11 @@
 
 #include "stop_signals.h"
 
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+
 #include <csignal>
+#include <iostream>
 #include <unistd.h>
 
 namespace ViscoContact
@@ -26,7 +30,8 @@ namespace ViscoContact
         // not), so that the log shows that the signal was taken.
         const char note[]
           = "\nSignal received: the run stops after the current time step, "
-            "with a checkpoint; a second signal stops it at once.\n";
+            "with a checkpoint (during the set-up: after its current phase, "
+            "without one); a second signal stops it at once.\n";
         (void)!::write(STDERR_FILENO, note, sizeof(note) - 1);
         // The next signal of any of the three kinds takes its default
         // action: the process ends at once. (signal() may be called in a
@@ -57,6 +62,23 @@ namespace ViscoContact
     received()
     {
       return first_signal;
+    }
+
+
+
+    void
+    stop_if_received(const MPI_Comm communicator, const std::string &phase)
+    {
+      const int signal
+        = dealii::Utilities::MPI::max(int(first_signal), communicator);
+      if (signal == 0)
+        return;
+      if (dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
+        std::cout << "Stopped during the set-up (" << phase << ") on "
+                  << name(signal)
+                  << "; no time step was computed, and nothing is saved."
+                  << std::endl;
+      throw Stopped{signal};
     }
 
 

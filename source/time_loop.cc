@@ -266,6 +266,28 @@ namespace ViscoContact
             << " out of contact.\n"
             << "The last accepted state (t = " << time - time_step
             << ") is written to " << state_file << ".\n";
+    // Pieces that settled, with linear solves that stay above the
+    // tolerance: neither a shorter step nor the uniqueness condition is the
+    // matter, but the accuracy the linear problem of the pieces allows.
+    const auto &history = result.history;
+    if (history.size() >= 2 && history.back().changed_nodes == 0
+        && history[history.size() - 2].changed_nodes == 0
+        && history.back().linear_residual > parameters.tolerance)
+      {
+        unsigned int settled = history.size();
+        while (settled > 1 && history[settled - 2].changed_nodes == 0)
+          --settled;
+        message << "The pieces of the contact law settled in iteration "
+                << settled
+                << " (no node changed its piece after it), but the linear "
+                   "solves stayed at a relative residual of "
+                << history.back().linear_residual
+                << ", above <Tolerance> = " << parameters.tolerance
+                << " in subsection <Active set solver>: the linear problem "
+                   "of these pieces cannot be solved more accurately (its "
+                   "rounding). A Tolerance above the residual accepts it.";
+        return message.str();
+      }
     // What can be changed depends on the failure policy: with cutting, the
     // minimum step was reached; without, cutting is the remedy to try.
     if (parameters.on_failure == Parameters::FailurePolicy::cut_time_step)

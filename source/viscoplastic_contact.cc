@@ -262,7 +262,12 @@ namespace ViscoContact
     // built, with the estimate, instead of ending in std::bad_alloc.
     check_memory_estimate();
     make_grid();
+    // A scheduler's signal during the set-up stops the run between its
+    // phases (there is no step to save yet).
+    StopSignals::stop_if_received(mpi_communicator, "after the mesh");
     setup_on_mesh();
+    StopSignals::stop_if_received(mpi_communicator,
+                                  "after the operator and the back end");
 
     // t_n = n k with the last step shortened to end at T. A resumed run
     // replaces the schedule by the one of its checkpoint (with the cut steps of
@@ -295,7 +300,11 @@ namespace ViscoContact
     unsigned int first_step = 1;
     if (parameters.resume)
       first_step = resume_from_checkpoint(times) + 1;
-    prepare_output_directory();
+    // The output volume: the .vtu records must fit on the disk.
+    check_output_volume(times.size() - 1);
+    StopSignals::stop_if_received(mpi_communicator,
+                                  "before the output folder was prepared");
+    prepare_output_directory(first_step - 1);
     // The header and the limits of the scheme go to the console before the
     // first step, so that a user sees a warning (unstable time step, several
     // solutions possible) at once and not after the run.
@@ -330,6 +339,9 @@ namespace ViscoContact
     Timer loop_timer;
     for (unsigned int n = first_step; n < times.size(); ++n)
       {
+        // Adaptive and cut steps are not counted before the run: their number
+        // is bounded here (fixed schedules were checked with the parameters).
+        check_step_count(n, times[n - 1]);
         // One step: solve for u_n (retrying with cut steps if necessary), then
         // the stresses sigma_n at every stress point and the history of the
         // next step, whose length is the distance to the next time level (0
@@ -452,7 +464,7 @@ namespace ViscoContact
             pcout << "Stopped after step " << n << " (t = " << times[n]
                   << ") on " << StopSignals::name(signal)
                   << "; the checkpoint of step " << n << " is in "
-                  << checkpoint_directory(parameters.directory).string()
+                  << output_folder->path(checkpoint_folder)
                   << ".\nTo continue the run, set Resume = true in "
                      "subsection <Checkpoint> and run the same parameter "
                      "file again (on any number of MPI ranks)."

@@ -57,6 +57,10 @@ namespace ViscoContact
 
     const FullMatrix<double> &
     compliance() const;
+    // Drops the kept factorisation: the next solve factorises its pieces'
+    // matrix afresh, as the first solve after reinit() does.
+    void
+    forget_factorization();
     // How often the dense matrix was factorised, and how often a solve
     // corrected a kept factorisation for changed rows instead.
     unsigned int

@@ -148,6 +148,15 @@ namespace ViscoContact
                              const std::vector<double> &)
     {}
 
+    // After a checkpoint: forget what the back end keeps from earlier solves
+    // of the run and a checkpoint does not store (the condensed back end's
+    // dense factorisation, corrected for the rows that changed since), so
+    // that the run goes on with the arithmetic of a run resumed from that
+    // checkpoint, bit for bit.
+    virtual void
+    forget_kept_state()
+    {}
+
     // The counts so far, for the run summary.
     const Statistics &
     statistics() const

@@ -6,6 +6,7 @@
 #include <deal.II/distributed/tria_base.h>
 
 #include <deal.II/grid/tria.h>
+#include <deal.II/grid/tria_description.h>
 
 #include "parameters.h"
 
@@ -69,16 +70,22 @@ namespace ViscoContact
 
   // The checks of a Gmsh file (mesh_checks.cc), each stopping with a
   // message that names the Mesh file entry, the file and what is wrong:
-  // every node id defined once; and, on the mesh as read, finite
-  // coordinates of a sane extent, cells with distinct nodes and positive,
-  // non-negligible Jacobians at every corner, no coincident nodes (a crack),
-  // and conforming faces (no hanging node).
+  // every node id defined once; on the cells the reader hands to the
+  // triangulation, before it builds anything, finite coordinates of a sane
+  // extent, distinct nodes and positive, non-negligible Jacobians at every
+  // corner; and on the mesh built, no coincident nodes (a crack) and
+  // conforming faces (no hanging node).
   void
   check_gmsh_node_ids(const std::string &file);
   template <int dim>
   void
-  check_coarse_mesh(const Triangulation<dim> &triangulation,
-                    const std::string        &file);
+  check_mesh_cells(const std::vector<Point<dim>>    &vertices,
+                   const std::vector<CellData<dim>> &cells,
+                   const std::string                &file);
+  template <int dim>
+  void
+  check_mesh_conformity(const Triangulation<dim> &triangulation,
+                        const std::string        &file);
 
   template <int dim>
   void

@@ -21,7 +21,8 @@ namespace ViscoContact
   // if only one rank got the signal.
   namespace StopSignals
   {
-    // Installs the handler for SIGTERM, SIGINT and SIGUSR1.
+    // Installs the handler for SIGTERM, SIGINT and SIGUSR1, and ignores
+    // SIGXFSZ (a write beyond a file size limit then fails with EFBIG).
     void
     install();
 

@@ -612,6 +612,9 @@ namespace ViscoContact
     record.n_dofs  = dof_handler.n_dofs();
     record.entries = parameters.result_entries;
     publish_checkpoint(*output_folder, record, last_checkpoint_step);
+    // What a resumed run cannot restore, this run forgets too.
+    if (contact_enabled)
+      contact_solver->forget_kept_state();
     last_checkpoint_step = step;
   }
 

@@ -142,6 +142,9 @@ namespace ViscoContact
     LinearSolveReport
     solve_without_contact(const VectorType &b, VectorType &u) override;
 
+    void
+    forget_kept_state() override;
+
   private:
     // The two ways to S (see above).
     FullMatrix<double>
@@ -491,6 +494,23 @@ namespace ViscoContact
     factorization.solve(u, b);
     ++this->counts.solves;
     return LinearSolveReport();
+  }
+
+
+
+  // @sect4{CondensedContactSolver::forget_kept_state}
+  //
+  // A resumed run factorises the dense problem of its first pieces afresh;
+  // after a checkpoint the uninterrupted run does the same, so that both
+  // continue with the same arithmetic (a kept factorisation corrected for
+  // changed rows agrees with a new one to rounding only, which the error
+  // estimate of the time series, a difference of nearly equal increments,
+  // magnified to 1e-9 relative).
+  template <int dim>
+  void
+  CondensedContactSolver<dim>::forget_kept_state()
+  {
+    condensed_system.forget_factorization();
   }
 
 

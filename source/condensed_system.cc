@@ -439,6 +439,15 @@ namespace ViscoContact
 
 
 
+  void
+  CondensedContactSystem::forget_factorization()
+  {
+    factorized_rows.clear();
+    updated_pieces.clear();
+  }
+
+
+
   // The compliance of all contact nodes; the condensed back end's
   // apply_compliance() multiplies with its rows.
   const FullMatrix<double> &

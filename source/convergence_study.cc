@@ -585,11 +585,28 @@ namespace ViscoContact
               return std::log(previous.*member / run.*member)
                      / std::log(size_prev / size);
             };
-            // A failed run: its resolution, and infinite errors.
+            // An order that is not defined (the first run, or after a failed
+            // one) is an empty field in the CSV file and "-" on the terminal,
+            // never a "nan" among the numbers.
+            const auto csv_field = [](const double value) {
+              std::ostringstream text;
+              if (std::isfinite(value))
+                text << std::setprecision(10) << value;
+              return text.str();
+            };
+            const auto terminal_order = [](const double value) {
+              std::ostringstream text;
+              if (std::isfinite(value))
+                text << std::fixed << std::setprecision(2) << value;
+              else
+                text << '-';
+              return text.str();
+            };
+            // A failed run: its resolution, and no errors.
             if (run.failed)
               {
                 csv << h << ',' << run.time_step << ',' << run.subdivisions
-                    << ",,,0," << run.wall_time << ",inf,inf,inf,nan,nan,nan\n";
+                    << ",,,0," << run.wall_time << ",,,,,,\n";
                 std::cout << std::setw(6)
                           << "1/" + std::to_string(run.subdivisions)
                           << std::setw(11) << std::setprecision(4)
@@ -607,8 +624,9 @@ namespace ViscoContact
                 << run.n_dofs << ',' << run.times.size() << ','
                 << run.n_compared_levels << ',' << run.wall_time << ','
                 << run.max_error_u << ',' << run.max_error_sigma << ','
-                << run.max_error << ',' << order_u << ',' << order_sigma << ','
-                << order_total << '\n';
+                << run.max_error << ',' << csv_field(order_u) << ','
+                << csv_field(order_sigma) << ',' << csv_field(order_total)
+                << '\n';
             // ... and of the terminal table, aligned in columns.
             std::cout << std::setw(6) << "1/" + std::to_string(run.subdivisions)
                       << std::setw(11) << std::setprecision(4) << run.time_step
@@ -616,15 +634,13 @@ namespace ViscoContact
                       << run.times.size() << std::setw(10)
                       << wall_time_text(run.wall_time) << std::scientific
                       << std::setprecision(3) << std::setw(11)
-                      << run.max_error_u << std::fixed << std::setprecision(2)
-                      << std::setw(7) << order_u << std::scientific
-                      << std::setprecision(3) << std::setw(11)
-                      << run.max_error_sigma << std::fixed
-                      << std::setprecision(2) << std::setw(7) << order_sigma
-                      << std::scientific << std::setprecision(3)
-                      << std::setw(11) << run.max_error << std::fixed
-                      << std::setprecision(2) << std::setw(7) << order_total
-                      << std::defaultfloat << '\n';
+                      << run.max_error_u << std::setw(7)
+                      << terminal_order(order_u) << std::setw(11)
+                      << run.max_error_sigma << std::setw(7)
+                      << terminal_order(order_sigma) << std::setw(11)
+                      << run.max_error << std::setw(7)
+                      << terminal_order(order_total) << std::defaultfloat
+                      << '\n';
           }
         folder->stage("convergence.csv", csv.str());
       }

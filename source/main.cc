@@ -45,6 +45,41 @@ namespace
          "replaced with --force.\nThe default scene is "
          "parameters/default.prm.\n";
   }
+
+  // Two things a parameter file may not mean the way ParameterHandler reads
+  // it: a file that sets nothing (empty, or only comments) runs the
+  // reference benchmark into output/default; and a '#' inside the value of
+  // a path entry starts a comment (ParameterHandler knows no escape for it),
+  // so "results#2" becomes "results".
+  void
+  warn_about_parameter_file(const std::string &file)
+  {
+    std::ifstream    in(file);
+    std::string      line;
+    bool             sets_an_entry = false;
+    unsigned int     number        = 0;
+    const std::regex set_line("^\\s*set\\s");
+    const std::regex path_entry(
+      "^\\s*set\\s+(Output directory|Mesh file)\\s*=\\s*([^#]*[^#\\s])#.*");
+    while (std::getline(in, line))
+      {
+        ++number;
+        sets_an_entry = sets_an_entry || std::regex_search(line, set_line);
+        std::smatch match;
+        if (std::regex_match(line, match, path_entry))
+          std::cerr << "Warning: line " << number << " of <" << file
+                    << ">: the value of <" << match[1]
+                    << "> ends at the '#' (a '#' starts a comment in a "
+                       "parameter file and cannot be part of a value); the "
+                       "run uses <"
+                    << match[2] << ">." << std::endl;
+      }
+    if (!sets_an_entry)
+      std::cerr << "Warning: the parameter file <" << file
+                << "> sets no entry; every value is the default (the "
+                   "reference benchmark, output into output/default)."
+                << std::endl;
+  }
 } // namespace
 
 
@@ -180,23 +215,10 @@ main(int argc, char **argv)
       ParameterHandler prm;
       Parameters::AllParameters::declare_parameters(prm);
       prm.parse_input(first);
-      // A file that sets nothing (empty, or only comments) is most likely a
-      // mistake: it runs the reference benchmark into output/default. It is
-      // allowed, but said.
-      {
-        std::ifstream    in(first);
-        std::string      line;
-        bool             sets_an_entry = false;
-        const std::regex set_line("^\\s*set\\s");
-        while (!sets_an_entry && std::getline(in, line))
-          sets_an_entry = std::regex_search(line, set_line);
-        if (!sets_an_entry
-            && Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-          std::cerr << "Warning: the parameter file <" << first
-                    << "> sets no entry; every value is the default (the "
-                       "reference benchmark, output into output/default)."
-                    << std::endl;
-      }
+      // What the parameter file may not mean as ParameterHandler reads it
+      // is allowed, but said (rank 0).
+      if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+        warn_about_parameter_file(first);
       Parameters::AllParameters parameters;
       parameters.parse_parameters(prm);
       parameters.parameter_file = first;

@@ -259,6 +259,50 @@ namespace ViscoContact
 
 
 
+  namespace
+  {
+    // The triangulation a Gmsh file is read into: it checks the cells the
+    // reader hands it before it builds anything (deal.II's own checks of a
+    // cell's nodes and faces are assertions, which abort a Debug build and
+    // are absent from a Release one).
+    template <int dim>
+    class CheckedTriangulation : public Triangulation<dim>
+    {
+    public:
+      explicit CheckedTriangulation(const std::string &file)
+        : file(file)
+      {}
+
+      using Triangulation<dim>::create_triangulation;
+
+      void
+      create_triangulation(const std::vector<Point<dim>>    &vertices,
+                           const std::vector<CellData<dim>> &cells,
+                           const SubCellData &subcell_data) override
+      {
+        try
+          {
+            check_mesh_cells(vertices, cells, file);
+          }
+        catch (...)
+          {
+            cells_rejected = true;
+            throw;
+          }
+        Triangulation<dim>::create_triangulation(vertices, cells, subcell_data);
+      }
+
+      // Whether the reader stopped because check_mesh_cells() rejected a
+      // cell (its message is then the one to give).
+      bool cells_rejected = false;
+
+    private:
+      const std::string file;
+    };
+  } // namespace
+
+
+
   // @sect4{create_coarse_mesh}
   //
   // The box (0,L1)x(0,L2)(x(0,L3)) with Subdivisions squares (cubes) along
@@ -298,16 +342,19 @@ namespace ViscoContact
         // message; an empty mesh is an error too.
         // A node id defined twice would silently replace the first node.
         check_gmsh_node_ids(file);
-        std::string reader_message;
+        std::string               reader_message;
+        CheckedTriangulation<dim> checked_mesh(file);
         try
           {
             GridIn<dim> grid_in;
-            grid_in.attach_triangulation(triangulation);
+            grid_in.attach_triangulation(checked_mesh);
             std::ifstream in(file);
             grid_in.read_msh(in);
           }
         catch (const ExceptionBase &exc)
           {
+            if (checked_mesh.cells_rejected)
+              throw;
             std::ostringstream info;
             exc.print_info(info);
             reader_message = info.str();
@@ -322,7 +369,7 @@ namespace ViscoContact
           {
             reader_message = exc.what();
           }
-        AssertThrow(reader_message.empty() && triangulation.n_cells() > 0,
+        AssertThrow(reader_message.empty() && checked_mesh.n_cells() > 0,
                     ExcMessage("Invalid parameter <Mesh file> in subsection "
                                "<Geometry>: value <"
                                + file
@@ -331,7 +378,7 @@ namespace ViscoContact
                                + std::to_string(dim)
                                + "D mesh. The reader says: " + reader_message));
         // One cell of the wrong type is enough to reject the file.
-        for (const auto &cell : triangulation.active_cell_iterators())
+        for (const auto &cell : checked_mesh.active_cell_iterators())
           AssertThrow(cell->reference_cell().is_simplex() == simplex,
                       ExcMessage(
                         "Invalid parameter <Mesh file> in subsection "
@@ -342,8 +389,9 @@ namespace ViscoContact
                         + (simplex ? "simplices" : "quadrilaterals/hexahedra")
                         + " only, as <Cell type> = "
                         + (simplex ? "simplex" : "hypercube") + " requires."));
-        // Coordinates, cells, coincident nodes, conformity.
-        check_coarse_mesh(triangulation, file);
+        // Coincident nodes, conformity.
+        check_mesh_conformity(checked_mesh, file);
+        triangulation.copy_triangulation(checked_mesh);
         return;
       }
 

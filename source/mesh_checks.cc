@@ -52,31 +52,44 @@ namespace ViscoContact
       return text.str();
     }
 
+    // "cell 3 of the file (vertices (0, 0), (1, 0), (0, 1))": cells are
+    // numbered as in the file (the reader keeps their order), from 1.
     template <int dim>
     std::string
-    cell_description(const typename Triangulation<dim>::cell_iterator &cell)
+    cell_description(const unsigned int             index,
+                     const std::vector<Point<dim>> &corners)
     {
       std::ostringstream text;
-      text << "cell " << cell->index() + 1 << " of the file (vertices ";
-      for (const unsigned int v : cell->vertex_indices())
-        text << (v > 0 ? ", " : "") << coordinates<dim>(cell->vertex(v));
+      text << "cell " << index + 1 << " of the file (vertices ";
+      for (unsigned int v = 0; v < corners.size(); ++v)
+        text << (v > 0 ? ", " : "") << coordinates<dim>(corners[v]);
       text << ')';
       return text.str();
     }
 
+    template <int dim>
+    std::vector<Point<dim>>
+    corners_of(const typename Triangulation<dim>::cell_iterator &cell)
+    {
+      std::vector<Point<dim>> corners;
+      for (const unsigned int v : cell->vertex_indices())
+        corners.push_back(cell->vertex(v));
+      return corners;
+    }
+
     // The Jacobian determinant of a cell at its vertex v, from the edges to
-    // its neighbours along each reference direction (for a simplex the same
-    // at every vertex), and the product of those edges' lengths: their ratio
-    // is the sine of the corner's angle (in 3D, of the solid corner), 0 for
-    // a degenerate corner, negative for an inverted one.
+    // its neighbours along each reference direction (for a simplex, dim + 1
+    // corners, the same at every vertex), and the product of those edges'
+    // lengths: their ratio is the sine of the corner's angle (in 3D, of the
+    // solid corner), 0 for a degenerate corner, negative for an inverted one.
     template <int dim>
     std::pair<double, double>
-    corner_jacobian(const typename Triangulation<dim>::cell_iterator &cell,
-                    const unsigned int                                v)
+    corner_jacobian(const std::vector<Point<dim>> &corners,
+                    const unsigned int             v)
     {
       Tensor<2, dim> J;
       double         lengths = 1;
-      const bool     simplex = cell->reference_cell().is_simplex();
+      const bool     simplex = (corners.size() == dim + 1);
       for (unsigned int d = 0; d < dim; ++d)
         {
           // Simplex: the edges from vertex 0. Hypercube: the neighbour of v
@@ -84,7 +97,7 @@ namespace ViscoContact
           // the direction.
           const unsigned int from = simplex ? 0 : v;
           const unsigned int to   = simplex ? d + 1 : (v ^ (1u << d));
-          Tensor<1, dim>     edge = cell->vertex(to) - cell->vertex(from);
+          Tensor<1, dim>     edge = corners[to] - corners[from];
           if (!simplex && (v & (1u << d)))
             edge = -edge;
           for (unsigned int c = 0; c < dim; ++c)
@@ -92,6 +105,26 @@ namespace ViscoContact
           lengths *= edge.norm();
         }
       return {determinant(J), lengths};
+    }
+
+    // The largest distance between two nodes along a coordinate direction.
+    template <int dim>
+    double
+    extent_of(const std::vector<Point<dim>> &points)
+    {
+      double extent = 0;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const auto [lowest, highest]
+            = std::minmax_element(points.begin(),
+                                  points.end(),
+                                  [d](const auto &a, const auto &b) {
+                                    return a[d] < b[d];
+                                  });
+          if (lowest != points.end())
+            extent = std::max(extent, (*highest)[d] - (*lowest)[d]);
+        }
+      return extent;
     }
   } // namespace
 
@@ -163,47 +196,42 @@ namespace ViscoContact
 
 
 
-  // @sect4{check_coarse_mesh}
+  // @sect4{check_mesh_cells}
   //
-  // The mesh as deal.II's reader built it (which has already turned cells of
-  // the other orientation around, so a consistent mesh has positive
-  // Jacobians everywhere).
+  // The cells as deal.II's reader hands them to the triangulation (it has
+  // already turned cells of the other orientation around, so a consistent
+  // mesh has positive Jacobians everywhere), before anything is built.
   template <int dim>
   void
-  check_coarse_mesh(const Triangulation<dim> &triangulation,
-                    const std::string        &file)
+  check_mesh_cells(const std::vector<Point<dim>>    &vertices,
+                   const std::vector<CellData<dim>> &cells,
+                   const std::string                &file)
   {
-    // Coordinates: finite, and an extent whose dim-th power neither
-    // overflows nor underflows, so that measures, Jacobians and their
-    // inverses are normal numbers.
-    const std::vector<Point<dim>> &vertices = triangulation.get_vertices();
-    const std::vector<bool>       &used     = triangulation.get_used_vertices();
-    Point<dim>                     lower, upper;
-    bool                           first = true;
+    // Coordinates of the nodes the cells use: finite, and an extent whose
+    // dim-th power neither overflows nor underflows, so that measures,
+    // Jacobians and their inverses are normal numbers.
+    std::vector<bool> used(vertices.size(), false);
+    for (const CellData<dim> &cell : cells)
+      for (const unsigned int v : cell.vertices)
+        if (v < vertices.size())
+          used[v] = true;
+    std::vector<Point<dim>> used_vertices;
+    double                  magnitude = 0;
     for (unsigned int v = 0; v < vertices.size(); ++v)
       if (used[v])
         {
           for (unsigned int d = 0; d < dim; ++d)
-            AssertThrow(std::isfinite(vertices[v][d]),
-                        ExcMessage(invalid_mesh(file)
-                                   + "a node has a coordinate that is not "
-                                     "finite; accepted: finite coordinates."));
-          for (unsigned int d = 0; d < dim; ++d)
             {
-              lower[d]
-                = first ? vertices[v][d] : std::min(lower[d], vertices[v][d]);
-              upper[d]
-                = first ? vertices[v][d] : std::max(upper[d], vertices[v][d]);
+              AssertThrow(std::isfinite(vertices[v][d]),
+                          ExcMessage(invalid_mesh(file)
+                                     + "a node has a coordinate that is not "
+                                       "finite; accepted: finite "
+                                       "coordinates."));
+              magnitude = std::max(magnitude, std::abs(vertices[v][d]));
             }
-          first = false;
+          used_vertices.push_back(vertices[v]);
         }
-    double extent = 0, magnitude = 0;
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        extent = std::max(extent, upper[d] - lower[d]);
-        magnitude
-          = std::max({magnitude, std::abs(lower[d]), std::abs(upper[d])});
-      }
+    const double extent = extent_of(used_vertices);
     {
       std::ostringstream message;
       message << std::setprecision(3) << invalid_mesh(file) << "its nodes span "
@@ -218,21 +246,24 @@ namespace ViscoContact
 
     // Cells: no node twice, and at every corner a Jacobian of the common
     // orientation whose size is not negligible against the corner's edges.
-    for (const auto &cell : triangulation.active_cell_iterators())
+    for (unsigned int c = 0; c < cells.size(); ++c)
       {
-        std::set<unsigned int> distinct;
-        for (const unsigned int v : cell->vertex_indices())
-          distinct.insert(cell->vertex_index(v));
-        AssertThrow(distinct.size() == cell->n_vertices(),
-                    ExcMessage(invalid_mesh(file) + cell_description<dim>(cell)
+        std::vector<Point<dim>> corners;
+        for (const unsigned int v : cells[c].vertices)
+          corners.push_back(vertices[v]);
+        const std::set<unsigned int> distinct(cells[c].vertices.begin(),
+                                              cells[c].vertices.end());
+        AssertThrow(distinct.size() == corners.size(),
+                    ExcMessage(invalid_mesh(file)
+                               + cell_description<dim>(c, corners)
                                + " uses a node more than once; accepted: "
                                  "cells with distinct nodes."));
-        for (const unsigned int v : cell->vertex_indices())
+        for (unsigned int v = 0; v < corners.size(); ++v)
           {
-            const auto [jacobian, lengths] = corner_jacobian<dim>(cell, v);
+            const auto [jacobian, lengths] = corner_jacobian<dim>(corners, v);
             AssertThrow(jacobian > 1e-10 * lengths,
                         ExcMessage(invalid_mesh(file)
-                                   + cell_description<dim>(cell)
+                                   + cell_description<dim>(c, corners)
                                    + (jacobian > -1e-10 * lengths
                                         ? " is degenerate (its corners lie "
                                           "(nearly) on a line or plane)"
@@ -243,16 +274,34 @@ namespace ViscoContact
                                      "with their nodes in Gmsh's order."));
           }
       }
+  }
+
+
+
+  // @sect4{check_mesh_conformity}
+  //
+  // The mesh built from cells that passed check_mesh_cells().
+  template <int dim>
+  void
+  check_mesh_conformity(const Triangulation<dim> &triangulation,
+                        const std::string        &file)
+  {
+    const std::vector<Point<dim>> &vertices = triangulation.get_vertices();
+    const std::vector<bool>       &used     = triangulation.get_used_vertices();
+    std::vector<std::pair<Point<dim>, unsigned int>> used_vertices;
+    std::vector<Point<dim>>                          used_points;
+    for (unsigned int v = 0; v < vertices.size(); ++v)
+      if (used[v])
+        {
+          used_vertices.emplace_back(vertices[v], v);
+          used_points.push_back(vertices[v]);
+        }
 
     // Coincident nodes: two nodes closer than 1e-10 of the mesh's extent
     // (a node defined twice under two ids, or a crack: a body that is not
     // connected across a line of double nodes).
-    const double                                     tolerance = 1e-10 * extent;
-    std::vector<std::pair<Point<dim>, unsigned int>> used_vertices;
-    for (unsigned int v = 0; v < vertices.size(); ++v)
-      if (used[v])
-        used_vertices.emplace_back(vertices[v], v);
-    const auto vertex_tree = pack_rtree(used_vertices);
+    const double tolerance   = 1e-10 * extent_of(used_points);
+    const auto   vertex_tree = pack_rtree(used_vertices);
     for (const auto &[point, index] : used_vertices)
       {
         Point<dim> a = point, b = point;
@@ -354,15 +403,16 @@ namespace ViscoContact
                       || (corners.size() == 4
                           && on_triangle(corners[1], corners[3], corners[2]));
                 AssertThrow(!on_face,
-                            ExcMessage(invalid_mesh(file) + "the node at "
-                                       + coordinates<dim>(point)
-                                       + " lies on a face of "
-                                       + cell_description<dim>(cell)
-                                       + " without being one of its vertices "
-                                         "(a hanging node: the mesh is not "
-                                         "conforming); accepted: a conforming "
-                                         "mesh, whose neighbouring cells share "
-                                         "whole faces."));
+                            ExcMessage(
+                              invalid_mesh(file) + "the node at "
+                              + coordinates<dim>(point) + " lies on a face of "
+                              + cell_description<dim>(cell->index(),
+                                                      corners_of<dim>(cell))
+                              + " without being one of its vertices "
+                                "(a hanging node: the mesh is not "
+                                "conforming); accepted: a conforming "
+                                "mesh, whose neighbouring cells share "
+                                "whole faces."));
               }
           }
   }
@@ -370,7 +420,15 @@ namespace ViscoContact
 
 
   template void
-  check_coarse_mesh(const Triangulation<2> &, const std::string &);
+  check_mesh_cells(const std::vector<Point<2>> &,
+                   const std::vector<CellData<2>> &,
+                   const std::string &);
   template void
-  check_coarse_mesh(const Triangulation<3> &, const std::string &);
+  check_mesh_cells(const std::vector<Point<3>> &,
+                   const std::vector<CellData<3>> &,
+                   const std::string &);
+  template void
+  check_mesh_conformity(const Triangulation<2> &, const std::string &);
+  template void
+  check_mesh_conformity(const Triangulation<3> &, const std::string &);
 } // namespace ViscoContact

@@ -268,8 +268,8 @@ namespace ViscoContact
   // @sect4{ViscoplasticContact::output_results}
   //
   // One .pvtu record per output step (with at most 8 .vtu pieces, whatever
-  // the number of ranks, written through MPI I/O), listed with its time in
-  // solution.pvd. The displacement is a nodal vector field (ParaView's
+  // the number of ranks, each written by a group of ranks), listed with its
+  // time in solution.pvd. The displacement is a nodal vector field (ParaView's
   // "Warp By Vector" shows the deformed body). The stresses, their
   // viscoplastic part sigma - E eps(u) and the von Mises stress are
   // constant per cell (averaged over the stress points of a hypercube);

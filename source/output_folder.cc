@@ -608,6 +608,15 @@ namespace ViscoContact
         else if (!listed && is_program_name(name))
           in_the_way.push_back(name);
       }
+    // A listed name that has become a symbolic link is not the run's any
+    // more: neither removed nor replaced, it is in the way.
+    for (const std::string &name : listed_names)
+      {
+        struct stat status;
+        if (status_of(folder_descriptor, name, status)
+            && S_ISLNK(status.st_mode))
+          in_the_way.push_back(name);
+      }
     // Inside a listed checkpoint folder, the checkpoint files it does not
     // list.
     if (listed_names.count("checkpoint") > 0)
@@ -629,10 +638,11 @@ namespace ViscoContact
     const std::string entry_name
       = "Invalid parameter <Output directory> in subsection <Output>: value <"
         + folder + ">";
+    std::sort(in_the_way.begin(), in_the_way.end());
     if (!in_the_way.empty())
       return entry_name
-             + " holds files with the names of this program's "
-               "output that no manifest of this program lists ("
+             + " holds files with the names of this program's output that no "
+               "manifest of this program lists, or links under them ("
              + short_list(in_the_way)
              + "): they were written by something else or by an older "
                "version of the program, and the run neither replaces nor "

@@ -556,11 +556,11 @@ namespace ViscoContact
         prm.declare_entry(
           "Maximum number of steps",
           "1000000",
-          Patterns::Integer(1, 1000000000),
+          Patterns::Integer(1, 10000000),
           "The most time steps a run may take: a schedule of more steps "
           "(End time / Time step; for each run of a convergence study too) "
           "is refused before anything is written, and adaptive steps stop "
-          "with an error there. An integer in [1, 1e9].");
+          "with an error there. An integer in [1, 1e7].");
       }
       prm.leave_subsection();
     }
@@ -792,24 +792,28 @@ namespace ViscoContact
     {
       prm.enter_subsection("Output");
       {
-        prm.declare_entry("Output directory",
-                          "output/default",
-                          Patterns::DirectoryName(),
-                          "Where the run writes parameters.prm, solution.pvd "
-                          "with its .vtu files, time_series.csv and the "
-                          "contact profiles. Created if missing; must not be "
-                          "empty.");
+        prm.declare_entry(
+          "Output directory",
+          "output/default",
+          Patterns::DirectoryName(),
+          "Where the run writes parameters.prm, solution.pvd with its .vtu "
+          "files, time_series.csv, the contact profiles and checkpoint/. "
+          "Created if missing; must not be empty. The run lists every file it "
+          "writes in the folder's manifest (.viscoplastic_contact.manifest) "
+          "and holds a lock on the folder while it runs: a second run into a "
+          "folder in use is refused, and so is a folder with files under the "
+          "program's names that no manifest lists (they are never replaced). "
+          "A '#' cannot be part of the value (it starts a comment).");
         prm.declare_entry(
           "Overwrite",
           "false",
           Patterns::Bool(),
           "A new run never mixes its files with those of an earlier run: "
-          "false refuses an Output directory that holds another run's files "
-          "(parameters.prm, solution*, failed_step_*, time_series.csv, "
-          "contact_profile_*.csv, convergence.csv, checkpoint/, runs/); true "
-          "removes those files first, once the new run's set-up has "
-          "succeeded (other files stay). A resumed run continues its own "
-          "files.");
+          "false refuses an Output directory that holds another run's files; "
+          "true removes exactly the files and folders the earlier run's "
+          "manifest lists, once the new run's set-up has succeeded (nothing "
+          "else, never the parameter file being run). A resumed run continues "
+          "its own files.");
         prm.declare_entry("Write vtu",
                           "true",
                           Patterns::Bool(),

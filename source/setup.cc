@@ -423,8 +423,14 @@ namespace ViscoContact
                   == Parameters::StressUpdate::explicit_euler
                 ? "explicit"
                 : "implicit")
-          << " stress update\n"
-          << "Back end: " << contact_solver->description() << " ("
+          << " stress update\n";
+    // Contact off because no boundary part is named is most likely a
+    // mistake in the parameter file: said, not silently accepted.
+    if (parameters.contact_ids.empty())
+      pcout << "WARNING: contact is off: <Contact boundary ids> in subsection "
+               "<Boundary> names no boundary part, so the body has no contact "
+               "boundary and the contact law is not used.\n";
+    pcout << "Back end: " << contact_solver->description() << " ("
           << method_reason << ")\n"
           << "Parallel: " << Utilities::MPI::n_mpi_processes(mpi_communicator)
           << " MPI rank(s), "

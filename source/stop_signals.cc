@@ -54,6 +54,11 @@ namespace ViscoContact
       action.sa_flags = SA_RESTART;
       for (const int signal : {SIGTERM, SIGINT, SIGUSR1})
         sigaction(signal, &action, nullptr);
+      // A write beyond a file size limit (ulimit -f, a batch system's limit)
+      // raises SIGXFSZ, whose default action kills the process with a core
+      // dump. Ignored, the write fails with EFBIG instead, and the run stops
+      // like on a full disk: with the file's name and "File too large".
+      std::signal(SIGXFSZ, SIG_IGN);
     }
 
 

@@ -8,16 +8,13 @@
 #    the user stay), and every .vtu in the folder is in the new solution.pvd;
 #  - Resume with another Young's modulus or Time step is refused, naming
 #    the entries and both values; a longer End time is accepted and the
-#    resumed run ends with the time series of an uninterrupted run to it.
+#    resumed run ends with the time series of an uninterrupted run to it;
+#  - a time series deleted before a resume starts again with its header.
 #   run_output_folder.sh EXECUTABLE
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
+source "$here/robustness/helpers.sh"
 executable=$1
-base=$here/robustness/small.prm
-fail() { echo "$*"; exit 1; }
-set_entry() { # entry value < prm
-  sed -e "s/^\( *set $1 *=\).*/\1 $2/"
-}
 run() { # prm; sets status
   "$executable" "$1" > out.txt 2> err.txt
   status=$?
@@ -81,4 +78,20 @@ set_entry "Output directory" "work\/full\/results" < "$base" > work/full.prm
 run work/full.prm
 cmp -s <(cut -d, -f1-8 work/full/results/time_series.csv) <(cut -d, -f1-8 results/time_series.csv) \
   || fail "The run resumed to a later End time differs from an uninterrupted one."
+# A time series deleted before a resume starts again with its header (and
+# a warning that the rows up to the checkpoint are lost).
+rm -rf results
+set_entry "Stop after step" 6 < "$base" > work/stop6.prm
+run work/stop6.prm
+[ $status -eq 0 ] || fail "The run stopped after step 6 failed: $(cat err.txt)"
+rm results/time_series.csv
+set_entry "Resume" true < "$base" > work/resume6.prm
+run work/resume6.prm
+[ $status -eq 0 ] || fail "Resume without a time series failed: $(cat err.txt)"
+grep -q "time_series.csv was missing or empty; it starts again with its header, and the rows of steps 1 to 6 are lost" err.txt \
+  || fail "No warning about the lost rows: $(cat err.txt)"
+head -1 results/time_series.csv | grep -q "^step,time,active_set_iterations," \
+  || fail "The restored time series has no header."
+[ "$(sed -n '2p' results/time_series.csv | cut -d, -f1)" = 7 ] \
+  || fail "The restored time series does not go on with step 7."
 echo "Used folders are refused untouched, Overwrite removes only a run's files after a good set-up, Resume refuses changed entries and extends to a later End time."

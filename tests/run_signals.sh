@@ -10,7 +10,9 @@
 #    and SIGUSR1 to mpirun (which forwards it; Open MPI's mpirun ends a job
 #    at once on SIGTERM or SIGINT itself, see doc/robustness.md);
 #  - two signals in a row (1 rank): the run ends at once, without the
-#    orderly stop.
+#    orderly stop;
+#  - a signal during the set-up (1 rank): the run stops after the phase it
+#    is in, before anything is written, with status 128 + signal.
 # The signal is sent as soon as the log shows step 20 while the run is still
 # going, which also shows that progress lines reach a log file as they
 # happen.
@@ -111,17 +113,20 @@ if [ "$ranks" -eq 1 ]; then
     mask=$(awk '/^SigCgt/ { print $2 }' "/proc/$1/status" 2> /dev/null) || return 1
     [ -n "$mask" ] && [ $((0x$mask & 0x4000)) -ne 0 ]
   }
+  start_once_handled() { # prm: runs it in stopped/; sets pid and start
+    rm -rf stopped/results stopped/out.txt stopped/err.txt
+    (cd stopped && exec "$executable" "../$1" > out.txt 2> err.txt) &
+    pid=$!
+    start=$SECONDS
+    until caught_term $pid; do
+      [ $((SECONDS - start)) -lt 30 ] || { kill -KILL $pid; fail "The handler was not installed within 30 s."; }
+      sleep 0.01
+    done
+  }
   sed -e 's/^\( *set Subdivisions *=\).*/\1 96/' \
       -e 's/^\( *set Time step *=\).*/\1 0.0625/' \
       -e 's/^\( *set Method *=\).*/\1 full space/' scene.prm > slow.prm
-  rm -rf stopped/results stopped/out.txt stopped/err.txt
-  (cd stopped && exec "$executable" ../slow.prm > out.txt 2> err.txt) &
-  pid=$!
-  start=$SECONDS
-  until caught_term $pid; do
-    [ $((SECONDS - start)) -lt 30 ] || { kill -KILL $pid; fail "The handler was not installed within 30 s."; }
-    sleep 0.01
-  done
+  start_once_handled slow.prm
   kill -TERM $pid
   while caught_term $pid; do sleep 0.01; done
   kill -TERM $pid 2> /dev/null
@@ -133,6 +138,20 @@ if [ "$ranks" -eq 1 ]; then
   ! grep -q "^Stopped after step\|^Run summary" stopped/out.txt \
     || fail "Two SIGTERMs: the run did not end at once."
   echo "Two SIGTERMs: ended at once ($((SECONDS - start)) s after the start)."
+  # A SIGTERM during the set-up (a mesh of 256 x 256 squares, a second or so
+  # of set-up), as soon as the handler is installed: the run stops after the
+  # phase it is in, with status 143 and a word on where, before anything is
+  # written (its Output directory does not exist).
+  sed -e 's/^\( *set Subdivisions *=\).*/\1 256/' scene.prm > large.prm
+  start_once_handled large.prm
+  kill -TERM $pid
+  wait $pid
+  status=$?
+  [ $status -eq 143 ] || fail "SIGTERM during the set-up: exit status $status, not 143: $(cat stopped/err.txt)"
+  grep -q "^Stopped during the set-up (.*) on SIGTERM; no time step was computed" stopped/out.txt \
+    || fail "SIGTERM during the set-up: no word on where the run stopped: $(tail -3 stopped/out.txt)"
+  [ ! -e stopped/results ] || fail "SIGTERM during the set-up: the run wrote into its Output directory."
+  echo "SIGTERM during the set-up: $(sed -n 's/^Stopped during the set-up (\(.*\)) on.*/stopped \1/p' stopped/out.txt), $((SECONDS - start)) s after the start."
 else
   interrupt rank1 TERM; check_stop_and_resume "SIGTERM to rank 1 of $ranks" 15
   interrupt run USR1;   check_stop_and_resume "SIGUSR1 to mpirun" 10

@@ -11,9 +11,8 @@
 #   run_write_failure.sh EXECUTABLE RANKS
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
+source "$here/robustness/helpers.sh"
 executable=$1 ranks=$2
-base=$here/robustness/small.prm
-fail() { echo "$*"; exit 1; }
 
 scene() { # method preconditioner write_vtu > scene.prm
   sed -e "s/^\( *set Method *=\).*/\1 $1/" \

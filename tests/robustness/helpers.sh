@@ -1,0 +1,21 @@
+# Shared by the robustness scripts (tests/run_*.sh), sourced after they set
+# "here" to the tests folder:
+#   base        the small scene they vary (robustness/small.prm);
+#   fail TEXT   prints TEXT and fails the test;
+#   set_entry ENTRY VALUE < PRM > PRM2   the scene with one entry changed;
+#   wait_for_step N OUTPUT PID   waits (up to 30 s) until the run PID has
+#                                printed step N into OUTPUT; fails if not.
+base=$here/robustness/small.prm
+fail() { echo "$*"; exit 1; }
+set_entry() {
+  sed -e "s|^\( *set $1 *=\).*|\1 $2|"
+}
+wait_for_step() {
+  local i
+  for i in $(seq 1 600); do
+    grep -q "^Step *$1 " "$2" 2> /dev/null && return 0
+    kill -0 "$3" 2> /dev/null || break
+    sleep 0.05
+  done
+  fail "The run did not reach step $1: $(tail -3 "$2")"
+}

@@ -6,26 +6,21 @@
 #   # ranks: N... or W:R...  the rank counts to test: N (write and resume
 #                            on N ranks) or W:R (write on W, resume on R)
 #   # stop after: M          the step after which the interrupted run stops
-# Three runs: uninterrupted on W ranks; stopped after step M on W ranks;
-# resumed (Resume = true) on R ranks. Compared: time_series.csv (all
+# For each W, two runs: uninterrupted, and stopped after step M; for each
+# pair, a copy of the stopped run's folder resumed (Resume = true) on R
+# ranks. Compared: time_series.csv (all
 # columns but the wall time and the Krylov iterations), the contact
 # profiles (rows sorted: each rank writes its own block), solution.pvd and
 # the final state. On the same ranks a resumed run repeats the same
 # arithmetic: numdiff absolute 1e-12, relative 1e-10. On other ranks the
 # partition, and with it the rounding of the solvers, changes: absolute
 # 1e-10, relative 1e-8.
-#   run_resume_check.sh EXECUTABLE PRM W[:R]
+#   run_resume_check.sh EXECUTABLE PRM N|W:R...
 set -u
 here=$(dirname "$0")
-executable=$1 prm=$2 ranks=$3
-write_ranks=${ranks%%:*}
-resume_ranks=${ranks##*:}
+executable=$1 prm=$2
+shift 2
 stop=$(sed -n 's/^# stop after: //p' "$prm")
-if [ "$write_ranks" = "$resume_ranks" ]; then
-  absolute=1e-12 relative=1e-10
-else
-  absolute=1e-10 relative=1e-8
-fi
 
 run() { # directory, parameter file, ranks
   (cd "$1" && "$here/run_mpi.sh" "$3" "$executable" "$2" > output.txt 2> error.txt)
@@ -37,49 +32,67 @@ run() { # directory, parameter file, ranks
   fi
 }
 
-rm -rf full resumed
-mkdir -p full resumed
-run full "$prm" "$write_ranks"
-sed -e "s/^\( *set Stop after step *=\).*/\1 $stop/" "$prm" > resumed/stop.prm
-sed -e "s/^\( *set Resume *=\).*/\1 true/" "$prm" > resumed/resume.prm
-run resumed stop.prm "$write_ranks"
-if ! grep -q "^Stopped after step $stop " resumed/output.txt; then
-  echo "The interrupted run did not stop after step $stop."
-  exit 1
-fi
-run resumed resume.prm "$resume_ranks"
-if ! grep -q "^Resuming from the checkpoint of step .* written on $write_ranks MPI rank" resumed/output.txt; then
-  echo "The resumed run did not report the checkpoint written on $write_ranks rank(s)."
-  exit 1
-fi
-resumed_step=$(sed -n 's/^Resuming from the checkpoint of step \([0-9]*\).*/\1/p' resumed/output.txt)
-
-compare() { # file in full/ and resumed/
-  if ! numdiff -q -a $absolute -r $relative -s ' \t\n=,:;<>' "full/$1" "resumed/$1" > /dev/null; then
-    echo "$1 differs between the uninterrupted and the resumed run:"
-    numdiff -a $absolute -r $relative -s ' \t\n=,:;<>' "full/$1" "resumed/$1" | head -30
+# The uninterrupted and the stopped run on W ranks, once for every pair
+# that writes on W.
+written_on() { # W
+  [ -d "full_np$1" ] && return
+  mkdir -p "full_np$1" "stopped_np$1"
+  run "full_np$1" "$prm" "$1"
+  sed -e "s/^\( *set Stop after step *=\).*/\1 $stop/" "$prm" > "stopped_np$1/stop.prm"
+  sed -e "s/^\( *set Resume *=\).*/\1 true/" "$prm" > "stopped_np$1/resume.prm"
+  run "stopped_np$1" stop.prm "$1"
+  if ! grep -q "^Stopped after step $stop " "stopped_np$1/output.txt"; then
+    echo "The interrupted run on $1 rank(s) did not stop after step $stop."
     exit 1
   fi
 }
-for dir in full resumed; do
-  cut -d, -f1-8 "$dir/results/time_series.csv" > "$dir/series.txt"
-  grep -E '^  final (state|contact):|^Final displacement' "$dir/output.txt" > "$dir/final.txt"
-done
-compare series.txt
-compare final.txt
-for profile in full/results/contact_profile_*.csv; do
-  [ -e "$profile" ] || continue
-  name=$(basename "$profile")
-  for dir in full resumed; do
-    tail -n +2 "$dir/results/$name" | sort > "$dir/$name.sorted"
+
+compare() { # file in full and resumed folders
+  if ! numdiff -q -a $absolute -r $relative -s ' \t\n=,:;<>' "$full/$1" "$resumed/$1" > /dev/null; then
+    echo "$1 differs between the uninterrupted and the resumed run ($pair):"
+    numdiff -a $absolute -r $relative -s ' \t\n=,:;<>' "$full/$1" "$resumed/$1" | head -30
+    exit 1
+  fi
+}
+
+rm -rf full_np* stopped_np* resumed_*
+for pair in "$@"; do
+  write_ranks=${pair%%:*}
+  resume_ranks=${pair##*:}
+  if [ "$write_ranks" = "$resume_ranks" ]; then
+    absolute=1e-12 relative=1e-10
+  else
+    absolute=1e-10 relative=1e-8
+  fi
+  written_on "$write_ranks"
+  full=full_np$write_ranks resumed=resumed_${write_ranks}to$resume_ranks
+  cp -a "stopped_np$write_ranks" "$resumed"
+  run "$resumed" resume.prm "$resume_ranks"
+  if ! grep -q "^Resuming from the checkpoint of step .* written on $write_ranks MPI rank" "$resumed/output.txt"; then
+    echo "The resumed run ($pair) did not report the checkpoint written on $write_ranks rank(s)."
+    exit 1
+  fi
+  resumed_step=$(sed -n 's/^Resuming from the checkpoint of step \([0-9]*\).*/\1/p' "$resumed/output.txt")
+  for dir in "$full" "$resumed"; do
+    cut -d, -f1-8 "$dir/results/time_series.csv" > "$dir/series.txt"
+    grep -E '^  final (state|contact):|^Final displacement' "$dir/output.txt" > "$dir/final.txt"
   done
-  compare "$name.sorted"
-done
-# The .pvd record, without the line with the date it was written.
-if [ -e full/results/solution.pvd ]; then
-  for dir in full resumed; do
-    grep -v 'generated by' "$dir/results/solution.pvd" > "$dir/pvd.txt"
+  compare series.txt
+  compare final.txt
+  for profile in "$full"/results/contact_profile_*.csv; do
+    [ -e "$profile" ] || continue
+    name=$(basename "$profile")
+    for dir in "$full" "$resumed"; do
+      tail -n +2 "$dir/results/$name" | sort > "$dir/$name.sorted"
+    done
+    compare "$name.sorted"
   done
-  compare pvd.txt
-fi
-echo "Stopped after step $stop on $write_ranks rank(s), resumed from step $resumed_step on $resume_ranks rank(s): $(($(wc -l < full/series.txt) - 1)) steps of time_series.csv, the profiles, the .pvd record and the final state agree with the uninterrupted run (numdiff -a $absolute -r $relative)."
+  # The .pvd record, without the line with the date it was written.
+  if [ -e "$full/results/solution.pvd" ]; then
+    for dir in "$full" "$resumed"; do
+      grep -v 'generated by' "$dir/results/solution.pvd" > "$dir/pvd.txt"
+    done
+    compare pvd.txt
+  fi
+  echo "Stopped after step $stop on $write_ranks rank(s), resumed from step $resumed_step on $resume_ranks rank(s): $(($(wc -l < "$full/series.txt") - 1)) steps of time_series.csv, the profiles, the .pvd record and the final state agree with the uninterrupted run (numdiff -a $absolute -r $relative)."
+done

@@ -11,7 +11,7 @@ and Krylov iterations, and the total wall time of the run. It writes
   doc/back_ends/back_ends.md    the table, with the ratio full space /
                                 condensed of the total run time,
 
-which is where the limits of Method = auto (source/contact_solver.cc) come
+which is where the limits of Method = auto (source/back_ends/contact_solver.cc) come
 from. Both methods of a row run back to back in the same invocation, so
 their ratio is meaningful even on a shared machine; the absolute times are
 not. The scenes:

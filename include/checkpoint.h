@@ -3,7 +3,7 @@
 
 #include <deal.II/base/mpi.h>
 
-#include "output_folder.h"
+#include "robustness/output_folder.h"
 
 #include <cstdint>
 #include <cstring>

@@ -13,7 +13,7 @@
 #include <deal.II/lac/affine_constraints.h>
 
 #include "active_set.h"
-#include "linear_algebra.h"
+#include "back_ends/linear_algebra.h"
 
 #include <array>
 #include <string>

@@ -4,8 +4,8 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/mpi.h>
 
-#include "mpi_tools.h"
-#include "output_folder.h"
+#include "robustness/mpi_tools.h"
+#include "robustness/output_folder.h"
 #include "parameters.h"
 #include "viscoplastic_contact.h"
 

@@ -24,10 +24,10 @@
 
 #include "active_set.h"
 #include "contact_set.h"
-#include "contact_solver.h"
-#include "linear_algebra.h"
+#include "back_ends/contact_solver.h"
+#include "back_ends/linear_algebra.h"
 #include "material.h"
-#include "output_folder.h"
+#include "robustness/output_folder.h"
 #include "parameters.h"
 #include "time_loop.h"
 

@@ -6,7 +6,7 @@
 # about 1.8x faster on two cores than the serial OpenBLAS in one pair of
 # runs by hand, which itself was 1.4x faster than the reference BLAS;
 # everything else keeps the BLAS on one thread, see
-# include/blas_threads.h), numdiff, GoogleTest, ccache and the
+# include/back_ends/blas_threads.h), numdiff, GoogleTest, ccache and the
 # Python plotting packages of the doc and benchmark scripts. Debian's
 # alternatives give the threaded OpenBLAS precedence over other BLAS builds.
 # Does nothing if all is there.

@@ -7,7 +7,7 @@
 
 #include <deal.II/fe/fe_values.h>
 
-#include "file_output.h"
+#include "robustness/file_output.h"
 #include "viscoplastic_contact.h"
 
 #include <algorithm>

@@ -9,8 +9,8 @@
 #include <deal.II/grid/cell_id.h>
 
 #include "checkpoint.h"
-#include "file_output.h"
-#include "mpi_tools.h"
+#include "robustness/file_output.h"
+#include "robustness/mpi_tools.h"
 #include "time_loop.h"
 #include "viscoplastic_contact.h"
 

@@ -14,7 +14,7 @@
 #include <deal.II/base/timer.h>
 
 #include "convergence_study.h"
-#include "file_output.h"
+#include "robustness/file_output.h"
 
 #include <algorithm>
 #include <cmath>

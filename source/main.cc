@@ -8,11 +8,11 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include "blas_threads.h"
+#include "back_ends/blas_threads.h"
 #include "convergence_study.h"
-#include "file_output.h"
-#include "output_folder.h"
-#include "stop_signals.h"
+#include "robustness/file_output.h"
+#include "robustness/output_folder.h"
+#include "robustness/stop_signals.h"
 #include "parameters.h"
 #include "viscoplastic_contact.h"
 

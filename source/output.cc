@@ -12,10 +12,10 @@
 
 #include <deal.II/numerics/data_out.h>
 
-#include "blas_threads.h"
+#include "back_ends/blas_threads.h"
 #include "checkpoint.h"
-#include "file_output.h"
-#include "output_folder.h"
+#include "robustness/file_output.h"
+#include "robustness/output_folder.h"
 #include "viscoplastic_contact.h"
 
 #include <algorithm>

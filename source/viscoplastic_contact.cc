@@ -11,7 +11,7 @@
 
 #include "checkpoint.h"
 #include "loads.h"
-#include "stop_signals.h"
+#include "robustness/stop_signals.h"
 #include "time_loop.h"
 #include "viscoplastic_contact.h"
 

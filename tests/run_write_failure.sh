@@ -1,6 +1,6 @@
 #!/bin/bash
 # A failed write (a full disk, simulated by the test switch
-# VISCOPLASTIC_CONTACT_FAIL_WRITE=PATTERN[:N], see include/file_output.h)
+# VISCOPLASTIC_CONTACT_FAIL_WRITE=PATTERN[:N], see include/robustness/file_output.h)
 # must stop the run on every rank within seconds with exit status 1 and a
 # message that names the file and the reason ("No space left on device"),
 # leave no temporary or truncated file behind, and keep the last complete

@@ -40,19 +40,19 @@
 #include <gtest/gtest.h>
 
 #include "active_set.h"
-#include "blas_threads.h"
-#include "condensed_system.h"
+#include "back_ends/blas_threads.h"
+#include "back_ends/condensed_system.h"
 #include "contact_law.h"
 #include "contact_set.h"
 #include "material.h"
 #include "mesh.h"
-#include "mpi_tools.h"
-#include "output_folder.h"
-#include "rigid_body_modes.h"
+#include "robustness/mpi_tools.h"
+#include "robustness/output_folder.h"
+#include "back_ends/rigid_body_modes.h"
 #include "stress_point_transfer.h"
 #include "time_loop.h"
 
-#include "direct_solver.h"
+#include "back_ends/direct_solver.h"
 
 #include <algorithm>
 #include <cmath>

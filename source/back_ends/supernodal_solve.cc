@@ -4,7 +4,7 @@
 
 #include <deal.II/base/parallel.h>
 
-#include "supernodal_solve.h"
+#include "back_ends/supernodal_solve.h"
 
 #include <algorithm>
 #include <queue>

@@ -3,7 +3,7 @@
 
 #include <deal.II/base/exceptions.h>
 
-#include "contact_solver.h"
+#include "back_ends/contact_solver.h"
 
 #include <sstream>
 

@@ -2,7 +2,7 @@
 // and restores the default action, so that a second signal stops the
 // program at once.
 
-#include "stop_signals.h"
+#include "robustness/stop_signals.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>

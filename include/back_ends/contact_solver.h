@@ -11,7 +11,7 @@
 
 #include "active_set.h"
 #include "contact_set.h"
-#include "linear_algebra.h"
+#include "back_ends/linear_algebra.h"
 #include "parameters.h"
 
 #include <memory>

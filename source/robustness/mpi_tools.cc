@@ -3,7 +3,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
-#include "mpi_tools.h"
+#include "robustness/mpi_tools.h"
 
 #include <cstdint>
 #include <cstring>

@@ -6,7 +6,7 @@
 #include <deal.II/lac/lapack_full_matrix.h>
 #include <deal.II/lac/vector.h>
 
-#include "linear_algebra.h"
+#include "back_ends/linear_algebra.h"
 #include "parameters.h"
 
 #include <memory>

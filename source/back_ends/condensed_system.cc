@@ -8,7 +8,7 @@
 
 #include <deal.II/lac/exceptions.h>
 
-#include "condensed_system.h"
+#include "back_ends/condensed_system.h"
 
 #include <utility>
 

@@ -5,7 +5,7 @@
 
 #include <deal.II/base/multithread_info.h>
 
-#include "blas_threads.h"
+#include "back_ends/blas_threads.h"
 
 #include <dlfcn.h>
 

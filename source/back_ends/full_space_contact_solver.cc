@@ -22,9 +22,9 @@
 #include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/trilinos_precondition.h>
 
-#include "contact_solver.h"
-#include "direct_solver.h"
-#include "rigid_body_modes.h"
+#include "back_ends/contact_solver.h"
+#include "back_ends/direct_solver.h"
+#include "back_ends/rigid_body_modes.h"
 
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Import.h>

@@ -4,7 +4,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
 
-#include "file_output.h"
+#include "robustness/file_output.h"
 
 #include <cerrno>
 #include <cstdio>

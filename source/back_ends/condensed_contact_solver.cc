@@ -15,9 +15,9 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 
-#include "condensed_system.h"
-#include "contact_solver.h"
-#include "direct_solver.h"
+#include "back_ends/condensed_system.h"
+#include "back_ends/contact_solver.h"
+#include "back_ends/direct_solver.h"
 
 #include <algorithm>
 

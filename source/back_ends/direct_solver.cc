@@ -13,9 +13,9 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
 
-#include "blas_threads.h"
-#include "direct_solver.h"
-#include "supernodal_solve.h"
+#include "back_ends/blas_threads.h"
+#include "back_ends/direct_solver.h"
+#include "back_ends/supernodal_solve.h"
 
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>

@@ -10,8 +10,8 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
 
-#include "file_output.h"
-#include "output_folder.h"
+#include "robustness/file_output.h"
+#include "robustness/output_folder.h"
 
 #include <algorithm>
 #include <cerrno>

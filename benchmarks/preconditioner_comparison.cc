@@ -79,12 +79,12 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include "back_ends/blas_threads.h"
+#include "back_ends/rigid_body_modes.h"
 #include "constraints.h"
 #include "loads.h"
 #include "material.h"
 #include "mesh.h"
 #include "parameters.h"
-#include "back_ends/rigid_body_modes.h"
 
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Map.h>

@@ -4,9 +4,9 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/mpi.h>
 
+#include "parameters.h"
 #include "robustness/mpi_tools.h"
 #include "robustness/output_folder.h"
-#include "parameters.h"
 #include "viscoplastic_contact.h"
 
 #include <memory>

@@ -23,12 +23,12 @@
 #include <deal.II/numerics/data_out.h>
 
 #include "active_set.h"
-#include "contact_set.h"
 #include "back_ends/contact_solver.h"
 #include "back_ends/linear_algebra.h"
+#include "contact_set.h"
 #include "material.h"
-#include "robustness/output_folder.h"
 #include "parameters.h"
+#include "robustness/output_folder.h"
 #include "time_loop.h"
 
 #include <fstream>
@@ -202,6 +202,31 @@ namespace ViscoContact
     void
     update_stresses(const double current_time_step,
                     const double next_time_step);
+    // What update_stresses() does at every stress point of a step.
+    struct StressUpdateStep
+    {
+      bool                    implicit;
+      bool                    update_history;
+      bool                    estimate;
+      double                  current_time_step;
+      double                  next_time_step;
+      SymmetricTensor<4, dim> compliance;
+    };
+    // One stress point q of the k-th owned cell: sigma_n, the history and
+    // its load into cell_vector, the largest von Mises stress of the cell
+    // so far, and the point's terms of the error estimate.
+    void
+    update_stress_point(const StressUpdateStep  &step,
+                        const unsigned int       k,
+                        const unsigned int       q,
+                        const ArrayView<double> &cell_vector,
+                        double                  &max_von_mises_of_cell,
+                        std::array<double, 3>   &estimate_sums);
+    // The step's relative error estimate from the sums over the rank's
+    // stress points (doc/adaptivity.md); collective.
+    double
+    step_error_estimate(const std::array<double, 3> &local_sums,
+                        const double                 time_step) const;
     // With adaptive steps: H_{n+1} = H_n + k_{n+1} G(sigma_n) and its load,
     // once k_{n+1} is known (explicit update only).
     void

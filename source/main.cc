@@ -10,10 +10,10 @@
 
 #include "back_ends/blas_threads.h"
 #include "convergence_study.h"
+#include "parameters.h"
 #include "robustness/file_output.h"
 #include "robustness/output_folder.h"
 #include "robustness/stop_signals.h"
-#include "parameters.h"
 #include "viscoplastic_contact.h"
 
 #include <filesystem>
@@ -27,6 +27,9 @@
 
 namespace
 {
+  using namespace dealii;
+  using namespace ViscoContact;
+
   // The usage text of --help and of a wrong command line.
   void
   print_usage(std::ostream &out)
@@ -79,6 +82,104 @@ namespace
                 << "> sets no entry; every value is the default (the "
                    "reference benchmark, output into output/default)."
                 << std::endl;
+  }
+  // --print-parameters [FILE [--force]] writes every entry with its
+  // documentation and default value, to FILE or to standard output, and
+  // returns the exit status. The command line never destroys a file: an
+  // existing file (a scene the user wrote, say) is only replaced with
+  // --force, and the new text goes to a temporary name first, so that a
+  // failed write leaves the old file as it was.
+  int
+  print_parameters(const std::vector<std::string> &arguments)
+  {
+    bool                     force = false;
+    std::vector<std::string> files;
+    for (const std::string &argument : arguments)
+      if (argument == "--force")
+        force = true;
+      else
+        files.push_back(argument);
+    if (files.size() > 1 || (force && files.empty()))
+      {
+        print_usage(std::cerr);
+        return 1;
+      }
+    ParameterHandler prm;
+    Parameters::AllParameters::declare_parameters(prm);
+    std::ostringstream text;
+    prm.print_parameters(text, ParameterHandler::PRM);
+    if (files.empty())
+      {
+        std::cout << text.str() << std::flush;
+        return 0;
+      }
+    const std::string &file = files[0];
+    std::error_code    error;
+    if (std::filesystem::symlink_status(file, error).type()
+          != std::filesystem::file_type::not_found
+        && !force)
+      {
+        std::cerr << "Error: the file <" << file
+                  << "> exists; --print-parameters does not overwrite "
+                     "it. Choose another name, or add --force to "
+                     "replace it."
+                  << std::endl;
+        return 1;
+      }
+    // Written without replacing anything unless --force: a file that
+    // appears under the name meanwhile is not overwritten either.
+    const std::string problem = FileOutput::write_file(file, text.str(), force);
+    if (!problem.empty())
+      {
+        std::cerr << "Error: " << problem << std::endl;
+        return 1;
+      }
+    return 0;
+  }
+
+
+
+  // The parameter file: every entry declared, the file parsed (unknown
+  // entries and invalid values are errors that name the entry), and the
+  // selections turned into the program's enums (parameters.cc). A mesh
+  // file is found relative to the parameter file that names it; settings
+  // that depend on the number of ranks (CHOLMOD and UMFPACK need one rank)
+  // are checked here, before any work.
+  Parameters::AllParameters
+  read_parameters(const std::string &file)
+  {
+    AssertThrow(std::filesystem::is_regular_file(file),
+                ExcMessage("The parameter file <" + file
+                           + "> does not exist or is not a regular file."));
+    ParameterHandler prm;
+    Parameters::AllParameters::declare_parameters(prm);
+    prm.parse_input(file);
+    // What the parameter file may not mean as ParameterHandler reads it is
+    // allowed, but said (rank 0).
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      warn_about_parameter_file(file);
+    Parameters::AllParameters parameters;
+    parameters.parse_parameters(prm);
+    parameters.parameter_file = file;
+    if (!parameters.mesh_file.empty()
+        && std::filesystem::path(parameters.mesh_file).is_relative())
+      parameters.mesh_file
+        = (std::filesystem::path(file).parent_path() / parameters.mesh_file)
+            .lexically_normal()
+            .string();
+    parameters.check_run_configuration(
+      Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD));
+    return parameters;
+  }
+  // The box around the message of an error that ends the run (the message
+  // starts with its separator from "Error:").
+  void
+  report_error(const std::string &message)
+  {
+    std::cerr << "\n----------------------------------------------------\n"
+              << "Error:" << message << "Aborting.\n"
+              << "----------------------------------------------------"
+              << std::endl;
   }
 } // namespace
 
@@ -147,92 +248,15 @@ main(int argc, char **argv)
           return 0;
         }
       if (first == "--print-parameters")
-        {
-          // --print-parameters writes every entry with its documentation and
-          // default value, to the named file or to standard output. The
-          // command line never destroys a file: an existing file (a scene the
-          // user wrote, say) is only replaced with --force, and the new text
-          // goes to a temporary name first, so that a failed write leaves the
-          // old file as it was.
-          bool                     force = false;
-          std::vector<std::string> files;
-          for (int a = 2; a < argc; ++a)
-            if (std::string(argv[a]) == "--force")
-              force = true;
-            else
-              files.emplace_back(argv[a]);
-          if (files.size() > 1 || (force && files.empty()))
-            {
-              print_usage(std::cerr);
-              return 1;
-            }
-          ParameterHandler prm;
-          Parameters::AllParameters::declare_parameters(prm);
-          std::ostringstream text;
-          prm.print_parameters(text, ParameterHandler::PRM);
-          if (files.empty())
-            {
-              std::cout << text.str() << std::flush;
-              return 0;
-            }
-          const std::string &file = files[0];
-          std::error_code    error;
-          if (std::filesystem::symlink_status(file, error).type()
-                != std::filesystem::file_type::not_found
-              && !force)
-            {
-              std::cerr << "Error: the file <" << file
-                        << "> exists; --print-parameters does not overwrite "
-                           "it. Choose another name, or add --force to "
-                           "replace it."
-                        << std::endl;
-              return 1;
-            }
-          // Written without replacing anything unless --force: a file that
-          // appears under the name meanwhile is not overwritten either.
-          const std::string problem
-            = FileOutput::write_file(file, text.str(), force);
-          if (!problem.empty())
-            {
-              std::cerr << "Error: " << problem << std::endl;
-              return 1;
-            }
-          return 0;
-        }
+        return print_parameters(
+          std::vector<std::string>(argv + std::min(argc, 2), argv + argc));
       // Otherwise exactly one argument, the parameter file.
       if (argc != 2)
         {
           print_usage(std::cerr);
           return 1;
         }
-
-      // Read the parameter file: declare every entry, parse the file
-      // (unknown entries and invalid values are errors that name the entry),
-      // and turn the selections into the program's enums (parameters.cc).
-      AssertThrow(std::filesystem::is_regular_file(first),
-                  ExcMessage("The parameter file <" + first
-                             + "> does not exist or is not a regular file."));
-      ParameterHandler prm;
-      Parameters::AllParameters::declare_parameters(prm);
-      prm.parse_input(first);
-      // What the parameter file may not mean as ParameterHandler reads it
-      // is allowed, but said (rank 0).
-      if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-        warn_about_parameter_file(first);
-      Parameters::AllParameters parameters;
-      parameters.parse_parameters(prm);
-      parameters.parameter_file = first;
-      // A mesh file is found relative to the parameter file that names it.
-      if (!parameters.mesh_file.empty()
-          && std::filesystem::path(parameters.mesh_file).is_relative())
-        parameters.mesh_file
-          = (std::filesystem::path(first).parent_path() / parameters.mesh_file)
-              .lexically_normal()
-              .string();
-      // Settings that depend on the number of ranks (CHOLMOD and UMFPACK
-      // need one rank) are checked here, before any work.
-      parameters.check_run_configuration(
-        Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD));
+      const Parameters::AllParameters parameters = read_parameters(first);
 
       // A convergence study or a single run, in the dimension the parameter
       // file asks for: both dimensions are compiled, the choice is made at
@@ -263,22 +287,16 @@ main(int argc, char **argv)
     {
       // deal.II's exceptions: only the message, which names the parameter,
       // its value and what is accepted; where in the code is of no use here.
-      std::cerr << "\n----------------------------------------------------\n"
-                << "Error:\n";
-      exc.print_info(std::cerr);
-      std::cerr << "Aborting.\n"
-                << "----------------------------------------------------"
-                << std::endl;
+      std::ostringstream message;
+      exc.print_info(message);
+      report_error("\n" + message.str());
       return stop_all_ranks();
     }
   catch (std::exception &exc)
     {
       // Other exceptions (from the standard library, say) keep their own
       // text.
-      std::cerr << "\n----------------------------------------------------\n"
-                << "Error: " << exc.what() << "Aborting.\n"
-                << "----------------------------------------------------"
-                << std::endl;
+      report_error(std::string(" ") + exc.what());
       return stop_all_ranks();
     }
   catch (...)

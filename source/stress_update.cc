@@ -55,25 +55,26 @@ namespace ViscoContact
     // The history of the next step is only needed if there is a next step
     // (next_time_step > 0); the run summary calls this function again for its
     // cost measurement, with the time step of the parameter file.
-    const bool implicit       = implicit_update();
-    const bool update_history = explicit_history_update() && next_time_step > 0;
-    const double a            = current_time_step / (2 * material.viscosity());
-    const SymmetricTensor<4, dim> &E       = material.elasticity_tensor();
-    const unsigned int             n_q     = stress_quadrature.size();
-    const unsigned int             n_local = n_cell_vertices * dim;
     // The error estimate of the step (doc/adaptivity.md) needs the history
     // rate G(sigma_n) at every stress point. The explicit update evaluates it
     // anyway for the next history (also after the last step, for the
     // estimate), the implicit one has it as the history increment divided by
-    // k_n; without plasticity there is no history and no estimate. Per
-    // cell: the sums over its stress points of (E^-1 dG, dG) JxW with
-    // dG = G(sigma_n) - G(sigma_{n-1}), of (E^-1 sigma_n, sigma_n) JxW and of
-    // JxW.
-    const bool estimate = parameters.plasticity && current_time_step > 0;
-    // E^-1, inverted at unit scale: the inverse of E itself would overflow in
-    // its intermediate products for a Young's modulus near the largest double.
-    const double modulus = material.largest_elastic_eigenvalue();
-    const SymmetricTensor<4, dim> compliance = invert(E / modulus) / modulus;
+    // k_n; without plasticity there is no history and no estimate.
+    // E^-1 (for the estimate's norm) is inverted at unit scale: the inverse
+    // of E itself would overflow in its intermediate products for a Young's
+    // modulus near the largest double.
+    const SymmetricTensor<4, dim> &E = material.elasticity_tensor();
+    const double           modulus   = material.largest_elastic_eigenvalue();
+    const StressUpdateStep step{implicit_update(),
+                                explicit_history_update() && next_time_step > 0,
+                                parameters.plasticity && current_time_step > 0,
+                                current_time_step,
+                                next_time_step,
+                                invert(E / modulus) / modulus};
+    const bool             update_history = step.update_history;
+    const bool             estimate       = step.estimate;
+    const unsigned int     n_q            = stress_quadrature.size();
+    const unsigned int     n_local        = n_cell_vertices * dim;
 
     // The work at the stress points is independent from point to point, so
     // the threads of this rank (as many as deal.II's MultithreadInfo allows:
@@ -89,14 +90,12 @@ namespace ViscoContact
                                                                    : 0);
 
     // The stress points of the cells [begin, end) of a chunk starting at
-    // first: sigma_n, the history, the cell's load, the largest von Mises
-    // stress of the cell.
+    // first, each cell's load straight into its slot of the buffer.
     const auto update_cells = [&](const unsigned int first,
                                   const unsigned int begin,
                                   const unsigned int end) {
       for (unsigned int k = begin; k < end; ++k)
         {
-          // The cell's load goes straight into its slot of the buffer.
           const ArrayView<double> cell_vector
             = update_history
                 ? ArrayView<double>(cell_loads.data()
@@ -107,68 +106,7 @@ namespace ViscoContact
           double                max_vm = 0.;
           std::array<double, 3> sums   = {{0., 0., 0.}};
           for (unsigned int q = 0; q < n_q; ++q)
-            {
-              QuadraturePointHistory<dim> &state
-                = quadrature_point_history[std::size_t(k) * n_q + q];
-              // E eps(u_n), from the ghosted u_n (solve_contact_problem() has
-              // imported the ghosts).
-              const SymmetricTensor<2, dim> elastic_stress
-                = E * symmetrize(displacement_gradient_at(solution, k, q));
-              // Implicit: the trial stress is E eps(u_n) plus the stored
-              // history sigma_{n-1} - E eps(u_{n-1}); the backward-Euler
-              // update projects it (no tangent needed here), and the new
-              // history is the non-elastic part of sigma_n. Explicit:
-              // sigma_n = E eps(u_n) + H_n, with H_n stored by the previous
-              // call.
-              // The implicit update's rate: sigma_n = trial + k_n G(sigma_n),
-              // so the history increment is k_n G(sigma_n).
-              SymmetricTensor<2, dim> rate;
-              if (implicit)
-                {
-                  state.stress = material.implicit_stress_update(
-                    elastic_stress + state.history,
-                    a,
-                    nullptr,
-                    &state.plastic_multiplier);
-                  const SymmetricTensor<2, dim> new_history
-                    = state.stress - elastic_stress;
-                  if (estimate)
-                    rate = (new_history - state.history) / current_time_step;
-                  state.history = new_history;
-                }
-              else
-                state.stress = elastic_stress + state.history;
-              // The largest von Mises stress, for the time series. std::max
-              // would silently drop a NaN, so a non-finite value is recorded
-              // as infinity, which survives the maximum over the ranks.
-              const double von_mises = material.equivalent_stress(state.stress);
-              max_vm                 = std::isfinite(von_mises)
-                                         ? std::max(max_vm, von_mises)
-                                         : std::numeric_limits<double>::infinity();
-              // Explicit history update: H_{n+1} = H_n + k_{n+1} G(sigma_n),
-              // with the plastic multiplier as the starting guess of the
-              // projection; then the point's contribution
-              // -(H_{n+1}, eps(v)) JxW to the next step's load.
-              if (!implicit && (update_history || estimate))
-                rate = material.viscoplastic_rate(state.stress,
-                                                  &state.plastic_multiplier);
-              if (update_history)
-                {
-                  state.history += next_time_step * rate;
-                  add_stress_point_load(-state.history, k, q, cell_vector);
-                }
-              // The estimate's sums at this point, and the rate kept for the
-              // next step's estimate.
-              if (estimate)
-                {
-                  const double JxW = stress_point_JxW[std::size_t(k) * n_q + q];
-                  const SymmetricTensor<2, dim> change = rate - state.rate;
-                  sums[0] += (compliance * change) * change * JxW;
-                  sums[1] += (compliance * state.stress) * state.stress * JxW;
-                  sums[2] += JxW;
-                  state.rate = rate;
-                }
-            }
+            update_stress_point(step, k, q, cell_vector, max_vm, sums);
           cell_max_von_mises[k - first] = max_vm;
           if (estimate)
             cell_estimate_sums[k - first] = sums;
@@ -218,31 +156,8 @@ namespace ViscoContact
       history_load.compress(VectorOperation::add);
     max_von_mises = Utilities::MPI::max(local_max_von_mises, mpi_communicator);
 
-    // The relative error estimate of the step (doc/adaptivity.md): the
-    // difference between the forward-Euler history increment k_n G(sigma_{n-1})
-    // (backward Euler: k_n G(sigma_n)) and the trapezoidal one
-    // k_n/2 (G(sigma_{n-1}) + G(sigma_n)), in the energy norm
-    // (E^-1 tau, tau)^(1/2) over the body, relative to the stress in the same
-    // norm, but at least to sigma_Y (|Omega| / lambda_max(E))^(1/2), the size
-    // of a stress at the yield limit, so that an unloaded body does not make
-    // the estimate blow up. The sums are added in the order of the cells, so
-    // the estimate does not depend on the number of threads; one sum over the
-    // ranks.
-    error_estimate = 0;
-    if (estimate)
-      {
-        std::array<double, 3> sums = {{0., 0., 0.}};
-        Utilities::MPI::sum(ArrayView<const double>(local_sums.data(), 3),
-                            mpi_communicator,
-                            ArrayView<double>(sums.data(), 3));
-        const double scale
-          = std::max(std::sqrt(sums[1]),
-                     material.yield_stress()
-                       * std::sqrt(sums[2]
-                                   / material.largest_elastic_eigenvalue()));
-        error_estimate = current_time_step / 2 * std::sqrt(sums[0])
-                         / std::max(scale, std::numeric_limits<double>::min());
-      }
+    error_estimate
+      = estimate ? step_error_estimate(local_sums, current_time_step) : 0.;
 
     // An unstable explicit update ends in stresses that overflow: stop
     // rather than go on with (and write) infinite or NaN fields. The limit
@@ -261,6 +176,117 @@ namespace ViscoContact
                 << parameters.time_step << " s.";
         AssertThrow(false, ExcMessage(message.str()));
       }
+  }
+
+
+
+  // @sect4{ViscoplasticContact::update_stress_point}
+  //
+  // Implicit: the trial stress is E eps(u_n) plus the stored history
+  // sigma_{n-1} - E eps(u_{n-1}); the backward-Euler update projects it (no
+  // tangent needed here), and the new history is the non-elastic part of
+  // sigma_n; its rate, for the estimate, follows from sigma_n = trial +
+  // k_n G(sigma_n). Explicit: sigma_n = E eps(u_n) + H_n, with H_n stored by
+  // the previous step, then H_{n+1} = H_n + k_{n+1} G(sigma_n) with the
+  // plastic multiplier as the starting guess of the projection, and the
+  // point's contribution -(H_{n+1}, eps(v)) JxW to the next step's load.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::update_stress_point(
+    const StressUpdateStep  &step,
+    const unsigned int       k,
+    const unsigned int       q,
+    const ArrayView<double> &cell_vector,
+    double                  &max_von_mises_of_cell,
+    std::array<double, 3>   &estimate_sums)
+  {
+    const unsigned int           n_q = stress_quadrature.size();
+    QuadraturePointHistory<dim> &state
+      = quadrature_point_history[std::size_t(k) * n_q + q];
+    // E eps(u_n), from the ghosted u_n (solve_contact_problem() has
+    // imported the ghosts).
+    const SymmetricTensor<2, dim> elastic_stress
+      = material.elasticity_tensor()
+        * symmetrize(displacement_gradient_at(solution, k, q));
+    SymmetricTensor<2, dim> rate;
+    if (step.implicit)
+      {
+        state.stress
+          = material.implicit_stress_update(elastic_stress + state.history,
+                                            step.current_time_step
+                                              / (2 * material.viscosity()),
+                                            nullptr,
+                                            &state.plastic_multiplier);
+        const SymmetricTensor<2, dim> new_history
+          = state.stress - elastic_stress;
+        if (step.estimate)
+          rate = (new_history - state.history) / step.current_time_step;
+        state.history = new_history;
+      }
+    else
+      state.stress = elastic_stress + state.history;
+    // The largest von Mises stress, for the time series. std::max would
+    // silently drop a NaN, so a non-finite value is recorded as infinity,
+    // which survives the maximum over the ranks.
+    const double von_mises = material.equivalent_stress(state.stress);
+    max_von_mises_of_cell  = std::isfinite(von_mises)
+                               ? std::max(max_von_mises_of_cell, von_mises)
+                               : std::numeric_limits<double>::infinity();
+    if (!step.implicit && (step.update_history || step.estimate))
+      rate
+        = material.viscoplastic_rate(state.stress, &state.plastic_multiplier);
+    if (step.update_history)
+      {
+        state.history += step.next_time_step * rate;
+        add_stress_point_load(-state.history, k, q, cell_vector);
+      }
+    // The estimate's terms at this point (per cell: the sums of
+    // (E^-1 dG, dG) JxW with dG = G(sigma_n) - G(sigma_{n-1}), of
+    // (E^-1 sigma_n, sigma_n) JxW and of JxW), and the rate kept for the
+    // next step's estimate.
+    if (step.estimate)
+      {
+        const double JxW = stress_point_JxW[std::size_t(k) * n_q + q];
+        const SymmetricTensor<2, dim> change = rate - state.rate;
+        estimate_sums[0] += (step.compliance * change) * change * JxW;
+        estimate_sums[1]
+          += (step.compliance * state.stress) * state.stress * JxW;
+        estimate_sums[2] += JxW;
+        state.rate = rate;
+      }
+  }
+
+
+
+  // @sect4{ViscoplasticContact::step_error_estimate}
+  //
+  // The relative error estimate of the step (doc/adaptivity.md): the
+  // difference between the forward-Euler history increment k_n G(sigma_{n-1})
+  // (backward Euler: k_n G(sigma_n)) and the trapezoidal one
+  // k_n/2 (G(sigma_{n-1}) + G(sigma_n)), in the energy norm
+  // (E^-1 tau, tau)^(1/2) over the body, relative to the stress in the same
+  // norm, but at least to sigma_Y (|Omega| / lambda_max(E))^(1/2), the size
+  // of a stress at the yield limit, so that an unloaded body does not make
+  // the estimate blow up. The sums are added in the order of the cells, so
+  // the estimate does not depend on the number of threads; one sum over the
+  // ranks.
+  template <int dim>
+  double
+  ViscoplasticContact<dim>::step_error_estimate(
+    const std::array<double, 3> &local_sums,
+    const double                 time_step) const
+  {
+    std::array<double, 3> sums = {{0., 0., 0.}};
+    Utilities::MPI::sum(ArrayView<const double>(local_sums.data(), 3),
+                        mpi_communicator,
+                        ArrayView<double>(sums.data(), 3));
+    const double scale
+      = std::max(std::sqrt(sums[1]),
+                 material.yield_stress()
+                   * std::sqrt(sums[2]
+                               / material.largest_elastic_eigenvalue()));
+    return time_step / 2 * std::sqrt(sums[0])
+           / std::max(scale, std::numeric_limits<double>::min());
   }
 
 

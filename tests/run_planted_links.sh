@@ -78,19 +78,20 @@ grep -q "or links under them (solution_0003.0.vtu)" err.txt \
 [ -L results/solution_0003.0.vtu ] || fail "The link was removed."
 outside_unchanged "Overwrite with a link in place of a file of the run"
 
-# A link planted while the run goes on, under the name of a later step.
+# A link planted while the run goes on, under the name of a step about 2000
+# steps later (several seconds of margin).
 rm -rf results
-set_entry "Time step" 0.00390625 < "$base" | set_entry "Checkpoint interval" 0 \
-  | set_entry "Profile times" 1 > work/long.prm
+set_entry "Time step" 0.00048828125 < "$base" | set_entry "Checkpoint interval" 0 \
+  | set_entry "Profile times" 1 | set_entry "Output interval" 16 > work/long.prm
 "$here/run_mpi.sh" "$ranks" "$executable" work/long.prm > out.txt 2> err.txt &
 job=$!
 wait_for_step 20 out.txt $job
-plant solution_0200.0.vtu b
+plant solution_2000.0.vtu b
 wait $job
 status=$?
-[ $status -eq 1 ] || fail "The run with a link planted under solution_0200.0.vtu: exit status $status, not 1."
-grep -q "The file results/solution_0200.0.vtu is in the way" err.txt \
+[ $status -eq 1 ] || fail "The run with a link planted under solution_2000.0.vtu: exit status $status, not 1."
+grep -q "The file results/solution_2000.0.vtu is in the way" err.txt \
   || fail "The run does not name the file in the way: $(cat err.txt)"
-[ -L results/solution_0200.0.vtu ] || fail "The planted link was replaced."
+[ -L results/solution_2000.0.vtu ] || fail "The planted link was replaced."
 outside_unchanged "Link planted during the run"
 echo "No planted link was followed on $ranks rank(s): temporary names are never used, final names are never replaced."

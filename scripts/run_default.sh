@@ -8,4 +8,9 @@ cd "$(dirname "$0")/.."
 bash scripts/install_dependencies.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build --target viscoplastic_contact -- -j"$(nproc)"
-./build/viscoplastic_contact parameters/default.prm
+# The scene with Overwrite = true, so that running this script again
+# replaces the earlier run's results (exactly the files its manifest lists)
+# instead of being refused.
+printf 'include %s\nsubsection Output\n  set Overwrite = true\nend\n' \
+  "$PWD/parameters/default.prm" > build/default_scene.prm
+./build/viscoplastic_contact build/default_scene.prm

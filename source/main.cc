@@ -83,6 +83,9 @@ namespace
                    "reference benchmark, output into output/default)."
                 << std::endl;
   }
+
+
+
   // --print-parameters [FILE [--force]] writes every entry with its
   // documentation and default value, to FILE or to standard output, and
   // returns the exit status. The command line never destroys a file: an
@@ -171,6 +174,9 @@ namespace
       Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD));
     return parameters;
   }
+
+
+
   // The box around the message of an error that ends the run (the message
   // starts with its separator from "Error:").
   void

@@ -12,7 +12,7 @@
 
 #include <deal.II/lac/affine_constraints.h>
 
-#include "active_set.h"
+#include "contact_nodes.h"
 #include "back_ends/linear_algebra.h"
 
 #include <array>
@@ -116,6 +116,20 @@ namespace ViscoContact
                        VectorType &contact_status) const;
 
   private:
+    // The contact nodes of this rank into geometry, in the order the cells
+    // come (setup() sorts them): the locally owned vertices of the faces on
+    // the boundary parts contact_ids whose dofs are all unconstrained, each
+    // with its location, its dofs (global, local in partitioner's
+    // numbering, and scalar) and its normal, the weighted normal
+    // normalised.
+    void
+    find_nodes(const DoFHandler<dim>                 &dof_handler,
+               const DoFHandler<dim>                 &scalar_dof_handler,
+               const std::vector<types::boundary_id> &contact_ids,
+               const AffineConstraints<double>       &constraints,
+               const Utilities::MPI::Partitioner     &partitioner,
+               const VectorType                      &weighted_normals);
+
     std::vector<NodeGeometry> geometry;
     types::global_dof_index   n_global     = 0;
     types::global_dof_index   first_global = 0;

@@ -10,6 +10,7 @@
 #include "viscoplastic_contact.h"
 
 #include <memory>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -91,8 +92,24 @@ namespace ViscoContact
     square_key(const Point<dim> &point, const unsigned int subdivisions) const;
     void
     record_state(Run &run, const ViscoplasticContact<dim> &problem) const;
+    // Coarse run r, recording its states; a run that fails is marked as
+    // failed in runs[r] and the study goes on.
+    void
+    run_coarse(const unsigned int r);
+    // After a step of the reference run: compare() for every coarse run
+    // with a time level at that time.
+    void
+    compare_at_time(const double                    time,
+                    const ViscoplasticContact<dim> &reference);
     void
     locate(Run &run, const ViscoplasticContact<dim> &reference) const;
+    // The real locations of this rank's reference stress points, and the
+    // keys of the squares of the coarse box that contain them.
+    void
+    reference_stress_points(const ViscoplasticContact<dim> &reference,
+                            const unsigned int              subdivisions,
+                            std::vector<Point<dim>>        &points,
+                            std::vector<std::string>       &keys) const;
     void
     compare(Run                            &run,
             const unsigned int              level,
@@ -101,6 +118,16 @@ namespace ViscoContact
     write_table(const types::global_dof_index reference_dofs,
                 const unsigned int            reference_steps,
                 const double                  reference_wall_time) const;
+    // A wall time as the tables show it ("-" without the timing summary).
+    std::string
+    wall_time_text(const double seconds) const;
+    // The observed order of the error member of Run between runs r - 1 and
+    // r, NaN where it is not defined.
+    double
+    observed_order(const unsigned int r, const double Run::*member) const;
+    // Run r's row of convergence.csv (into csv) and of the terminal table.
+    void
+    write_table_row(const unsigned int r, std::ostream &csv) const;
 
     const Parameters::AllParameters parameters;
     const MPI_Comm                  communicator;

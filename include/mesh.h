@@ -68,25 +68,6 @@ namespace ViscoContact
   refine_mesh(const Parameters::AllParameters &parameters,
               Triangulation<dim>              &triangulation);
 
-  // The checks of a Gmsh file (mesh_checks.cc), each stopping with a
-  // message that names the Mesh file entry, the file and what is wrong:
-  // every node id defined once; on the cells the reader hands to the
-  // triangulation, before it builds anything, finite coordinates of a sane
-  // extent, distinct nodes and positive, non-negligible Jacobians at every
-  // corner; and on the mesh built, no coincident nodes (a crack) and
-  // conforming faces (no hanging node).
-  void
-  check_gmsh_node_ids(const std::string &file);
-  template <int dim>
-  void
-  check_mesh_cells(const std::vector<Point<dim>>    &vertices,
-                   const std::vector<CellData<dim>> &cells,
-                   const std::string                &file);
-  template <int dim>
-  void
-  check_mesh_conformity(const Triangulation<dim> &triangulation,
-                        const std::string        &file);
-
   template <int dim>
   void
   check_boundary_ids(const Parameters::AllParameters &parameters,

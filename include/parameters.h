@@ -330,6 +330,15 @@ namespace ViscoContact
       declare_parameters(ParameterHandler &prm);
       void
       parse_parameters(ParameterHandler &prm);
+      // The checks between subsections, after every subsection is parsed.
+      void
+      check_study_entries() const;
+      void
+      check_mesh_adaptation_entries() const;
+      void
+      check_schedule_size(const ParameterHandler &prm) const;
+      void
+      check_unused_entries(const ParameterHandler &prm) const;
 
       // Checks between subsections that depend on how the program is run
       // (the number of MPI ranks).

@@ -12,6 +12,8 @@
 
 #include <deal.II/distributed/tria_base.h>
 
+#include <deal.II/grid/cell_id.h>
+
 #include <deal.II/dofs/dof_handler.h>
 
 #include <deal.II/fe/fe.h>
@@ -22,19 +24,21 @@
 
 #include <deal.II/numerics/data_out.h>
 
-#include "active_set.h"
 #include "back_ends/contact_solver.h"
 #include "back_ends/linear_algebra.h"
+#include "contact_nodes.h"
 #include "contact_set.h"
 #include "material.h"
 #include "parameters.h"
+#include "robustness/checkpoint_file.h"
 #include "robustness/output_folder.h"
-#include "time_loop.h"
+#include "time_schedule.h"
 
 #include <fstream>
 #include <functional>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -50,9 +54,10 @@ namespace ViscoContact
   // distributed meshes, locally owned cells and dofs, Trilinos) and step-41/42
   // (an active set on the contact nodes). run() reads as the algorithm of
   // doc/model.md, section 2:
-  //   set up; for n = 1..N: assemble the right-hand side, solve the step's
-  //   contact problem by the active-set method, update the stresses and
-  //   the history, write the results.
+  //   set up; while the schedule is not at its end: do one time step
+  //   (assemble the right-hand side, solve the step's contact problem by the
+  //   active-set method, update the stresses and the history), then finish
+  //   it (write the results, adapt the mesh, write a checkpoint).
   //
   // One class runs every scene: dim = 2 and 3, simplices (P1) and hypercubes
   // (Q1), the explicit and the implicit stress update, one MPI rank or many.
@@ -145,6 +150,14 @@ namespace ViscoContact
     setup_contact();
     void
     setup_back_end();
+    // The schedule of the run (or of the checkpoint it resumes), with every
+    // load checked at the times it will be evaluated.
+    void
+    set_up_schedule();
+    // The output folder prepared, the header and the limits of the scheme
+    // printed, the initial state written.
+    void
+    prepare_output();
     void
     print_header(const unsigned int n_steps) const;
     void
@@ -156,16 +169,45 @@ namespace ViscoContact
 
     // @sect4{One time step}
     //
-    // solve_step_with_recovery() is the time step as run() sees it: the
-    // right-hand side, the step problem by the explicit or the implicit route,
-    // and the restart with a cut step if a solve fails. The other functions are
-    // its parts.
+    // do_time_step() is the time step as run() sees it: from the current time
+    // of the schedule to the next, the step problem solved (with recovery
+    // from failed solves), the stresses updated, the step control's decision
+    // (adaptive steps: a rejected step is repeated with a shorter one), and
+    // the schedule advanced. finish_time_step() is what follows an accepted
+    // step; it returns false where the run stops early (Stop after step).
     ActiveSetResult
-    solve_step_with_recovery(const unsigned int n, std::vector<double> &times);
-    // The start of step n extrapolated from steps n-1 and n-2 (Predicted
-    // start): u and the contact nodes' pieces, from previous_step_start.
+    do_time_step();
+    bool
+    finish_time_step(const ActiveSetResult &result, const double wall_time);
+    // The state at the start of a step that a failed or rejected attempt is
+    // undone with: u_{n-1}, the contact state, and with adaptive steps the
+    // stress-point records and the step length their history was advanced
+    // for.
+    struct StepStartState
+    {
+      VectorType                               solution;
+      ContactNodes::State                      contact;
+      std::vector<QuadraturePointHistory<dim>> stress_points;
+      double                                   step_length;
+    };
+    StepStartState
+    save_step_start() const;
+    // u_{n-1} and the contact state (the stress points are restored apart,
+    // where needed).
     void
-    predict_step_start(const unsigned int n, const std::vector<double> &times);
+    restore_step_start(const StepStartState &start);
+    // The step problem from the current time to the next, restarted with a
+    // cut step if a solve fails and cutting is allowed; otherwise the run
+    // stops with a report.
+    ActiveSetResult
+    solve_step_with_recovery(const StepStartState &start);
+    bool
+    cut_failed_step(const std::string &failure);
+    // The start of the step extrapolated from the two steps before it
+    // (Predicted start): u and the contact nodes' pieces, from
+    // previous_step_start.
+    void
+    predict_step_start();
     // b_n = (f_n, v) - (H_n, eps(v)), from its two parts.
     void
     assemble_right_hand_side(const double time);
@@ -174,7 +216,7 @@ namespace ViscoContact
     // Every load value at the load points and the times of the run is
     // finite, or all ranks stop with a message naming the entry.
     void
-    check_loads(const std::vector<double> &times);
+    check_loads();
     void
     assemble_history_load();
     // The active set around the back end's solves, for the operator it holds.
@@ -202,7 +244,10 @@ namespace ViscoContact
     void
     update_stresses(const double current_time_step,
                     const double next_time_step);
-    // What update_stresses() does at every stress point of a step.
+    // What update_stresses() does at every stress point of a step: which
+    // update, whether the history of the next step and the error estimate
+    // are computed, the two step lengths, the viscous parameter
+    // a = k_n/(2 lambda) of the implicit update, and E^-1 for the estimate.
     struct StressUpdateStep
     {
       bool                    implicit;
@@ -210,8 +255,14 @@ namespace ViscoContact
       bool                    estimate;
       double                  current_time_step;
       double                  next_time_step;
+      double                  viscous_parameter;
       SymmetricTensor<4, dim> compliance;
     };
+    StressUpdateStep
+    stress_update_step(const double current_time_step,
+                       const double next_time_step) const;
+    void
+    stop_on_non_finite_stresses() const;
     // One stress point q of the k-th owned cell: sigma_n, the history and
     // its load into cell_vector, the largest von Mises stress of the cell
     // so far, and the point's terms of the error estimate.
@@ -234,16 +285,17 @@ namespace ViscoContact
 
     // @sect4{Adaptive time steps}
     //
-    // The controller's side of the time loop (doc/adaptivity.md): the
+    // The controller's side of the time step (doc/adaptivity.md): the
     // controller, the times the steps must land on (Profile times, End
-    // time), and one step with its error test: solved, estimated, and if
-    // rejected repeated from the restored state with a shorter step.
+    // time), and the error test of a solved step: accepted (with the step
+    // the controller proposes next), or rejected and the state at its start
+    // restored for a shorter step.
     TimeStepController
     time_step_controller() const;
     std::vector<double>
     landing_targets() const;
-    ActiveSetResult
-    solve_adaptive_step(const unsigned int n, std::vector<double> &times);
+    bool
+    accept_adaptive_step(const StepStartState &start, double &proposed_step);
 
     // @sect4{Output}
     //
@@ -270,6 +322,14 @@ namespace ViscoContact
     output_results(const unsigned int step,
                    const double       time,
                    const std::string &stem = "solution");
+    // The cell fields of the output: sigma_n, its viscoplastic part and the
+    // von Mises stress averaged over each owned cell's stress points, and
+    // the cell's subdomain.
+    void
+    compute_cell_output_fields(std::vector<Vector<float>> &stress,
+                               std::vector<Vector<float>> &viscoplastic,
+                               Vector<float>              &von_mises,
+                               Vector<float>              &subdomain) const;
     std::string
     write_vtu_pieces(const DataOut<dim>          &data_out,
                      const DataOutBase::VtkFlags &flags,
@@ -285,6 +345,8 @@ namespace ViscoContact
     write_contact_profile(const unsigned int step, const double time);
     void
     print_run_summary();
+    void
+    print_cost_measurement();
 
     // @sect4{Mesh adaptation}
     //
@@ -303,7 +365,7 @@ namespace ViscoContact
     // if asked to (the initial cycles start every mesh from the initial
     // history instead).
     bool
-    adaptation_due(const unsigned int step, const unsigned int n_steps) const;
+    adaptation_due() const;
     void
     adapt_mesh(const double time);
     Vector<float>
@@ -312,8 +374,16 @@ namespace ViscoContact
     mark_cells_by_indicators();
     void
     refine_and_transfer(const bool transfer_stress_points);
+    // The contact pressure as a nodal field of the displacement's layout
+    // (at the x-dof of each contact node), for the transfer.
+    VectorType
+    contact_pressure_field() const;
+    // Debug builds: the transferred stress points reproduce E eps(u) on the
+    // children of refined_parents (implicit update).
     void
-    solve_initial_cycles(std::vector<double> &times);
+    check_stress_point_transfer(const std::set<CellId> &refined_parents) const;
+    void
+    solve_initial_cycles();
     void
     restore_checkpoint_mesh();
 
@@ -322,11 +392,56 @@ namespace ViscoContact
     // One file per checkpoint with one record per cell, keyed by the cell's id,
     // so that a run can be resumed on any number of ranks (checkpoint.h).
     void
-    write_checkpoint(const unsigned int         step,
-                     const std::vector<double> &times,
-                     const double               wall_time);
-    unsigned int
-    resume_from_checkpoint(std::vector<double> &times);
+    write_checkpoint(const double wall_time);
+    // The header of a checkpoint file (the same on every rank; rank 0's is
+    // written) and the records of the locally owned cells.
+    ByteWriter
+    checkpoint_header(const double wall_time,
+                      const bool   has_back_end_state) const;
+    std::vector<char>
+    checkpoint_cell_records(
+      const std::optional<std::vector<double>> &back_end_state) const;
+    // A scheduler's signal received on any rank: all ranks stop after this
+    // step, with a checkpoint of it (unless one was just written).
+    void
+    stop_if_signalled(const bool checkpoint_written, const double wall_time);
+    // Collective. Resumes from the last checkpoint: the mesh, the header
+    // (schedule, counters, .pvd list), the records of the owned cells, and
+    // what the time loop derives from them.
+    void
+    resume_from_checkpoint();
+    struct CheckpointFlags
+    {
+      bool has_step_start;
+      bool has_back_end_state;
+    };
+    CheckpointFlags
+    read_checkpoint_header(ByteReader &header, const unsigned int step);
+    // The schedule after the checkpoint for this run's End time; returns the
+    // next step's length before and after.
+    std::pair<double, double>
+    continue_schedule_after_checkpoint();
+    // The values a checkpoint stores at the dofs of every cell besides u
+    // (restored into solution): the contact state, the start of the step
+    // and the nodes' history.
+    struct CellRecordVectors
+    {
+      VectorType contact_state;
+      VectorType start_displacement;
+      VectorType node_history;
+    };
+    // The records of this rank's share of the file sent to the owners of
+    // their cells and restored on the owned dofs and stress points; false on
+    // a rank that did not find all its cells.
+    bool
+    restore_cell_records(const std::vector<char> &share,
+                         CellRecordVectors       &vectors);
+    void
+    restore_contact_nodes(const CellRecordVectors &vectors,
+                          const ByteReader        &header);
+    void
+    restore_prediction_start(const CellRecordVectors &vectors,
+                             const CheckpointFlags   &flags);
     // The bytes of a cell's record in a checkpoint file: the cell id, the
     // values of the vectors at the cell's dofs, its stress-point records.
     std::size_t
@@ -437,12 +552,8 @@ namespace ViscoContact
     bool                                     loads_depend_on_time;
     std::vector<QuadraturePointHistory<dim>> quadrature_point_history;
     double                                   max_von_mises = 0;
-    // The relative error estimate of the last stress update, and the
-    // controller's state: the step it wants for the next step before landing
-    // on a target shortens it, and the number of rejected steps.
-    double       error_estimate    = 0;
-    double       desired_time_step = 0;
-    unsigned int n_rejected_steps  = 0;
+    // The relative error estimate of the last stress update.
+    double error_estimate = 0;
 
     // The geometry of the stress points, computed once (the mesh does not
     // move), so that the cell loops of the time loop need no FEValues: per
@@ -476,16 +587,18 @@ namespace ViscoContact
     // Called after every accepted step (set_step_observer()).
     std::function<void(const unsigned int, const double)> step_observer;
 
+    // The time levels of the run, the steps taken and the step controller's
+    // state: what a checkpoint stores and a resumed run restores.
+    TimeSchedule schedule;
+
     // The output folder (created by run() before the set-up, which checks
     // and locks it), the .pvd list (kept on rank 0), the time spent in the
-    // time loop without output, and the step counters a checkpoint stores and
-    // a resumed run restores.
+    // time loop without output, the wall time of the run a resumed run
+    // continues, and the step of the last checkpoint.
     std::unique_ptr<OutputFolder>               output_folder;
     std::vector<std::pair<double, std::string>> times_and_names;
     double                                      time_loop_compute_time = 0;
-    unsigned int                                n_time_steps           = 0;
-    unsigned int                                n_steps_done           = 0;
-    double       loop_time_offset     = 0; // of the run a resumed run continues
+    double                                      loop_time_offset       = 0;
     unsigned int last_checkpoint_step = numbers::invalid_unsigned_int;
   };
 } // namespace ViscoContact

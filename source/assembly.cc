@@ -63,8 +63,9 @@ namespace ViscoContact
   // evaluated here, before the output directory is touched: the surface
   // traction at the face quadrature points of the loaded boundary, the body
   // force at the load quadrature points of the cells, each at every time
-  // level of the run (at t = 0 only, if the loads do not mention t). These are
-  // the points and times the assembly evaluates.
+  // level of the fixed schedule of Time step (at t = 0 only, if the loads do
+  // not mention t). These are the points and times the assembly evaluates
+  // (adaptive and cut steps add levels between them).
   //
   // The body force of a large time-dependent 3D run would make this as
   // expensive as assembling it in every step; beyond a budget of evaluations,
@@ -72,10 +73,15 @@ namespace ViscoContact
   // value it computes (assemble_external_load()).
   template <int dim>
   void
-  ViscoplasticContact<dim>::check_loads(const std::vector<double> &times)
+  ViscoplasticContact<dim>::check_loads()
   {
-    const std::vector<double> check_times
-      = loads_depend_on_time ? times : std::vector<double>{times[0]};
+    // The levels t_m = m k, m < N, and t_N = T.
+    const std::uint64_t n_steps
+      = n_fixed_steps(parameters.end_time, parameters.time_step);
+    const std::uint64_t n_levels = loads_depend_on_time ? n_steps + 1 : 1;
+    const auto          level    = [&](const std::uint64_t m) {
+      return m < n_steps ? m * parameters.time_step : parameters.end_time;
+    };
     // The points first, once: the geometry does not change with time.
     std::vector<Point<dim>> body_points, traction_points;
     FEValues<dim>           fe_values(mapping,
@@ -111,7 +117,7 @@ namespace ViscoContact
     // At most about 2e7 evaluations per rank and load: every point if that
     // suffices, otherwise every stride-th point.
     const auto stride_of = [&](const std::size_t n_points) {
-      const double evaluations = double(n_points) * check_times.size();
+      const double evaluations = double(n_points) * n_levels;
       return std::max<std::size_t>(1, std::size_t(evaluations / 2e7));
     };
     std::string    problem;
@@ -121,8 +127,9 @@ namespace ViscoContact
                            const std::string             &expression,
                            const std::vector<Point<dim>> &points) {
       const std::size_t stride = stride_of(points.size());
-      for (const double t : check_times)
+      for (std::uint64_t m = 0; m < n_levels; ++m)
         {
+          const double t = level(m);
           load.set_time(t);
           for (std::size_t i = 0; i < points.size() && problem.empty();
                i += stride)

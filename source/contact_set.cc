@@ -32,6 +32,35 @@ namespace ViscoContact
     {
       return std::find(ids.begin(), ids.end(), id) != ids.end();
     }
+
+    // A vertex of Gamma_3 may be hanging (on adapted 3D meshes: the middle
+    // of an edge between a refined and an unrefined contact face). It is no
+    // contact node, since its displacement is the average of its parents';
+    // its weight and weighted normal go to those parents with the weights of
+    // its constraint. The result is the row sums of the boundary mass matrix
+    // of the conforming (constrained) space, C^T M C 1 = C^T M 1, as without
+    // hanging vertices. Each rank passes on the values of the hanging dofs
+    // it owns (the parents are locally relevant: they lie on the same
+    // cells); on meshes without hanging vertices on Gamma_3 nothing is
+    // added. Collective.
+    void
+    pass_on_hanging_values(VectorType                      &vector,
+                           const AffineConstraints<double> &constraints,
+                           const VectorType                &layout)
+    {
+      const auto &partitioner = *layout.get_partitioner();
+      VectorType  passed_on(layout);
+      passed_on = 0;
+      for (types::global_dof_index dof = partitioner.local_range().first;
+           dof < partitioner.local_range().second;
+           ++dof)
+        if (vector(dof) != 0 && constraints.is_constrained(dof))
+          if (const auto *entries = constraints.get_constraint_entries(dof))
+            for (const auto &[parent, coefficient] : *entries)
+              passed_on(parent) += coefficient * vector(dof);
+      passed_on.compress(VectorOperation::add);
+      vector += passed_on;
+    }
   } // namespace
 
 
@@ -105,14 +134,10 @@ namespace ViscoContact
   // @sect4{ContactSet::setup}
   //
   // Finds the contact nodes this rank owns, with their geometry, weights and
-  // numbering across the ranks.
-  //
-  // A vertex of Gamma_3 whose faces all belong to other ranks' cells is
-  // still seen through the ghost cells, so every locally owned contact
-  // vertex is found. Vertices of hanging or clamped dofs are left out: their
-  // displacement is not free, so they cannot carry a contact condition of
-  // their own (the corner of Gamma_3 on Gamma_1; hanging nodes, which the
-  // refinement toward Gamma_3 in refine_mesh() keeps off it).
+  // numbering across the ranks: the lumped weights and normals of all
+  // vertices of Gamma_3, those of hanging vertices passed on to their
+  // parents, the nodes themselves (find_nodes()), their order along
+  // Gamma_3, and their global numbers.
   template <int dim>
   void
   ContactSet<dim>::setup(const ContactLaw          &law,
@@ -125,7 +150,8 @@ namespace ViscoContact
                          const VectorType                      &layout)
   {
     // The lumped weights and weighted normals of all vertices of Gamma_3, in
-    // the displacement layout.
+    // the displacement layout, with the values of hanging vertices passed
+    // on to their parents.
     communicator = layout.get_mpi_communicator();
     VectorType weights(layout), weighted_normals(layout);
     assemble_lumped_weights(mapping,
@@ -134,78 +160,15 @@ namespace ViscoContact
                             contact_ids,
                             weights,
                             weighted_normals);
-
-    // A vertex of Gamma_3 may be hanging (on adapted 3D meshes: the middle of
-    // an edge between a refined and an unrefined contact face). It is no
-    // contact node, since its displacement is the average of its parents';
-    // its weight and weighted normal go to those parents with the weights of
-    // its constraint. The result is the row sums of the boundary mass matrix
-    // of the conforming (constrained) space, C^T M C 1 = C^T M 1, as without
-    // hanging vertices. Each rank passes on the values of the hanging dofs it
-    // owns (the parents are locally relevant: they lie on the same cells); on
-    // meshes without hanging vertices on Gamma_3 nothing is added.
-    const auto &partitioner = *layout.get_partitioner();
     for (VectorType *vector : {&weights, &weighted_normals})
-      {
-        VectorType passed_on(layout);
-        passed_on = 0;
-        for (types::global_dof_index dof = partitioner.local_range().first;
-             dof < partitioner.local_range().second;
-             ++dof)
-          if ((*vector)(dof) != 0 && constraints.is_constrained(dof))
-            if (const auto *entries = constraints.get_constraint_entries(dof))
-              for (const auto &[parent, coefficient] : *entries)
-                passed_on(parent) += coefficient * (*vector)(dof);
-        passed_on.compress(VectorOperation::add);
-        *vector += passed_on;
-      }
+      pass_on_hanging_values(*vector, constraints, layout);
 
-    geometry.clear();
-    std::set<types::global_dof_index> seen;
-    // Every vertex of every contact face of the owned and ghost cells, once
-    // (the set seen remembers the x-dofs taken).
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (!cell->is_artificial())
-        for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary()
-              && is_one_of(cell->face(f)->boundary_id(), contact_ids))
-            for (const unsigned int v : cell->face(f)->vertex_indices())
-              {
-                NodeGeometry node;
-                for (unsigned int c = 0; c < dim; ++c)
-                  node.dofs[c] = cell->face(f)->vertex_dof_index(v, c);
-                // A vertex becomes a node of this rank if this rank owns it
-                // (its dim dofs have the same owner, so the x-dof decides),
-                // it has not been taken already, and none of its components
-                // is constrained.
-                bool usable = partitioner.in_local_range(node.dofs[0])
-                              && seen.insert(node.dofs[0]).second;
-                for (unsigned int c = 0; c < dim; ++c)
-                  usable = usable && !constraints.is_constrained(node.dofs[c]);
-                if (!usable)
-                  continue;
-                // Its location, the local indices of its dofs (owned
-                // entries, so no ghost lookup is ever needed), and the
-                // normal: the weighted normal assembled above, normalised.
-                node.location = cell->face(f)->vertex(v);
-                for (unsigned int c = 0; c < dim; ++c)
-                  {
-                    node.local_dofs[c]
-                      = partitioner.global_to_local(node.dofs[c]);
-                    node.normal[c] = weighted_normals(node.dofs[c]);
-                  }
-                node.normal /= node.normal.norm();
-                // The same vertex's dof in the scalar dof handler of the
-                // output fields, through the same cell of the common
-                // triangulation.
-                const typename DoFHandler<dim>::active_cell_iterator
-                  scalar_cell(&dof_handler.get_triangulation(),
-                              cell->level(),
-                              cell->index(),
-                              &scalar_dof_handler);
-                node.scalar_dof = scalar_cell->face(f)->vertex_dof_index(v, 0);
-                geometry.push_back(node);
-              }
+    find_nodes(dof_handler,
+               scalar_dof_handler,
+               contact_ids,
+               constraints,
+               *layout.get_partitioner(),
+               weighted_normals);
 
     // Along Gamma_3: the order of the contact profiles. The order is
     // lexicographic in the coordinates (x first), with a tolerance for
@@ -243,6 +206,74 @@ namespace ViscoContact
                            "is free to move (all its nodes are clamped); "
                            "accepted: ids of boundary parts with at least one "
                            "node off Gamma_1."));
+  }
+
+
+
+  // @sect4{ContactSet::find_nodes}
+  //
+  // A vertex of Gamma_3 whose faces all belong to other ranks' cells is
+  // still seen through the ghost cells, so every locally owned contact
+  // vertex is found. Vertices of hanging or clamped dofs are left out: their
+  // displacement is not free, so they cannot carry a contact condition of
+  // their own (the corner of Gamma_3 on Gamma_1; hanging nodes, which the
+  // refinement toward Gamma_3 in refine_mesh() keeps off it).
+  template <int dim>
+  void
+  ContactSet<dim>::find_nodes(
+    const DoFHandler<dim>                 &dof_handler,
+    const DoFHandler<dim>                 &scalar_dof_handler,
+    const std::vector<types::boundary_id> &contact_ids,
+    const AffineConstraints<double>       &constraints,
+    const Utilities::MPI::Partitioner     &partitioner,
+    const VectorType                      &weighted_normals)
+  {
+    geometry.clear();
+    std::set<types::global_dof_index> seen;
+    // Every vertex of every contact face of the owned and ghost cells, once
+    // (the set seen remembers the x-dofs taken).
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (!cell->is_artificial())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary()
+              && is_one_of(cell->face(f)->boundary_id(), contact_ids))
+            for (const unsigned int v : cell->face(f)->vertex_indices())
+              {
+                NodeGeometry node;
+                for (unsigned int c = 0; c < dim; ++c)
+                  node.dofs[c] = cell->face(f)->vertex_dof_index(v, c);
+                // A vertex becomes a node of this rank if this rank owns it
+                // (its dim dofs have the same owner, so the x-dof decides),
+                // it has not been taken already, and none of its components
+                // is constrained.
+                bool usable = partitioner.in_local_range(node.dofs[0])
+                              && seen.insert(node.dofs[0]).second;
+                for (unsigned int c = 0; c < dim; ++c)
+                  usable = usable && !constraints.is_constrained(node.dofs[c]);
+                if (!usable)
+                  continue;
+                // Its location, the local indices of its dofs (owned
+                // entries, so no ghost lookup is ever needed), and the
+                // normal: the weighted normal, normalised.
+                node.location = cell->face(f)->vertex(v);
+                for (unsigned int c = 0; c < dim; ++c)
+                  {
+                    node.local_dofs[c]
+                      = partitioner.global_to_local(node.dofs[c]);
+                    node.normal[c] = weighted_normals(node.dofs[c]);
+                  }
+                node.normal /= node.normal.norm();
+                // The same vertex's dof in the scalar dof handler of the
+                // output fields, through the same cell of the common
+                // triangulation.
+                const typename DoFHandler<dim>::active_cell_iterator
+                  scalar_cell(&dof_handler.get_triangulation(),
+                              cell->level(),
+                              cell->index(),
+                              &scalar_dof_handler);
+                node.scalar_dof = scalar_cell->face(f)->vertex_dof_index(v, 0);
+                geometry.push_back(node);
+              }
   }
 
 

@@ -200,55 +200,10 @@ namespace ViscoContact
     folder->prepare();
     folder->create_folder("runs");
 
-    const unsigned int n_runs = parameters.study_subdivisions.size();
-    runs.resize(n_runs);
     // The coarse runs, one after the other on all ranks.
-    for (unsigned int r = 0; r < n_runs; ++r)
-      {
-        Run &run         = runs[r];
-        run.subdivisions = parameters.study_subdivisions[r];
-        run.time_step    = parameters.study_time_steps[r];
-        std::ostringstream name;
-        name << "h_1_" << run.subdivisions << "_k_" << run.time_step;
-        folder->create_folder("runs/" + name.str());
-        pcout << "Convergence study: run " << r + 1 << " of " << n_runs
-              << ", h = 1/" << run.subdivisions << ", k = " << run.time_step
-              << std::endl;
-        ViscoplasticContact<dim> problem(parameters_for(run.subdivisions,
-                                                        run.time_step,
-                                                        name.str()),
-                                         communicator);
-        // After every step the observer notes the time level and records the
-        // state. If a step of the run was cut, the run has extra time
-        // levels; only the levels that equal a reference time level are
-        // compared.
-        problem.set_step_observer([&](const unsigned int, const double time) {
-          run.times.push_back(time);
-          record_state(run, problem);
-        });
-        Timer timer;
-        try
-          {
-            problem.run();
-          }
-        catch (const ExceptionBase &exc)
-          {
-            // A run that stops with an error (iteration limit, blow-up)
-            // stays in the table as failed instead of ending the study. A
-            // failed step is decided collectively (time_step.cc reduces its
-            // criteria over the ranks), so every rank catches the exception
-            // and marks the run.
-            std::ostringstream info;
-            exc.print_info(info);
-            run.failed  = true;
-            run.failure = info.str();
-            pcout << "Convergence study: the run h = 1/" << run.subdivisions
-                  << ", k = " << run.time_step << " failed:\n"
-                  << run.failure;
-          }
-        // The slowest rank's time is the run's time.
-        run.wall_time = Utilities::MPI::max(timer.wall_time(), communicator);
-      }
+    runs.resize(parameters.study_subdivisions.size());
+    for (unsigned int r = 0; r < runs.size(); ++r)
+      run_coarse(r);
 
     pcout << "Convergence study: reference run, h = 1/"
           << parameters.reference_subdivisions
@@ -271,20 +226,8 @@ namespace ViscoContact
             if (!run.failed)
               locate(run, reference);
         reference_steps = step;
-        // Then, at every step, compare each coarse run that has a time level
-        // equal to the reference's current time (to a tolerance relative to
-        // T).
-        for (Run &run : runs)
-          {
-            if (run.failed)
-              continue;
-            const auto level
-              = std::find_if(run.times.begin(), run.times.end(), [&](double t) {
-                  return std::abs(t - time) <= 1e-10 * parameters.end_time;
-                });
-            if (level != run.times.end())
-              compare(run, level - run.times.begin(), reference);
-          }
+        // Then, at every step, the comparison with the coarse runs.
+        compare_at_time(time, reference);
       });
     // A failure of the reference run itself ends the study with its error.
     Timer timer;
@@ -292,6 +235,85 @@ namespace ViscoContact
     write_table(reference.get_dof_handler().n_dofs(),
                 reference_steps,
                 Utilities::MPI::max(timer.wall_time(), communicator));
+  }
+
+
+
+  // @sect4{ConvergenceStudy::run_coarse}
+  //
+  // Coarse run r in a folder of its own, on all ranks. After every step the
+  // observer notes the time level and records the state. If a step of the
+  // run was cut, the run has extra time levels; only the levels that equal
+  // a reference time level are compared.
+  template <int dim>
+  void
+  ConvergenceStudy<dim>::run_coarse(const unsigned int r)
+  {
+    Run &run         = runs[r];
+    run.subdivisions = parameters.study_subdivisions[r];
+    run.time_step    = parameters.study_time_steps[r];
+    std::ostringstream name;
+    name << "h_1_" << run.subdivisions << "_k_" << run.time_step;
+    folder->create_folder("runs/" + name.str());
+    pcout << "Convergence study: run " << r + 1 << " of " << runs.size()
+          << ", h = 1/" << run.subdivisions << ", k = " << run.time_step
+          << std::endl;
+    ViscoplasticContact<dim> problem(parameters_for(run.subdivisions,
+                                                    run.time_step,
+                                                    name.str()),
+                                     communicator);
+    problem.set_step_observer([&](const unsigned int, const double time) {
+      run.times.push_back(time);
+      record_state(run, problem);
+    });
+    Timer timer;
+    try
+      {
+        problem.run();
+      }
+    catch (const ExceptionBase &exc)
+      {
+        // A run that stops with an error (iteration limit, blow-up) stays
+        // in the table as failed instead of ending the study. A failed step
+        // is decided collectively (time_step.cc reduces its criteria over
+        // the ranks), so every rank catches the exception and marks the
+        // run.
+        std::ostringstream info;
+        exc.print_info(info);
+        run.failed  = true;
+        run.failure = info.str();
+        pcout << "Convergence study: the run h = 1/" << run.subdivisions
+              << ", k = " << run.time_step << " failed:\n"
+              << run.failure;
+      }
+    // The slowest rank's time is the run's time.
+    run.wall_time = Utilities::MPI::max(timer.wall_time(), communicator);
+  }
+
+
+
+  // @sect4{ConvergenceStudy::compare_at_time}
+  //
+  // At every step of the reference run: compare each coarse run that has a
+  // time level equal to the reference's current time (to a tolerance
+  // relative to T). Every rank compares the same runs at the same levels.
+  template <int dim>
+  void
+  ConvergenceStudy<dim>::compare_at_time(
+    const double                    time,
+    const ViscoplasticContact<dim> &reference)
+  {
+    for (Run &run : runs)
+      {
+        if (run.failed)
+          continue;
+        const auto level
+          = std::find_if(run.times.begin(), run.times.end(), [&](double t) {
+              return std::abs(t - time) <= 1e-10 * parameters.end_time;
+            });
+        if (level != run.times.end())
+          compare(run, level - run.times.begin(), reference);
+      }
   }
 
 
@@ -310,34 +332,68 @@ namespace ViscoContact
   // on a simplex, the coordinates relative to the box's corner and edge
   // lengths on a hypercube. Both are computed once; compare() then only
   // evaluates.
+  namespace
+  {
+    // Whether the coarse cell of a record (its number of vertices and their
+    // coordinates first, as record_state() writes them) contains the point,
+    // and the point's coordinates in the cell, unit.
+    template <int dim>
+    bool
+    locate_in_cell(const std::vector<double> &record,
+                   const Point<dim>          &point,
+                   Point<dim>                &unit)
+    {
+      // The vertices of the cell, from its record.
+      const unsigned int n_vertices = record[0];
+      const auto         vertex     = [&](const unsigned int v) {
+        Point<dim> x;
+        for (unsigned int d = 0; d < dim; ++d)
+          x[d] = record[1 + v * dim + d];
+        return x;
+      };
+      bool inside = true;
+      if (n_vertices == dim + 1)
+        {
+          // A simplex: solve x = v_0 + J lambda for the barycentric
+          // coordinates lambda (the columns of J are the edges from v_0).
+          // The point is inside if all of them and 1 - their sum are
+          // nonnegative, up to rounding.
+          Tensor<2, dim> J;
+          for (unsigned int a = 1; a <= dim; ++a)
+            for (unsigned int d = 0; d < dim; ++d)
+              J[d][a - 1] = vertex(a)[d] - vertex(0)[d];
+          const Tensor<1, dim> lambda = invert(J) * (point - vertex(0));
+          double               sum    = 0;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              unit[d] = lambda[d];
+              sum += lambda[d];
+              inside = inside && lambda[d] >= -1e-10;
+            }
+          inside = inside && sum <= 1 + 1e-10;
+        }
+      else
+        // A hypercube of the box: an axis-aligned box whose last vertex (in
+        // deal.II's numbering) is the corner opposite v_0, so the unit
+        // coordinates follow axis by axis. It is the only cell of its
+        // square, so it contains the point.
+        for (unsigned int d = 0; d < dim; ++d)
+          unit[d] = (point[d] - vertex(0)[d])
+                    / (vertex(n_vertices - 1)[d] - vertex(0)[d]);
+      return inside;
+    }
+  } // namespace
+
+
+
   template <int dim>
   void
   ConvergenceStudy<dim>::locate(Run                            &run,
                                 const ViscoplasticContact<dim> &reference) const
   {
-    const auto            &cells      = reference.get_owned_cells();
-    const Quadrature<dim> &quadrature = reference.get_stress_quadrature();
-    // Stress points are given on the reference cell; the linear mapping of
-    // the cell type (the program's own) places them in the real cell. A rank
-    // without cells takes any mapping; it is not used.
-    const Mapping<dim> &mapping
-      = cells.empty() ? ReferenceCells::get_hypercube<dim>()
-                          .template get_default_linear_mapping<dim>()
-                      : cells[0]
-                          ->reference_cell()
-                          .template get_default_linear_mapping<dim>();
-
-    // The real location and the square key of every reference stress point
-    // of this rank.
     std::vector<Point<dim>>  points;
     std::vector<std::string> keys;
-    for (const auto &cell : cells)
-      for (unsigned int q = 0; q < quadrature.size(); ++q)
-        {
-          points.push_back(
-            mapping.transform_unit_to_real_cell(cell, quadrature.point(q)));
-          keys.push_back(square_key(points.back(), run.subdivisions));
-        }
+    reference_stress_points(reference, run.subdivisions, points, keys);
     // Ask for each square once.
     std::vector<std::string> requests(keys);
     std::sort(requests.begin(), requests.end());
@@ -365,46 +421,8 @@ namespace ViscoContact
         const std::vector<double> *containing = nullptr;
         for (const std::vector<double> &candidate : entry->second)
           {
-            // The vertices of the candidate cell, from its record.
-            const unsigned int n_vertices = candidate[0];
-            const auto         vertex     = [&](const unsigned int v) {
-              Point<dim> x;
-              for (unsigned int d = 0; d < dim; ++d)
-                x[d] = candidate[1 + v * dim + d];
-              return x;
-            };
             Point<dim> unit;
-            bool       inside = true;
-            if (n_vertices == dim + 1)
-              {
-                // A simplex: solve x = v_0 + J lambda for the barycentric
-                // coordinates lambda (the columns of J are the edges from
-                // v_0). The point is inside if all of them and 1 - their sum
-                // are nonnegative, up to rounding.
-                Tensor<2, dim> J;
-                for (unsigned int a = 1; a <= dim; ++a)
-                  for (unsigned int d = 0; d < dim; ++d)
-                    J[d][a - 1] = vertex(a)[d] - vertex(0)[d];
-                const Tensor<1, dim> lambda
-                  = invert(J) * (points[p] - vertex(0));
-                double sum = 0;
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    unit[d] = lambda[d];
-                    sum += lambda[d];
-                    inside = inside && lambda[d] >= -1e-10;
-                  }
-                inside = inside && sum <= 1 + 1e-10;
-              }
-            else
-              // A hypercube of the box: an axis-aligned box whose last
-              // vertex (in deal.II's numbering) is the corner opposite v_0,
-              // so the unit coordinates follow axis by axis. It is the only
-              // cell of its square, so it contains the point.
-              for (unsigned int d = 0; d < dim; ++d)
-                unit[d] = (points[p][d] - vertex(0)[d])
-                          / (vertex(n_vertices - 1)[d] - vertex(0)[d]);
-            if (inside)
+            if (locate_in_cell(candidate, points[p], unit))
               {
                 containing         = &candidate;
                 run.unit_points[p] = unit;
@@ -423,6 +441,41 @@ namespace ViscoContact
           run.located_cells.push_back(*containing);
         run.point_cell[p] = position->second;
       }
+  }
+
+
+
+  // @sect4{ConvergenceStudy::reference_stress_points}
+  //
+  // The real location and the square key (for a box with the given
+  // subdivisions) of every reference stress point of this rank, in the
+  // order of the points p = k n_q + q. Stress points are given on the
+  // reference cell; the linear mapping of the cell type (the program's
+  // own) places them in the real cell. A rank without cells takes any
+  // mapping; it is not used.
+  template <int dim>
+  void
+  ConvergenceStudy<dim>::reference_stress_points(
+    const ViscoplasticContact<dim> &reference,
+    const unsigned int              subdivisions,
+    std::vector<Point<dim>>        &points,
+    std::vector<std::string>       &keys) const
+  {
+    const auto            &cells      = reference.get_owned_cells();
+    const Quadrature<dim> &quadrature = reference.get_stress_quadrature();
+    const Mapping<dim>    &mapping
+      = cells.empty() ? ReferenceCells::get_hypercube<dim>()
+                          .template get_default_linear_mapping<dim>()
+                      : cells[0]
+                          ->reference_cell()
+                          .template get_default_linear_mapping<dim>();
+    for (const auto &cell : cells)
+      for (unsigned int q = 0; q < quadrature.size(); ++q)
+        {
+          points.push_back(
+            mapping.transform_unit_to_real_cell(cell, quadrature.point(q)));
+          keys.push_back(square_key(points.back(), subdivisions));
+        }
   }
 
 
@@ -518,14 +571,8 @@ namespace ViscoContact
 
   // @sect4{ConvergenceStudy::write_table}
   //
-  // convergence.csv and the same table on the terminal (rank 0). The
-  // observed order between consecutive runs is log(e_{i-1}/e_i) /
-  // log(s_{i-1}/s_i) with s = h + k, or s = k (s = h) when the mesh (the
-  // time step) is the same.
-  //
-  // A failed run keeps its row, with infinite errors and no orders, and the
-  // run after it gets no orders either (there is no error to compare with).
-  // h is measured along the first edge, L1 / Subdivisions.
+  // convergence.csv and the same table on the terminal (rank 0): the
+  // header, then one row per run (write_table_row()).
   template <int dim>
   void
   ConvergenceStudy<dim>::write_table(
@@ -542,16 +589,6 @@ namespace ViscoContact
         csv << "h,k,subdivisions,dofs,steps,compared_levels,wall_time,error_u,"
                "error_sigma,error,order_u,order_sigma,order\n"
             << std::setprecision(10);
-        // Wall times only with the timing summary, so that the table of a test
-        // run is reproducible.
-        const auto wall_time_text = [&](const double seconds) {
-          std::ostringstream text;
-          if (parameters.print_timing_summary)
-            text << std::setprecision(3) << seconds;
-          else
-            text << '-';
-          return text.str();
-        };
         // The terminal header names the reference resolution and its cost.
         std::cout << "\nConvergence study against h = 1/"
                   << parameters.reference_subdivisions
@@ -562,89 +599,137 @@ namespace ViscoContact
                   << "     h          k     dofs steps  wall [s]   "
                      "err_u    order  err_sigma  order      error  order\n";
         for (unsigned int r = 0; r < runs.size(); ++r)
-          {
-            const Run   &run = runs[r];
-            const double h   = parameters.lengths[0] / run.subdivisions;
-            // The observed order of one error column (a pointer to the member
-            // of Run that holds it); NaN where it is not defined.
-            const auto order = [&](const double Run::*member) -> double {
-              if (r == 0 || runs[r - 1].failed)
-                return std::numeric_limits<double>::quiet_NaN();
-              const Run   &previous = runs[r - 1];
-              const double h_prev
-                = parameters.lengths[0] / previous.subdivisions;
-              // The order in the quantity that varies: k on a fixed mesh, h at
-              // a fixed step, h + k when both change.
-              const double size_prev
-                = (previous.subdivisions == run.subdivisions ? 0. : h_prev)
-                  + (previous.time_step == run.time_step ? 0.
-                                                         : previous.time_step);
-              const double size
-                = (previous.subdivisions == run.subdivisions ? 0. : h)
-                  + (previous.time_step == run.time_step ? 0. : run.time_step);
-              return std::log(previous.*member / run.*member)
-                     / std::log(size_prev / size);
-            };
-            // An order that is not defined (the first run, or after a failed
-            // one) is an empty field in the CSV file and "-" on the terminal,
-            // never a "nan" among the numbers.
-            const auto csv_field = [](const double value) {
-              std::ostringstream text;
-              if (std::isfinite(value))
-                text << std::setprecision(10) << value;
-              return text.str();
-            };
-            const auto terminal_order = [](const double value) {
-              std::ostringstream text;
-              if (std::isfinite(value))
-                text << std::fixed << std::setprecision(2) << value;
-              else
-                text << '-';
-              return text.str();
-            };
-            // A failed run: its resolution, and no errors.
-            if (run.failed)
-              {
-                csv << h << ',' << run.time_step << ',' << run.subdivisions
-                    << ",,,0," << run.wall_time << ",,,,,,\n";
-                std::cout << std::setw(6)
-                          << "1/" + std::to_string(run.subdivisions)
-                          << std::setw(11) << std::setprecision(4)
-                          << run.time_step << "   failed: see above\n";
-                continue;
-              }
-            // The orders of the displacement part, the stress part and the
-            // total.
-            const double order_u     = order(&Run::max_error_u);
-            const double order_sigma = order(&Run::max_error_sigma);
-            const double order_total = order(&Run::max_error);
-
-            // One row of the CSV file, full precision ...
-            csv << h << ',' << run.time_step << ',' << run.subdivisions << ','
-                << run.n_dofs << ',' << run.times.size() << ','
-                << run.n_compared_levels << ',' << run.wall_time << ','
-                << run.max_error_u << ',' << run.max_error_sigma << ','
-                << run.max_error << ',' << csv_field(order_u) << ','
-                << csv_field(order_sigma) << ',' << csv_field(order_total)
-                << '\n';
-            // ... and of the terminal table, aligned in columns.
-            std::cout << std::setw(6) << "1/" + std::to_string(run.subdivisions)
-                      << std::setw(11) << std::setprecision(4) << run.time_step
-                      << std::setw(9) << run.n_dofs << std::setw(6)
-                      << run.times.size() << std::setw(10)
-                      << wall_time_text(run.wall_time) << std::scientific
-                      << std::setprecision(3) << std::setw(11)
-                      << run.max_error_u << std::setw(7)
-                      << terminal_order(order_u) << std::setw(11)
-                      << run.max_error_sigma << std::setw(7)
-                      << terminal_order(order_sigma) << std::setw(11)
-                      << run.max_error << std::setw(7)
-                      << terminal_order(order_total) << std::defaultfloat
-                      << '\n';
-          }
+          write_table_row(r, csv);
         folder->stage("convergence.csv", csv.str());
       }
     folder->commit();
+  }
+
+
+
+  // @sect4{ConvergenceStudy::wall_time_text}
+  //
+  // Wall times only with the timing summary, so that the table of a test
+  // run is reproducible.
+  template <int dim>
+  std::string
+  ConvergenceStudy<dim>::wall_time_text(const double seconds) const
+  {
+    std::ostringstream text;
+    if (parameters.print_timing_summary)
+      text << std::setprecision(3) << seconds;
+    else
+      text << '-';
+    return text.str();
+  }
+
+
+
+  // @sect4{ConvergenceStudy::observed_order}
+  //
+  // The observed order of one error column (a pointer to the member of Run
+  // that holds it) between runs r - 1 and r: log(e_{r-1}/e_r) /
+  // log(s_{r-1}/s_r) with s = h + k, or s = k (s = h) when the mesh (the
+  // time step) is the same. h is measured along the first edge,
+  // L1 / Subdivisions. NaN where the order is not defined: for the first
+  // run and after a failed one (there is no error to compare with).
+  template <int dim>
+  double
+  ConvergenceStudy<dim>::observed_order(const unsigned int r,
+                                        const double Run::*member) const
+  {
+    if (r == 0 || runs[r - 1].failed)
+      return std::numeric_limits<double>::quiet_NaN();
+    const Run   &run      = runs[r];
+    const Run   &previous = runs[r - 1];
+    const double h        = parameters.lengths[0] / run.subdivisions;
+    const double h_prev   = parameters.lengths[0] / previous.subdivisions;
+    // The order in the quantity that varies: k on a fixed mesh, h at a
+    // fixed step, h + k when both change.
+    const double size_prev
+      = (previous.subdivisions == run.subdivisions ? 0. : h_prev)
+        + (previous.time_step == run.time_step ? 0. : previous.time_step);
+    const double size
+      = (previous.subdivisions == run.subdivisions ? 0. : h)
+        + (previous.time_step == run.time_step ? 0. : run.time_step);
+    return std::log(previous.*member / run.*member)
+           / std::log(size_prev / size);
+  }
+
+
+
+  // @sect4{ConvergenceStudy::write_table_row}
+  //
+  // Run r's row of convergence.csv (into csv) and of the terminal table.
+  // An order that is not defined (the first run, or after a failed one) is
+  // an empty field in the CSV file and "-" on the terminal, never a "nan"
+  // among the numbers. A failed run keeps its row, with its resolution and
+  // no errors or orders.
+  namespace
+  {
+    std::string
+    csv_field(const double value)
+    {
+      std::ostringstream text;
+      if (std::isfinite(value))
+        text << std::setprecision(10) << value;
+      return text.str();
+    }
+
+    std::string
+    terminal_order(const double value)
+    {
+      std::ostringstream text;
+      if (std::isfinite(value))
+        text << std::fixed << std::setprecision(2) << value;
+      else
+        text << '-';
+      return text.str();
+    }
+  } // namespace
+
+
+
+  template <int dim>
+  void
+  ConvergenceStudy<dim>::write_table_row(const unsigned int r,
+                                         std::ostream      &csv) const
+  {
+    const Run   &run = runs[r];
+    const double h   = parameters.lengths[0] / run.subdivisions;
+    // A failed run: its resolution, and no errors.
+    if (run.failed)
+      {
+        csv << h << ',' << run.time_step << ',' << run.subdivisions << ",,,0,"
+            << run.wall_time << ",,,,,,\n";
+        std::cout << std::setw(6) << "1/" + std::to_string(run.subdivisions)
+                  << std::setw(11) << std::setprecision(4) << run.time_step
+                  << "   failed: see above\n";
+        return;
+      }
+    // The orders of the displacement part, the stress part and the total.
+    const double order_u     = observed_order(r, &Run::max_error_u);
+    const double order_sigma = observed_order(r, &Run::max_error_sigma);
+    const double order_total = observed_order(r, &Run::max_error);
+
+    // One row of the CSV file, full precision ...
+    csv << h << ',' << run.time_step << ',' << run.subdivisions << ','
+        << run.n_dofs << ',' << run.times.size() << ',' << run.n_compared_levels
+        << ',' << run.wall_time << ',' << run.max_error_u << ','
+        << run.max_error_sigma << ',' << run.max_error << ','
+        << csv_field(order_u) << ',' << csv_field(order_sigma) << ','
+        << csv_field(order_total) << '\n';
+    // ... and of the terminal table, aligned in columns.
+    std::cout << std::setw(6) << "1/" + std::to_string(run.subdivisions)
+              << std::setw(11) << std::setprecision(4) << run.time_step
+              << std::setw(9) << run.n_dofs << std::setw(6) << run.times.size()
+              << std::setw(10) << wall_time_text(run.wall_time)
+              << std::scientific << std::setprecision(3) << std::setw(11)
+              << run.max_error_u << std::setw(7) << terminal_order(order_u)
+              << std::setw(11) << run.max_error_sigma << std::setw(7)
+              << terminal_order(order_sigma) << std::setw(11) << run.max_error
+              << std::setw(7) << terminal_order(order_total)
+              << std::defaultfloat << '\n';
   }
 
 

@@ -22,6 +22,7 @@
 #include <deal.II/grid/tria_iterator.h>
 
 #include "mesh.h"
+#include "robustness/mesh_checks.h"
 
 #include <algorithm>
 #include <array>

@@ -34,7 +34,7 @@
 
 #include <deal.II/numerics/error_estimator.h>
 
-#include "checkpoint.h"
+#include "robustness/checkpoint_file.h"
 #include "stress_point_transfer.h"
 #include "viscoplastic_contact.h"
 
@@ -103,11 +103,11 @@ namespace ViscoContact
   // step would use the new mesh).
   template <int dim>
   bool
-  ViscoplasticContact<dim>::adaptation_due(const unsigned int step,
-                                           const unsigned int n_steps) const
+  ViscoplasticContact<dim>::adaptation_due() const
   {
     return parameters.adaptive_refinement
-           && step % parameters.refinement_interval == 0 && step < n_steps;
+           && schedule.step_number() % parameters.refinement_interval == 0
+           && !schedule.is_at_end();
   }
 
 
@@ -371,15 +371,7 @@ namespace ViscoContact
     // neighbour when that one is refined. The pressure away from Gamma_3 is
     // never read; on Gamma_3 the constraints change nothing (in 2D a vertex of
     // Gamma_3 is never hanging, in 3D a hanging one is no contact node).
-    VectorType pressure(solution);
-    pressure = 0;
-    if (contact_enabled)
-      for (unsigned int i = 0; i < contact_set.size(); ++i)
-        pressure.local_element(contact_set.node(i).local_dofs[0])
-          = contact_set.contact_pressure(i);
-    pressure.zero_out_ghost_values();
-    constraints.distribute(pressure);
-    pressure.update_ghost_values();
+    const VectorType pressure = contact_pressure_field();
     parallel::distributed::SolutionTransfer<dim, VectorType> nodal_transfer(
       dof_handler);
     nodal_transfer.prepare_for_coarsening_and_refinement(
@@ -458,16 +450,64 @@ namespace ViscoContact
                          quadrature_point_history[std::size_t(k) * n_q + q]);
       }
 
+    if (transfer_stress_points)
+      check_stress_point_transfer(refined_parents);
+
+    // The contact set: (r, z) from u and the pressure, and the piece they name.
+    if (contact_enabled)
+      {
+        for (unsigned int i = 0; i < contact_set.size(); ++i)
+          {
+            contact_set.r[i] = contact_set.normal_component(solution, i);
+            contact_set.z[i]
+              = contact_set.weight(i)
+                * new_pressure.local_element(contact_set.node(i).local_dofs[0]);
+          }
+        contact_set.update_pieces();
+      }
+  }
+
+
+
+  // @sect4{ViscoplasticContact::contact_pressure_field}
+  //
+  // z_i / w_i at the x-dof of each contact node, zero elsewhere, with the
+  // hanging-node constraints of the mesh and the ghosts.
+  template <int dim>
+  VectorType
+  ViscoplasticContact<dim>::contact_pressure_field() const
+  {
+    VectorType pressure(solution);
+    pressure = 0;
+    if (contact_enabled)
+      for (unsigned int i = 0; i < contact_set.size(); ++i)
+        pressure.local_element(contact_set.node(i).local_dofs[0])
+          = contact_set.contact_pressure(i);
+    pressure.zero_out_ghost_values();
+    constraints.distribute(pressure);
+    pressure.update_ghost_values();
+    return pressure;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::check_stress_point_transfer}
+  //
+  // A check of the whole transfer in Debug builds (nothing in Release): with
+  // the implicit update the stored history is sigma_n - E eps(u_n). On a
+  // refined cell u is transferred exactly, E eps(u) of a Q1 field is Q1 on an
+  // affine cell, and the Q1 transfer of sigma and of the history is exact for
+  // it, so sigma - history = E eps(u) at the children's stress points to
+  // round-off. A wrong order of the children or of the Gauss points would
+  // break it.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::check_stress_point_transfer(
+    [[maybe_unused]] const std::set<CellId> &refined_parents) const
+  {
 #ifdef DEBUG
-    // A check of the whole transfer in Debug builds: with the implicit
-    // update the stored history is sigma_n - E eps(u_n). On a refined cell
-    // u is transferred exactly, E eps(u) of a Q1 field is Q1 on an affine
-    // cell, and the Q1 transfer of sigma and of the history is exact for
-    // it, so sigma - history = E eps(u) at the children's stress points to
-    // round-off. A wrong order of the children or of the Gauss points would
-    // break it.
-    if (transfer_stress_points && implicit_update()
-        && parameters.mesh_file.empty())
+    const unsigned int n_q = stress_quadrature.size();
+    if (implicit_update() && parameters.mesh_file.empty())
       for (unsigned int k = 0; k < owned_cells.size(); ++k)
         if (owned_cells[k]->level() > 0
             && refined_parents.count(owned_cells[k]->parent()->id()) > 0)
@@ -484,19 +524,6 @@ namespace ViscoContact
                                 "reproduce E eps(u) on a refined cell."));
             }
 #endif
-
-    // The contact set: (r, z) from u and the pressure, and the piece they name.
-    if (contact_enabled)
-      {
-        for (unsigned int i = 0; i < contact_set.size(); ++i)
-          {
-            contact_set.r[i] = contact_set.normal_component(solution, i);
-            contact_set.z[i]
-              = contact_set.weight(i)
-                * new_pressure.local_element(contact_set.node(i).local_dofs[0]);
-          }
-        contact_set.update_pieces();
-      }
   }
 
 
@@ -524,26 +551,27 @@ namespace ViscoContact
   // step 1; this function leaves its starting point: the mesh, the state
   // carried over to it, and its external load.
   //
-  // The schedule is copied for the coarse solves, so that a step cut on a
-  // coarse mesh does not change the schedule of the run (the cut solve is
+  // The schedule is restored after the coarse solves, so that a step cut on
+  // a coarse mesh does not change the schedule of the run (the cut solve is
   // still a start). Their active-set iterations are counted apart from those
   // of the run's steps, and their Newton and inner iterations not at all, so
   // that the run summary's counts are those of the recorded steps.
   template <int dim>
   void
-  ViscoplasticContact<dim>::solve_initial_cycles(std::vector<double> &times)
+  ViscoplasticContact<dim>::solve_initial_cycles()
   {
     TimerOutput::Scope t(computing_timer, "Initial cycles");
     const bool         global
       = parameters.initial_refinement == Parameters::InitialRefinement::global;
     for (unsigned int cycle = 0; cycle < parameters.initial_cycles; ++cycle)
       {
-        std::vector<double>               cycle_times = times;
+        const TimeSchedule                run_schedule = schedule;
         const std::array<unsigned int, 3> counts_before{
           {total_active_set_iterations,
            total_newton_iterations,
            total_inner_iterations}};
-        const ActiveSetResult result = solve_step_with_recovery(1, cycle_times);
+        const ActiveSetResult result
+          = solve_step_with_recovery(save_step_start());
         initial_cycle_iterations += result.iterations();
         ++n_initial_cycles;
         total_active_set_iterations = counts_before[0];
@@ -570,15 +598,16 @@ namespace ViscoContact
         else
           {
             if (parameters.plasticity)
-              update_stresses(cycle_times[1] - cycle_times[0], 0.);
+              update_stresses(schedule.step_length(), 0.);
             marked = mark_cells_by_indicators();
           }
+        schedule = run_schedule;
         if (!marked)
           break;
         refine_and_transfer(/*transfer_stress_points=*/false);
         // The external load of step 1 on the new mesh (the history load of the
         // initial state is zero, as setup_on_mesh() left it).
-        assemble_external_load(times[1]);
+        assemble_external_load(schedule.next_time());
       }
     // The mesh of the run from here on, which the "Mesh:" line of the header
     // (the first mesh of the cycles) does not show.
@@ -593,15 +622,15 @@ namespace ViscoContact
   // @sect4{ViscoplasticContact::restore_checkpoint_mesh}
   //
   // A checkpoint holds one record per active cell, keyed by its cell id
-  // (checkpoint.h): the ids of the records are the adapted mesh. The mesh
-  // built from the parameter file is refined where a checkpoint cell descends
-  // from one of its cells and coarsened where one of its cells descends from a
-  // checkpoint cell, pass by pass (coarsening goes one level per pass), until
-  // its active cells are those of the checkpoint; then everything is set up on
-  // it. The ids of all records are gathered on every rank: a few bytes per
-  // cell, for a mesh whose size Maximum cells bounds. Whether the mesh matches
-  // is checked by resume_from_checkpoint(), which must find every owned cell's
-  // record.
+  // (robustness/checkpoint_file.h): the ids of the records are the adapted
+  // mesh. The mesh built from the parameter file is refined where a checkpoint
+  // cell descends from one of its cells and coarsened where one of its cells
+  // descends from a checkpoint cell, pass by pass (coarsening goes one level
+  // per pass), until its active cells are those of the checkpoint; then
+  // everything is set up on it. The ids of all records are gathered on every
+  // rank: a few bytes per cell, for a mesh whose size Maximum cells bounds.
+  // Whether the mesh matches is checked by resume_from_checkpoint(), which must
+  // find every owned cell's record.
   template <int dim>
   void
   ViscoplasticContact<dim>::restore_checkpoint_mesh()

@@ -13,7 +13,7 @@
 #include <deal.II/numerics/data_out.h>
 
 #include "back_ends/blas_threads.h"
-#include "checkpoint.h"
+#include "robustness/checkpoint_file.h"
 #include "robustness/file_output.h"
 #include "robustness/output_folder.h"
 #include "viscoplastic_contact.h"
@@ -295,41 +295,13 @@ namespace ViscoContact
     // mesh (owned, ghost and artificial cells), indexed by active_cell_index()
     // as DataOut expects; only the entries of owned cells are set, and only
     // those are written.
-    const unsigned int             n_components = dim * (dim + 1) / 2;
-    const unsigned int             n_q          = stress_quadrature.size();
-    const unsigned int             n_cells = triangulation->n_active_cells();
-    std::vector<Vector<float>>     stress(n_components, Vector<float>(n_cells));
-    std::vector<Vector<float>>     viscoplastic(n_components,
+    const unsigned int         n_components = dim * (dim + 1) / 2;
+    const unsigned int         n_cells      = triangulation->n_active_cells();
+    std::vector<Vector<float>> stress(n_components, Vector<float>(n_cells));
+    std::vector<Vector<float>> viscoplastic(n_components,
                                             Vector<float>(n_cells));
-    Vector<float>                  von_mises(n_cells), subdomain(n_cells);
-    const SymmetricTensor<4, dim> &E = material.elasticity_tensor();
-    for (unsigned int k = 0; k < owned_cells.size(); ++k)
-      {
-        const unsigned int c = owned_cells[k]->active_cell_index();
-        subdomain[c]         = owned_cells[k]->subdomain_id();
-        for (unsigned int q = 0; q < n_q; ++q)
-          {
-            // The viscoplastic part is recomputed as sigma_n - E eps(u_n)
-            // instead of being read from the stored history, because with the
-            // explicit update the stored history is already H_{n+1}, the one of
-            // the next step (after every step but the last).
-            const SymmetricTensor<2, dim> &sigma
-              = quadrature_point_history[std::size_t(k) * n_q + q].stress;
-            const SymmetricTensor<2, dim> vp
-              = sigma
-                - E * symmetrize(displacement_gradient_at(solution, k, q));
-            // Component i of the symmetric tensor, in deal.II's unrolled order
-            // (the diagonal first); each stress point contributes 1/n_q of the
-            // cell's average.
-            for (unsigned int i = 0; i < n_components; ++i)
-              {
-                const auto index = sigma.unrolled_to_component_indices(i);
-                stress[i][c] += sigma[index] / n_q;
-                viscoplastic[i][c] += vp[index] / n_q;
-              }
-            von_mises[c] += material.equivalent_stress(sigma) / n_q;
-          }
-      }
+    Vector<float>              von_mises(n_cells), subdomain(n_cells);
+    compute_cell_output_fields(stress, viscoplastic, von_mises, subdomain);
 
     // The nodal contact fields live on the scalar DoFHandler.
     // fill_output_fields() sets the owned entries of this rank's contact nodes;
@@ -391,8 +363,8 @@ namespace ViscoContact
     DataOutBase::VtkFlags flags(time, step);
     flags.compression_level = DataOutBase::VtkFlags::best_speed;
     data_out.set_flags(flags);
-    // The .vtu pieces are written by groups of ranks (at most 8 files) with MPI
-    // I/O, and rank 0 writes the .pvtu record that lists them; the step number
+    // The .vtu pieces are written by groups of ranks (at most 8 files), and
+    // rank 0 writes the .pvtu record that lists them; the step number
     // has 4 digits in the file names. Every file goes to a temporary name
     // first, and a failure on any rank stops all ranks with the file and the
     // reason (write_vtu_pieces()).
@@ -417,11 +389,57 @@ namespace ViscoContact
 
 
 
+  // @sect4{ViscoplasticContact::compute_cell_output_fields}
+  //
+  // Per owned cell the average over its stress points of sigma_n, of its
+  // viscoplastic part and of the von Mises stress, and the cell's subdomain.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::compute_cell_output_fields(
+    std::vector<Vector<float>> &stress,
+    std::vector<Vector<float>> &viscoplastic,
+    Vector<float>              &von_mises,
+    Vector<float>              &subdomain) const
+  {
+    const unsigned int             n_components = stress.size();
+    const unsigned int             n_q          = stress_quadrature.size();
+    const SymmetricTensor<4, dim> &E            = material.elasticity_tensor();
+    for (unsigned int k = 0; k < owned_cells.size(); ++k)
+      {
+        const unsigned int c = owned_cells[k]->active_cell_index();
+        subdomain[c]         = owned_cells[k]->subdomain_id();
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            // The viscoplastic part is recomputed as sigma_n - E eps(u_n)
+            // instead of being read from the stored history, because with the
+            // explicit update the stored history is already H_{n+1}, the one of
+            // the next step (after every step but the last).
+            const SymmetricTensor<2, dim> &sigma
+              = quadrature_point_history[std::size_t(k) * n_q + q].stress;
+            const SymmetricTensor<2, dim> vp
+              = sigma
+                - E * symmetrize(displacement_gradient_at(solution, k, q));
+            // Component i of the symmetric tensor, in deal.II's unrolled order
+            // (the diagonal first); each stress point contributes 1/n_q of the
+            // cell's average.
+            for (unsigned int i = 0; i < n_components; ++i)
+              {
+                const auto index = sigma.unrolled_to_component_indices(i);
+                stress[i][c] += sigma[index] / n_q;
+                viscoplastic[i][c] += vp[index] / n_q;
+              }
+            von_mises[c] += material.equivalent_stress(sigma) / n_q;
+          }
+      }
+  }
+
+
+
   // @sect4{ViscoplasticContact::write_vtu_pieces}
   //
   // What DataOut::write_vtu_with_pvtu_record() does, with deal.II's file
   // names, but through the output folder: deal.II's writes the files under
-  // their final names with MPI I/O and throws on the rank that sees an I/O
+  // their final names (with MPI I/O) and throws on the rank that sees an I/O
   // error, while the others wait in the next collective call (a hang on a
   // full disk), and it leaves a truncated file behind.
   //
@@ -557,7 +575,7 @@ namespace ViscoContact
       pcout << "  Newton iterations (implicit scheme): "
             << total_newton_iterations << '\n';
     pcout << "  active-set iterations: " << total_active_set_iterations
-          << " in " << n_time_steps << " steps\n";
+          << " in " << schedule.n_steps() << " steps\n";
     // The solves of step 1 on the coarser meshes of the initial cycles (not
     // in the count above, which is that of the recorded steps).
     if (n_initial_cycles > 0)
@@ -565,8 +583,8 @@ namespace ViscoContact
             << " active-set iterations on " << n_initial_cycles
             << " coarser meshes\n";
     if (parameters.time_step_control == Parameters::TimeStepControl::adaptive)
-      pcout << "  adaptive time steps: " << n_time_steps << " accepted, "
-            << n_rejected_steps << " rejected\n";
+      pcout << "  adaptive time steps: " << schedule.n_steps() << " accepted, "
+            << schedule.n_rejected_steps() << " rejected\n";
     pcout << "  operator: assembled " << n_operator_assemblies
           << "x, set up by the back end " << statistics.operator_setups
           << "x; external load assembled " << n_external_load_assemblies
@@ -576,8 +594,20 @@ namespace ViscoContact
           << "Final displacement: l2 norm " << l2_norm << ", max norm "
           << max_norm << '\n';
 
-    if (!parameters.print_timing_summary)
-      return;
+    if (parameters.print_timing_summary)
+      print_cost_measurement();
+  }
+
+
+
+  // @sect4{ViscoplasticContact::print_cost_measurement}
+  //
+  // With Print timing summary: deal.II's timer summary, then the reference
+  // costs a step is compared with.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::print_cost_measurement()
+  {
     computing_timer.print_summary();
 
     // The reference costs, measured now (the run is over, so the state may
@@ -608,7 +638,7 @@ namespace ViscoContact
     // update, without output), again the maximum over the ranks.
     const double step_time
       = Utilities::MPI::max(time_loop_compute_time, mpi_communicator)
-        / std::max(1u, n_steps_done);
+        / std::max<double>(1, schedule.step_number());
 
     // The peak resident memory of each rank (VmHWM, in kB), summed over the
     // ranks.

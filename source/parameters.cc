@@ -1160,6 +1160,16 @@ namespace ViscoContact
       ConvergenceStudy::parse_parameters(prm);
       Output::parse_parameters(prm);
       Checkpoint::parse_parameters(prm);
+      check_study_entries();
+      check_mesh_adaptation_entries();
+      check_schedule_size(prm);
+      check_unused_entries(prm);
+    }
+
+    // What a convergence study needs of the other subsections.
+    void
+    AllParameters::check_study_entries() const
+    {
       if (study_enabled)
         require(checkpoint_interval == 0 && !resume && stop_after_step == 0,
                 "Checkpoint",
@@ -1186,6 +1196,18 @@ namespace ViscoContact
                 "an empty Mesh file and no Global refinements or Contact "
                 "refinement levels when a convergence study runs (it builds "
                 "its own nested boxes)");
+      if (study_enabled && cell_type == CellType::simplex)
+        require(simplex_pattern != SimplexPattern::five_tetrahedra,
+                "Geometry",
+                "Simplex pattern",
+                "five tetrahedra",
+                "a pattern that gives nested meshes (/) when a convergence "
+                "study runs");
+    }
+
+    void
+    AllParameters::check_mesh_adaptation_entries() const
+    {
       // Adaptivity refines p4est meshes; deal.II 9.4's fully distributed
       // triangulation of simplices cannot be refined during the run, and a
       // convergence study builds its own nested meshes.
@@ -1229,7 +1251,13 @@ namespace ViscoContact
                   "refinement of a graded mesh does not give the graded mesh "
                   "of the parameter file); or Initial refinement = adaptive");
         }
-      // Entries whose value the run would otherwise ignore without a word.
+    }
+
+    // Profile times within the run, and schedules of a size the run can
+    // take and write.
+    void
+    AllParameters::check_schedule_size(const ParameterHandler &prm) const
+    {
       // A profile time outside [0, T] has no step near it (the closest step
       // would be the first or the last one, a profile nobody asked for).
       for (const double t : profile_times)
@@ -1241,9 +1269,10 @@ namespace ViscoContact
       // Schedules beyond Maximum number of steps (or beyond the range of the
       // step counter, where t_n = n k no longer gives distinct times) and
       // more than max_output_records .vtu records are refused. The number of
-      // steps is that of time_levels() (time_loop.cc), computed in floating
-      // point before it is converted; adaptive steps are not known before
-      // the run, and neither is their number (the time loop bounds them).
+      // steps is that of n_fixed_steps() (time_schedule.cc), computed in
+      // floating point before it is converted; adaptive steps are not known
+      // before the run, and neither is their number (the time loop bounds
+      // them).
       const auto steps_of = [&](const double time_step) {
         return std::ceil(end_time / time_step * (1 - 1e-12));
       };
@@ -1310,6 +1339,12 @@ namespace ViscoContact
               std::to_string(checkpoint_interval),
               "0 (never) or at most the number of steps, "
                 + std::to_string(n_steps));
+    }
+
+    // Entries whose value the run would otherwise ignore without a word.
+    void
+    AllParameters::check_unused_entries(const ParameterHandler &prm) const
+    {
       // The points of a piecewise-linear law mean nothing to the benchmark
       // law (their defaults are empty, so a value is a mistake, not a
       // leftover default).
@@ -1321,14 +1356,6 @@ namespace ViscoContact
                   prm.get({"Contact"}, entry),
                   "empty when Law = nonmonotone (it is used by Law = "
                   "piecewise linear only)");
-
-      if (study_enabled && cell_type == CellType::simplex)
-        require(simplex_pattern != SimplexPattern::five_tetrahedra,
-                "Geometry",
-                "Simplex pattern",
-                "five tetrahedra",
-                "a pattern that gives nested meshes (/) when a convergence "
-                "study runs");
     }
 
     void

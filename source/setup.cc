@@ -484,7 +484,7 @@ namespace ViscoContact
         if (explicit_history_update())
           pcout << " (at most 0.9 x the stability limit)";
         pcout << (parameters.resume ? ", next step " : ", first step ")
-              << desired_time_step << " s\n";
+              << schedule.proposed_step() << " s\n";
         if (explicit_history_update()
             && controller.maximum_step
                  >= 4 * material.viscosity()

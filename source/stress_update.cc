@@ -60,21 +60,12 @@ namespace ViscoContact
     // anyway for the next history (also after the last step, for the
     // estimate), the implicit one has it as the history increment divided by
     // k_n; without plasticity there is no history and no estimate.
-    // E^-1 (for the estimate's norm) is inverted at unit scale: the inverse
-    // of E itself would overflow in its intermediate products for a Young's
-    // modulus near the largest double.
-    const SymmetricTensor<4, dim> &E = material.elasticity_tensor();
-    const double           modulus   = material.largest_elastic_eigenvalue();
-    const StressUpdateStep step{implicit_update(),
-                                explicit_history_update() && next_time_step > 0,
-                                parameters.plasticity && current_time_step > 0,
-                                current_time_step,
-                                next_time_step,
-                                invert(E / modulus) / modulus};
-    const bool             update_history = step.update_history;
-    const bool             estimate       = step.estimate;
-    const unsigned int     n_q            = stress_quadrature.size();
-    const unsigned int     n_local        = n_cell_vertices * dim;
+    const StressUpdateStep step
+      = stress_update_step(current_time_step, next_time_step);
+    const bool         update_history = step.update_history;
+    const bool         estimate       = step.estimate;
+    const unsigned int n_q            = stress_quadrature.size();
+    const unsigned int n_local        = n_cell_vertices * dim;
 
     // The work at the stress points is independent from point to point, so
     // the threads of this rank (as many as deal.II's MultithreadInfo allows:
@@ -159,23 +150,55 @@ namespace ViscoContact
     error_estimate
       = estimate ? step_error_estimate(local_sums, current_time_step) : 0.;
 
-    // An unstable explicit update ends in stresses that overflow: stop
-    // rather than go on with (and write) infinite or NaN fields. The limit
-    // and the step are printed with 6 significant digits (a fixed format
-    // would print a tiny limit as 0).
     if (!std::isfinite(max_von_mises))
-      {
-        std::ostringstream message;
-        message << "The stresses are no longer finite (NaN or Inf). With the "
-                   "explicit history update this means the time step is too "
-                   "large: it is stable for k < 4 lambda / lambda_max(E) = "
-                << 4 * material.viscosity()
-                     / material.largest_elastic_eigenvalue()
-                << " s (doc/model.md, section 3); <Time step> in subsection "
-                   "<Time> is "
-                << parameters.time_step << " s.";
-        AssertThrow(false, ExcMessage(message.str()));
-      }
+      stop_on_non_finite_stresses();
+  }
+
+
+
+  // @sect4{ViscoplasticContact::stress_update_step}
+  //
+  // E^-1 (for the estimate's norm) is inverted at unit scale: the inverse of
+  // E itself would overflow in its intermediate products for a Young's
+  // modulus near the largest double.
+  template <int dim>
+  typename ViscoplasticContact<dim>::StressUpdateStep
+  ViscoplasticContact<dim>::stress_update_step(
+    const double current_time_step,
+    const double next_time_step) const
+  {
+    const SymmetricTensor<4, dim> &E = material.elasticity_tensor();
+    const double modulus             = material.largest_elastic_eigenvalue();
+    return {implicit_update(),
+            explicit_history_update() && next_time_step > 0,
+            parameters.plasticity && current_time_step > 0,
+            current_time_step,
+            next_time_step,
+            current_time_step / (2 * material.viscosity()),
+            invert(E / modulus) / modulus};
+  }
+
+
+
+  // @sect4{ViscoplasticContact::stop_on_non_finite_stresses}
+  //
+  // An unstable explicit update ends in stresses that overflow: stop rather
+  // than go on with (and write) infinite or NaN fields. The limit and the
+  // step are printed with 6 significant digits (a fixed format would print a
+  // tiny limit as 0).
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::stop_on_non_finite_stresses() const
+  {
+    std::ostringstream message;
+    message << "The stresses are no longer finite (NaN or Inf). With the "
+               "explicit history update this means the time step is too "
+               "large: it is stable for k < 4 lambda / lambda_max(E) = "
+            << 4 * material.viscosity() / material.largest_elastic_eigenvalue()
+            << " s (doc/model.md, section 3); <Time step> in subsection "
+               "<Time> is "
+            << parameters.time_step << " s.";
+    AssertThrow(false, ExcMessage(message.str()));
   }
 
 
@@ -213,8 +236,7 @@ namespace ViscoContact
       {
         state.stress
           = material.implicit_stress_update(elastic_stress + state.history,
-                                            step.current_time_step
-                                              / (2 * material.viscosity()),
+                                            step.viscous_parameter,
                                             nullptr,
                                             &state.plastic_multiplier);
         const SymmetricTensor<2, dim> new_history

@@ -6,7 +6,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/timer.h>
 
-#include "time_loop.h"
+#include "step_report.h"
 #include "viscoplastic_contact.h"
 
 #include <algorithm>
@@ -15,9 +15,101 @@
 
 namespace ViscoContact
 {
+  // @sect4{ViscoplasticContact::do_time_step}
+  //
+  // One time step, from the current time of the schedule to the next: with
+  // Initial cycles, step 1 is first solved on coarser meshes (nested
+  // iteration, solve_initial_cycles()); then the step problem is solved
+  // (solve_step_with_recovery(), which may cut the step), and the stresses
+  // sigma_n are updated at every stress point with the history of the next
+  // step, whose length is the distance to the next time level where it is
+  // known (fixed steps; 0 after the last step, where no history is needed).
+  //
+  // With adaptive steps the step comes with its error test
+  // (accept_adaptive_step()): a rejected step is repeated from the state at
+  // its start with a shorter step. Only once a step is accepted is the next
+  // level known: the controller's step fitted to the targets, and the
+  // history is advanced for it.
+  template <int dim>
+  ActiveSetResult
+  ViscoplasticContact<dim>::do_time_step()
+  {
+    const unsigned int n = schedule.step_number() + 1;
+    // Adaptive and cut steps are not counted before the run: their number
+    // is bounded here (fixed schedules were checked with the parameters).
+    check_step_count(n, schedule.current_time());
+    if (n == 1 && parameters.initial_cycles > 0)
+      solve_initial_cycles();
+
+    // u_{n-1} and z_{n-1}: once step n is accepted, the start the next
+    // step's prediction extrapolates from (predict_step_start()), copied
+    // only if there is a prediction. Not the initial state u_0 = 0: a load
+    // already present at t = 0 makes the first step a jump, not a piece of a
+    // smooth path to extrapolate.
+    const bool keep_step_start = parameters.predicted_start && n > 1;
+    StepStart  step_start;
+    if (keep_step_start)
+      step_start = {solution, contact_set.z};
+
+    const StepStartState start         = save_step_start();
+    double               proposed_step = 0;
+    ActiveSetResult      result;
+    do
+      {
+        result = solve_step_with_recovery(start);
+        update_stresses(schedule.step_length(),
+                        schedule.following_step_length());
+    } while (schedule.is_adaptive()
+             && !accept_adaptive_step(start, proposed_step));
+
+    if (keep_step_start)
+      previous_step_start = std::move(step_start);
+    schedule.advance_time(proposed_step);
+    if (schedule.is_adaptive() && explicit_history_update()
+        && !schedule.is_at_end())
+      advance_history(schedule.step_length());
+    return result;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::save_step_start}
+  //
+  // What a failed attempt is undone with: u_{n-1} and the contact state (the
+  // pieces and (r, z) of every owned node; each rank keeps its own part). The
+  // stress points need no copy for that: a failed attempt changes nothing
+  // there but the starting guesses of the plastic multipliers, since sigma_n
+  // and the history are only written by update_stresses() (and by the
+  // rescaling of a cut step). A rejected adaptive step has updated them, so
+  // with adaptive steps they are copied too, with the step length the
+  // stored history H_n was advanced for.
+  template <int dim>
+  typename ViscoplasticContact<dim>::StepStartState
+  ViscoplasticContact<dim>::save_step_start() const
+  {
+    StepStartState start{solution, contact_set.state(), {}, 0.};
+    if (schedule.is_adaptive())
+      start.stress_points = quadrature_point_history;
+    start.step_length = schedule.step_length();
+    return start;
+  }
+
+
+
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::restore_step_start(const StepStartState &start)
+  {
+    solution = start.solution;
+    solution.update_ghost_values();
+    contact_set.set_state(start.contact);
+  }
+
+
+
   // @sect4{ViscoplasticContact::solve_step_with_recovery}
   //
-  // One time step, and what happens when its solve fails (the active-set,
+  // The step problem, and what happens when its solve fails (the active-set,
   // Krylov or Newton iteration reaches its limit, or the displacement is
   // not finite): the state at the start of the step is restored, and
   // either the step is cut in half (the other half becomes the next step
@@ -27,33 +119,20 @@ namespace ViscoContact
   // accepted state is written to failed_step_NNNN.pvtu and the run stops
   // with a report. All failure criteria are reduced over the ranks, so
   // every rank takes the same decision.
-  //
-  // What "the state at the start of the step" is: the displacement u_{n-1} and
-  // the contact state (the pieces and (r, z) of every owned node). The stress
-  // points need no copy: a failed attempt changes nothing there but the
-  // starting guesses of the plastic multipliers, since sigma_n and the history
-  // are only written by update_stresses() after a step was accepted (and by the
-  // rescaling of a cut step below).
   template <int dim>
   ActiveSetResult
-  ViscoplasticContact<dim>::solve_step_with_recovery(const unsigned int   n,
-                                                     std::vector<double> &times)
+  ViscoplasticContact<dim>::solve_step_with_recovery(
+    const StepStartState &start)
   {
-    // The copies a failed attempt is undone with (each rank keeps its own
-    // part).
-    const VectorType          start_solution   = solution;
-    const ContactNodes::State start_contact    = contact_set.state();
-    const bool                explicit_history = explicit_history_update();
-
-    // Each pass is one attempt at step n with the current schedule; a cut
-    // shortens times[n] and the next pass tries the shorter step. The loop ends
-    // by returning a converged result or by throwing.
+    // Each pass is one attempt with the current schedule; a cut shortens the
+    // step and the next pass tries the shorter one. The loop ends by
+    // returning a converged result or by throwing.
     while (true)
       {
         // The right-hand side depends on t_n, which a cut has changed.
-        const double k = times[n] - times[n - 1];
-        assemble_right_hand_side(times[n]);
-        predict_step_start(n, times);
+        const double k = schedule.step_length();
+        assemble_right_hand_side(schedule.next_time());
+        predict_step_start();
         const ActiveSetResult result
           = (implicit_update() ? solve_implicit_step(k)
                                : solve_explicit_step());
@@ -64,16 +143,11 @@ namespace ViscoContact
         // before the state is restored). Then back to u_{n-1} with its ghosts,
         // and to the pieces the step started from.
         const std::array<unsigned int, 3> states = count_contact_states();
-        solution                                 = start_solution;
-        solution.update_ghost_values();
-        contact_set.set_state(start_contact);
-        // cut_failed_step() decides from the parameters and the schedule, which
-        // every rank has alike, and on success inserts t_{n-1} + k/2 as the new
-        // t_n.
-        if (cut_failed_step(parameters, pcout, n, times, result.failure))
+        restore_step_start(start);
+        if (cut_failed_step(result.failure))
           {
-            if (explicit_history)
-              rescale_history_increment(k, times[n] - times[n - 1]);
+            if (explicit_history_update())
+              rescale_history_increment(k, schedule.step_length());
             continue;
           }
 
@@ -83,17 +157,43 @@ namespace ViscoContact
         // can be changed in the parameter file. Nothing of the failed attempt
         // is written, so the output of the run stays a consistent record of
         // accepted steps.
-        const std::string state_file = failed_state_file(n, "pvtu");
-        output_results(n, times[n - 1], "failed_step");
+        const unsigned int n          = schedule.step_number() + 1;
+        const std::string  state_file = failed_state_file(n, "pvtu");
+        output_results(n, schedule.current_time(), "failed_step");
         AssertThrow(false,
                     ExcMessage(failure_report(parameters,
                                               n,
-                                              times[n],
+                                              schedule.next_time(),
                                               k,
                                               result,
                                               states,
                                               state_file)));
       }
+  }
+
+
+
+  // @sect4{ViscoplasticContact::cut_failed_step}
+  //
+  // Recovery from a failed solve (doc/algorithm.md, "Failed solves"): the
+  // step is halved (TimeSchedule::cut_step()), only if On solver failure =
+  // cut time step, and never below Minimum time step; otherwise the caller
+  // stops the run with failure_report(). The decision uses only data every
+  // rank has alike, so all ranks cut or stop together.
+  template <int dim>
+  bool
+  ViscoplasticContact<dim>::cut_failed_step(const std::string &failure)
+  {
+    const double k = schedule.step_length();
+    if (parameters.on_failure != Parameters::FailurePolicy::cut_time_step
+        || k / 2 < parameters.minimum_time_step)
+      return false;
+    pcout << "Step " << schedule.step_number() + 1
+          << " (t = " << schedule.next_time() << ", k = " << k
+          << ") failed: " << failure
+          << "\n  Cutting the time step to k = " << k / 2 << ".\n";
+    schedule.cut_step();
+    return true;
   }
 
 
@@ -119,13 +219,13 @@ namespace ViscoContact
   // after a failed attempt), with the attempt's k_n.
   template <int dim>
   void
-  ViscoplasticContact<dim>::predict_step_start(const unsigned int         n,
-                                               const std::vector<double> &times)
+  ViscoplasticContact<dim>::predict_step_start()
   {
-    if (!parameters.predicted_start || !previous_step_start || n < 2)
+    if (!parameters.predicted_start || !previous_step_start
+        || schedule.step_number() < 1)
       return;
     const double ratio
-      = (times[n] - times[n - 1]) / (times[n - 1] - times[n - 2]);
+      = schedule.step_length() / schedule.previous_step_length();
     solution.zero_out_ghost_values();
     solution.sadd(1 + ratio, -ratio, previous_step_start->displacement);
     solution.update_ghost_values();
@@ -192,68 +292,53 @@ namespace ViscoContact
 
 
 
-  // @sect4{ViscoplasticContact::solve_adaptive_step}
+  // @sect4{ViscoplasticContact::accept_adaptive_step}
   //
-  // One adaptive step: the step with the failure recovery of
-  // solve_step_with_recovery(), the stresses and the error estimate
-  // (update_stresses() with no next step: the history waits for the next
-  // step's length), and the controller's decision. A rejected step is
-  // repeated from the state at its start, restored exactly: u_{n-1}, the
-  // contact state, and every stress-point record (sigma_{n-1}, the history
-  // H_n, the rates and multipliers), copied before the first attempt; the
+  // The controller's decision on a solved step, from the error estimate of its
+  // stress update. An accepted step returns true with the step the controller
+  // proposes next. A rejected step is repeated from the state at its start,
+  // restored exactly: u_{n-1}, the contact state, and every stress-point
+  // record (sigma_{n-1}, the history H_n, the rates and multipliers); the
   // history increment is then rescaled to the shorter step, as for a cut.
   // Every rank has the same estimate (a sum over the ranks), so all take the
   // same decision.
   template <int dim>
-  ActiveSetResult
-  ViscoplasticContact<dim>::solve_adaptive_step(const unsigned int   n,
-                                                std::vector<double> &times)
+  bool
+  ViscoplasticContact<dim>::accept_adaptive_step(const StepStartState &start,
+                                                 double &proposed_step)
   {
-    const TimeStepController  controller     = time_step_controller();
-    const std::vector<double> targets        = landing_targets();
-    const VectorType          start_solution = solution;
-    const ContactNodes::State start_contact  = contact_set.state();
-    const std::vector<QuadraturePointHistory<dim>> start_points
-      = quadrature_point_history;
-    // The step the stored history H_n was advanced for.
-    const double start_step = times[n] - times[n - 1];
-    while (true)
+    const TimeStepController controller = time_step_controller();
+    const double             k          = schedule.step_length();
+    const TimeStepDecision   decision
+      = control_time_step(controller,
+                          k,
+                          error_estimate,
+                          schedule.proposed_step());
+    if (decision.accepted)
       {
-        const ActiveSetResult result = solve_step_with_recovery(n, times);
-        const double          k      = times[n] - times[n - 1];
-        update_stresses(k, 0.);
-        const TimeStepDecision decision
-          = control_time_step(controller, k, error_estimate, desired_time_step);
-        desired_time_step = decision.step;
-        if (decision.accepted)
-          {
-            if (error_estimate > controller.tolerance && parameters.verbose)
-              pcout << "  Step " << n << " is at <Minimum time step> = "
-                    << controller.minimum_step
-                    << " and accepted above <Error tolerance>.\n";
-            return result;
-          }
-
-        // Rejected: the shorter step, fitted to the targets like any other
-        // (it ends before the level it replaces, which was at most a target).
-        ++n_rejected_steps;
-        const double level
-          = next_time_level(times[n - 1], decision.step, targets);
-        if (parameters.verbose)
-          pcout << "  Step " << n << " (t = " << times[n] << ", k = " << k
-                << ") rejected: error estimate " << std::setprecision(3)
-                << error_estimate << " > " << controller.tolerance
-                << "; repeated with k = " << std::setprecision(6)
-                << level - times[n - 1] << '\n';
-        solution = start_solution;
-        solution.update_ghost_values();
-        contact_set.set_state(start_contact);
-        quadrature_point_history = start_points;
-        times.resize(n);
-        times.push_back(level);
-        if (explicit_history_update())
-          rescale_history_increment(start_step, times[n] - times[n - 1]);
+        if (error_estimate > controller.tolerance && parameters.verbose)
+          pcout << "  Step " << schedule.step_number() + 1
+                << " is at <Minimum time step> = " << controller.minimum_step
+                << " and accepted above <Error tolerance>.\n";
+        proposed_step = decision.step;
+        return true;
       }
+
+    // Rejected: the shorter step, fitted to the targets like any other.
+    const double rejected_time = schedule.next_time();
+    schedule.reject_step(decision.step);
+    if (parameters.verbose)
+      pcout << "  Step " << schedule.step_number() + 1
+            << " (t = " << rejected_time << ", k = " << k
+            << ") rejected: error estimate " << std::setprecision(3)
+            << error_estimate << " > " << controller.tolerance
+            << "; repeated with k = " << std::setprecision(6)
+            << schedule.step_length() << '\n';
+    restore_step_start(start);
+    quadrature_point_history = start.stress_points;
+    if (explicit_history_update())
+      rescale_history_increment(start.step_length, schedule.step_length());
+    return false;
   }
 
 

@@ -9,12 +9,13 @@
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/fe_system.h>
 
-#include "checkpoint.h"
 #include "loads.h"
+#include "robustness/checkpoint_file.h"
 #include "robustness/stop_signals.h"
-#include "time_loop.h"
+#include "step_report.h"
 #include "viscoplastic_contact.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -237,252 +238,214 @@ namespace ViscoContact
   // @sect4{ViscoplasticContact::run}
   //
   // The algorithm of doc/model.md, section 2, as the reader would write it
-  // down: set up, then for each time step assemble the right-hand side,
-  // solve the step's variational-hemivariational inequality by the
-  // active-set method (for the implicit update: a Newton iteration of such
-  // solves), update the stresses and the history, and write the results.
-  // Around it: a resumed run starts after the step of its checkpoint, a
-  // checkpoint is written every Checkpoint interval steps, and a run may be
-  // told to stop after a given step (as if it had been killed).
-  //
-  // The schedule, times, is a vector that may grow during the run: a step whose
-  // solve fails may be cut in half, which inserts a new time level
-  // (solve_step_with_recovery()). That is why the loop runs to times.size() and
-  // recomputes the number of steps after every step, and why "the next step" is
-  // read off the schedule only after the current one was accepted.
+  // down: set up, then step by step through the schedule: assemble the
+  // right-hand side, solve the step's variational-hemivariational inequality
+  // by the active-set method (for the implicit update: a Newton iteration of
+  // such solves), update the stresses and the history (do_time_step()), and
+  // write the results (finish_time_step()).
   template <int dim>
   void
   ViscoplasticContact<dim>::run()
   {
-    // Set-up: the mesh, then everything that depends on it (setup_on_mesh()).
-    // A folder with another run's files is refused before any work is done
-    // (or, with Overwrite = true, cleared later by prepare_output_directory()).
+    // Set-up: a folder with another run's files is refused and a generated
+    // mesh far too large for the machine is refused before any work is done;
+    // then the mesh, and everything that depends on it (setup_on_mesh()). A
+    // scheduler's signal during the set-up stops the run between its phases
+    // (there is no step to save yet).
     check_output_directory();
-    // A generated mesh far too large for the machine is refused before it is
-    // built, with the estimate, instead of ending in std::bad_alloc.
     check_memory_estimate();
     make_grid();
-    // A scheduler's signal during the set-up stops the run between its
-    // phases (there is no step to save yet).
     StopSignals::stop_if_received(mpi_communicator, "after the mesh");
     setup_on_mesh();
     StopSignals::stop_if_received(mpi_communicator,
                                   "after the operator and the back end");
+    set_up_schedule();
+    prepare_output();
 
-    // t_n = n k with the last step shortened to end at T. A resumed run
-    // replaces the schedule by the one of its checkpoint (with the cut steps of
-    // the interrupted run), restores the state, and continues after the
-    // checkpoint's step. This happens before the output directory is prepared,
-    // so that a damaged or mismatched checkpoint stops the run before the
-    // output directory is modified.
-    std::vector<double> times
-      = time_levels(parameters.end_time, parameters.time_step);
-    // The loads at every point and time they will be evaluated: a load that
-    // is not finite stops the run here, naming the entry, the point and the
-    // time, before anything is read or written. (Adaptive steps are checked
-    // at the levels of Time step; the assembly checks every value it
-    // computes.)
-    check_loads(times);
-    // With adaptive steps the schedule holds the accepted levels and the next
-    // one: t_0 = 0 and t_1 after the first step, Time step within the
-    // controller's range and fitted to the targets. Each accepted step
-    // appends the next level (doc/adaptivity.md).
-    const bool adaptive
-      = parameters.time_step_control == Parameters::TimeStepControl::adaptive;
-    if (adaptive)
-      {
-        const TimeStepController controller = time_step_controller();
-        desired_time_step
-          = std::min(std::max(parameters.time_step, controller.minimum_step),
-                     controller.maximum_step);
-        times = {0., next_time_level(0., desired_time_step, landing_targets())};
-      }
-    unsigned int first_step = 1;
-    if (parameters.resume)
-      first_step = resume_from_checkpoint(times) + 1;
-    // The output volume: the .vtu records must fit on the disk.
-    check_output_volume(times.size() - 1);
-    StopSignals::stop_if_received(mpi_communicator,
-                                  "before the output folder was prepared");
-    prepare_output_directory(first_step - 1);
-    // The header and the limits of the scheme go to the console before the
-    // first step, so that a user sees a warning (unstable time step, several
-    // solutions possible) at once and not after the run.
-    n_time_steps = times.size() - 1;
-    print_header(n_time_steps);
-    report_scheme_limits();
-
-    // The step whose contact profile is written for a requested time is the
-    // one closest to it in the schedule (which a cut step refines).
-    const auto is_profile_step = [&](const unsigned int n) {
-      for (const double target : parameters.profile_times)
-        {
-          unsigned int closest = 0;
-          for (unsigned int m = 1; m < times.size(); ++m)
-            if (std::abs(times[m] - target) < std::abs(times[closest] - target))
-              closest = m;
-          if (closest == n)
-            return true;
-        }
-      return false;
-    };
-
-    // The initial state u_0 = 0, sigma_0 = 0 as record 0; a resumed run has it
-    // already.
-    if (parameters.write_vtu && first_step == 1)
-      output_results(0, 0.);
-
-    // The time loop. The wall time written per step counts from the start of
-    // the original run: a resumed run adds the time the interrupted run had
-    // spent up to its checkpoint (loop_time_offset), so that the time series
-    // reads as one run.
+    // The time loop. Only the steps count as compute time; output is timed
+    // apart. The wall time written per step counts from the start of the
+    // original run: a resumed run adds the time the interrupted run had
+    // spent up to its checkpoint (loop_time_offset).
     Timer loop_timer;
-    for (unsigned int n = first_step; n < times.size(); ++n)
+    while (!schedule.is_at_end())
       {
-        // Adaptive and cut steps are not counted before the run: their number
-        // is bounded here (fixed schedules were checked with the parameters).
-        check_step_count(n, times[n - 1]);
-        // One step: solve for u_n (retrying with cut steps if necessary), then
-        // the stresses sigma_n at every stress point and the history of the
-        // next step, whose length is the distance to the next time level (0
-        // after the last step, where no history is needed). Only this part
-        // counts as compute time; output is timed apart.
-        //
-        // With adaptive steps the step comes with its error test
-        // (solve_adaptive_step(), which also updates the stresses), and only
-        // then is the next level known: the controller's step fitted to the
-        // targets, with the history advanced for it.
-        Timer step_timer;
-        // With Initial cycles, step 1 is first solved on coarser meshes, each
-        // solution the start of the next (nested iteration,
-        // solve_initial_cycles()); the step below is then the solve on the
-        // last mesh, and its time includes the cycles.
-        if (n == 1 && parameters.initial_cycles > 0)
-          solve_initial_cycles(times);
-        // u_{n-1} and z_{n-1}: once step n is accepted, the start the next
-        // step's prediction extrapolates from (predict_step_start()), copied
-        // only if there is a prediction. Not the initial state u_0 = 0: a
-        // load already present at t = 0 makes the first step a jump, not a
-        // piece of a smooth path to extrapolate.
-        const bool keep_step_start = parameters.predicted_start && n > 1;
-        StepStart  step_start;
-        if (keep_step_start)
-          step_start = {solution, contact_set.z};
-        const ActiveSetResult result = adaptive
-                                         ? solve_adaptive_step(n, times)
-                                         : solve_step_with_recovery(n, times);
-        if (keep_step_start)
-          previous_step_start = std::move(step_start);
-        if (!adaptive)
-          update_stresses(times[n] - times[n - 1],
-                          n + 1 < times.size() ? times[n + 1] - times[n] : 0.);
-        else
-          {
-            times.resize(n + 1);
-            if (times[n] < parameters.end_time * (1 - 1e-12))
-              {
-                times.push_back(next_time_level(times[n],
-                                                desired_time_step,
-                                                landing_targets()));
-                if (explicit_history_update())
-                  advance_history(times[n + 1] - times[n]);
-              }
-          }
+        Timer                 step_timer;
+        const ActiveSetResult result = do_time_step();
         time_loop_compute_time += step_timer.wall_time();
-        // A cut step has inserted a level: the number of steps is that of the
-        // current schedule (with adaptive steps: those taken so far).
-        n_time_steps = adaptive ? n : times.size() - 1;
-        n_steps_done = n;
-        if (step_observer)
-          step_observer(n, times[n]);
-
-        // What is written per step. The time-series row and the step line
-        // contain sums over the ranks: every rank calls count_contact_states()
-        // and total_contact_force(), which are collective, and rank 0 prints.
-        // The contact profile and the .pvtu record are written by all ranks
-        // into shared files.
-        const double wall_time = loop_time_offset + loop_timer.wall_time();
-        write_time_series_row(n,
-                              times[n],
-                              times[n] - times[n - 1],
-                              result,
-                              wall_time);
-        if (parameters.verbose && !adaptive)
-          print_step_line(pcout,
-                          n,
-                          times[n],
-                          result.iterations(),
-                          count_contact_states(),
-                          total_contact_force());
-        if (parameters.verbose && adaptive)
-          print_adaptive_step_line(pcout,
-                                   n,
-                                   times[n],
-                                   result.iterations(),
-                                   count_contact_states(),
-                                   total_contact_force(),
-                                   times[n] - times[n - 1],
-                                   error_estimate);
-        if (contact_enabled && is_profile_step(n))
-          write_contact_profile(n, times[n]);
-        if (parameters.write_vtu
-            && (n % parameters.interval == 0 || n + 1 == times.size()))
-          output_results(n, times[n]);
-        // With Adaptive refinement, the mesh of the next steps: after the
-        // output of step n (which shows the mesh step n was computed on) and
-        // before its checkpoint (which stores the adapted mesh and state).
-        if (adaptation_due(n, times.size() - 1))
-          adapt_mesh(times[n]);
-        // The checkpoint comes after the output of the step, so that a run
-        // resumed from it has everything of step n on disk, and the .pvd list
-        // the checkpoint stores includes step n.
-        const bool checkpoint_due = parameters.checkpoint_interval > 0
-                                    && n % parameters.checkpoint_interval == 0;
-        if (checkpoint_due)
-          write_checkpoint(n, times, wall_time);
-        // A scheduler's signal (SIGTERM, SIGINT, SIGUSR1) on any rank: every
-        // rank learns of it here, once per step, through the maximum over the
-        // ranks, so that all stop after this same step. The step is complete
-        // and written; a checkpoint of it is written if none is due, and the
-        // run ends with status 128 + signal (main()). After the last step
-        // there is nothing left to save the run for: it ends normally.
-        const int signal
-          = Utilities::MPI::max(StopSignals::received(), mpi_communicator);
-        if (signal != 0 && n + 1 < times.size() && !parameters.resumable)
-          {
-            pcout << "Stopped after step " << n << " (t = " << times[n]
-                  << ") on " << StopSignals::name(signal)
-                  << "; a convergence study cannot be resumed: run it "
-                     "again."
-                  << std::endl;
-            throw StopSignals::Stopped{signal};
-          }
-        if (signal != 0 && n + 1 < times.size())
-          {
-            if (!checkpoint_due)
-              write_checkpoint(n, times, wall_time);
-            pcout << "Stopped after step " << n << " (t = " << times[n]
-                  << ") on " << StopSignals::name(signal)
-                  << "; the checkpoint of step " << n << " is in "
-                  << output_folder->path(checkpoint_folder)
-                  << ".\nTo continue the run, set Resume = true in "
-                     "subsection <Checkpoint> and run the same parameter "
-                     "file again (on any number of MPI ranks)."
-                  << std::endl;
-            throw StopSignals::Stopped{signal};
-          }
-        // For tests of the checkpoints: end the loop here as if the run had
-        // been killed after the checkpoint; the summary is still printed.
-        if (n == parameters.stop_after_step)
-          {
-            pcout << "Stopped after step " << n
-                  << " as requested (Stop after step, subsection "
-                     "<Checkpoint>).\n";
-            break;
-          }
+        if (!finish_time_step(result,
+                              loop_time_offset + loop_timer.wall_time()))
+          break;
       }
 
     print_run_summary();
+  }
+
+
+
+  // @sect4{ViscoplasticContact::set_up_schedule}
+  //
+  // Fixed steps: t_n = n k with the last step shortened to end at T.
+  // Adaptive steps: t_1 after the first step, Time step within the
+  // controller's range, fitted to the targets; each accepted step adds the
+  // next level (doc/adaptivity.md). A resumed run replaces the schedule by the
+  // one of its checkpoint (with the cut steps of the interrupted run),
+  // restores the state, and continues after the checkpoint's step. All of
+  // this happens before the output folder is prepared, so that a load that
+  // is not finite, or a damaged or mismatched checkpoint, stops the run
+  // before anything is written.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::set_up_schedule()
+  {
+    if (parameters.time_step_control == Parameters::TimeStepControl::adaptive)
+      {
+        const TimeStepController controller = time_step_controller();
+        schedule                            = TimeSchedule::adaptive_steps(
+          landing_targets(),
+          std::min(std::max(parameters.time_step, controller.minimum_step),
+                   controller.maximum_step));
+      }
+    else
+      schedule
+        = TimeSchedule::fixed_steps(parameters.end_time, parameters.time_step);
+    check_loads();
+    if (parameters.resume)
+      resume_from_checkpoint();
+  }
+
+
+
+  // @sect4{ViscoplasticContact::prepare_output}
+  //
+  // The .vtu records must fit on the disk; then the folder is prepared (a
+  // resumed run keeps what its checkpoint's step had written). The header and
+  // the limits of the scheme go to the console before the first step, so
+  // that a user sees a warning (unstable time step, several solutions
+  // possible) at once and not after the run. The initial state u_0 = 0,
+  // sigma_0 = 0 is record 0; a resumed run has it already.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::prepare_output()
+  {
+    check_output_volume(schedule.n_steps());
+    StopSignals::stop_if_received(mpi_communicator,
+                                  "before the output folder was prepared");
+    prepare_output_directory(schedule.step_number());
+    print_header(schedule.n_steps());
+    report_scheme_limits();
+    if (parameters.write_vtu && schedule.step_number() == 0)
+      output_results(0, 0.);
+  }
+
+
+
+  // @sect4{ViscoplasticContact::finish_time_step}
+  //
+  // What follows an accepted step n, in this order: the observer of a study,
+  // the time-series row and the step line (sums over the ranks: every rank
+  // calls the collective count_contact_states() and total_contact_force(),
+  // rank 0 prints), the contact profile and the .pvtu record (written by all
+  // ranks into shared files), the mesh adaptation, the checkpoint, and the
+  // scheduler's signals. The mesh is adapted after the output of step n
+  // (which shows the mesh step n was computed on) and before its checkpoint
+  // (which stores the adapted mesh and state); the checkpoint comes after
+  // the output, so that a run resumed from it has everything of step n on
+  // disk, and the .pvd list it stores includes step n.
+  template <int dim>
+  bool
+  ViscoplasticContact<dim>::finish_time_step(const ActiveSetResult &result,
+                                             const double           wall_time)
+  {
+    const unsigned int n = schedule.step_number();
+    const double       t = schedule.current_time();
+    const double       k = t - schedule.previous_time();
+    if (step_observer)
+      step_observer(n, t);
+
+    write_time_series_row(n, t, k, result, wall_time);
+    if (parameters.verbose && !schedule.is_adaptive())
+      print_step_line(pcout,
+                      n,
+                      t,
+                      result.iterations(),
+                      count_contact_states(),
+                      total_contact_force());
+    if (parameters.verbose && schedule.is_adaptive())
+      print_adaptive_step_line(pcout,
+                               n,
+                               t,
+                               result.iterations(),
+                               count_contact_states(),
+                               total_contact_force(),
+                               k,
+                               error_estimate);
+    // The profile for a requested time is written at the step closest to it
+    // (adaptive steps land on it exactly).
+    if (contact_enabled
+        && std::any_of(parameters.profile_times.begin(),
+                       parameters.profile_times.end(),
+                       [&](const double target) {
+                         return schedule.current_time_is_closest_to(target);
+                       }))
+      write_contact_profile(n, t);
+    if (parameters.write_vtu
+        && (n % parameters.interval == 0 || schedule.is_at_end()))
+      output_results(n, t);
+    if (adaptation_due())
+      adapt_mesh(t);
+    const bool checkpoint_due = parameters.checkpoint_interval > 0
+                                && n % parameters.checkpoint_interval == 0;
+    if (checkpoint_due)
+      write_checkpoint(wall_time);
+    stop_if_signalled(checkpoint_due, wall_time);
+
+    // For tests of the checkpoints: end the loop here as if the run had
+    // been killed after the checkpoint; the summary is still printed.
+    if (n == parameters.stop_after_step)
+      {
+        pcout << "Stopped after step " << n
+              << " as requested (Stop after step, subsection "
+                 "<Checkpoint>).\n";
+        return false;
+      }
+    return true;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::stop_if_signalled}
+  //
+  // A scheduler's signal (SIGTERM, SIGINT, SIGUSR1) on any rank: every rank
+  // learns of it here, once per step, through the maximum over the ranks, so
+  // that all stop after this same step. The step is complete and written; a
+  // checkpoint of it is written if none was, and the run ends with status
+  // 128 + signal (main()). After the last step there is nothing left to save
+  // the run for: it ends normally.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::stop_if_signalled(const bool   checkpoint_written,
+                                              const double wall_time)
+  {
+    const int signal
+      = Utilities::MPI::max(StopSignals::received(), mpi_communicator);
+    if (signal == 0 || schedule.is_at_end())
+      return;
+    if (parameters.resumable && !checkpoint_written)
+      write_checkpoint(wall_time);
+    pcout << "Stopped after step " << schedule.step_number()
+          << " (t = " << schedule.current_time() << ") on "
+          << StopSignals::name(signal);
+    if (parameters.resumable)
+      pcout << "; the checkpoint of step " << schedule.step_number()
+            << " is in " << output_folder->path(checkpoint_folder)
+            << ".\nTo continue the run, set Resume = true in subsection "
+               "<Checkpoint> and run the same parameter file again (on any "
+               "number of MPI ranks)."
+            << std::endl;
+    else
+      pcout << "; a convergence study cannot be resumed: run it again."
+            << std::endl;
+    throw StopSignals::Stopped{signal};
   }
 
 

@@ -39,18 +39,19 @@
 
 #include <gtest/gtest.h>
 
-#include "active_set.h"
 #include "back_ends/blas_threads.h"
 #include "back_ends/condensed_system.h"
 #include "back_ends/rigid_body_modes.h"
 #include "contact_law.h"
+#include "contact_nodes.h"
 #include "contact_set.h"
 #include "material.h"
 #include "mesh.h"
+#include "robustness/checkpoint_file.h"
 #include "robustness/mpi_tools.h"
 #include "robustness/output_folder.h"
 #include "stress_point_transfer.h"
-#include "time_loop.h"
+#include "time_schedule.h"
 
 #include "back_ends/direct_solver.h"
 
@@ -1711,6 +1712,117 @@ TEST(OutputFolder, CollectiveFileInRankOrder)
 }
 
 
+
+// @sect3{The time schedule}
+//
+// TimeSchedule with fixed steps: t_n = n k with the last step shortened to
+// end at T (never stretched); a cut step inserts the midpoint and keeps the
+// old level as the next one; the profile step is the level closest to a
+// requested time (the first of two equally close); a resumed schedule with
+// another End time continues on the grid of k; the checkpoint's copy
+// restores every level. Exact comparisons: the levels are m k or T, the
+// cut levels t + k/2, computed alike.
+TEST(TimeSchedule, FixedStepsCutsAndEnd)
+{
+  TimeSchedule schedule = TimeSchedule::fixed_steps(1.05, 0.25);
+  EXPECT_EQ(schedule.n_steps(), 5u);
+  std::vector<double> levels = {schedule.current_time()};
+  std::vector<double> following;
+  bool                cut = false;
+  while (!schedule.is_at_end())
+    {
+      // Cut the second step twice: 0.25 -> 0.3125, then 0.375 and 0.5 follow.
+      if (schedule.step_number() == 1 && !cut)
+        {
+          schedule.cut_step();
+          EXPECT_EQ(schedule.next_time(), 0.375);
+          EXPECT_EQ(schedule.following_step_length(), 0.125);
+          schedule.cut_step();
+          EXPECT_EQ(schedule.next_time(), 0.3125);
+          EXPECT_EQ(schedule.n_steps(), 7u);
+          cut = true;
+        }
+      following.push_back(schedule.following_step_length());
+      schedule.advance_time();
+      levels.push_back(schedule.current_time());
+    }
+  EXPECT_EQ(levels,
+            (std::vector<double>{0, 0.25, 0.3125, 0.375, 0.5, 0.75, 1., 1.05}));
+  EXPECT_EQ(following.back(), 0.);
+  EXPECT_NEAR(following[following.size() - 2], 0.05, 1e-15);
+  EXPECT_EQ(schedule.step_number(), 7u);
+  EXPECT_EQ(schedule.n_steps(), 7u);
+  EXPECT_EQ(schedule.step_length(), 0.);
+  // A T that is a multiple of k up to rounding has no spurious tiny step.
+  EXPECT_EQ(TimeSchedule::fixed_steps(0.3, 0.1).n_steps(), 3u);
+  EXPECT_EQ(n_fixed_steps(1e6, 1e-3), 1000000000u);
+}
+
+TEST(TimeSchedule, ClosestLevelAndResume)
+{
+  TimeSchedule               schedule = TimeSchedule::fixed_steps(1., 0.1);
+  std::vector<std::uint64_t> profile_steps;
+  std::vector<std::uint64_t> tie_steps;
+  ByteWriter                 saved;
+  while (!schedule.is_at_end())
+    {
+      schedule.advance_time();
+      if (schedule.current_time_is_closest_to(0.33))
+        profile_steps.push_back(schedule.step_number());
+      // 0.45 is equally close to 0.4 and 0.5 (up to rounding): one step.
+      if (schedule.current_time_is_closest_to(0.45))
+        tie_steps.push_back(schedule.step_number());
+      if (schedule.current_time_is_closest_to(0.))
+        profile_steps.push_back(1000);
+      if (schedule.step_number() == 4)
+        schedule.save(saved);
+    }
+  EXPECT_EQ(profile_steps, (std::vector<std::uint64_t>{3}));
+  EXPECT_EQ(tie_steps.size(), 1u);
+
+  // The checkpoint of step 4, restored and continued to End time 1.25 on
+  // the same grid: the levels 0.5, ..., 1.2 and 1.25.
+  TimeSchedule restored;
+  ByteReader   reader(saved.bytes, "schedule");
+  restored.load(reader);
+  EXPECT_EQ(restored.step_number(), 4u);
+  EXPECT_EQ(restored.current_time(), 4 * 0.1);
+  restored.continue_to({1.25}, 0.1);
+  EXPECT_EQ(restored.next_time(), 5 * 0.1);
+  EXPECT_EQ(restored.n_steps(), 13u);
+  while (!restored.is_at_end())
+    restored.advance_time();
+  EXPECT_EQ(restored.current_time(), 1.25);
+  EXPECT_NEAR(restored.previous_step_length(), 0.05, 1e-15);
+}
+
+TEST(TimeSchedule, AdaptiveStepsLandRejectAndResume)
+{
+  TimeSchedule schedule = TimeSchedule::adaptive_steps({0.5, 1.}, 0.2);
+  EXPECT_TRUE(schedule.is_adaptive());
+  EXPECT_NEAR(schedule.next_time(), 0.2, 1e-15);
+  EXPECT_EQ(schedule.following_step_length(), 0.);
+  schedule.reject_step(0.1);
+  EXPECT_NEAR(schedule.next_time(), 0.1, 1e-15);
+  EXPECT_EQ(schedule.n_rejected_steps(), 1u);
+  // A cut with adaptive steps does not keep the old level: the controller
+  // proposes the next one.
+  schedule.cut_step();
+  EXPECT_NEAR(schedule.next_time(), 0.05, 1e-15);
+  schedule.advance_time(0.3);
+  EXPECT_NEAR(schedule.current_time(), 0.05, 1e-15);
+  EXPECT_NEAR(schedule.next_time(), 0.275, 1e-15); // two steps to 0.5
+  EXPECT_EQ(schedule.proposed_step(), 0.3);
+  schedule.advance_time(0.3);
+  schedule.advance_time(0.3);
+  EXPECT_EQ(schedule.current_time(), 0.5);
+  EXPECT_EQ(schedule.n_steps(), 3u);
+  // Resumed with End time 0.6: the next level lands on it.
+  schedule.continue_to({0.6}, 0.);
+  EXPECT_EQ(schedule.next_time(), 0.6);
+  schedule.advance_time(0.3);
+  EXPECT_TRUE(schedule.is_at_end());
+}
 
 // @sect3{The time-step controller}
 //

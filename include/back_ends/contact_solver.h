@@ -9,8 +9,8 @@
 
 #include <deal.II/lac/vector.h>
 
-#include "active_set.h"
 #include "back_ends/linear_algebra.h"
+#include "contact_nodes.h"
 #include "contact_set.h"
 #include "parameters.h"
 

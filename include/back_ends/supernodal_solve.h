@@ -71,6 +71,20 @@ namespace ViscoContact
     n_subtrees() const;
 
   private:
+    // The subtrees of one cut of the top part in_top, with the given roots
+    // (heaviest first): their numbers in subtree_of and their supernodes in
+    // subtree_supernodes.
+    void
+    add_subtrees(const std::vector<std::size_t> &roots,
+                 const std::vector<std::size_t> &parent,
+                 const std::vector<char>        &in_top,
+                 const std::vector<char>        &stays_in_top,
+                 std::vector<std::int64_t>      &subtree_of);
+    // target, rows_above and buffers_above for the subtrees of the cut.
+    void
+    set_up_update_targets(const std::vector<std::size_t>  &supernode_of_column,
+                          const std::vector<std::int64_t> &subtree_of);
+    // One supernode of the forward and of the backward solve.
     void
     forward_supernode(const std::size_t s,
                       double           *y,

@@ -25,9 +25,9 @@ namespace ViscoContact
   // 114 s of set-up and 1.3 s per step, 7.8 GB); in 3D it is 4.6 times
   // faster at 47k dofs (600 contact nodes) and 6 times at 108k dofs (1056
   // contact nodes: 22 s of set-up, then 0.28 s per step, against 16 s per
-  // step for the full space back end). (These were measured when S still
-  // cost one solve per contact node; reading S off the factor has since
-  // made the condensed set-up 2 to 3 times cheaper, doc/performance.md.)
+  // step for the full space back end). (The set-up times were measured with S
+  // computed by one solve per contact node; reading S off the factor, as
+  // the back end does, is 2 to 3 times cheaper.)
   // Beyond that the fill of a 3D factorisation grows fast, and on several
   // ranks the compliance, which every rank holds, does not scale. The
   // limits below stay within what was measured.

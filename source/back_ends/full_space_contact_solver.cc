@@ -125,6 +125,66 @@ namespace ViscoContact
     void
     update_contact_amg(const ContactSet<dim>     &contact,
                        const std::vector<double> &stiffness);
+    // Whether the AMG built last still serves these stiffnesses: at most 1%
+    // of the contact nodes (over all ranks) fixed or free since. Collective.
+    bool
+    contact_amg_fits(const ContactSet<dim>     &contact,
+                     const std::vector<double> &stiffness) const;
+    // The matrix of the step operator of these stiffnesses, the fixed
+    // nodes' normal directions removed, into contact_matrix (after
+    // releasing the AMG built on the previous one).
+    void
+    assemble_contact_matrix(const ContactSet<dim>     &contact,
+                            const std::vector<double> &stiffness);
+    // The last step of that matrix: the rows of the fixed nodes lose their
+    // normal part, which comes back on their diagonal blocks.
+    void
+    project_fixed_rows(Epetra_CrsMatrix          &matrix,
+                       const ContactSet<dim>     &contact,
+                       const std::vector<double> &stiffness) const;
+    // The rigid-body modes without their normal components at the fixed
+    // nodes, into contact_modes.
+    void
+    project_rigid_body_modes(const ContactSet<dim>     &contact,
+                             const std::vector<double> &stiffness);
+
+    // What the pieces of this rank's nodes add to the step problem: which
+    // nodes are fixed, the normal stiffness of the others, the prescribed
+    // displacement u0 and the loads, into step_rhs.
+    void
+    collect_piece_terms(const ContactSet<dim> &contact,
+                        std::vector<bool>     &fixed,
+                        std::vector<double>   &normal_stiffness,
+                        VectorType            &u0,
+                        VectorType            &step_rhs) const;
+    // P v: v without its normal components at the fixed nodes.
+    void
+    remove_fixed_normals(const ContactSet<dim>   &contact,
+                         const std::vector<bool> &fixed,
+                         VectorType              &v) const;
+    // v -> P inner(P v) + (I - P) v, with the work vector projected_src.
+    // The function refers to all arguments but inner, which it copies.
+    Apply
+    projected(const Apply             &inner,
+              VectorType              &projected_src,
+              const ContactSet<dim>   &contact,
+              const std::vector<bool> &fixed) const;
+    // v -> (A + sum_i w_i s_i nu_i nu_i^T) v; refers to its arguments.
+    Apply
+    step_operator(const ContactSet<dim>     &contact,
+                  const std::vector<double> &normal_stiffness) const;
+    // The factorisation of A, or the AMG of the step operator of these
+    // pieces, updated here (collective).
+    Apply
+    step_preconditioner(const ContactSet<dim>     &contact,
+                        const std::vector<bool>   &fixed,
+                        const std::vector<double> &normal_stiffness);
+    // r_i and z_i of every node from the solution u and the residual
+    // b - A u.
+    void
+    read_off_contact(ContactSet<dim>  &contact,
+                     const VectorType &u,
+                     const VectorType &residual) const;
     // Solves op y = rhs from the initial y with the preconditioner prec:
     // CG or GMRES to the relative accuracy (Tolerance unless the active-set
     // iteration asks for less) times reference_norm.
@@ -381,12 +441,37 @@ namespace ViscoContact
   // stiffness of the body, measured in doc/performance.md).
   // Within a time step few nodes move, so most steps reuse the AMG of the
   // previous one, while a cold start, where most nodes move, rebuilds it
-  // as the pieces change.
+  // as the pieces change. contact_amg_fits() decides, then
+  // assemble_contact_matrix() and project_rigid_body_modes() give the AMG
+  // its matrix and near-null space.
   template <int dim>
   void
   FullSpaceContactSolver<dim>::update_contact_amg(
     const ContactSet<dim>     &contact,
     const std::vector<double> &stiffness)
+  {
+    if (contact_amg_fits(contact, stiffness))
+      return;
+    assemble_contact_matrix(contact, stiffness);
+    project_rigid_body_modes(contact, stiffness);
+    build_amg(*contact_matrix, *contact_modes, contact_amg);
+    contact_amg_stiffness = stiffness;
+    contact_amg_built     = true;
+    ++this->counts.operator_setups;
+  }
+
+
+
+  // @sect4{FullSpaceContactSolver::contact_amg_fits}
+  //
+  // A node has changed if it has become fixed (infinite stiffness) or free
+  // since the AMG was built; a changed slope does not count. Every rank
+  // takes part in the sum, whether an AMG has been built or not.
+  template <int dim>
+  bool
+  FullSpaceContactSolver<dim>::contact_amg_fits(
+    const ContactSet<dim>     &contact,
+    const std::vector<double> &stiffness) const
   {
     unsigned int changed = 0;
     if (contact_amg_built)
@@ -394,21 +479,39 @@ namespace ViscoContact
         changed
           += (std::isinf(stiffness[i]) != std::isinf(contact_amg_stiffness[i]));
     changed = Utilities::MPI::sum(changed, communicator);
-    if (contact_amg_built && changed <= 0.01 * contact.n_global_nodes())
-      return;
+    return contact_amg_built && changed <= 0.01 * contact.n_global_nodes();
+  }
 
-    // The AMG keeps a reference to its matrix: release it before the matrix
-    // is replaced. The entries of the copy of A are changed in place, which
-    // deal.II's interface does not offer, hence Epetra's.
-    contact_amg.clear();
-    contact_matrix = std::make_unique<Epetra_CrsMatrix>(A->trilinos_matrix());
-    Epetra_CrsMatrix &matrix = *contact_matrix;
-    const auto node_row      = [&](const unsigned int i, const unsigned int c) {
+
+
+  // @sect4{Editing the step operator's matrix}
+  //
+  // The matrix of the projected operator is a copy of A whose entries are
+  // changed in place, which deal.II's interface does not offer, hence
+  // Epetra's. These helpers do the edits that need no member of the
+  // solver.
+  namespace
+  {
+    // The local row of component c of contact node i.
+    template <int dim>
+    int
+    node_row(const Epetra_CrsMatrix &matrix,
+             const ContactSet<dim>  &contact,
+             const unsigned int      i,
+             const unsigned int      c)
+    {
       return matrix.RowMap().LID(
         static_cast<long long>(contact.node(i).dofs[c]));
-    };
+    }
+
     // k nu_i nu_i^T into the diagonal block of node i.
-    const auto add_to_block = [&](const unsigned int i, const double k) {
+    template <int dim>
+    void
+    add_to_block(Epetra_CrsMatrix      &matrix,
+                 const ContactSet<dim> &contact,
+                 const unsigned int     i,
+                 const double           k)
+    {
       const auto &node = contact.node(i);
       int         columns[dim];
       double      values[dim];
@@ -419,71 +522,132 @@ namespace ViscoContact
           for (unsigned int d = 0; d < dim; ++d)
             values[d] = k * node.normal[c] * node.normal[d];
           const int error
-            = matrix.SumIntoMyValues(node_row(i, c), dim, values, columns);
+            = matrix.SumIntoMyValues(node_row(matrix, contact, i, c),
+                                     dim,
+                                     values,
+                                     columns);
           AssertThrow(error == 0, ExcTrilinosError(error));
         }
-    };
+    }
+
+    // The columns of the fixed nodes (infinite stiffness): mark their dofs
+    // with their normal component and the node (its global number + 1)
+    // and bring the marks to the columns of this rank's rows, fixed nodes
+    // of other ranks included. The marks are written at row indices:
+    // deal.II builds square matrices with the same map for rows and
+    // domain.
+    template <int dim>
+    void
+    mark_fixed_columns(const Epetra_CrsMatrix    &matrix,
+                       const ContactSet<dim>     &contact,
+                       const std::vector<double> &stiffness,
+                       Epetra_Vector             &column_normal,
+                       Epetra_Vector             &column_node)
+    {
+      Assert(matrix.RowMap().SameAs(matrix.DomainMap()), ExcInternalError());
+      Epetra_Vector owned_normal(matrix.DomainMap()),
+        owned_node(matrix.DomainMap());
+      for (unsigned int i = 0; i < contact.size(); ++i)
+        if (std::isinf(stiffness[i]))
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              owned_normal[node_row(matrix, contact, i, c)]
+                = contact.node(i).normal[c];
+              owned_node[node_row(matrix, contact, i, c)]
+                = static_cast<double>(contact.first_global_index() + i + 1);
+            }
+      if (matrix.Importer() != nullptr)
+        {
+          column_normal.Import(owned_normal, *matrix.Importer(), Insert);
+          column_node.Import(owned_node, *matrix.Importer(), Insert);
+        }
+      else // the columns are the owned dofs, in the same order
+        {
+          column_normal = owned_normal;
+          column_node   = owned_node;
+        }
+    }
+
+    // M P, row by row: in the columns of each fixed node j (as marked by
+    // mark_fixed_columns()), the row's entries a lose their normal part,
+    // a -= (a . nu_j) nu_j.
+    void
+    project_fixed_columns(Epetra_CrsMatrix    &matrix,
+                          const Epetra_Vector &column_normal,
+                          const Epetra_Vector &column_node)
+    {
+      std::vector<std::pair<double, double>> node_sums; // (node, a . nu_j)
+      for (int row = 0; row < matrix.NumMyRows(); ++row)
+        {
+          int     n;
+          double *values;
+          int    *columns;
+          matrix.ExtractMyRowView(row, n, values, columns);
+          node_sums.clear();
+          for (int e = 0; e < n; ++e)
+            if (const double j = column_node[columns[e]]; j != 0)
+              {
+                auto sum
+                  = std::find_if(node_sums.begin(),
+                                 node_sums.end(),
+                                 [j](const auto &s) { return s.first == j; });
+                if (sum == node_sums.end())
+                  sum = node_sums.insert(node_sums.end(), {j, 0.});
+                sum->second += values[e] * column_normal[columns[e]];
+              }
+          for (const auto &[j, sum] : node_sums)
+            for (int e = 0; e < n; ++e)
+              if (column_node[columns[e]] == j)
+                values[e] -= sum * column_normal[columns[e]];
+        }
+    }
+  } // namespace
+
+
+
+  // @sect4{FullSpaceContactSolver::assemble_contact_matrix}
+  //
+  // A copy of A, the normal stiffness of the nodes on sloped pieces added
+  // to their diagonal blocks, then P M P for the fixed nodes: the columns
+  // (M P, project_fixed_columns()), then the rows (P (M P),
+  // project_fixed_rows()).
+  template <int dim>
+  void
+  FullSpaceContactSolver<dim>::assemble_contact_matrix(
+    const ContactSet<dim>     &contact,
+    const std::vector<double> &stiffness)
+  {
+    // The AMG keeps a reference to its matrix: release it before the matrix
+    // is replaced.
+    contact_amg.clear();
+    contact_matrix = std::make_unique<Epetra_CrsMatrix>(A->trilinos_matrix());
+    Epetra_CrsMatrix &matrix = *contact_matrix;
     for (unsigned int i = 0; i < contact.size(); ++i)
       if (stiffness[i] != 0 && !std::isinf(stiffness[i]))
-        add_to_block(i, stiffness[i]);
+        add_to_block(matrix, contact, i, stiffness[i]);
 
-    // The columns: mark the dofs of the fixed nodes with their normal
-    // component and the node (its global number + 1) and bring the marks to
-    // the columns of this rank's rows, fixed nodes of other ranks included.
-    // The marks are written at row indices: deal.II builds square matrices
-    // with the same map for rows and domain.
-    Assert(matrix.RowMap().SameAs(matrix.DomainMap()), ExcInternalError());
-    Epetra_Vector owned_normal(matrix.DomainMap()),
-      owned_node(matrix.DomainMap());
-    for (unsigned int i = 0; i < contact.size(); ++i)
-      if (std::isinf(stiffness[i]))
-        for (unsigned int c = 0; c < dim; ++c)
-          {
-            owned_normal[node_row(i, c)] = contact.node(i).normal[c];
-            owned_node[node_row(i, c)]
-              = static_cast<double>(contact.first_global_index() + i + 1);
-          }
     Epetra_Vector column_normal(matrix.ColMap()), column_node(matrix.ColMap());
-    if (matrix.Importer() != nullptr)
-      {
-        column_normal.Import(owned_normal, *matrix.Importer(), Insert);
-        column_node.Import(owned_node, *matrix.Importer(), Insert);
-      }
-    else // the columns are the owned dofs, in the same order
-      {
-        column_normal = owned_normal;
-        column_node   = owned_node;
-      }
-    // M P, row by row: in the columns of each fixed node j, the row's
-    // entries a lose their normal part, a -= (a . nu_j) nu_j.
-    std::vector<std::pair<double, double>> node_sums; // (node, a . nu_j)
-    for (int row = 0; row < matrix.NumMyRows(); ++row)
-      {
-        int     n;
-        double *values;
-        int    *columns;
-        matrix.ExtractMyRowView(row, n, values, columns);
-        node_sums.clear();
-        for (int e = 0; e < n; ++e)
-          if (const double j = column_node[columns[e]]; j != 0)
-            {
-              auto sum
-                = std::find_if(node_sums.begin(),
-                               node_sums.end(),
-                               [j](const auto &s) { return s.first == j; });
-              if (sum == node_sums.end())
-                sum = node_sums.insert(node_sums.end(), {j, 0.});
-              sum->second += values[e] * column_normal[columns[e]];
-            }
-        for (const auto &[j, sum] : node_sums)
-          for (int e = 0; e < n; ++e)
-            if (column_node[columns[e]] == j)
-              values[e] -= sum * column_normal[columns[e]];
-      }
-    // P (M P): the dim rows of each fixed node lose their normal part
-    // column by column. The rows of a vertex have the same columns (the
-    // vector-valued element couples all components of neighbouring
-    // vertices), which is checked.
+    mark_fixed_columns(matrix, contact, stiffness, column_normal, column_node);
+    project_fixed_columns(matrix, column_normal, column_node);
+    project_fixed_rows(matrix, contact, stiffness);
+  }
+
+
+
+  // @sect4{FullSpaceContactSolver::project_fixed_rows}
+  //
+  // P (M P): the dim rows of each fixed node lose their normal part column
+  // by column. The rows of a vertex have the same columns (the
+  // vector-valued element couples all components of neighbouring
+  // vertices), which is checked. Then d_i nu_i nu_i^T, d_i = nu_i^T A_ii
+  // nu_i, goes back on the node's diagonal block.
+  template <int dim>
+  void
+  FullSpaceContactSolver<dim>::project_fixed_rows(
+    Epetra_CrsMatrix          &matrix,
+    const ContactSet<dim>     &contact,
+    const std::vector<double> &stiffness) const
+  {
     for (unsigned int i = 0; i < contact.size(); ++i)
       if (std::isinf(stiffness[i]))
         {
@@ -493,7 +657,7 @@ namespace ViscoContact
           int        *columns[dim];
           for (unsigned int c = 0; c < dim; ++c)
             {
-              matrix.ExtractMyRowView(node_row(i, c),
+              matrix.ExtractMyRowView(node_row(matrix, contact, i, c),
                                       n[c],
                                       values[c],
                                       columns[c]);
@@ -519,11 +683,23 @@ namespace ViscoContact
             for (unsigned int e = 0; e < dim; ++e)
               d += node.normal[c] * A->el(node.dofs[c], node.dofs[e])
                    * node.normal[e];
-          add_to_block(i, d);
+          add_to_block(matrix, contact, i, d);
         }
+  }
 
-    // The near-null space of the constrained operator: the rigid-body modes
-    // without their normal components at the fixed nodes.
+
+
+  // @sect4{FullSpaceContactSolver::project_rigid_body_modes}
+  //
+  // The near-null space of the constrained operator: the rigid-body modes
+  // without their normal components at the fixed nodes.
+  template <int dim>
+  void
+  FullSpaceContactSolver<dim>::project_rigid_body_modes(
+    const ContactSet<dim>     &contact,
+    const std::vector<double> &stiffness)
+  {
+    const Epetra_CrsMatrix &matrix = *contact_matrix;
     contact_modes = std::make_unique<Epetra_MultiVector>(*rigid_body_modes);
     for (unsigned int i = 0; i < contact.size(); ++i)
       if (std::isinf(stiffness[i]))
@@ -531,17 +707,13 @@ namespace ViscoContact
           {
             double normal_part = 0;
             for (unsigned int c = 0; c < dim; ++c)
-              normal_part += contact.node(i).normal[c]
-                             * (*contact_modes)[mode][node_row(i, c)];
+              normal_part
+                += contact.node(i).normal[c]
+                   * (*contact_modes)[mode][node_row(matrix, contact, i, c)];
             for (unsigned int c = 0; c < dim; ++c)
-              (*contact_modes)[mode][node_row(i, c)]
+              (*contact_modes)[mode][node_row(matrix, contact, i, c)]
                 -= normal_part * contact.node(i).normal[c];
           }
-
-    build_amg(matrix, *contact_modes, contact_amg);
-    contact_amg_stiffness = stiffness;
-    contact_amg_built     = true;
-    ++this->counts.operator_setups;
   }
 
 
@@ -679,9 +851,11 @@ namespace ViscoContact
   //
   // One active-set iteration's linear solve, in four steps: collect what the
   // pieces of this rank's nodes contribute (the prescribed normal
-  // displacements u_0, the loads -w o nu and the normal stiffnesses w s);
-  // set up the projected operator and preconditioner as functions; solve for
-  // y from the previous iterate; read r and z off the solution.
+  // displacements u_0, the loads -w o nu and the normal stiffnesses w s,
+  // collect_piece_terms()); set up the projected operator and
+  // preconditioner as functions (projected(), step_operator(),
+  // step_preconditioner()); solve for y from the previous iterate; read r
+  // and z off the solution (read_off_contact()).
   //
   // Everything node-wise touches only locally owned entries (a node's dofs
   // belong to its owner), so no communication happens outside the matrix
@@ -698,98 +872,29 @@ namespace ViscoContact
     VectorType          u0, A_u0, step_rhs(b);
     u0.reinit(b);         // zero
     A_u0.reinit(b, true); // overwritten by the products below
-    // Split the nodes by their pieces. A vertical piece (a jump of the law,
-    // or the rigid foundation) fixes the normal displacement to
-    // beta = r_lower: the node is fixed, u_0 gets beta nu_i. A sloped piece
-    // adds the load -w_i o_i nu_i to the right-hand side and the normal
-    // stiffness w_i s_i to the operator (zero on a flat piece, whose force
-    // w_i o_i is then known).
-    for (unsigned int i = 0; i < m; ++i)
-      {
-        const ContactLawPiece &piece = contact.law().piece(contact.piece(i));
-        fixed[i]                     = piece.vertical;
-        if (piece.vertical)
-          contact.add_normal(u0, i, piece.r_lower);
-        else
-          {
-            contact.add_normal(step_rhs,
-                               i,
-                               -contact.weight(i) * piece.intercept);
-            normal_stiffness[i] = contact.weight(i) * piece.slope;
-          }
-      }
+    collect_piece_terms(contact, fixed, normal_stiffness, u0, step_rhs);
     // step_rhs = b - sum_i w_i o_i nu_i - A u_0: the prescribed part of u
     // moves to the right-hand side.
     A->vmult(A_u0, u0);
     step_rhs -= A_u0;
 
-    // P v: remove the normal component at every fixed node. nu_i is a unit
-    // vector, so this is the orthogonal projection I - nu_i nu_i^T on the
-    // node's dofs and the identity elsewhere.
-    const auto project = [&](VectorType &v) {
-      for (unsigned int i = 0; i < m; ++i)
-        if (fixed[i])
-          contact.add_normal(v, i, -contact.normal_component(v, i));
-    };
-    // v -> P inner(P v) + (I - P) v, for the operator and the preconditioner
-    // alike. The last term puts the normal components of v at the fixed
-    // nodes back unchanged, which keeps the operator nonsingular; P and
-    // I - P are symmetric, so the result is symmetric whenever inner is.
-    const auto projected
-      = [&](const Apply &inner, VectorType &projected_src) -> Apply {
-      return [&, inner](VectorType &dst, const VectorType &src) {
-        projected_src = src;
-        project(projected_src);
-        inner(dst, projected_src);
-        project(dst);
-        for (unsigned int i = 0; i < m; ++i)
-          if (fixed[i])
-            contact.add_normal(dst, i, contact.normal_component(src, i));
-      };
-    };
-    // A + sum_i w_i s_i nu_i nu_i^T, applied without forming it: the matrix
-    // A stays that of set_operator() for every set of pieces.
-    const Apply step_operator = [&](VectorType &dst, const VectorType &src) {
-      A->vmult(dst, src);
-      for (unsigned int i = 0; i < m; ++i)
-        if (normal_stiffness[i] != 0)
-          contact.add_normal(dst,
-                             i,
-                             normal_stiffness[i]
-                               * contact.normal_component(src, i));
-    };
-    // The preconditioner: the factorisation of A, or the AMG of the step
-    // operator of (nearly) these pieces, the fixed nodes marked by an
-    // infinite stiffness (update_contact_amg() removes their normal
-    // directions).
-    Apply preconditioner;
-    if (factorization)
-      preconditioner = [&](VectorType &dst, const VectorType &src) {
-        factorization->solve(dst, src);
-      };
-    else
-      {
-        std::vector<double> stiffness = normal_stiffness;
-        for (unsigned int i = 0; i < m; ++i)
-          if (fixed[i])
-            stiffness[i] = std::numeric_limits<double>::infinity();
-        update_contact_amg(contact, stiffness);
-        preconditioner = [&](VectorType &dst, const VectorType &src) {
-          contact_amg.vmult(dst, src);
-        };
-      }
-
+    const Apply preconditioner
+      = step_preconditioner(contact, fixed, normal_stiffness);
     // With a projected right-hand side and start, every Krylov iterate keeps
     // zero normal components at the fixed nodes.
-    project(step_rhs);
-    project(u); // the warm start: the previous iterate, constraints removed
-    const LinearSolveReport report
-      = krylov_solve(projected(step_operator, operator_scratch),
-                     projected(preconditioner, preconditioner_scratch),
-                     u,
-                     step_rhs,
-                     b_norm,
-                     accuracy);
+    remove_fixed_normals(contact, fixed, step_rhs);
+    // The warm start: the previous iterate, constraints removed.
+    remove_fixed_normals(contact, fixed, u);
+    const LinearSolveReport report = krylov_solve(
+      projected(step_operator(contact, normal_stiffness),
+                operator_scratch,
+                contact,
+                fixed),
+      projected(preconditioner, preconditioner_scratch, contact, fixed),
+      u,
+      step_rhs,
+      b_norm,
+      accuracy);
     // u = u_0 + y: now u.nu_i = beta at the fixed nodes.
     u += u0;
     // A failed solve leaves r and z as they were; ContactNodes::solve()
@@ -803,9 +908,162 @@ namespace ViscoContact
     VectorType &residual = A_u0; // its value is no longer needed
     A->vmult(residual, u);
     residual.sadd(-1., 1., b);
-    // At a fixed node the force is read off the residual; on a sloped piece
-    // the law gives it exactly, z_i = w_i (o_i + s_i r_i).
-    for (unsigned int i = 0; i < m; ++i)
+    read_off_contact(contact, u, residual);
+    return report;
+  }
+
+
+
+  // @sect4{FullSpaceContactSolver::collect_piece_terms}
+  //
+  // Split the nodes by their pieces. A vertical piece (a jump of the law,
+  // or the rigid foundation) fixes the normal displacement to
+  // beta = r_lower: the node is fixed, u_0 gets beta nu_i. A sloped piece
+  // adds the load -w_i o_i nu_i to the right-hand side and the normal
+  // stiffness w_i s_i to the operator (zero on a flat piece, whose force
+  // w_i o_i is then known).
+  template <int dim>
+  void
+  FullSpaceContactSolver<dim>::collect_piece_terms(
+    const ContactSet<dim> &contact,
+    std::vector<bool>     &fixed,
+    std::vector<double>   &normal_stiffness,
+    VectorType            &u0,
+    VectorType            &step_rhs) const
+  {
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      {
+        const ContactLawPiece &piece = contact.law().piece(contact.piece(i));
+        fixed[i]                     = piece.vertical;
+        if (piece.vertical)
+          contact.add_normal(u0, i, piece.r_lower);
+        else
+          {
+            contact.add_normal(step_rhs,
+                               i,
+                               -contact.weight(i) * piece.intercept);
+            normal_stiffness[i] = contact.weight(i) * piece.slope;
+          }
+      }
+  }
+
+
+
+  // @sect4{FullSpaceContactSolver::remove_fixed_normals}
+  //
+  // P v: remove the normal component at every fixed node. nu_i is a unit
+  // vector, so this is the orthogonal projection I - nu_i nu_i^T on the
+  // node's dofs and the identity elsewhere.
+  template <int dim>
+  void
+  FullSpaceContactSolver<dim>::remove_fixed_normals(
+    const ContactSet<dim>   &contact,
+    const std::vector<bool> &fixed,
+    VectorType              &v) const
+  {
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      if (fixed[i])
+        contact.add_normal(v, i, -contact.normal_component(v, i));
+  }
+
+
+
+  // @sect4{FullSpaceContactSolver::projected}
+  //
+  // v -> P inner(P v) + (I - P) v, for the operator and the preconditioner
+  // alike, with projected_src as work vector. The last term puts the
+  // normal components of v at the fixed nodes back unchanged, which keeps
+  // the operator nonsingular; P and I - P are symmetric, so the result is
+  // symmetric whenever inner is. The function keeps references to its
+  // arguments except inner, which it copies.
+  template <int dim>
+  typename FullSpaceContactSolver<dim>::Apply
+  FullSpaceContactSolver<dim>::projected(const Apply             &inner,
+                                         VectorType              &projected_src,
+                                         const ContactSet<dim>   &contact,
+                                         const std::vector<bool> &fixed) const
+  {
+    return
+      [this, inner, &projected_src, &contact, &fixed](VectorType       &dst,
+                                                      const VectorType &src) {
+        projected_src = src;
+        remove_fixed_normals(contact, fixed, projected_src);
+        inner(dst, projected_src);
+        remove_fixed_normals(contact, fixed, dst);
+        for (unsigned int i = 0; i < contact.size(); ++i)
+          if (fixed[i])
+            contact.add_normal(dst, i, contact.normal_component(src, i));
+      };
+  }
+
+
+
+  // @sect4{FullSpaceContactSolver::step_operator}
+  //
+  // A + sum_i w_i s_i nu_i nu_i^T, applied without forming it: the matrix
+  // A stays that of set_operator() for every set of pieces.
+  template <int dim>
+  typename FullSpaceContactSolver<dim>::Apply
+  FullSpaceContactSolver<dim>::step_operator(
+    const ContactSet<dim>     &contact,
+    const std::vector<double> &normal_stiffness) const
+  {
+    return [this, &contact, &normal_stiffness](VectorType       &dst,
+                                               const VectorType &src) {
+      A->vmult(dst, src);
+      for (unsigned int i = 0; i < contact.size(); ++i)
+        if (normal_stiffness[i] != 0)
+          contact.add_normal(dst,
+                             i,
+                             normal_stiffness[i]
+                               * contact.normal_component(src, i));
+    };
+  }
+
+
+
+  // @sect4{FullSpaceContactSolver::step_preconditioner}
+  //
+  // The preconditioner: the factorisation of A, or the AMG of the step
+  // operator of (nearly) these pieces, the fixed nodes marked by an
+  // infinite stiffness (update_contact_amg() removes their normal
+  // directions). Collective when it updates the AMG.
+  template <int dim>
+  typename FullSpaceContactSolver<dim>::Apply
+  FullSpaceContactSolver<dim>::step_preconditioner(
+    const ContactSet<dim>     &contact,
+    const std::vector<bool>   &fixed,
+    const std::vector<double> &normal_stiffness)
+  {
+    if (factorization)
+      return [this](VectorType &dst, const VectorType &src) {
+        factorization->solve(dst, src);
+      };
+    std::vector<double> stiffness = normal_stiffness;
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      if (fixed[i])
+        stiffness[i] = std::numeric_limits<double>::infinity();
+    update_contact_amg(contact, stiffness);
+    return [this](VectorType &dst, const VectorType &src) {
+      contact_amg.vmult(dst, src);
+    };
+  }
+
+
+
+  // @sect4{FullSpaceContactSolver::read_off_contact}
+  //
+  // r_i = nu_i . u_i at every node. At a fixed node the force is read off
+  // the residual; on a sloped piece the law gives it exactly,
+  // z_i = w_i (o_i + s_i r_i).
+  template <int dim>
+  void
+  FullSpaceContactSolver<dim>::read_off_contact(
+    ContactSet<dim>  &contact,
+    const VectorType &u,
+    const VectorType &residual) const
+  {
+    for (unsigned int i = 0; i < contact.size(); ++i)
       {
         const ContactLawPiece &piece = contact.law().piece(contact.piece(i));
         contact.r[i]                 = contact.normal_component(u, i);
@@ -814,7 +1072,6 @@ namespace ViscoContact
                                           : contact.weight(i)
                               * (piece.intercept + piece.slope * contact.r[i]));
       }
-    return report;
   }
 
 

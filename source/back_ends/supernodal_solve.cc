@@ -31,40 +31,136 @@ namespace ViscoContact
   // subtree holds more than a 1/32 of the factor's entries: enough pieces
   // to balance two or more threads, while in the usual trees the top part
   // stays a few separators. Then the top part is cut again (stages).
+  namespace
+  {
+    // The number of columns and of rows of supernode s's block.
+    std::size_t
+    n_columns(const SupernodalSolve::Factor &factor, const std::size_t s)
+    {
+      return std::size_t(factor.super[s + 1] - factor.super[s]);
+    }
+
+    std::size_t
+    n_rows(const SupernodalSolve::Factor &factor, const std::size_t s)
+    {
+      return std::size_t(factor.pi[s + 1] - factor.pi[s]);
+    }
+
+    // The parent of a root: none.
+    constexpr std::size_t no_parent = std::size_t(-1);
+
+    // The elimination tree of a factor, with what the cut measures: the
+    // work of the whole factor (the entries of its blocks) and its tallest
+    // block (the size of the solves' work arrays).
+    struct EliminationTree
+    {
+      std::vector<std::size_t>              supernode_of_column;
+      std::vector<std::size_t>              parent;
+      std::vector<std::vector<std::size_t>> children;
+      double                                total_work = 0;
+      std::size_t                           max_rows   = 0;
+    };
+
+    // The parents and children of the supernodes, in one pass that also
+    // adds up the work.
+    EliminationTree
+    elimination_tree(const SupernodalSolve::Factor &factor)
+    {
+      const std::size_t ns = factor.n_super;
+      EliminationTree   tree;
+      tree.supernode_of_column.resize(factor.n);
+      for (std::size_t s = 0; s < ns; ++s)
+        for (auto j = factor.super[s]; j < factor.super[s + 1]; ++j)
+          tree.supernode_of_column[j] = s;
+      tree.parent.assign(ns, no_parent);
+      tree.children.resize(ns);
+      // The parents, the children, and the work: entries of the blocks.
+      for (std::size_t s = 0; s < ns; ++s)
+        {
+          const double work = double(n_rows(factor, s)) * n_columns(factor, s);
+          tree.total_work += work;
+          tree.max_rows = std::max(tree.max_rows, n_rows(factor, s));
+          if (n_rows(factor, s) > n_columns(factor, s))
+            {
+              tree.parent[s]
+                = tree.supernode_of_column[factor.rows[factor.pi[s]
+                                                       + n_columns(factor, s)]];
+              tree.children[tree.parent[s]].push_back(s);
+            }
+        }
+      return tree;
+    }
+
+    // One cut of the top part: which of its supernodes stay in it, their
+    // work, and the roots of the subtrees cut off, heaviest first.
+    struct TopPartCut
+    {
+      std::vector<char>        stays_in_top;
+      double                   work_staying = 0;
+      std::vector<std::size_t> subtree_roots;
+    };
+
+    // The top part (marked by in_top, holding work_in_top) is closed under
+    // taking parents, so its subtrees hang off its roots. The heaviest
+    // subtree's root stays in the top part and its children become roots,
+    // until no subtree holds more than a 1/32 of work_in_top.
+    TopPartCut
+    cut_top_part(const SupernodalSolve::Factor &factor,
+                 const EliminationTree         &tree,
+                 const std::vector<char>       &in_top,
+                 const double                   work_in_top)
+    {
+      const std::size_t ns = factor.n_super;
+      // The work of each subtree of the top part (children come before
+      // their parents).
+      std::vector<double> work_below(ns, 0.);
+      for (std::size_t s = 0; s < ns; ++s)
+        if (in_top[s])
+          {
+            work_below[s] += double(n_rows(factor, s)) * n_columns(factor, s);
+            if (tree.parent[s] != no_parent)
+              work_below[tree.parent[s]] += work_below[s];
+          }
+      std::priority_queue<std::pair<double, std::size_t>> heaviest;
+      for (std::size_t s = 0; s < ns; ++s)
+        if (in_top[s] && tree.parent[s] == no_parent)
+          heaviest.emplace(work_below[s], s);
+      TopPartCut cut;
+      cut.stays_in_top.assign(ns, 0);
+      while (!heaviest.empty() && heaviest.top().first > work_in_top / 32)
+        {
+          const std::size_t s = heaviest.top().second;
+          heaviest.pop();
+          cut.stays_in_top[s] = 1;
+          cut.work_staying += double(n_rows(factor, s)) * n_columns(factor, s);
+          for (const std::size_t child : tree.children[s])
+            if (in_top[child])
+              heaviest.emplace(work_below[child], child);
+        }
+      // What is left in the queue are the roots of the subtrees cut off.
+      while (!heaviest.empty())
+        {
+          cut.subtree_roots.push_back(heaviest.top().second);
+          heaviest.pop();
+        }
+      return cut;
+    }
+  } // namespace
+
+
+
+  // @sect4{SupernodalSolve::initialize}
+  //
+  // The elimination tree, its cut stage by stage (cut_top_part(),
+  // add_subtrees()), then the places of the updates each subtree owes rows
+  // further up (set_up_update_targets()).
   void
   SupernodalSolve::initialize(const Factor &factor_in)
   {
-    factor                      = factor_in;
-    const std::size_t ns        = factor.n_super;
-    const auto        n_columns = [&](const std::size_t s) {
-      return std::size_t(factor.super[s + 1] - factor.super[s]);
-    };
-    const auto n_rows = [&](const std::size_t s) {
-      return std::size_t(factor.pi[s + 1] - factor.pi[s]);
-    };
-
-    std::vector<std::size_t> supernode_of_column(factor.n);
-    for (std::size_t s = 0; s < ns; ++s)
-      for (auto j = factor.super[s]; j < factor.super[s + 1]; ++j)
-        supernode_of_column[j] = s;
-    constexpr std::size_t                 no_parent = std::size_t(-1);
-    std::vector<std::size_t>              parent(ns, no_parent);
-    std::vector<std::vector<std::size_t>> children(ns);
-    double                                total_work = 0;
-    max_rows                                         = 0;
-    // The parents, the children, and the work: entries of the blocks.
-    for (std::size_t s = 0; s < ns; ++s)
-      {
-        const double work = double(n_rows(s)) * n_columns(s);
-        total_work += work;
-        max_rows = std::max(max_rows, n_rows(s));
-        if (n_rows(s) > n_columns(s))
-          {
-            parent[s]
-              = supernode_of_column[factor.rows[factor.pi[s] + n_columns(s)]];
-            children[parent[s]].push_back(s);
-          }
-      }
+    factor                     = factor_in;
+    const std::size_t     ns   = factor.n_super;
+    const EliminationTree tree = elimination_tree(factor);
+    max_rows                   = tree.max_rows;
 
     // The cut into stages: the first cuts the whole tree, each further one
     // the top part the previous left, as long as that gives at least two
@@ -73,66 +169,31 @@ namespace ViscoContact
     // is in the top part.
     std::vector<char>         in_top(ns, 1);
     std::vector<std::int64_t> subtree_of(ns, -1);
-    double                    work_in_top = total_work;
+    double                    work_in_top = tree.total_work;
     subtree_supernodes.clear();
     stage_begin.assign(1, 0);
     for (unsigned int stage = 0; stage < 8; ++stage)
       {
-        // The work of each subtree of the top part (which is closed under
-        // taking parents), and the cut of it.
-        std::vector<double> work_below(ns, 0.);
-        for (std::size_t s = 0; s < ns; ++s)
-          if (in_top[s])
-            {
-              work_below[s] += double(n_rows(s)) * n_columns(s);
-              if (parent[s] != no_parent)
-                work_below[parent[s]] += work_below[s];
-            }
-        std::priority_queue<std::pair<double, std::size_t>> heaviest;
-        for (std::size_t s = 0; s < ns; ++s)
-          if (in_top[s] && parent[s] == no_parent)
-            heaviest.emplace(work_below[s], s);
-        std::vector<char> stays_in_top(ns, 0);
-        double            work_staying = 0;
-        while (!heaviest.empty() && heaviest.top().first > work_in_top / 32)
-          {
-            const std::size_t s = heaviest.top().second;
-            heaviest.pop();
-            stays_in_top[s] = 1;
-            work_staying += double(n_rows(s)) * n_columns(s);
-            for (const std::size_t child : children[s])
-              if (in_top[child])
-                heaviest.emplace(work_below[child], child);
-          }
+        TopPartCut cut = cut_top_part(factor, tree, in_top, work_in_top);
         // A top part of more than half the factor after the first cut (3D
         // meshes, whose separators are large dense blocks) leaves too little
         // to share: CHOLMOD's own solve, with its BLAS kernels, is faster
         // there. The solver stays empty.
-        if (stage == 0 && work_staying > total_work / 2)
+        if (stage == 0 && cut.work_staying > tree.total_work / 2)
           {
             *this = SupernodalSolve();
             return;
           }
-        if (heaviest.size() < 2
-            || work_in_top - work_staying < work_in_top / 10)
+        if (cut.subtree_roots.size() < 2
+            || work_in_top - cut.work_staying < work_in_top / 10)
           break;
-        // The new subtrees, heaviest first (so that threads start with the
-        // large pieces); each supernode joins its parent's subtree
-        // (descending, parents first).
-        while (!heaviest.empty())
-          {
-            subtree_of[heaviest.top().second] = subtree_supernodes.size();
-            subtree_supernodes.emplace_back();
-            heaviest.pop();
-          }
-        for (std::size_t s = ns; s-- > 0;)
-          if (in_top[s] && !stays_in_top[s] && subtree_of[s] < 0)
-            subtree_of[s] = subtree_of[parent[s]];
-        for (std::size_t s = 0; s < ns; ++s)
-          if (in_top[s] && !stays_in_top[s])
-            subtree_supernodes[subtree_of[s]].push_back(s);
-        in_top.swap(stays_in_top);
-        work_in_top = work_staying;
+        add_subtrees(cut.subtree_roots,
+                     tree.parent,
+                     in_top,
+                     cut.stays_in_top,
+                     subtree_of);
+        in_top.swap(cut.stays_in_top);
+        work_in_top = cut.work_staying;
         stage_begin.push_back(subtree_supernodes.size());
       }
     top_supernodes.clear();
@@ -140,9 +201,54 @@ namespace ViscoContact
       if (in_top[s])
         top_supernodes.push_back(s);
 
-    // Where each off-diagonal update goes: a row of the same subtree (or of
-    // the top part, for the top's own supernodes), or, for a row further up
-    // (a later stage or the top part), the subtree's buffer.
+    set_up_update_targets(tree.supernode_of_column, subtree_of);
+  }
+
+
+
+  // @sect4{SupernodalSolve::add_subtrees}
+  //
+  // The subtrees of one cut, numbered after those of the earlier stages in
+  // the order of their roots (heaviest first, so that threads start with
+  // the large pieces); each supernode that leaves the top part joins its
+  // parent's subtree (descending, parents first), and each subtree lists
+  // its supernodes ascending.
+  void
+  SupernodalSolve::add_subtrees(const std::vector<std::size_t> &roots,
+                                const std::vector<std::size_t> &parent,
+                                const std::vector<char>        &in_top,
+                                const std::vector<char>        &stays_in_top,
+                                std::vector<std::int64_t>      &subtree_of)
+  {
+    for (const std::size_t root : roots)
+      {
+        subtree_of[root] = subtree_supernodes.size();
+        subtree_supernodes.emplace_back();
+      }
+    const std::size_t ns = parent.size();
+    for (std::size_t s = ns; s-- > 0;)
+      if (in_top[s] && !stays_in_top[s] && subtree_of[s] < 0)
+        subtree_of[s] = subtree_of[parent[s]];
+    for (std::size_t s = 0; s < ns; ++s)
+      if (in_top[s] && !stays_in_top[s])
+        subtree_supernodes[subtree_of[s]].push_back(s);
+  }
+
+
+
+  // @sect4{SupernodalSolve::set_up_update_targets}
+  //
+  // Where each off-diagonal update goes: a row of the same subtree (or of
+  // the top part, for the top's own supernodes), or, for a row further up
+  // (a later stage or the top part), the subtree's buffer. A subtree's rows
+  // further up are listed once, ascending, and entry k of its buffer
+  // belongs to the k-th of them.
+  void
+  SupernodalSolve::set_up_update_targets(
+    const std::vector<std::size_t>  &supernode_of_column,
+    const std::vector<std::int64_t> &subtree_of)
+  {
+    const std::size_t ns         = factor.n_super;
     const std::size_t n_subtrees = subtree_supernodes.size();
     target.assign(factor.rows, factor.rows + factor.pi[ns]);
     rows_above.assign(n_subtrees, {});
@@ -154,7 +260,7 @@ namespace ViscoContact
         };
         std::vector<std::int64_t> &rows = rows_above[t];
         for (const std::size_t s : subtree_supernodes[t])
-          for (auto k = factor.pi[s] + std::int64_t(n_columns(s));
+          for (auto k = factor.pi[s] + std::int64_t(n_columns(factor, s));
                k < factor.pi[s + 1];
                ++k)
             if (outside(factor.rows[k]))
@@ -162,7 +268,7 @@ namespace ViscoContact
         std::sort(rows.begin(), rows.end());
         rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
         for (const std::size_t s : subtree_supernodes[t])
-          for (auto k = factor.pi[s] + std::int64_t(n_columns(s));
+          for (auto k = factor.pi[s] + std::int64_t(n_columns(factor, s));
                k < factor.pi[s + 1];
                ++k)
             if (outside(factor.rows[k]))

@@ -17,6 +17,8 @@ fails):
   coincident_nodes.msh   two squares with separate nodes on x = 1 (a crack)
   hanging_face_3d.msh    a hexahedron next to 2 x 2 x 2 smaller ones
   twisted_hexahedron.msh a hexahedron with two nodes of its top swapped
+  wedge.msh              the unit cube as two wedges (prisms), a cell type
+                         the program does not support
 
 Run from anywhere: python3 tests/bad_input/meshes/make_bad_meshes.py
 """
@@ -91,7 +93,7 @@ def hexahedra(n, origin=0.0, size=1.0, first_id=1):
     return nodes, cells, faces
 
 
-TRIANGLE, QUADRILATERAL, HEXAHEDRON, LINE = 2, 3, 5, 1
+TRIANGLE, QUADRILATERAL, HEXAHEDRON, LINE, WEDGE = 2, 3, 5, 1, 6
 
 nodes, cells, lines = triangles(2)
 write("good_2d.msh", nodes, cells, lines, TRIANGLE, LINE)
@@ -146,3 +148,10 @@ small_faces = [(t, tuple(rename.get(i, i) for i in ids))
 write("hanging_face_3d.msh", big_nodes + small_nodes, big_cells + small_cells,
       [f for f in big_faces if f[0] != 1] + small_faces, HEXAHEDRON,
       QUADRILATERAL)
+# The unit cube cut along its diagonal plane x = y into two wedges (Gmsh's
+# node order: the bottom triangle, then the top one); no boundary faces
+# (the cell type is refused before they are looked at).
+cube = [(1, 0, 0, 0), (2, 1, 0, 0), (3, 1, 1, 0), (4, 0, 1, 0),
+        (5, 0, 0, 1), (6, 1, 0, 1), (7, 1, 1, 1), (8, 0, 1, 1)]
+write("wedge.msh", cube, [(1, 2, 3, 5, 6, 7), (1, 3, 4, 5, 7, 8)], [],
+      WEDGE, QUADRILATERAL)

@@ -1,5 +1,5 @@
-#ifndef viscoplastic_contact_active_set_h
-#define viscoplastic_contact_active_set_h
+#ifndef viscoplastic_contact_contact_nodes_h
+#define viscoplastic_contact_contact_nodes_h
 
 #include <deal.II/base/mpi.h>
 
@@ -96,7 +96,7 @@ namespace ViscoContact
     // of the current pieces to the given relative accuracy and writes r and
     // z; repeat until no node moves on any rank of the communicator and the
     // solve met the tolerance, or until max_iterations. Solves before the
-    // pieces settle are asked for sqrt(tolerance) only (active_set.cc).
+    // pieces settle are asked for sqrt(tolerance) only (contact_nodes.cc).
     ActiveSetResult
     solve(const std::function<LinearSolveReport(double)> &solve_for_pieces,
           const unsigned int                              max_iterations,

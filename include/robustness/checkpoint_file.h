@@ -1,5 +1,5 @@
-#ifndef viscoplastic_contact_checkpoint_h
-#define viscoplastic_contact_checkpoint_h
+#ifndef viscoplastic_contact_robustness_checkpoint_file_h
+#define viscoplastic_contact_robustness_checkpoint_file_h
 
 #include <deal.II/base/mpi.h>
 
@@ -17,7 +17,7 @@ namespace ViscoContact
 {
   using namespace dealii;
 
-  // @sect3{Checkpoints}
+  // @sect3{Checkpoint files}
   //
   // A checkpoint of step n is one file,
   //   <Output directory>/checkpoint/step_NNNNNN.bin,
@@ -44,6 +44,11 @@ namespace ViscoContact
   // not stored; it is rebuilt from the parameter file (see write_checkpoint()).
   // Every rank's work and memory stay proportional to its share of the cells,
   // on writing and on reading.
+
+  // The version of the file layout, the first value of every header: a
+  // resumed run refuses a checkpoint of another version rather than misread
+  // it. Bumped whenever the layout of the files changes.
+  constexpr std::uint32_t checkpoint_version = 5;
 
   // The header's bytes, built and read in memory. Only trivially copyable
   // values are written, byte for byte in the machine's representation (vectors

@@ -11,7 +11,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 
-#include "active_set.h"
+#include "contact_nodes.h"
 
 #include <cmath>
 #include <iomanip>
@@ -65,7 +65,7 @@ namespace ViscoContact
 
 
   // The iteration history of the last run, one line per iteration, for the
-  // report of a failed step (time_loop.cc): how many nodes moved, how many
+  // report of a failed step (step_report.cc): how many nodes moved, how many
   // sit at the rigid limit, and how well the linear solve did.
   std::string
   ActiveSetResult::describe() const

@@ -233,6 +233,11 @@ namespace ViscoContact
       parse_parameters(ParameterHandler &prm);
     };
 
+    // The canonical text of an entry's value (the numbers of a list parsed
+    // and printed again): what a resumed run compares.
+    std::string
+    canonical_value(const std::string &value);
+
     // The most .vtu records a run writes (each a .pvtu file with its
     // pieces, listed in solution.pvd): beyond it the schedule is refused.
     constexpr unsigned int max_output_records = 10000;

@@ -3,7 +3,10 @@
 
 #include "parameters.h"
 
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -46,6 +49,44 @@ namespace ViscoContact
         return ids;
       }
     } // namespace
+
+
+
+    // Every number of a list (separated by ',' or ';') printed with the
+    // fewest digits (15 to 17) that give it back, every other item trimmed, the
+    // items joined by the separator and one space: "0.1" and "1e-1", "1,1" and
+    // "1, 1" are the same value. An expression stays as it is written
+    // (trimmed).
+    std::string
+    canonical_value(const std::string &value)
+    {
+      const char  separator = value.find(';') != std::string::npos ? ';' : ',';
+      std::string result;
+      for (const std::string &item :
+           Utilities::split_string_list(value, separator))
+        {
+          const char *begin   = item.c_str();
+          char       *end     = nullptr;
+          errno               = 0;
+          const double number = std::strtod(begin, &end);
+          std::string  text   = item;
+          if (!item.empty() && end == begin + item.size() && errno == 0)
+            {
+              // The shortest of 15 to 17 digits that gives the number back.
+              for (int digits = 15; digits <= 17; ++digits)
+                {
+                  std::ostringstream printed;
+                  printed << std::setprecision(digits) << number;
+                  text = printed.str();
+                  if (std::strtod(text.c_str(), nullptr) == number)
+                    break;
+                }
+            }
+          result
+            += (result.empty() ? "" : std::string(1, separator) + " ") + text;
+        }
+      return result;
+    }
 
 
 
@@ -872,7 +913,9 @@ namespace ViscoContact
       parsed_parameters = parsed.str();
 
       // The entries that change the result, from the short listing (one
-      // "set" line per entry, inside "subsection" ... "end").
+      // "set" line per entry, inside "subsection" ... "end"), each value in
+      // its canonical form, so that a resumed run compares what the values
+      // mean, not how they were written.
       std::ostringstream short_listing;
       prm.print_parameters(short_listing, ParameterHandler::ShortPRM);
       std::istringstream       lines(short_listing.str());
@@ -903,7 +946,8 @@ namespace ViscoContact
                   || full_name.rfind("Checkpoint/", 0) == 0
                   || full_name == "Time/End time")
                 continue;
-              result_entries.push_back(full_name + " = " + value);
+              result_entries.push_back(full_name + " = "
+                                       + canonical_value(value));
             }
         }
     }

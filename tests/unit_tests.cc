@@ -1713,6 +1713,27 @@ TEST(OutputFolder, CollectiveFileInRankOrder)
 
 
 
+// @sect3{Canonical entry values}
+//
+// What a resumed run compares with its checkpoint: the values, not their
+// spelling. Numbers are parsed and printed with the fewest digits that give
+// them back; expressions and words stay as written (trimmed).
+TEST(Parameters, CanonicalValues)
+{
+  using Parameters::canonical_value;
+  EXPECT_EQ(canonical_value("0.1"), "0.1");
+  EXPECT_EQ(canonical_value("1e-1"), canonical_value("0.1"));
+  EXPECT_EQ(canonical_value("0.015625"), "0.015625");
+  EXPECT_EQ(canonical_value("1,1"), "1, 1");
+  EXPECT_EQ(canonical_value(" 1 ,  1.0 "), "1, 1");
+  EXPECT_EQ(canonical_value(" 0 ;  -5 "), "0; -5");
+  EXPECT_EQ(canonical_value("x*t; 0"), "x*t; 0");
+  EXPECT_EQ(canonical_value("true"), "true");
+  EXPECT_EQ(canonical_value(""), "");
+  EXPECT_NE(canonical_value("0.1"), canonical_value("0.10000000000000002"));
+  EXPECT_EQ(canonical_value("0.30000000000000004"), "0.30000000000000004");
+}
+
 // @sect3{The time schedule}
 //
 // TimeSchedule with fixed steps: t_n = n k with the last step shortened to

@@ -23,8 +23,8 @@
 // The mesh, the element and the quadrature are those of the program
 // (create_distributed_mesh() of the project's library, Q1 or P1, the stress
 // quadrature), and so is the operator: K_ij = (E eps(phi_j), eps(phi_i)) with
-// the clamped dofs condensed, assembled as in
-// ViscoplasticContact::assemble_elastic_operator(). The right-hand side is
+// the clamped dofs condensed, assembled by the program's own
+// assemble_elastic_operator() (elastic_operator.h). The right-hand side is
 // the external load of the scene at t = 0 (the surface traction on the
 // loaded boundary and the body force).
 
@@ -81,6 +81,7 @@
 #include "back_ends/blas_threads.h"
 #include "back_ends/rigid_body_modes.h"
 #include "constraints.h"
+#include "elastic_operator.h"
 #include "loads.h"
 #include "material.h"
 #include "mesh.h"
@@ -366,33 +367,11 @@ namespace PreconditionerComparison
   ElasticProblem<dim>::setup_and_assemble()
   {
     Timer timer;
-    // Hexahedra: the program's p4est mesh (create_distributed_mesh(): the
-    // box of m 2^j cubes per edge as m^dim coarse cells refined j times),
-    // built here with the level hierarchy that the geometric multigrid
-    // needs; the active cells and their numbering are the program's.
-    if (reference_cell.is_simplex() || !parameters.mesh_file.empty())
-      triangulation = create_distributed_mesh<dim>(parameters, communicator);
-    else
-      {
-        Parameters::AllParameters coarse_parameters = parameters;
-        unsigned int              refinements       = 0;
-        while (coarse_parameters.subdivisions % 2 == 0)
-          {
-            coarse_parameters.subdivisions /= 2;
-            ++refinements;
-          }
-        Triangulation<dim> coarse_mesh;
-        create_coarse_mesh(coarse_parameters, coarse_mesh);
-        auto mesh = std::make_unique<parallel::distributed::Triangulation<dim>>(
-          communicator,
-          Triangulation<dim>::limit_level_difference_at_vertices,
-          parallel::distributed::Triangulation<
-            dim>::construct_multigrid_hierarchy);
-        mesh->copy_triangulation(coarse_mesh);
-        mesh->refine_global(refinements);
-        refine_mesh(parameters, *mesh);
-        triangulation = std::move(mesh);
-      }
+    // The program's mesh; on p4est with the level hierarchy that the
+    // geometric multigrid needs (the active cells are the program's).
+    triangulation = create_distributed_mesh<dim>(parameters,
+                                                 communicator,
+                                                 /*multigrid_hierarchy=*/true);
     dof_handler.reinit(*triangulation);
     dof_handler.distribute_dofs(*fe);
     locally_owned_dofs = dof_handler.locally_owned_dofs();
@@ -422,10 +401,6 @@ namespace PreconditionerComparison
     const Quadrature<dim - 1> face_quadrature
       = reference_cell.face_reference_cell(0)
           .template get_gauss_type_quadrature<dim - 1>(2);
-    FEValues<dim>       fe_values(mapping,
-                            *fe,
-                            stress_quadrature,
-                            update_gradients | update_JxW_values);
     FEValues<dim>       load_values(mapping,
                               *fe,
                               load_quadrature,
@@ -447,36 +422,25 @@ namespace PreconditionerComparison
                     parameters.lengths);
     body_force.set_time(0);
     traction.set_time(0);
-    const PerzynaMaterial<dim>           material(parameters.young_modulus,
+    const PerzynaMaterial<dim> material(parameters.young_modulus,
                                         parameters.poisson_ratio,
                                         parameters.viscosity,
                                         parameters.yield_stress);
-    const SymmetricTensor<4, dim>       &E = material.elasticity_tensor();
-    const FEValuesExtractors::Vector     displacement(0);
+    // K as the program assembles it; b by the loop below.
+    assemble_elastic_operator(mapping,
+                              dof_handler,
+                              stress_quadrature,
+                              material.elasticity_tensor(),
+                              constraints,
+                              K);
     const unsigned int                   n = fe->n_dofs_per_cell();
-    FullMatrix<double>                   cell_matrix(n, n);
     Vector<double>                       cell_rhs(n);
     std::vector<types::global_dof_index> dof_indices(n);
-    std::vector<SymmetricTensor<2, dim>> strains(n);
     Vector<double>                       load(dim);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          fe_values.reinit(cell);
-          cell_matrix = 0;
-          cell_rhs    = 0;
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              for (unsigned int i = 0; i < n; ++i)
-                strains[i] = fe_values[displacement].symmetric_gradient(i, q);
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  const SymmetricTensor<2, dim> stress_i
-                    = E * strains[i] * fe_values.JxW(q);
-                  for (unsigned int j = 0; j < n; ++j)
-                    cell_matrix(i, j) += stress_i * strains[j];
-                }
-            }
+          cell_rhs = 0;
           load_values.reinit(cell);
           for (const unsigned int q : load_values.quadrature_point_indices())
             {
@@ -506,13 +470,8 @@ namespace PreconditionerComparison
                   }
               }
           cell->get_dof_indices(dof_indices);
-          constraints.distribute_local_to_global(cell_matrix,
-                                                 cell_rhs,
-                                                 dof_indices,
-                                                 K,
-                                                 b);
+          constraints.distribute_local_to_global(cell_rhs, dof_indices, b);
         }
-    K.compress(VectorOperation::add);
     b.compress(VectorOperation::add);
 
     // Support point and component of every owned dof.
@@ -1160,14 +1119,14 @@ main(int argc, char **argv)
       AssertThrow(argc >= 4,
                   ExcMessage("usage: preconditioner_comparison SCENE.prm N "
                              "VARIANT [VARIANT...]"));
-      ParameterHandler prm;
-      Parameters::AllParameters::declare_parameters(prm);
+      ParameterHandler          prm;
+      Parameters::AllParameters parameters;
+      parameters.add_parameters(prm);
       prm.parse_input(argv[1]);
       prm.enter_subsection("Geometry");
       prm.set("Subdivisions", argv[2]);
       prm.leave_subsection();
-      Parameters::AllParameters parameters;
-      parameters.parse_parameters(prm);
+      parameters.check_parameters(prm);
       std::vector<Variant> variants;
       for (int i = 3; i < argc; ++i)
         variants.push_back(parse_variant(argv[i]));

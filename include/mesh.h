@@ -30,10 +30,14 @@ namespace ViscoContact
   //    Gamma_3 (only locally owned cells are flagged);
   //  - check_boundary_ids(): the boundary parts the parameter file names
   //    exist, across all MPI ranks.
+  // multigrid_hierarchy: a p4est mesh with the level hierarchy (and the
+  // level difference limited at vertices) that geometric multigrid needs;
+  // the program's runs do not use it.
   template <int dim>
   std::unique_ptr<parallel::DistributedTriangulationBase<dim>>
   create_distributed_mesh(const Parameters::AllParameters &parameters,
-                          const MPI_Comm                   communicator);
+                          const MPI_Comm                   communicator,
+                          const bool multigrid_hierarchy = false);
 
   template <int dim>
   void

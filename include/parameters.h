@@ -14,12 +14,16 @@ namespace ViscoContact
   // @sect3{Run-time parameters}
   //
   // Every physical and numerical constant of a run comes from a parameter
-  // file. As in step-44, each subsection of the file is one struct with a
-  // static declare_parameters() and a parse_parameters() that reads the
-  // values and checks what ParameterHandler's patterns cannot express
-  // (strict positivity, consistency between entries). A violated check
-  // throws an ExcMessage that names the subsection, the entry, the value
-  // and the accepted range.
+  // file. Each subsection of the file is one struct whose members hold the
+  // values, initialised with the defaults; add_parameters() binds each entry
+  // to its member in one line (ParameterHandler::add_parameter(), with the
+  // range in the pattern where a pattern can state it), so that
+  // ParameterHandler::parse_input() fills the members, and
+  // check_parameters() checks what the patterns cannot express (strict
+  // positivity, consistency between entries). A violated check throws an
+  // ExcMessage that names the subsection, the entry, the value and the
+  // accepted range. A list of parts (several materials or boundary
+  // conditions, say) is one such struct per numbered subsection.
   //
   // Entries that select behaviour (cell types, laws, updates, solvers) are
   // turned into the enums below once, here; the rest of the program never
@@ -112,125 +116,126 @@ namespace ViscoContact
 
     struct Geometry
     {
-      unsigned int        dimension;
-      std::vector<double> lengths;      // L1, L2 (, L3)
-      unsigned int        subdivisions; // squares (cubes) along each edge
-      CellType            cell_type;
-      SimplexPattern      simplex_pattern;
-      std::string         mesh_file;    // Gmsh .msh; empty: the generated box
-      unsigned int global_refinements;  // uniform, after generation/reading
-      unsigned int contact_refinements; // extra levels near Gamma_3
+      unsigned int        dimension    = 2;
+      std::vector<double> lengths      = {1, 1}; // L1, L2 (, L3)
+      unsigned int        subdivisions = 32; // squares (cubes) along each edge
+      CellType            cell_type    = CellType::simplex;
+      SimplexPattern      simplex_pattern = SimplexPattern::slash;
+      std::string         mesh_file; // Gmsh .msh; empty: the generated box
+      unsigned int global_refinements  = 0; // uniform, after generation/reading
+      unsigned int contact_refinements = 0; // extra levels near Gamma_3
 
-      static void
-      declare_parameters(ParameterHandler &prm);
       void
-      parse_parameters(ParameterHandler &prm);
+      add_parameters(ParameterHandler &prm);
+      void
+      check_parameters(ParameterHandler &prm);
     };
 
     struct BoundaryParts
     {
-      std::vector<types::boundary_id> clamped_ids; // Gamma_1
-      std::vector<types::boundary_id> contact_ids; // Gamma_3
-      std::vector<types::boundary_id> loaded_ids;  // loaded part of Gamma_2
+      std::vector<types::boundary_id> clamped_ids = {0}; // Gamma_1
+      std::vector<types::boundary_id> contact_ids = {2}; // Gamma_3
+      std::vector<types::boundary_id> loaded_ids
+        = {3}; // loaded part of Gamma_2
 
-      static void
-      declare_parameters(ParameterHandler &prm);
       void
-      parse_parameters(ParameterHandler &prm);
+      add_parameters(ParameterHandler &prm);
+      void
+      check_parameters(ParameterHandler &prm);
     };
 
     struct Material
     {
-      double young_modulus;
-      double poisson_ratio;
-      double viscosity;
-      double yield_stress;
-      bool   plasticity;
+      double young_modulus = 1000;
+      double poisson_ratio = 0.4;
+      double viscosity     = 50;
+      double yield_stress  = 2;
+      bool   plasticity    = true;
 
-      static void
-      declare_parameters(ParameterHandler &prm);
       void
-      parse_parameters(ParameterHandler &prm, const unsigned int dim);
+      add_parameters(ParameterHandler &prm);
+      void
+      check_parameters(ParameterHandler &prm, const unsigned int dim);
     };
 
     struct Loads
     {
-      std::string body_force;       // FunctionParser expression, dim parts
-      std::string surface_traction; // FunctionParser expression, dim parts
+      std::string body_force = "0; 0"; // FunctionParser expression, dim parts
+      std::string surface_traction = "0; -5"; // the same
 
-      static void
-      declare_parameters(ParameterHandler &prm);
       void
-      parse_parameters(ParameterHandler &prm);
+      add_parameters(ParameterHandler &prm);
+      void
+      check_parameters(ParameterHandler &prm);
     };
 
     struct Contact
     {
-      bool                unilateral_constraint; // rigid foundation
-      bool                normal_compliance;     // the deformable layer
-      double              gap;                   // g, layer thickness
-      ContactLawType      law_type;
-      double              c1, c2, u1;  // the benchmark law
+      bool                unilateral_constraint = true; // rigid foundation
+      bool                normal_compliance     = true; // the deformable layer
+      double              gap                   = 0.01; // g, layer thickness
+      ContactLawType      law_type              = ContactLawType::nonmonotone;
+      double              c1 = 300, c2 = -100, u1 = 0.006; // the benchmark law
       std::vector<double> breakpoints; // a general piecewise-linear law
       std::vector<double> slopes;
       std::vector<double> jumps;
-      bool                check_uniqueness;
+      bool                check_uniqueness = true;
 
-      static void
-      declare_parameters(ParameterHandler &prm);
       void
-      parse_parameters(ParameterHandler &prm);
+      add_parameters(ParameterHandler &prm);
+      void
+      check_parameters(ParameterHandler &prm);
     };
 
     struct Time
     {
-      double        end_time;
-      double        time_step;
-      StressUpdate  stress_update;
-      FailurePolicy on_failure;
-      double        minimum_time_step;
+      double        end_time          = 1;
+      double        time_step         = 0.015625;
+      StressUpdate  stress_update     = StressUpdate::explicit_euler;
+      FailurePolicy on_failure        = FailurePolicy::stop;
+      double        minimum_time_step = 1e-6;
       // Adaptive time steps: Time step is the first step, the steps stay in
       // [Minimum time step, maximum_time_step] (maximum_time_step is End time
       // if the entry is 0), and the relative error estimate of each step at
       // most error_tolerance.
-      TimeStepControl time_step_control;
-      double          error_tolerance;
-      double          maximum_time_step;
+      TimeStepControl time_step_control = TimeStepControl::fixed;
+      double          error_tolerance   = 1e-3;
+      double          maximum_time_step = 0;
       // The bound on the number of steps of a run (and of each run of a
       // convergence study): a schedule beyond it is refused before anything
       // is written.
-      unsigned int max_steps;
+      unsigned int max_steps = 1000000;
 
-      static void
-      declare_parameters(ParameterHandler &prm);
       void
-      parse_parameters(ParameterHandler &prm);
+      add_parameters(ParameterHandler &prm);
+      void
+      check_parameters(ParameterHandler &prm);
     };
 
     struct ActiveSetSolver
     {
-      unsigned int max_iterations;
-      double       tolerance; // of every linear solve for fixed pieces
+      unsigned int max_iterations = 50;
+      double       tolerance = 1e-10; // of every linear solve for fixed pieces
       // Start each step from the state extrapolated from the last two steps
       // (ViscoplasticContact::predict_step_start()).
-      bool predicted_start;
+      bool predicted_start = true;
 
-      static void
-      declare_parameters(ParameterHandler &prm);
       void
-      parse_parameters(ParameterHandler &prm);
+      add_parameters(ParameterHandler &prm);
+      void
+      check_parameters(ParameterHandler &prm);
     };
 
     struct LinearSolver
     {
-      Method         method;
-      Preconditioner preconditioner; // full space back end
-      DirectSolver   direct_solver;  // the factorisations of the operator
+      Method         method         = Method::automatic;
+      Preconditioner preconditioner = Preconditioner::amg;     // full space
+      DirectSolver   direct_solver  = DirectSolver::automatic; // factorisations
 
-      static void
-      declare_parameters(ParameterHandler &prm);
       void
-      parse_parameters(ParameterHandler &prm);
+      add_parameters(ParameterHandler &prm);
+      void
+      check_parameters(ParameterHandler &prm);
     };
 
     // The canonical text of an entry's value (the numbers of a list parsed
@@ -244,13 +249,13 @@ namespace ViscoContact
 
     struct Output
     {
-      std::string         directory;
-      bool                write_vtu;
-      unsigned int        interval;
-      std::vector<double> profile_times;
-      bool                print_timing_summary;
-      bool                verbose;
-      bool                overwrite; // remove an earlier run's files
+      std::string         directory            = "output/default";
+      bool                write_vtu            = true;
+      unsigned int        interval             = 1;
+      std::vector<double> profile_times        = {0.015625, 0.5, 1};
+      bool                print_timing_summary = true;
+      bool                verbose              = true;
+      bool                overwrite = false; // remove an earlier run's files
       // The parameter file being run (set by main(), not an entry): a run
       // never removes or replaces it.
       std::string parameter_file;
@@ -260,25 +265,25 @@ namespace ViscoContact
       // run may go further). Stored with a checkpoint and compared on resume.
       std::vector<std::string> result_entries;
 
-      static void
-      declare_parameters(ParameterHandler &prm);
       void
-      parse_parameters(ParameterHandler &prm);
+      add_parameters(ParameterHandler &prm);
+      void
+      check_parameters(ParameterHandler &prm);
     };
 
     struct Checkpoint
     {
-      unsigned int checkpoint_interval; // 0: never
-      bool         resume;
-      unsigned int stop_after_step; // 0: never
+      unsigned int checkpoint_interval = 0; // 0: never
+      bool         resume              = false;
+      unsigned int stop_after_step     = 0; // 0: never
       // Not an entry: false for the runs of a convergence study, which
       // cannot be resumed one by one (a signal then writes no checkpoint).
       bool resumable = true;
 
-      static void
-      declare_parameters(ParameterHandler &prm);
       void
-      parse_parameters(ParameterHandler &prm);
+      add_parameters(ParameterHandler &prm);
+      void
+      check_parameters(ParameterHandler &prm);
     };
 
     // Adaptive meshes during the run (mesh_adaptation.cc): every Refinement
@@ -287,35 +292,36 @@ namespace ViscoContact
     // set up again. Hypercube meshes only (p4est).
     struct MeshAdaptation
     {
-      bool         adaptive_refinement;
-      unsigned int refinement_interval;
-      double       refine_fraction;
-      double       coarsen_fraction;
-      unsigned int maximum_cells;
-      unsigned int maximum_refinement_level;
+      bool         adaptive_refinement      = false;
+      unsigned int refinement_interval      = 1;
+      double       refine_fraction          = 0.3;
+      double       coarsen_fraction         = 0.03;
+      unsigned int maximum_cells            = 20000;
+      unsigned int maximum_refinement_level = 8;
       // Nested iteration on the first step: solved on initial_cycles coarser
       // meshes first, each solution the warm start of the next mesh.
-      unsigned int      initial_cycles;
-      InitialRefinement initial_refinement;
+      unsigned int      initial_cycles     = 0;
+      InitialRefinement initial_refinement = InitialRefinement::global;
 
-      static void
-      declare_parameters(ParameterHandler &prm);
       void
-      parse_parameters(ParameterHandler &prm);
+      add_parameters(ParameterHandler &prm);
+      void
+      check_parameters(ParameterHandler &prm);
     };
 
     struct ConvergenceStudy
     {
-      bool                      study_enabled;
-      std::vector<unsigned int> study_subdivisions;
-      std::vector<double>       study_time_steps;
-      unsigned int              reference_subdivisions;
-      double                    reference_time_step;
+      bool                      study_enabled      = false;
+      std::vector<unsigned int> study_subdivisions = {2, 4, 8, 16, 32};
+      std::vector<double>       study_time_steps
+        = {0.5, 0.25, 0.125, 0.0625, 0.03125};
+      unsigned int reference_subdivisions = 64;
+      double       reference_time_step    = 0.015625;
 
-      static void
-      declare_parameters(ParameterHandler &prm);
       void
-      parse_parameters(ParameterHandler &prm);
+      add_parameters(ParameterHandler &prm);
+      void
+      check_parameters(ParameterHandler &prm);
     };
 
     struct AllParameters : public Geometry,
@@ -331,11 +337,14 @@ namespace ViscoContact
                            public Output,
                            public Checkpoint
     {
-      static void
-      declare_parameters(ParameterHandler &prm);
+      // Every entry of the file, bound to the members of this object (which
+      // must outlive the parsing); then the checks of every subsection and
+      // those between subsections.
       void
-      parse_parameters(ParameterHandler &prm);
-      // The checks between subsections, after every subsection is parsed.
+      add_parameters(ParameterHandler &prm);
+      void
+      check_parameters(ParameterHandler &prm);
+      // The checks between subsections, after every subsection is checked.
       void
       check_study_entries() const;
       void

@@ -7,6 +7,7 @@
 
 #include <deal.II/fe/fe_values.h>
 
+#include "elastic_operator.h"
 #include "robustness/file_output.h"
 #include "viscoplastic_contact.h"
 
@@ -52,6 +53,63 @@ namespace ViscoContact
       return true;
     }
   } // namespace
+
+
+
+  // @sect4{assemble_elastic_operator}
+  //
+  // Each rank assembles its own cells. E has the major symmetry, so only the
+  // lower triangle of the cell matrix is computed, and then mirrored.
+  template <int dim>
+  void
+  assemble_elastic_operator(const Mapping<dim>              &mapping,
+                            const DoFHandler<dim>           &dof_handler,
+                            const Quadrature<dim>           &quadrature,
+                            const SymmetricTensor<4, dim>   &elasticity,
+                            const AffineConstraints<double> &constraints,
+                            TrilinosWrappers::SparseMatrix  &matrix)
+  {
+    FEValues<dim>                    fe_values(mapping,
+                            dof_handler.get_fe(),
+                            quadrature,
+                            update_gradients | update_JxW_values);
+    const FEValuesExtractors::Vector displacement(0);
+    const unsigned int dofs_per_cell = dof_handler.get_fe().n_dofs_per_cell();
+    FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
+    std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
+    std::vector<SymmetricTensor<2, dim>> strains(dofs_per_cell);
+    const SymmetricTensor<4, dim>       &E = elasticity;
+
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell_matrix = 0;
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            {
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                strains[i] = fe_values[displacement].symmetric_gradient(i, q);
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  const SymmetricTensor<2, dim> stress_i
+                    = E * strains[i] * fe_values.JxW(q);
+                  for (unsigned int j = 0; j <= i; ++j)
+                    cell_matrix(i, j) += stress_i * strains[j];
+                }
+            }
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
+              cell_matrix(i, j) = cell_matrix(j, i);
+          // The constraints condense the cell matrix as it is added. Rows of
+          // ghost dofs are collected locally and sent to their owners by
+          // compress(add), which also finishes the matrix for Trilinos.
+          cell->get_dof_indices(local_dof_indices);
+          constraints.distribute_local_to_global(cell_matrix,
+                                                 local_dof_indices,
+                                                 matrix);
+        }
+    matrix.compress(VectorOperation::add);
+  }
 
 
 
@@ -455,6 +513,20 @@ namespace ViscoContact
 
 
 
+  template void
+  assemble_elastic_operator(const Mapping<2> &,
+                            const DoFHandler<2> &,
+                            const Quadrature<2> &,
+                            const SymmetricTensor<4, 2> &,
+                            const AffineConstraints<double> &,
+                            TrilinosWrappers::SparseMatrix &);
+  template void
+  assemble_elastic_operator(const Mapping<3> &,
+                            const DoFHandler<3> &,
+                            const Quadrature<3> &,
+                            const SymmetricTensor<4, 3> &,
+                            const AffineConstraints<double> &,
+                            TrilinosWrappers::SparseMatrix &);
   template class ViscoplasticContact<2>;
   template class ViscoplasticContact<3>;
 } // namespace ViscoContact

@@ -107,8 +107,9 @@ namespace
         print_usage(std::cerr);
         return 1;
       }
-    ParameterHandler prm;
-    Parameters::AllParameters::declare_parameters(prm);
+    ParameterHandler          prm;
+    Parameters::AllParameters defaults;
+    defaults.add_parameters(prm);
     std::ostringstream text;
     prm.print_parameters(text, ParameterHandler::PRM);
     if (files.empty())
@@ -142,9 +143,9 @@ namespace
 
 
 
-  // The parameter file: every entry declared, the file parsed (unknown
-  // entries and invalid values are errors that name the entry), and the
-  // selections turned into the program's enums (parameters.cc). A mesh
+  // The parameter file: every entry bound to its member, the file parsed
+  // (unknown entries and values that do not match their pattern are errors
+  // that name the entry), and the values checked (parameters.cc). A mesh
   // file is found relative to the parameter file that names it; settings
   // that depend on the number of ranks (CHOLMOD and UMFPACK need one rank)
   // are checked here, before any work.
@@ -154,15 +155,17 @@ namespace
     AssertThrow(std::filesystem::is_regular_file(file),
                 ExcMessage("The parameter file <" + file
                            + "> does not exist or is not a regular file."));
-    ParameterHandler prm;
-    Parameters::AllParameters::declare_parameters(prm);
+    // The entries are bound to the members of parameters: parse_input()
+    // fills them, check_parameters() checks them.
+    ParameterHandler          prm;
+    Parameters::AllParameters parameters;
+    parameters.add_parameters(prm);
     prm.parse_input(file);
     // What the parameter file may not mean as ParameterHandler reads it is
     // allowed, but said (rank 0).
     if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
       warn_about_parameter_file(file);
-    Parameters::AllParameters parameters;
-    parameters.parse_parameters(prm);
+    parameters.check_parameters(prm);
     parameters.parameter_file = file;
     if (!parameters.mesh_file.empty()
         && std::filesystem::path(parameters.mesh_file).is_relative())

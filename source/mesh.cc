@@ -480,7 +480,8 @@ namespace ViscoContact
   template <int dim>
   std::unique_ptr<parallel::DistributedTriangulationBase<dim>>
   create_distributed_mesh(const Parameters::AllParameters &parameters,
-                          const MPI_Comm                   communicator)
+                          const MPI_Comm                   communicator,
+                          const bool                       multigrid_hierarchy)
   {
     std::unique_ptr<parallel::DistributedTriangulationBase<dim>> mesh;
     if (parameters.cell_type == Parameters::CellType::simplex)
@@ -517,9 +518,14 @@ namespace ViscoContact
           = coarser_equivalent_box(parameters, numbers::invalid_unsigned_int);
         Triangulation<dim> coarse_mesh;
         create_coarse_mesh(coarse_parameters, coarse_mesh);
+        using DistributedMesh = parallel::distributed::Triangulation<dim>;
         auto distributed_mesh
-          = std::make_unique<parallel::distributed::Triangulation<dim>>(
-            communicator);
+          = multigrid_hierarchy
+              ? std::make_unique<DistributedMesh>(
+                communicator,
+                Triangulation<dim>::limit_level_difference_at_vertices,
+                DistributedMesh::construct_multigrid_hierarchy)
+              : std::make_unique<DistributedMesh>(communicator);
         distributed_mesh->copy_triangulation(coarse_mesh);
         if (box_refinements > 0)
           distributed_mesh->refine_global(box_refinements);
@@ -645,9 +651,13 @@ namespace ViscoContact
 
   // The instantiations for 2D and 3D.
   template std::unique_ptr<parallel::DistributedTriangulationBase<2>>
-  create_distributed_mesh(const Parameters::AllParameters &, const MPI_Comm);
+  create_distributed_mesh(const Parameters::AllParameters &,
+                          const MPI_Comm,
+                          const bool);
   template std::unique_ptr<parallel::DistributedTriangulationBase<3>>
-  create_distributed_mesh(const Parameters::AllParameters &, const MPI_Comm);
+  create_distributed_mesh(const Parameters::AllParameters &,
+                          const MPI_Comm,
+                          const bool);
   template void
   create_coarse_mesh(const Parameters::AllParameters &, Triangulation<2> &);
   template void

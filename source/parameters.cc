@@ -39,14 +39,32 @@ namespace ViscoContact
         return s.str();
       }
 
-      std::vector<types::boundary_id>
-      get_boundary_ids(ParameterHandler &prm, const std::string &entry)
+      // An entry whose text is one of the keys of choices, bound to an enum
+      // member: the default is the key of the member's value.
+      template <typename Enum>
+      void
+      add_selection(ParameterHandler                                &prm,
+                    const std::string                               &entry,
+                    Enum                                            &member,
+                    const std::vector<std::pair<std::string, Enum>> &choices,
+                    const std::string &documentation)
       {
-        std::vector<types::boundary_id> ids;
-        for (const int id : Utilities::string_to_int(
-               Utilities::split_string_list(prm.get(entry))))
-          ids.push_back(static_cast<types::boundary_id>(id));
-        return ids;
+        std::string keys, default_key;
+        for (const auto &[key, value] : choices)
+          {
+            keys += (keys.empty() ? "" : "|") + key;
+            if (value == member)
+              default_key = key;
+          }
+        prm.declare_entry(entry,
+                          default_key,
+                          Patterns::Selection(keys),
+                          documentation);
+        prm.add_action(entry, [&member, choices](const std::string &text) {
+          for (const auto &[key, value] : choices)
+            if (key == text)
+              member = value;
+        });
       }
     } // namespace
 
@@ -91,39 +109,45 @@ namespace ViscoContact
 
 
     void
-    Geometry::declare_parameters(ParameterHandler &prm)
+    Geometry::add_parameters(ParameterHandler &prm)
     {
-      prm.declare_entry("Dimension",
-                        "2",
-                        Patterns::Integer(2, 3),
-                        "Space dimension: 2 (plane stress) or 3.");
+      prm.add_parameter("Dimension",
+                        dimension,
+                        "Space dimension: 2 (plane stress) or 3.",
+                        Patterns::Integer(2, 3));
       prm.enter_subsection("Geometry");
       {
-        prm.declare_entry(
+        prm.add_parameter(
           "Lengths",
-          "1, 1",
-          Patterns::List(Patterns::Double(0), 2, 3),
+          lengths,
           "Edge lengths L1, L2 (, L3) of the rectangular body "
-          "(0,L1)x(0,L2)(x(0,L3)), one per dimension, each > 0.");
-        prm.declare_entry("Subdivisions",
-                          "32",
-                          Patterns::Integer(1, 100000),
+          "(0,L1)x(0,L2)(x(0,L3)), one per dimension, each > 0.",
+          Patterns::List(Patterns::Double(0), 2, 3));
+        prm.add_parameter("Subdivisions",
+                          subdivisions,
                           "Number of squares (cubes) along each edge; the mesh "
                           "size is h = L_i / Subdivisions. An integer in [1, "
                           "100000]; a mesh whose estimated memory exceeds "
-                          "the memory of the machine is refused.");
-        prm.declare_entry(
+                          "the memory of the machine is refused.",
+                          Patterns::Integer(1, 100000));
+        add_selection(
+          prm,
           "Cell type",
-          "simplex",
-          Patterns::Selection("simplex|hypercube"),
+          cell_type,
+          {{"simplex", CellType::simplex}, {"hypercube", CellType::hypercube}},
           "simplex: triangles/tetrahedra (see Simplex pattern), P1 "
           "displacement, piecewise-constant stress; hypercube: "
           "quadrilaterals/hexahedra, Q1 displacement, stresses at the 2^dim "
           "Gauss points.");
-        prm.declare_entry(
+        add_selection(
+          prm,
           "Simplex pattern",
-          "/",
-          Patterns::Selection("/|backslash|union jack|crossed|five tetrahedra"),
+          simplex_pattern,
+          {{"/", SimplexPattern::slash},
+           {"backslash", SimplexPattern::backslash},
+           {"union jack", SimplexPattern::union_jack},
+           {"crossed", SimplexPattern::crossed},
+           {"five tetrahedra", SimplexPattern::five_tetrahedra}},
           "How the generated box is cut into simplices. 2D: / splits each "
           "square [x_i,x_i+1]x[y_j,y_j+1] by the diagonal from (x_i,y_j) to "
           "(x_i+1,y_j+1) (the published benchmark); backslash by the other "
@@ -136,41 +160,38 @@ namespace ViscoContact
           "deal.II's generator (5 per cube, alternating). Every pattern but "
           "five tetrahedra gives nested meshes when Subdivisions doubles. "
           "Ignored for hypercube cells and Gmsh meshes.");
-        prm.declare_entry(
+        prm.add_parameter(
           "Mesh file",
-          "",
-          Patterns::Anything(),
+          mesh_file,
           "A Gmsh .msh file (format 2 or 4, ASCII) instead of the generated "
           "box; its physical groups on boundary faces are the boundary ids of "
           "subsection Boundary, and its cells must be of the Cell type. "
           "A relative path is relative to the directory of the parameter "
           "file. Faces without a physical group get boundary id 0. Empty: the "
-          "box of Lengths and Subdivisions.");
-        prm.declare_entry("Global refinements",
-                          "0",
-                          Patterns::Integer(0, 20),
+          "box of Lengths and Subdivisions.",
+          Patterns::Anything());
+        prm.add_parameter("Global refinements",
+                          global_refinements,
                           "Uniform refinements of the generated or read mesh; "
-                          "an integer in [0, 20].");
-        prm.declare_entry(
+                          "an integer in [0, 20].",
+                          Patterns::Integer(0, 20));
+        prm.add_parameter(
           "Contact refinement levels",
-          "0",
-          Patterns::Integer(0, 20),
+          contact_refinements,
           "Extra refinements of the cells that touch Gamma_3, repeated this "
           "many times (a mesh graded toward the contact boundary; hanging "
           "nodes are constrained). An integer in [0, 20]; 0 for simplex "
-          "cells.");
+          "cells.",
+          Patterns::Integer(0, 20));
       }
       prm.leave_subsection();
     }
 
     void
-    Geometry::parse_parameters(ParameterHandler &prm)
+    Geometry::check_parameters(ParameterHandler &prm)
     {
-      dimension = prm.get_integer("Dimension");
       prm.enter_subsection("Geometry");
       {
-        lengths = Utilities::string_to_double(
-          Utilities::split_string_list(prm.get("Lengths")));
         require(lengths.size() == dimension,
                 "Geometry",
                 "Lengths",
@@ -183,16 +204,7 @@ namespace ViscoContact
                   "Lengths",
                   prm.get("Lengths"),
                   "strictly positive lengths");
-        subdivisions = prm.get_integer("Subdivisions");
-        cell_type    = (prm.get("Cell type") == "simplex" ? CellType::simplex
-                                                          : CellType::hypercube);
         const std::string pattern = prm.get("Simplex pattern");
-        simplex_pattern
-          = (pattern == "/"            ? SimplexPattern::slash
-             : pattern == "backslash"  ? SimplexPattern::backslash
-             : pattern == "union jack" ? SimplexPattern::union_jack
-             : pattern == "crossed"    ? SimplexPattern::crossed
-                                       : SimplexPattern::five_tetrahedra);
         if (cell_type == CellType::simplex)
           require(dimension == 2
                     ? simplex_pattern != SimplexPattern::five_tetrahedra
@@ -203,9 +215,6 @@ namespace ViscoContact
                   pattern,
                   dimension == 2 ? "/, backslash, union jack or crossed in 2D"
                                  : "/ or five tetrahedra in 3D");
-        mesh_file           = prm.get("Mesh file");
-        global_refinements  = prm.get_integer("Global refinements");
-        contact_refinements = prm.get_integer("Contact refinement levels");
         require(contact_refinements == 0 || cell_type == CellType::hypercube,
                 "Geometry",
                 "Contact refinement levels",
@@ -220,43 +229,40 @@ namespace ViscoContact
 
 
     void
-    BoundaryParts::declare_parameters(ParameterHandler &prm)
+    BoundaryParts::add_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Boundary");
       {
-        prm.declare_entry(
+        prm.add_parameter(
           "Clamped boundary ids",
-          "0",
-          Patterns::List(Patterns::Integer(0, 255), 1),
+          clamped_ids,
           "Boundary ids of Gamma_1 (u = 0). The generated box numbers its "
           "faces as deal.II's colorize does: 0/1 at x = 0/L1, 2/3 at y = 0/L2, "
           "4/5 at z = 0/L3. At least one id; ids are integers in [0, 255] "
-          "and must be on the mesh.");
-        prm.declare_entry("Contact boundary ids",
-                          "2",
-                          Patterns::List(Patterns::Integer(0, 255)),
+          "and must be on the mesh.",
+          Patterns::List(Patterns::Integer(0, 255), 1));
+        prm.add_parameter("Contact boundary ids",
+                          contact_ids,
                           "Boundary ids of Gamma_3 (contact with the "
                           "foundation). Every other boundary part is Gamma_2. "
-                          "Integers in [0, 255], none of them clamped.");
-        prm.declare_entry("Loaded boundary ids",
-                          "3",
-                          Patterns::List(Patterns::Integer(0, 255)),
+                          "Integers in [0, 255], none of them clamped.",
+                          Patterns::List(Patterns::Integer(0, 255)));
+        prm.add_parameter("Loaded boundary ids",
+                          loaded_ids,
                           "Parts of Gamma_2 that carry the surface traction of "
                           "subsection Loads; the rest of Gamma_2 is "
                           "traction-free. Integers in [0, 255], none of them "
-                          "clamped.");
+                          "clamped.",
+                          Patterns::List(Patterns::Integer(0, 255)));
       }
       prm.leave_subsection();
     }
 
     void
-    BoundaryParts::parse_parameters(ParameterHandler &prm)
+    BoundaryParts::check_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Boundary");
       {
-        clamped_ids = get_boundary_ids(prm, "Clamped boundary ids");
-        contact_ids = get_boundary_ids(prm, "Contact boundary ids");
-        loaded_ids  = get_boundary_ids(prm, "Loaded boundary ids");
         for (const auto id : contact_ids)
           for (const auto c : clamped_ids)
             require(id != c,
@@ -278,47 +284,42 @@ namespace ViscoContact
 
 
     void
-    Material::declare_parameters(ParameterHandler &prm)
+    Material::add_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Material");
       {
-        prm.declare_entry("Young's modulus",
-                          "1000",
-                          Patterns::Double(),
-                          "E > 0 [N/m^2].");
-        prm.declare_entry("Poisson ratio",
-                          "0.4",
-                          Patterns::Double(),
+        prm.add_parameter("Young's modulus",
+                          young_modulus,
+                          "E > 0 [N/m^2].",
+                          Patterns::Double());
+        prm.add_parameter("Poisson ratio",
+                          poisson_ratio,
                           "k: -1 < k < 1 in 2D (plane stress), -1 < k < 0.5 "
-                          "in 3D.");
-        prm.declare_entry("Viscosity",
-                          "50",
-                          Patterns::Double(),
+                          "in 3D.",
+                          Patterns::Double());
+        prm.add_parameter("Viscosity",
+                          viscosity,
                           "lambda > 0 [N s/m^2] of the Perzyna law "
-                          "G = -(1/(2 lambda)) E (sigma - P_K sigma).");
-        prm.declare_entry("Yield stress",
-                          "2",
-                          Patterns::Double(),
-                          "sigma_Y > 0 [N/m^2] of the von Mises set K.");
-        prm.declare_entry("Plasticity",
-                          "true",
-                          Patterns::Bool(),
+                          "G = -(1/(2 lambda)) E (sigma - P_K sigma).",
+                          Patterns::Double());
+        prm.add_parameter("Yield stress",
+                          yield_stress,
+                          "sigma_Y > 0 [N/m^2] of the von Mises set K.",
+                          Patterns::Double());
+        prm.add_parameter("Plasticity",
+                          plasticity,
                           "false: linear elasticity (G = 0); the history "
-                          "terms are then skipped altogether.");
+                          "terms are then skipped altogether.",
+                          Patterns::Bool());
       }
       prm.leave_subsection();
     }
 
     void
-    Material::parse_parameters(ParameterHandler &prm, const unsigned int dim)
+    Material::check_parameters(ParameterHandler &prm, const unsigned int dim)
     {
       prm.enter_subsection("Material");
       {
-        young_modulus = prm.get_double("Young's modulus");
-        poisson_ratio = prm.get_double("Poisson ratio");
-        viscosity     = prm.get_double("Viscosity");
-        yield_stress  = prm.get_double("Yield stress");
-        plasticity    = prm.get_bool("Plasticity");
         require(young_modulus > 0,
                 "Material",
                 "Young's modulus",
@@ -348,132 +349,112 @@ namespace ViscoContact
 
 
     void
-    Loads::declare_parameters(ParameterHandler &prm)
+    Loads::add_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Loads");
       {
-        prm.declare_entry(
+        prm.add_parameter(
           "Body force",
-          "0; 0",
-          Patterns::Anything(),
+          body_force,
           "f_0(x,t) [N/m^2 in 2D]: one muparser expression per component, "
           "separated by ';', in the variables x, y (, z) and t and the "
           "constants pi, L1, L2 (, L3). A load without the variable t is "
           "assembled once for the whole run. Every value at the load points "
-          "of the mesh and the times of the run must be finite.");
-        prm.declare_entry(
+          "of the mesh and the times of the run must be finite.",
+          Patterns::Anything());
+        prm.add_parameter(
           "Surface traction",
-          "0; -5",
-          Patterns::Anything(),
+          surface_traction,
           "f_2(x,t) [N/m in 2D] on the Loaded boundary ids, same syntax as "
-          "the body force; every value must be finite.");
+          "the body force; every value must be finite.",
+          Patterns::Anything());
       }
       prm.leave_subsection();
     }
 
     void
-    Loads::parse_parameters(ParameterHandler &prm)
+    Loads::check_parameters(ParameterHandler &)
     {
-      prm.enter_subsection("Loads");
-      {
-        body_force       = prm.get("Body force");
-        surface_traction = prm.get("Surface traction");
-      }
-      prm.leave_subsection();
+      // The expressions are parsed and checked with the mesh (loads.h).
     }
 
 
 
     void
-    Contact::declare_parameters(ParameterHandler &prm)
+    Contact::add_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Contact");
       {
-        prm.declare_entry("Unilateral constraint",
-                          "true",
-                          Patterns::Bool(),
-                          "Rigid foundation under the layer: u_nu <= g.");
-        prm.declare_entry("Normal compliance",
-                          "true",
-                          Patterns::Bool(),
-                          "Deformable layer: -sigma_nu = p(u_nu).");
-        prm.declare_entry("Layer thickness",
-                          "0.01",
-                          Patterns::Double(),
+        prm.add_parameter("Unilateral constraint",
+                          unilateral_constraint,
+                          "Rigid foundation under the layer: u_nu <= g.",
+                          Patterns::Bool());
+        prm.add_parameter("Normal compliance",
+                          normal_compliance,
+                          "Deformable layer: -sigma_nu = p(u_nu).",
+                          Patterns::Bool());
+        prm.add_parameter("Layer thickness",
+                          gap,
                           "g > 0 [m], the thickness of the deformable layer "
                           "(g >= 0 is accepted without normal compliance: "
-                          "Signorini with gap g).");
-        prm.declare_entry(
+                          "Signorini with gap g).",
+                          Patterns::Double());
+        add_selection(
+          prm,
           "Law",
-          "nonmonotone",
-          Patterns::Selection("nonmonotone|piecewise linear"),
+          law_type,
+          {{"nonmonotone", ContactLawType::nonmonotone},
+           {"piecewise linear", ContactLawType::piecewise_linear}},
           "nonmonotone: the benchmark law p(r) = 0 (r < 0), c1 r (0 <= r <= "
           "u1), c1 u1 + c2 (r - u1) (r > u1); piecewise linear: any law given "
           "by Breakpoints, Slopes and Jumps.");
-        prm.declare_entry("c1",
-                          "300",
-                          Patterns::Double(),
-                          "Stiffness of the layer up to u1 [N/m^3], c1 >= 0.");
-        prm.declare_entry("c2",
-                          "-100",
-                          Patterns::Double(),
-                          "Slope beyond u1 [N/m^3]; negative = softening.");
-        prm.declare_entry("u1",
-                          "0.006",
-                          Patterns::Double(),
-                          "Penetration where the slope changes [m], u1 >= 0.");
-        prm.declare_entry(
+        prm.add_parameter("c1",
+                          c1,
+                          "Stiffness of the layer up to u1 [N/m^3], c1 >= 0.",
+                          Patterns::Double());
+        prm.add_parameter("c2",
+                          c2,
+                          "Slope beyond u1 [N/m^3]; negative = softening.",
+                          Patterns::Double());
+        prm.add_parameter("u1",
+                          u1,
+                          "Penetration where the slope changes [m], u1 >= 0.",
+                          Patterns::Double());
+        prm.add_parameter(
           "Breakpoints",
-          "",
-          Patterns::List(Patterns::Double()),
-          "Piecewise-linear law: increasing breakpoints b_1 < ... < b_K.");
-        prm.declare_entry("Slopes",
-                          "",
-                          Patterns::List(Patterns::Double()),
+          breakpoints,
+          "Piecewise-linear law: increasing breakpoints b_1 < ... < b_K.",
+          Patterns::List(Patterns::Double()));
+        prm.add_parameter("Slopes",
+                          slopes,
                           "Piecewise-linear law: K+1 slopes, on (-inf,b_1), "
-                          "(b_1,b_2), ..., (b_K,inf); p(b_1-) = 0.");
-        prm.declare_entry(
+                          "(b_1,b_2), ..., (b_K,inf); p(b_1-) = 0.",
+                          Patterns::List(Patterns::Double()));
+        prm.add_parameter(
           "Jumps",
-          "",
-          Patterns::List(Patterns::Double()),
+          jumps,
           "Piecewise-linear law: K jumps p(b_k+) - p(b_k-) >= 0 (empty: all "
-          "zero). A jump makes the Clarke subdifferential an interval.");
-        prm.declare_entry(
+          "zero). A jump makes the Clarke subdifferential an interval.",
+          Patterns::List(Patterns::Double()));
+        prm.add_parameter(
           "Check uniqueness",
-          "true",
-          Patterns::Bool(),
+          check_uniqueness,
           "At set-up, compute the smallest generalised eigenvalue of "
           "(stiffness, lumped normal boundary mass) by a Lanczos iteration and "
           "compare it with the steepest softening of the law (doc/model.md, "
           "section 4): a dense product per iteration on the condensed back "
           "end, one elastic solve per iteration (about 10 to 20) on the full "
-          "space back end.");
+          "space back end.",
+          Patterns::Bool());
       }
       prm.leave_subsection();
     }
 
     void
-    Contact::parse_parameters(ParameterHandler &prm)
+    Contact::check_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Contact");
       {
-        unilateral_constraint = prm.get_bool("Unilateral constraint");
-        normal_compliance     = prm.get_bool("Normal compliance");
-        gap                   = prm.get_double("Layer thickness");
-        law_type              = (prm.get("Law") == "nonmonotone"
-                                   ? ContactLawType::nonmonotone
-                                   : ContactLawType::piecewise_linear);
-        check_uniqueness      = prm.get_bool("Check uniqueness");
-        c1                    = prm.get_double("c1");
-        c2                    = prm.get_double("c2");
-        u1                    = prm.get_double("u1");
-        breakpoints           = Utilities::string_to_double(
-          Utilities::split_string_list(prm.get("Breakpoints")));
-        slopes = Utilities::string_to_double(
-          Utilities::split_string_list(prm.get("Slopes")));
-        jumps = Utilities::string_to_double(
-          Utilities::split_string_list(prm.get("Jumps")));
-
         if (normal_compliance)
           require(gap > 0,
                   "Contact",
@@ -532,46 +513,55 @@ namespace ViscoContact
 
 
     void
-    Time::declare_parameters(ParameterHandler &prm)
+    Time::add_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Time");
       {
-        prm.declare_entry("End time", "1", Patterns::Double(), "T > 0 [s].");
-        prm.declare_entry("Time step",
-                          "0.015625",
-                          Patterns::Double(),
+        prm.add_parameter("End time",
+                          end_time,
+                          "T > 0 [s].",
+                          Patterns::Double());
+        prm.add_parameter("Time step",
+                          time_step,
                           "k with 0 < k <= T [s]; if T/k is not an integer the "
-                          "last step is shortened to end at T.");
-        prm.declare_entry(
+                          "last step is shortened to end at T.",
+                          Patterns::Double());
+        add_selection(
+          prm,
           "Stress update",
-          "explicit",
-          Patterns::Selection("explicit|implicit"),
+          stress_update,
+          {{"explicit", StressUpdate::explicit_euler},
+           {"implicit", StressUpdate::implicit_euler}},
           "explicit: the paper's scheme, H_n from the previous stresses "
           "(doc/model.md, section 2; stable for k < 4 lambda/lambda_max(E)); "
           "implicit: backward Euler, sigma_n from a local equation at each "
           "stress point and a Newton iteration with the consistent tangent "
           "per step (doc/model.md, section 3; unconditionally stable; the "
           "back end sets up the tangent in every Newton iteration).");
-        prm.declare_entry(
+        add_selection(
+          prm,
           "On solver failure",
-          "stop",
-          Patterns::Selection("stop|cut time step"),
+          on_failure,
+          {{"stop", FailurePolicy::stop},
+           {"cut time step", FailurePolicy::cut_time_step}},
           "When a step's solve fails (the active-set or Newton iteration "
           "reaches its limit, CG fails, or the displacement is not finite): "
           "stop (write the last accepted state as failed_step_NNNN.pvtu, "
           "report, exit status 1), or cut time step (retry the step with half "
           "the time step, down to Minimum time step; the remainder of the "
           "step follows as the next step).");
-        prm.declare_entry("Minimum time step",
-                          "1e-6",
-                          Patterns::Double(),
+        prm.add_parameter("Minimum time step",
+                          minimum_time_step,
                           "The smallest time step a cut may reach [s], and "
                           "with Time step control = adaptive the smallest "
-                          "step the controller takes; in (0, Time step].");
-        prm.declare_entry(
+                          "step the controller takes; in (0, Time step].",
+                          Patterns::Double());
+        add_selection(
+          prm,
           "Time step control",
-          "fixed",
-          Patterns::Selection("fixed|adaptive"),
+          time_step_control,
+          {{"fixed", TimeStepControl::fixed},
+           {"adaptive", TimeStepControl::adaptive}},
           "fixed: the steps of Time step (cut only when a solve fails); "
           "adaptive: Time step is the first step, and each step's length "
           "follows from an estimate of the local error of the history update "
@@ -579,68 +569,54 @@ namespace ViscoContact
           "increment, doc/adaptivity.md); a step whose estimate exceeds Error "
           "tolerance is repeated with a shorter one. The steps land on End "
           "time and on the Profile times.");
-        prm.declare_entry(
+        prm.add_parameter(
           "Error tolerance",
-          "1e-3",
-          Patterns::Double(),
+          error_tolerance,
           "With Time step control = adaptive: the bound on each step's "
           "estimated local error of the history, relative to the stress "
-          "(both in the energy norm of E^-1 over the body); in (0, 1].");
-        prm.declare_entry(
+          "(both in the energy norm of E^-1 over the body); in (0, 1].",
+          Patterns::Double());
+        prm.add_parameter(
           "Maximum time step",
-          "0",
-          Patterns::Double(),
+          maximum_time_step,
           "With Time step control = adaptive: the largest step [s]; 0: End "
           "time. The explicit history update never takes more than 0.9 times "
           "its stability limit 4 lambda / lambda_max(E). 0, or in [Minimum "
-          "time step, End time].");
-        prm.declare_entry(
+          "time step, End time].",
+          Patterns::Double());
+        prm.add_parameter(
           "Maximum number of steps",
-          "1000000",
-          Patterns::Integer(1, 10000000),
+          max_steps,
           "The most time steps a run may take: a schedule of more steps "
           "(End time / Time step; for each run of a convergence study too) "
           "is refused before anything is written, and adaptive steps stop "
-          "with an error there. An integer in [1, 1e7].");
+          "with an error there. An integer in [1, 1e7].",
+          Patterns::Integer(1, 10000000));
       }
       prm.leave_subsection();
     }
 
     void
-    Time::parse_parameters(ParameterHandler &prm)
+    Time::check_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Time");
       {
-        end_time      = prm.get_double("End time");
-        time_step     = prm.get_double("Time step");
-        stress_update = (prm.get("Stress update") == "explicit"
-                           ? StressUpdate::explicit_euler
-                           : StressUpdate::implicit_euler);
         require(end_time > 0, "Time", "End time", to_string(end_time), "T > 0");
         require(time_step > 0 && time_step <= end_time,
                 "Time",
                 "Time step",
                 to_string(time_step),
                 "0 < k <= T = " + to_string(end_time));
-        on_failure        = (prm.get("On solver failure") == "stop"
-                               ? FailurePolicy::stop
-                               : FailurePolicy::cut_time_step);
-        minimum_time_step = prm.get_double("Minimum time step");
         require(minimum_time_step > 0 && minimum_time_step <= time_step,
                 "Time",
                 "Minimum time step",
                 to_string(minimum_time_step),
                 "0 < Minimum time step <= Time step = " + to_string(time_step));
-        time_step_control = (prm.get("Time step control") == "fixed"
-                               ? TimeStepControl::fixed
-                               : TimeStepControl::adaptive);
-        error_tolerance   = prm.get_double("Error tolerance");
         require(error_tolerance > 0 && error_tolerance <= 1,
                 "Time",
                 "Error tolerance",
                 to_string(error_tolerance),
                 "0 < Error tolerance <= 1 (relative)");
-        maximum_time_step = prm.get_double("Maximum time step");
         require(maximum_time_step == 0
                   || (maximum_time_step >= minimum_time_step
                       && maximum_time_step <= end_time),
@@ -653,7 +629,6 @@ namespace ViscoContact
                   + to_string(end_time));
         if (maximum_time_step == 0)
           maximum_time_step = end_time;
-        max_steps = prm.get_integer("Maximum number of steps");
       }
       prm.leave_subsection();
     }
@@ -661,73 +636,69 @@ namespace ViscoContact
 
 
     void
-    Checkpoint::declare_parameters(ParameterHandler &prm)
+    Checkpoint::add_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Checkpoint");
       {
-        prm.declare_entry(
+        prm.add_parameter(
           "Checkpoint interval",
-          "0",
-          Patterns::Integer(0),
+          checkpoint_interval,
           "Write a checkpoint (everything a resumed run needs) into "
           "<Output directory>/checkpoint every n-th step; 0: never (an "
           "integer >= 0). Only the last complete checkpoint is kept. A "
-          "signal (SIGTERM, SIGINT, SIGUSR1) always writes one.");
-        prm.declare_entry(
+          "signal (SIGTERM, SIGINT, SIGUSR1) always writes one.",
+          Patterns::Integer(0));
+        prm.add_parameter(
           "Resume",
-          "false",
-          Patterns::Bool(),
+          resume,
           "Continue from the last complete checkpoint in the Output "
           "directory (same scene; any number of MPI ranks) instead of "
-          "starting at t = 0. The time series and the .pvd record continue.");
-        prm.declare_entry(
+          "starting at t = 0. The time series and the .pvd record continue.",
+          Patterns::Bool());
+        prm.add_parameter(
           "Stop after step",
-          "0",
-          Patterns::Integer(0),
+          stop_after_step,
           "End the run after this step as if it had been "
           "killed (for tests of Resume); 0: never. An integer in [0, "
-          "number of time steps].");
+          "number of time steps].",
+          Patterns::Integer(0));
       }
       prm.leave_subsection();
     }
 
     void
-    Checkpoint::parse_parameters(ParameterHandler &prm)
+    Checkpoint::check_parameters(ParameterHandler &)
     {
-      prm.enter_subsection("Checkpoint");
-      checkpoint_interval = prm.get_integer("Checkpoint interval");
-      resume              = prm.get_bool("Resume");
-      stop_after_step     = prm.get_integer("Stop after step");
-      prm.leave_subsection();
+      // The patterns say all (the bounds that depend on the schedule are
+      // checked by AllParameters::check_schedule_size()).
     }
 
 
 
     void
-    ActiveSetSolver::declare_parameters(ParameterHandler &prm)
+    ActiveSetSolver::add_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Active set solver");
       {
-        prm.declare_entry("Maximum iterations",
-                          "50",
-                          Patterns::Integer(1, 10000),
+        prm.add_parameter("Maximum iterations",
+                          max_iterations,
                           "Limit of the primal-dual active set (semismooth "
                           "Newton) iterations per time step; reaching it stops "
-                          "the run with a report. An integer in [1, 10000].");
-        prm.declare_entry(
+                          "the run with a report. An integer in [1, 10000].",
+                          Patterns::Integer(1, 10000));
+        prm.add_parameter(
           "Tolerance",
-          "1e-10",
-          Patterns::Double(0),
+          tolerance,
           "Relative accuracy of every linear solve for fixed pieces: the "
           "residual of CG/GMRES relative to the right-hand side (full space "
           "back end), the defect of the condensed equations relative to the "
           "normal displacements (condensed back end). The iteration stops "
           "when no contact node changes its piece and the last solve met "
-          "this tolerance; in (0, 1e-2].");
-        prm.declare_entry(
+          "this tolerance; in (0, 1e-2].",
+          Patterns::Double(0));
+        prm.add_parameter(
           "Predicted start",
-          "true",
-          Patterns::Bool(),
+          predicted_start,
           "Start each time step from the state extrapolated from the last two "
           "steps: the displacement u_{n-1} + (k_n/k_{n-1}) (u_{n-1} - u_{n-2}) "
           "as the first guess of the Krylov solves (full space back end) and "
@@ -737,19 +708,17 @@ namespace ViscoContact
           "fewer. Where the uniqueness check found that the step problem may "
           "have several solutions, the nodes keep the previous step's pieces "
           "(the branch the run is on). false: every step starts from u_{n-1} "
-          "and the previous step's pieces.");
+          "and the previous step's pieces.",
+          Patterns::Bool());
       }
       prm.leave_subsection();
     }
 
     void
-    ActiveSetSolver::parse_parameters(ParameterHandler &prm)
+    ActiveSetSolver::check_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Active set solver");
       {
-        max_iterations  = prm.get_integer("Maximum iterations");
-        tolerance       = prm.get_double("Tolerance");
-        predicted_start = prm.get_bool("Predicted start");
         require(tolerance > 0 && tolerance <= 1e-2,
                 "Active set solver",
                 "Tolerance",
@@ -762,14 +731,17 @@ namespace ViscoContact
 
 
     void
-    LinearSolver::declare_parameters(ParameterHandler &prm)
+    LinearSolver::add_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Linear solver");
       {
-        prm.declare_entry(
+        add_selection(
+          prm,
           "Method",
-          "auto",
-          Patterns::Selection("auto|condensed|full space"),
+          method,
+          {{"auto", Method::automatic},
+           {"condensed", Method::condensed},
+           {"full space", Method::full_space}},
           "How a time step's linear contact problem is solved (doc/model.md, "
           "section 2). condensed: the operator is factorised (Direct solver) "
           "and the active set works on the contact nodes alone through the "
@@ -783,17 +755,22 @@ namespace ViscoContact
           "large 3D meshes and many ranks. auto: condensed on one rank when "
           "the contact surface and the mesh are small enough (printed at "
           "start-up with the reason), full space otherwise.");
-        prm.declare_entry(
+        add_selection(
+          prm,
           "Preconditioner",
-          "amg",
-          Patterns::Selection("amg|direct"),
+          preconditioner,
+          {{"amg", Preconditioner::amg}, {"direct", Preconditioner::direct}},
           "Full space back end: amg (Trilinos ML smoothed aggregation with "
           "the rigid-body modes as near-null space; for large runs) or direct "
           "(the factorisation of the Direct solver; for small runs).");
-        prm.declare_entry(
+        add_selection(
+          prm,
           "Direct solver",
-          "auto",
-          Patterns::Selection("auto|cholmod|umfpack|mumps"),
+          direct_solver,
+          {{"auto", DirectSolver::automatic},
+           {"cholmod", DirectSolver::cholmod},
+           {"umfpack", DirectSolver::umfpack},
+           {"mumps", DirectSolver::mumps}},
           "Sparse direct factorisation of the operator (condensed back end, "
           "and the full space back end's direct preconditioner): cholmod "
           "(supernodal Cholesky of the symmetric elastic operator; one MPI "
@@ -806,37 +783,22 @@ namespace ViscoContact
     }
 
     void
-    LinearSolver::parse_parameters(ParameterHandler &prm)
+    LinearSolver::check_parameters(ParameterHandler &)
     {
-      prm.enter_subsection("Linear solver");
-      {
-        const std::string method_name = prm.get("Method");
-        method = (method_name == "auto"        ? Method::automatic
-                  : method_name == "condensed" ? Method::condensed
-                                               : Method::full_space);
-        preconditioner
-          = (prm.get("Preconditioner") == "amg" ? Preconditioner::amg
-                                                : Preconditioner::direct);
-        const std::string solver_name = prm.get("Direct solver");
-        direct_solver = (solver_name == "auto"      ? DirectSolver::automatic
-                         : solver_name == "cholmod" ? DirectSolver::cholmod
-                         : solver_name == "umfpack" ? DirectSolver::umfpack
-                                                    : DirectSolver::mumps);
-      }
-      prm.leave_subsection();
+      // The selections say all (Direct solver against the number of ranks:
+      // AllParameters::check_run_configuration()).
     }
 
 
 
     void
-    Output::declare_parameters(ParameterHandler &prm)
+    Output::add_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Output");
       {
-        prm.declare_entry(
+        prm.add_parameter(
           "Output directory",
-          "output/default",
-          Patterns::DirectoryName(),
+          directory,
           "Where the run writes parameters.prm, solution.pvd with its .vtu "
           "files, time_series.csv, the contact profiles and checkpoint/. "
           "Created if missing; must not be empty. The run lists every file it "
@@ -844,68 +806,61 @@ namespace ViscoContact
           "and holds a lock on the folder while it runs: a second run into a "
           "folder in use is refused, and so is a folder with files under the "
           "program's names that no manifest lists (they are never replaced). "
-          "A '#' cannot be part of the value (it starts a comment).");
-        prm.declare_entry(
+          "A '#' cannot be part of the value (it starts a comment).",
+          Patterns::DirectoryName());
+        prm.add_parameter(
           "Overwrite",
-          "false",
-          Patterns::Bool(),
+          overwrite,
           "A new run never mixes its files with those of an earlier run: "
           "false refuses an Output directory that holds another run's files; "
           "true removes exactly the files and folders the earlier run's "
           "manifest lists, once the new run's set-up has succeeded (nothing "
           "else, never the parameter file being run). A resumed run continues "
-          "its own files.");
-        prm.declare_entry("Write vtu",
-                          "true",
-                          Patterns::Bool(),
+          "its own files.",
+          Patterns::Bool());
+        prm.add_parameter("Write vtu",
+                          write_vtu,
                           "Write a .vtu file per output step and the .pvd "
-                          "record.");
-        prm.declare_entry("Output interval",
-                          "1",
-                          Patterns::Integer(1),
+                          "record.",
+                          Patterns::Bool());
+        prm.add_parameter("Output interval",
+                          interval,
                           "Write a .vtu file every n-th time step (and always "
                           "the last one; with adaptive time steps every n-th "
-                          "accepted step); an integer >= 1.");
-        prm.declare_entry(
+                          "accepted step); an integer >= 1.",
+                          Patterns::Integer(1));
+        prm.add_parameter(
           "Profile times",
-          "0.015625, 0.5, 1",
-          Patterns::List(Patterns::Double(0)),
+          profile_times,
           "Times at which the contact profile along Gamma_3 is written to "
           "contact_profile_NNNN.csv (the step closest to each time; adaptive "
-          "time steps land on these times). Each in [0, End time].");
-        prm.declare_entry("Print timing summary",
-                          "true",
-                          Patterns::Bool(),
+          "time steps land on these times). Each in [0, End time].",
+          Patterns::List(Patterns::Double(0)));
+        prm.add_parameter("Print timing summary",
+                          print_timing_summary,
                           "Print the TimerOutput table and the cost ratios at "
-                          "the end of the run.");
-        prm.declare_entry("Verbose",
-                          "true",
-                          Patterns::Bool(),
-                          "Print one line per time step.");
+                          "the end of the run.",
+                          Patterns::Bool());
+        prm.add_parameter("Verbose",
+                          verbose,
+                          "Print one line per time step.",
+                          Patterns::Bool());
       }
       prm.leave_subsection();
     }
 
     void
-    Output::parse_parameters(ParameterHandler &prm)
+    Output::check_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Output");
       {
         // An empty directory would put every result into the working
         // directory, next to whatever is there; "." says so explicitly.
-        directory = prm.get("Output directory");
         require(!directory.empty(),
                 "Output",
                 "Output directory",
                 "",
                 "a directory name (\".\" for the working directory)");
-        write_vtu     = prm.get_bool("Write vtu");
-        interval      = prm.get_integer("Output interval");
-        profile_times = Utilities::string_to_double(
-          Utilities::split_string_list(prm.get("Profile times")));
-        print_timing_summary = prm.get_bool("Print timing summary");
-        verbose              = prm.get_bool("Verbose");
-        overwrite            = prm.get_bool("Overwrite");
       }
       prm.leave_subsection();
       std::ostringstream parsed;
@@ -955,64 +910,66 @@ namespace ViscoContact
 
 
     void
-    MeshAdaptation::declare_parameters(ParameterHandler &prm)
+    MeshAdaptation::add_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Mesh adaptation");
       {
-        prm.declare_entry(
+        prm.add_parameter(
           "Adaptive refinement",
-          "false",
-          Patterns::Bool(),
+          adaptive_refinement,
           "Refine and coarsen the mesh during the run (doc/adaptivity.md, "
           "\"Adaptive meshes\"): every Refinement interval steps, by the "
           "Kelly estimator of the displacement plus the cells at the contact "
           "front and at the boundary of the plastic zone; the displacement, "
           "the stress-point history and the contact state are carried over. "
-          "Hypercube meshes (Cell type = hypercube) only.");
-        prm.declare_entry("Refinement interval",
-                          "1",
-                          Patterns::Integer(),
+          "Hypercube meshes (Cell type = hypercube) only.",
+          Patterns::Bool());
+        prm.add_parameter("Refinement interval",
+                          refinement_interval,
                           "Adapt the mesh after every n-th step (an integer "
-                          ">= 1).");
-        prm.declare_entry("Refine fraction",
-                          "0.3",
-                          Patterns::Double(),
+                          ">= 1).",
+                          Patterns::Integer(1, 1000000000));
+        prm.add_parameter("Refine fraction",
+                          refine_fraction,
                           "The fraction of the cells with the largest "
-                          "indicators that is refined, in [0, 1].");
-        prm.declare_entry("Coarsen fraction",
-                          "0.03",
-                          Patterns::Double(),
+                          "indicators that is refined, in [0, 1].",
+                          Patterns::Double());
+        prm.add_parameter("Coarsen fraction",
+                          coarsen_fraction,
                           "The fraction of the cells with the smallest "
                           "indicators that is coarsened, in [0, 1]; Refine "
-                          "fraction + Coarsen fraction <= 1.");
-        prm.declare_entry("Maximum cells",
-                          "20000",
-                          Patterns::Integer(),
+                          "fraction + Coarsen fraction <= 1.",
+                          Patterns::Double());
+        prm.add_parameter("Maximum cells",
+                          maximum_cells,
                           "A bound on the number of active cells: fewer "
                           "cells are refined when it would be exceeded (an "
-                          "integer >= 1).");
-        prm.declare_entry("Maximum refinement level",
-                          "8",
-                          Patterns::Integer(),
+                          "integer >= 1).",
+                          Patterns::Integer(1, 2000000000));
+        prm.add_parameter("Maximum refinement level",
+                          maximum_refinement_level,
                           "No cell is refined beyond this level of the "
                           "p4est forest (the generated box of m 2^j "
                           "Subdivisions has m^dim trees); an integer in "
-                          "[0, 20].");
-        prm.declare_entry(
+                          "[0, 20].",
+                          Patterns::Integer(0, 20));
+        prm.add_parameter(
           "Initial cycles",
-          "0",
-          Patterns::Integer(),
+          initial_cycles,
           "Nested iteration on the first time step (doc/adaptivity.md, "
           "\"Initial cycles\"): step 1 is solved on L coarser meshes first, "
           "each solution (displacement and contact pressure) carried over to "
           "the next mesh as the starting point of its active-set iteration; "
           "only the solve on the last mesh is recorded. 0: none. Hypercube "
           "meshes only; an integer in [0, 20], with Initial refinement = "
-          "global at most Global refinements.");
-        prm.declare_entry(
+          "global at most Global refinements.",
+          Patterns::Integer(0, 20));
+        add_selection(
+          prm,
           "Initial refinement",
-          "global",
-          Patterns::Selection("global|adaptive"),
+          initial_refinement,
+          {{"global", InitialRefinement::global},
+           {"adaptive", InitialRefinement::adaptive}},
           "How the meshes of the Initial cycles are made. global: the mesh "
           "of subsection Geometry is the last one; the first cycle runs on "
           "it with Global refinements - Initial cycles uniform refinements, "
@@ -1026,55 +983,21 @@ namespace ViscoContact
     }
 
     void
-    MeshAdaptation::parse_parameters(ParameterHandler &prm)
+    MeshAdaptation::check_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Mesh adaptation");
       {
-        adaptive_refinement = prm.get_bool("Adaptive refinement");
-        const long interval = prm.get_integer("Refinement interval");
-        require(interval >= 1 && interval <= 1000000000,
-                "Mesh adaptation",
-                "Refinement interval",
-                prm.get("Refinement interval"),
-                "an integer >= 1");
-        refinement_interval = interval;
-        refine_fraction     = prm.get_double("Refine fraction");
         require(refine_fraction >= 0 && refine_fraction <= 1,
                 "Mesh adaptation",
                 "Refine fraction",
                 prm.get("Refine fraction"),
                 "a number in [0, 1]");
-        coarsen_fraction = prm.get_double("Coarsen fraction");
         require(coarsen_fraction >= 0
                   && coarsen_fraction <= 1 - refine_fraction,
                 "Mesh adaptation",
                 "Coarsen fraction",
                 prm.get("Coarsen fraction"),
                 "a number in [0, 1 - Refine fraction]");
-        const long cells = prm.get_integer("Maximum cells");
-        require(cells >= 1 && cells <= 2000000000,
-                "Mesh adaptation",
-                "Maximum cells",
-                prm.get("Maximum cells"),
-                "an integer in [1, 2e9]");
-        maximum_cells    = cells;
-        const long level = prm.get_integer("Maximum refinement level");
-        require(level >= 0 && level <= 20,
-                "Mesh adaptation",
-                "Maximum refinement level",
-                prm.get("Maximum refinement level"),
-                "an integer in [0, 20]");
-        maximum_refinement_level = level;
-        const long cycles        = prm.get_integer("Initial cycles");
-        require(cycles >= 0 && cycles <= 20,
-                "Mesh adaptation",
-                "Initial cycles",
-                prm.get("Initial cycles"),
-                "an integer in [0, 20]");
-        initial_cycles     = cycles;
-        initial_refinement = prm.get("Initial refinement") == "global"
-                               ? InitialRefinement::global
-                               : InitialRefinement::adaptive;
       }
       prm.leave_subsection();
     }
@@ -1082,57 +1005,49 @@ namespace ViscoContact
 
 
     void
-    ConvergenceStudy::declare_parameters(ParameterHandler &prm)
+    ConvergenceStudy::add_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Convergence study");
       {
-        prm.declare_entry(
+        prm.add_parameter(
           "Enabled",
-          "false",
-          Patterns::Bool(),
+          study_enabled,
           "Instead of one run: run the scene for each (Subdivisions, Time "
           "steps) pair and for the reference resolution, and tabulate "
           "max_n (||u_n - u_n^ref||_V + ||sigma_n - sigma_n^ref||_Q) with "
           "observed orders in convergence.csv. The meshes must be nested "
           "generated boxes (every Subdivisions entry divides Reference "
-          "subdivisions; not with Simplex pattern = five tetrahedra).");
-        prm.declare_entry("Subdivisions",
-                          "2, 4, 8, 16, 32",
-                          Patterns::List(Patterns::Integer(1)),
+          "subdivisions; not with Simplex pattern = five tetrahedra).",
+          Patterns::Bool());
+        prm.add_parameter("Subdivisions",
+                          study_subdivisions,
                           "Mesh of each run: squares along each edge; "
-                          "integers >= 1.");
-        prm.declare_entry("Time steps",
-                          "0.5, 0.25, 0.125, 0.0625, 0.03125",
-                          Patterns::List(Patterns::Double(0)),
+                          "integers >= 1.",
+                          Patterns::List(Patterns::Integer(1)));
+        prm.add_parameter("Time steps",
+                          study_time_steps,
                           "Time step of each run (one per Subdivisions entry); "
                           "each must be a positive multiple of the reference "
-                          "time step.");
-        prm.declare_entry("Reference subdivisions",
-                          "64",
-                          Patterns::Integer(1),
+                          "time step.",
+                          Patterns::List(Patterns::Double(0)));
+        prm.add_parameter("Reference subdivisions",
+                          reference_subdivisions,
                           "Mesh of the reference run; a multiple of every "
-                          "Subdivisions entry, so that the meshes are nested.");
-        prm.declare_entry("Reference time step",
-                          "0.015625",
-                          Patterns::Double(0),
-                          "Time step of the reference run; > 0.");
+                          "Subdivisions entry, so that the meshes are nested.",
+                          Patterns::Integer(1));
+        prm.add_parameter("Reference time step",
+                          reference_time_step,
+                          "Time step of the reference run; > 0.",
+                          Patterns::Double(0));
       }
       prm.leave_subsection();
     }
 
     void
-    ConvergenceStudy::parse_parameters(ParameterHandler &prm)
+    ConvergenceStudy::check_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Convergence study");
       {
-        study_enabled = prm.get_bool("Enabled");
-        for (const int n : Utilities::string_to_int(
-               Utilities::split_string_list(prm.get("Subdivisions"))))
-          study_subdivisions.push_back(n);
-        study_time_steps = Utilities::string_to_double(
-          Utilities::split_string_list(prm.get("Time steps")));
-        reference_subdivisions = prm.get_integer("Reference subdivisions");
-        reference_time_step    = prm.get_double("Reference time step");
         if (study_enabled)
           {
             require(study_time_steps.size() == study_subdivisions.size(),
@@ -1173,37 +1088,37 @@ namespace ViscoContact
 
 
     void
-    AllParameters::declare_parameters(ParameterHandler &prm)
+    AllParameters::add_parameters(ParameterHandler &prm)
     {
-      Geometry::declare_parameters(prm);
-      BoundaryParts::declare_parameters(prm);
-      Material::declare_parameters(prm);
-      Loads::declare_parameters(prm);
-      Contact::declare_parameters(prm);
-      Time::declare_parameters(prm);
-      ActiveSetSolver::declare_parameters(prm);
-      LinearSolver::declare_parameters(prm);
-      MeshAdaptation::declare_parameters(prm);
-      ConvergenceStudy::declare_parameters(prm);
-      Output::declare_parameters(prm);
-      Checkpoint::declare_parameters(prm);
+      Geometry::add_parameters(prm);
+      BoundaryParts::add_parameters(prm);
+      Material::add_parameters(prm);
+      Loads::add_parameters(prm);
+      Contact::add_parameters(prm);
+      Time::add_parameters(prm);
+      ActiveSetSolver::add_parameters(prm);
+      LinearSolver::add_parameters(prm);
+      MeshAdaptation::add_parameters(prm);
+      ConvergenceStudy::add_parameters(prm);
+      Output::add_parameters(prm);
+      Checkpoint::add_parameters(prm);
     }
 
     void
-    AllParameters::parse_parameters(ParameterHandler &prm)
+    AllParameters::check_parameters(ParameterHandler &prm)
     {
-      Geometry::parse_parameters(prm);
-      BoundaryParts::parse_parameters(prm);
-      Material::parse_parameters(prm, dimension);
-      Loads::parse_parameters(prm);
-      Contact::parse_parameters(prm);
-      Time::parse_parameters(prm);
-      ActiveSetSolver::parse_parameters(prm);
-      LinearSolver::parse_parameters(prm);
-      MeshAdaptation::parse_parameters(prm);
-      ConvergenceStudy::parse_parameters(prm);
-      Output::parse_parameters(prm);
-      Checkpoint::parse_parameters(prm);
+      Geometry::check_parameters(prm);
+      BoundaryParts::check_parameters(prm);
+      Material::check_parameters(prm, dimension);
+      Loads::check_parameters(prm);
+      Contact::check_parameters(prm);
+      Time::check_parameters(prm);
+      ActiveSetSolver::check_parameters(prm);
+      LinearSolver::check_parameters(prm);
+      MeshAdaptation::check_parameters(prm);
+      ConvergenceStudy::check_parameters(prm);
+      Output::check_parameters(prm);
+      Checkpoint::check_parameters(prm);
       check_study_entries();
       check_mesh_adaptation_entries();
       check_schedule_size(prm);

@@ -18,6 +18,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include "constraints.h"
+#include "elastic_operator.h"
 #include "mesh.h"
 #include "viscoplastic_contact.h"
 
@@ -186,48 +187,12 @@ namespace ViscoContact
   ViscoplasticContact<dim>::assemble_elastic_operator()
   {
     TimerOutput::Scope t(computing_timer, "Setup: assemble elastic operator");
-    FEValues<dim>      fe_values(mapping,
-                            *fe,
-                            stress_quadrature,
-                            update_gradients | update_JxW_values);
-    const FEValuesExtractors::Vector displacement(0);
-    const unsigned int               dofs_per_cell = fe->n_dofs_per_cell();
-    FullMatrix<double>               cell_matrix(dofs_per_cell, dofs_per_cell);
-    std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
-    std::vector<SymmetricTensor<2, dim>> strains(dofs_per_cell);
-    const SymmetricTensor<4, dim>       &E = material.elasticity_tensor();
-
-    // Each rank assembles its own cells. E has the major symmetry, so only the
-    // lower triangle of the cell matrix is computed, and then mirrored.
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          cell_matrix = 0;
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                strains[i] = fe_values[displacement].symmetric_gradient(i, q);
-              for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                {
-                  const SymmetricTensor<2, dim> stress_i
-                    = E * strains[i] * fe_values.JxW(q);
-                  for (unsigned int j = 0; j <= i; ++j)
-                    cell_matrix(i, j) += stress_i * strains[j];
-                }
-            }
-          for (unsigned int i = 0; i < dofs_per_cell; ++i)
-            for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
-              cell_matrix(i, j) = cell_matrix(j, i);
-          // The constraints condense the cell matrix as it is added. Rows of
-          // ghost dofs are collected locally and sent to their owners by
-          // compress(add), which also finishes the matrix for Trilinos.
-          cell->get_dof_indices(local_dof_indices);
-          constraints.distribute_local_to_global(cell_matrix,
-                                                 local_dof_indices,
-                                                 stiffness_matrix);
-        }
-    stiffness_matrix.compress(VectorOperation::add);
+    ViscoContact::assemble_elastic_operator(mapping,
+                                            dof_handler,
+                                            stress_quadrature,
+                                            material.elasticity_tensor(),
+                                            constraints,
+                                            stiffness_matrix);
     ++n_operator_assemblies;
   }
 

@@ -1,7 +1,9 @@
 #!/bin/bash
 # Runs the program on a parameter file that must be rejected: the run must
 # fail (non-zero exit status), write nothing into its output directory, and
-# print the message given on the file's first line as "# expect: MESSAGE".
+# print the message given on the file's first line as "# expect: MESSAGE"
+# (and the text of any further line "# expect also: TEXT", which deal.II's
+# messages on several lines need).
 # A line "# ranks: N" runs it on N MPI ranks.
 # With a third argument "failing-solve" the run may have written output
 # before it stopped (a solve that fails during the time loop), and it must
@@ -10,6 +12,7 @@
 set -u
 executable=$1 prm=$2 kind=${3:-bad-input}
 expected=$(sed -n '1s/^# expect: //p' "$prm")
+mapfile -t also < <(sed -n 's/^# expect also: //p' "$prm")
 ranks=$(sed -n 's/^# ranks: //p' "$prm")
 rm -rf results
 
@@ -25,11 +28,13 @@ if [ $status -ne 1 ]; then
   cat stderr.txt
   exit 1
 fi
-if ! grep -qF -- "$expected" stderr.txt; then
-  echo "The error message does not contain <$expected>:"
-  cat stderr.txt
-  exit 1
-fi
+for text in "$expected" "${also[@]}"; do
+  if ! grep -qF -- "$text" stderr.txt; then
+    echo "The error message does not contain <$text>:"
+    cat stderr.txt
+    exit 1
+  fi
+done
 if [ "$kind" = bad-input ] && [ -e results ]; then
   echo "The rejected run wrote into its output directory."
   exit 1

@@ -1,0 +1,34 @@
+#ifndef viscoplastic_contact_elastic_operator_h
+#define viscoplastic_contact_elastic_operator_h
+
+#include <deal.II/base/quadrature.h>
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/mapping.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+
+namespace ViscoContact
+{
+  using namespace dealii;
+
+  // K_ij = (E eps(phi_j), eps(phi_i)) on the locally owned cells of
+  // dof_handler, integrated with quadrature (the program's stress points),
+  // the constrained rows and columns condensed as the cell matrices are
+  // added, and compressed: the elastic operator of the program
+  // (ViscoplasticContact::assemble_elastic_operator()), for the benchmark
+  // programs too. The matrix must have its sparsity pattern.
+  template <int dim>
+  void
+  assemble_elastic_operator(const Mapping<dim>              &mapping,
+                            const DoFHandler<dim>           &dof_handler,
+                            const Quadrature<dim>           &quadrature,
+                            const SymmetricTensor<4, dim>   &elasticity,
+                            const AffineConstraints<double> &constraints,
+                            TrilinosWrappers::SparseMatrix  &matrix);
+} // namespace ViscoContact
+
+#endif

@@ -57,9 +57,10 @@ namespace ViscoContact
   private:
     struct Run
     {
-      unsigned int            subdivisions;
-      double                  time_step;
-      std::vector<double>     times;
+      unsigned int subdivisions;
+      double       time_step;
+      // The time of every step the observer saw (the levels compared).
+      std::vector<double>     observed_times;
       types::global_dof_index n_dofs = 0;
       // The cells of this rank (key: its square), growing by one level of
       // grad u and sigma at every step.

@@ -263,7 +263,7 @@ namespace ViscoContact
                                                     name.str()),
                                      communicator);
     problem.set_step_observer([&](const unsigned int, const double time) {
-      run.times.push_back(time);
+      run.observed_times.push_back(time);
       record_state(run, problem);
     });
     Timer timer;
@@ -307,12 +307,14 @@ namespace ViscoContact
       {
         if (run.failed)
           continue;
-        const auto level
-          = std::find_if(run.times.begin(), run.times.end(), [&](double t) {
-              return std::abs(t - time) <= 1e-10 * parameters.end_time;
-            });
-        if (level != run.times.end())
-          compare(run, level - run.times.begin(), reference);
+        const auto level = std::find_if(run.observed_times.begin(),
+                                        run.observed_times.end(),
+                                        [&](double t) {
+                                          return std::abs(t - time)
+                                                 <= 1e-10 * parameters.end_time;
+                                        });
+        if (level != run.observed_times.end())
+          compare(run, level - run.observed_times.begin(), reference);
       }
   }
 
@@ -714,19 +716,20 @@ namespace ViscoContact
 
     // One row of the CSV file, full precision ...
     csv << h << ',' << run.time_step << ',' << run.subdivisions << ','
-        << run.n_dofs << ',' << run.times.size() << ',' << run.n_compared_levels
-        << ',' << run.wall_time << ',' << run.max_error_u << ','
-        << run.max_error_sigma << ',' << run.max_error << ','
-        << csv_field(order_u) << ',' << csv_field(order_sigma) << ','
+        << run.n_dofs << ',' << run.observed_times.size() << ','
+        << run.n_compared_levels << ',' << run.wall_time << ','
+        << run.max_error_u << ',' << run.max_error_sigma << ',' << run.max_error
+        << ',' << csv_field(order_u) << ',' << csv_field(order_sigma) << ','
         << csv_field(order_total) << '\n';
     // ... and of the terminal table, aligned in columns.
     std::cout << std::setw(6) << "1/" + std::to_string(run.subdivisions)
               << std::setw(11) << std::setprecision(4) << run.time_step
-              << std::setw(9) << run.n_dofs << std::setw(6) << run.times.size()
-              << std::setw(10) << wall_time_text(run.wall_time)
-              << std::scientific << std::setprecision(3) << std::setw(11)
-              << run.max_error_u << std::setw(7) << terminal_order(order_u)
-              << std::setw(11) << run.max_error_sigma << std::setw(7)
+              << std::setw(9) << run.n_dofs << std::setw(6)
+              << run.observed_times.size() << std::setw(10)
+              << wall_time_text(run.wall_time) << std::scientific
+              << std::setprecision(3) << std::setw(11) << run.max_error_u
+              << std::setw(7) << terminal_order(order_u) << std::setw(11)
+              << run.max_error_sigma << std::setw(7)
               << terminal_order(order_sigma) << std::setw(11) << run.max_error
               << std::setw(7) << terminal_order(order_total)
               << std::defaultfloat << '\n';

@@ -19,7 +19,8 @@ namespace ViscoContact
   // to its member in one line (ParameterHandler::add_parameter(), with the
   // range in the pattern where a pattern can state it), so that
   // ParameterHandler::parse_input() fills the members, and
-  // check_parameters() checks what the patterns cannot express (strict
+  // check_parameters() (where there is anything to check) checks what the
+  // patterns cannot express (strict
   // positivity, consistency between entries). A violated check throws an
   // ExcMessage that names the subsection, the entry, the value and the
   // accepted range. A list of parts (several materials or boundary
@@ -165,8 +166,6 @@ namespace ViscoContact
 
       void
       add_parameters(ParameterHandler &prm);
-      void
-      check_parameters(ParameterHandler &prm);
     };
 
     struct Contact
@@ -234,8 +233,6 @@ namespace ViscoContact
 
       void
       add_parameters(ParameterHandler &prm);
-      void
-      check_parameters(ParameterHandler &prm);
     };
 
     // The canonical text of an entry's value (the numbers of a list parsed
@@ -282,8 +279,6 @@ namespace ViscoContact
 
       void
       add_parameters(ParameterHandler &prm);
-      void
-      check_parameters(ParameterHandler &prm);
     };
 
     // Adaptive meshes during the run (mesh_adaptation.cc): every Refinement

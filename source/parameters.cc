@@ -372,12 +372,6 @@ namespace ViscoContact
       prm.leave_subsection();
     }
 
-    void
-    Loads::check_parameters(ParameterHandler &)
-    {
-      // The expressions are parsed and checked with the mesh (loads.h).
-    }
-
 
 
     void
@@ -666,13 +660,6 @@ namespace ViscoContact
       prm.leave_subsection();
     }
 
-    void
-    Checkpoint::check_parameters(ParameterHandler &)
-    {
-      // The patterns say all (the bounds that depend on the schedule are
-      // checked by AllParameters::check_schedule_size()).
-    }
-
 
 
     void
@@ -780,13 +767,6 @@ namespace ViscoContact
           "several.");
       }
       prm.leave_subsection();
-    }
-
-    void
-    LinearSolver::check_parameters(ParameterHandler &)
-    {
-      // The selections say all (Direct solver against the number of ranks:
-      // AllParameters::check_run_configuration()).
     }
 
 
@@ -1110,15 +1090,12 @@ namespace ViscoContact
       Geometry::check_parameters(prm);
       BoundaryParts::check_parameters(prm);
       Material::check_parameters(prm, dimension);
-      Loads::check_parameters(prm);
       Contact::check_parameters(prm);
       Time::check_parameters(prm);
       ActiveSetSolver::check_parameters(prm);
-      LinearSolver::check_parameters(prm);
       MeshAdaptation::check_parameters(prm);
       ConvergenceStudy::check_parameters(prm);
       Output::check_parameters(prm);
-      Checkpoint::check_parameters(prm);
       check_study_entries();
       check_mesh_adaptation_entries();
       check_schedule_size(prm);

@@ -41,19 +41,9 @@ namespace ViscoContact
     if (n == 1 && parameters.initial_cycles > 0)
       solve_initial_cycles();
 
-    // u_{n-1} and z_{n-1}: once step n is accepted, the start the next
-    // step's prediction extrapolates from (predict_step_start()), copied
-    // only if there is a prediction. Not the initial state u_0 = 0: a load
-    // already present at t = 0 makes the first step a jump, not a piece of a
-    // smooth path to extrapolate.
-    const bool keep_step_start = parameters.predicted_start && n > 1;
-    StepStart  step_start;
-    if (keep_step_start)
-      step_start = {solution, contact_set.z};
-
-    const StepStartState start         = save_step_start();
-    double               proposed_step = 0;
-    ActiveSetResult      result;
+    StepStartState  start         = save_step_start();
+    double          proposed_step = 0;
+    ActiveSetResult result;
     do
       {
         result = solve_step_with_recovery(start);
@@ -62,8 +52,13 @@ namespace ViscoContact
     } while (schedule.is_adaptive()
              && !accept_adaptive_step(start, proposed_step));
 
-    if (keep_step_start)
-      previous_step_start = std::move(step_start);
+    // u_{n-1} and z_{n-1}, the state the step started from, are what the
+    // next step's prediction extrapolates from (predict_step_start()). Not
+    // the initial state u_0 = 0: a load already present at t = 0 makes the
+    // first step a jump, not a piece of a smooth path to extrapolate.
+    if (parameters.predicted_start && n > 1)
+      previous_step_start
+        = StepStart{std::move(start.solution), std::move(start.contact.z)};
     schedule.advance_time(proposed_step);
     if (schedule.is_adaptive() && explicit_history_update()
         && !schedule.is_at_end())

@@ -376,9 +376,12 @@ namespace PreconditionerComparison
     dof_handler.distribute_dofs(*fe);
     locally_owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
+    // The benchmark's scenes are clamped and loaded: no prescribed
+    // displacements or symmetry planes.
     make_displacement_constraints(mapping,
                                   dof_handler,
-                                  parameters.clamped_ids,
+                                  {DirichletPart{parameters.clamped_ids, {}}},
+                                  {},
                                   locally_relevant_dofs,
                                   constraints);
 
@@ -413,10 +416,12 @@ namespace PreconditionerComparison
                                     | update_JxW_values);
     FunctionParser<dim> body_force(dim), traction(dim);
     initialize_load(body_force,
+                    "Loads",
                     "Body force",
                     parameters.body_force,
                     parameters.lengths);
     initialize_load(traction,
+                    "Loads",
                     "Surface traction",
                     parameters.surface_traction,
                     parameters.lengths);

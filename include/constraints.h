@@ -1,6 +1,7 @@
-// The constraints of the displacement: hanging nodes and the clamped parts
-// Gamma_1 (u = 0). The program's set-up and the preconditioner benchmark use
-// the same function, so that the benchmark solves the program's K.
+// The constraints of the displacement: hanging nodes, the Dirichlet parts
+// (clamped, or a prescribed displacement of some components) and the
+// planes of symmetry. The program's set-up and the preconditioner benchmark
+// use the same function, so that the benchmark solves the program's K.
 
 #ifndef viscoplastic_contact_constraints_h
 #define viscoplastic_contact_constraints_h
@@ -10,6 +11,7 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
+#include <deal.II/fe/component_mask.h>
 #include <deal.II/fe/mapping.h>
 
 #include <deal.II/lac/affine_constraints.h>
@@ -20,17 +22,33 @@ namespace ViscoContact
 {
   using namespace dealii;
 
+  // Boundary parts whose displacement is prescribed in the components of
+  // the mask (all of them if the mask is empty).
+  struct DirichletPart
+  {
+    std::vector<types::boundary_id> boundary_ids;
+    ComponentMask                   components;
+  };
+
   // Fills constraints (reinitialised on locally_relevant_dofs) with the
-  // hanging-node constraints and u = 0 on the boundary ids clamped_ids, and
-  // closes it.
+  // hanging nodes, then u_c = 0 on each Dirichlet part in the order given
+  // (a dof keeps the first constraint it gets), then u.n = 0 on the
+  // symmetry parts, and closes it. The constraints are homogeneous: the
+  // values of prescribed displacements enter each step as a lifting
+  // (ViscoplasticContact::set_dirichlet_values()), so that K and its
+  // factorisation serve the whole run. If open_constraints is given, it
+  // gets a copy before closing, into which the values of a time can be
+  // set (AffineConstraints::set_inhomogeneity()) before it is closed.
   template <int dim>
   void
   make_displacement_constraints(
     const Mapping<dim>                    &mapping,
     const DoFHandler<dim>                 &dof_handler,
-    const std::vector<types::boundary_id> &clamped_ids,
+    const std::vector<DirichletPart>      &dirichlet_parts,
+    const std::vector<types::boundary_id> &symmetry_ids,
     const IndexSet                        &locally_relevant_dofs,
-    AffineConstraints<double>             &constraints);
+    AffineConstraints<double>             &constraints,
+    AffineConstraints<double>             *open_constraints = nullptr);
 } // namespace ViscoContact
 
 #endif

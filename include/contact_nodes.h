@@ -147,6 +147,12 @@ namespace ViscoContact
     count_states(const MPI_Comm communicator) const;
     double
     total_force(const MPI_Comm communicator) const;
+    // Over all ranks: the sum of the weights of the nodes in contact (the
+    // contact width in 2D, the area in 3D) and the largest pressure z / w.
+    double
+    contact_area(const MPI_Comm communicator) const;
+    double
+    peak_pressure(const MPI_Comm communicator) const;
 
   private:
     std::optional<ContactLaw> contact_law;

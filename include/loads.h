@@ -18,12 +18,14 @@ namespace ViscoContact
   bool
   is_zero_expression(const std::string &expression);
 
-  // Parse a load expression of subsection Loads with dim components (x, y
-  // (, z), t and the constants L1, L2 (, L3)); a bad expression gives a
-  // message that names the entry.
+  // Parse an expression (of subsection Loads, or of a prescribed
+  // displacement) with as many components as function has, in x, y (, z),
+  // t and the constants L1, L2 (, L3); a bad expression gives a message
+  // that names the subsection and the entry.
   template <int dim>
   void
   initialize_load(FunctionParser<dim>       &function,
+                  const std::string         &subsection,
                   const std::string         &entry,
                   const std::string         &expression,
                   const std::vector<double> &lengths);

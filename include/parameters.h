@@ -132,18 +132,55 @@ namespace ViscoContact
       check_parameters(ParameterHandler &prm);
     };
 
+    // A displacement prescribed on some boundary parts, for some of its
+    // components, as a function of (x, y[, z], t): one numbered subsection
+    // "Prescribed displacement N" of subsection Boundary each.
+    struct PrescribedDisplacement
+    {
+      std::vector<types::boundary_id> boundary_ids;       // empty: not used
+      std::vector<std::string>        components = {"y"}; // x, y, z
+      std::string displacement = "0"; // one expression per component
+
+      void
+      add_parameters(ParameterHandler &prm, const unsigned int number);
+      void
+      check_parameters(ParameterHandler  &prm,
+                       const unsigned int number,
+                       const unsigned int dim);
+      // The component numbers (x = 0, y = 1, z = 2), in the order given.
+      std::vector<unsigned int>
+      component_indices() const;
+    };
+
     struct BoundaryParts
     {
       std::vector<types::boundary_id> clamped_ids = {0}; // Gamma_1
       std::vector<types::boundary_id> contact_ids = {2}; // Gamma_3
       std::vector<types::boundary_id> loaded_ids
         = {3}; // loaded part of Gamma_2
+      // Planar parts with zero normal displacement (rollers, planes of
+      // symmetry).
+      std::vector<types::boundary_id> symmetry_ids;
+      // Sized before add_parameters() to the highest N of the subsections
+      // "Prescribed displacement N" of the parameter file (at least one, so
+      // that --print-parameters documents the list).
+      std::vector<PrescribedDisplacement> prescribed_displacements
+        = std::vector<PrescribedDisplacement>(1);
 
       void
       add_parameters(ParameterHandler &prm);
       void
-      check_parameters(ParameterHandler &prm);
+      check_parameters(ParameterHandler &prm, const unsigned int dim);
+      // The entries that are used (with boundary ids), in their order.
+      std::vector<std::pair<unsigned int, const PrescribedDisplacement *>>
+      used_prescribed_displacements() const;
     };
+
+    // The highest N of the subsections "Prescribed displacement N" in a
+    // parameter file, at least 1: how many such subsections to declare
+    // before the file is parsed.
+    unsigned int
+    count_prescribed_displacements(const std::string &parameter_file);
 
     struct Material
     {

@@ -17,6 +17,7 @@
 #include <deal.II/dofs/dof_handler.h>
 
 #include <deal.II/fe/fe.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping.h>
 
 #include <deal.II/lac/affine_constraints.h>
@@ -26,6 +27,7 @@
 
 #include "back_ends/contact_solver.h"
 #include "back_ends/linear_algebra.h"
+#include "constraints.h"
 #include "contact_nodes.h"
 #include "contact_set.h"
 #include "material.h"
@@ -208,11 +210,56 @@ namespace ViscoContact
     // previous_step_start.
     void
     predict_step_start();
-    // b_n = (f_n, v) - (H_n, eps(v)), from its two parts.
+    // b_n = (f_n, v) - (H_n, eps(v)) - (E eps(g_n), eps(v)), from its parts.
     void
     assemble_right_hand_side(const double time);
     void
     assemble_external_load(const double time);
+    // (f, v) + (f_2, v)_Gamma2 of one cell into cell_rhs (dofs ordered
+    // (vertex, component)) at the time the load functions are set to; false
+    // if the cell carries no load. problem gets the first value that is not
+    // finite.
+    bool
+    cell_external_load(
+      const typename DoFHandler<dim>::active_cell_iterator &cell,
+      FEValues<dim>                                        &fe_values,
+      FEFaceValues<dim>                                    &fe_face_values,
+      Vector<double>                                       &cell_rhs,
+      std::string                                          &problem);
+
+    // @sect4{Prescribed displacements (boundary_conditions.cc)}
+    //
+    // The Dirichlet parts in the order their constraints are made: the
+    // clamped ids (all components), then every Prescribed displacement
+    // entry with its components.
+    std::vector<DirichletPart>
+    dirichlet_parts() const;
+    // Per mesh: the owned dofs of every Dirichlet part, with their support
+    // points and the part's function, and the owned cells whose dofs the
+    // lifting or a reaction touches. Refuses a scene whose constraints
+    // leave a rigid motion of the body free.
+    void
+    setup_dirichlet_dofs();
+    void
+    check_rigid_motions() const;
+    // g_n, the prescribed displacement at time (zero on free dofs, the
+    // values on the Dirichlet dofs and hanging nodes between them), and the
+    // lifting load -(E eps(g_n), eps(v)) of the explicit update. Nothing
+    // to do without prescribed displacements (g = 0).
+    void
+    set_dirichlet_values(const double time);
+    // Every prescribed value finite at the times of the run, or all ranks
+    // stop with a message naming the entry (before anything is written).
+    void
+    check_prescribed_values();
+    // u's constrained entries from the constraints and g_n.
+    void
+    apply_constraints(VectorType &u) const;
+    // The force every Dirichlet part exerts on the body at time t_n,
+    // (sigma_n, eps(v)) - (f_n, v) summed over the part's dofs, per
+    // component. Collective.
+    std::vector<Tensor<1, dim>>
+    reaction_forces(const double time);
     // Every load value at the load points and the times of the run is
     // finite, or all ranks stop with a message naming the entry.
     void
@@ -500,6 +547,11 @@ namespace ViscoContact
     IndexSet                                           locally_owned_dofs;
     IndexSet                                           locally_relevant_dofs;
     AffineConstraints<double>                          constraints;
+    // With prescribed displacements: the same constraints before closing,
+    // and closed with the values of the current step (set_dirichlet_values()),
+    // which give the constrained entries of u.
+    AffineConstraints<double> open_constraints;
+    AffineConstraints<double> current_constraints;
 
     // The elastic operator K (assembled once per run) and, for the implicit
     // update, the tangent and internal force of the current Newton iterate. The
@@ -545,11 +597,43 @@ namespace ViscoContact
     // stress_quadrature.size(), holding sigma_n, the history H_{n+1} of the
     // next step and the last plastic multiplier. max_von_mises is the maximum
     // over all ranks of the last stress update.
-    PerzynaMaterial<dim>                     material;
-    FunctionParser<dim>                      body_force;
-    FunctionParser<dim>                      surface_traction;
-    bool                                     body_force_is_zero;
-    bool                                     loads_depend_on_time;
+    PerzynaMaterial<dim> material;
+    FunctionParser<dim>  body_force;
+    FunctionParser<dim>  surface_traction;
+    bool                 body_force_is_zero;
+    bool                 loads_depend_on_time;
+
+    // The Dirichlet parts (dirichlet_parts()): their names in the time
+    // series ("clamped", "prescribed_N"), the function of each prescribed
+    // one (null for clamped) and the components it prescribes; per mesh
+    // the locally relevant dofs of the parts (a dof belongs to the first
+    // part that constrains it; the values of ghost dofs enter the
+    // constraints of owned hanging nodes) and the owned cells (k) the
+    // lifting and the reactions integrate over. dirichlet_values holds g_n
+    // (with ghosts), lifting_load -(E eps(g_n), eps(v)) (owned entries).
+    struct DirichletDof
+    {
+      types::global_dof_index index;
+      unsigned int            local_index; // into the vectors' storage
+      bool                    owned;
+      unsigned int            part;
+      unsigned int            component;
+      Point<dim>              location;
+    };
+    // The value of a prescribed dof at a time, and the message naming the
+    // entry if it is not finite (else empty).
+    std::pair<double, std::string>
+    prescribed_value(const DirichletDof &dof, const double time) const;
+    std::vector<std::string>                          dirichlet_part_names;
+    std::vector<std::unique_ptr<FunctionParser<dim>>> dirichlet_functions;
+    std::vector<std::vector<unsigned int>>            dirichlet_components;
+    bool                      has_prescribed_values            = false;
+    bool                      prescribed_values_depend_on_time = false;
+    std::vector<DirichletDof> dirichlet_dofs;
+    std::vector<unsigned int> lifting_cells;
+    std::vector<unsigned int> reaction_cells;
+    VectorType                dirichlet_values;
+    VectorType                lifting_load;
     std::vector<QuadraturePointHistory<dim>> quadrature_point_history;
     double                                   max_von_mises = 0;
     // The relative error estimate of the last stress update.

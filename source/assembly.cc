@@ -213,10 +213,12 @@ namespace ViscoContact
 
   // @sect4{ViscoplasticContact::assemble_right_hand_side}
   //
-  // b_n = (f_n, v) - (H_n, eps(v)). The history part was assembled by the
-  // previous stress update; the external part is assembled once if the
-  // loads do not depend on time. The implicit update has the history
-  // inside its internal force, so its right-hand side is the external load.
+  // b_n = (f_n, v) - (H_n, eps(v)) - (E eps(g_n), eps(v)). The history part
+  // was assembled by the previous stress update; the external part is
+  // assembled once if the loads do not depend on time; the lifting of the
+  // prescribed displacements g_n (boundary_conditions.cc) per step. The
+  // implicit update has the history inside its internal force, so its
+  // right-hand side is the external load.
   //
   // So in the common case of constant loads a step costs no assembly at all
   // here: one copy and one vector addition, on the owned entries of each rank,
@@ -230,7 +232,12 @@ namespace ViscoContact
     // only if f_0 or f_2 mention t.
     if (loads_depend_on_time || n_external_load_assemblies == 0)
       assemble_external_load(time);
+    set_dirichlet_values(time);
     system_rhs = external_load;
+    // The lifting of the prescribed displacements (the implicit update has
+    // them in its iterate instead).
+    if (has_prescribed_values && !implicit_update())
+      system_rhs += lifting_load;
     // Without plasticity H_n = sigma_0 - E eps(u_0) = 0 for all n, and
     // history_load stays zero; with the implicit update the history enters
     // through the internal force of implicit_newton().
@@ -260,7 +267,6 @@ namespace ViscoContact
     const unsigned int                   dofs_per_cell = fe->n_dofs_per_cell();
     Vector<double>                       cell_rhs(dofs_per_cell);
     std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
-    Vector<double>                       load_value(dim);
     FEValues<dim>                        fe_values(mapping,
                             *fe,
                             load_quadrature,
@@ -271,89 +277,98 @@ namespace ViscoContact
                                      face_quadrature,
                                      update_values | update_quadrature_points
                                        | update_JxW_values);
-    // Gamma_2 is given as a list of boundary ids (Loaded boundary ids); the
-    // rest of the boundary that is neither clamped nor in contact is traction
-    // free.
-    const auto is_loaded = [&](const types::boundary_id id) {
-      return std::find(parameters.loaded_ids.begin(),
-                       parameters.loaded_ids.end(),
-                       id)
-             != parameters.loaded_ids.end();
-    };
-
     // The first value that is not finite, if any (check_loads() has checked
     // the loads before the run, possibly only at some of the points).
     std::string problem;
     for (const auto &cell : owned_cells)
-      {
-        cell_rhs       = 0;
-        bool has_loads = false;
-        // The body force at the load quadrature points; the component of shape
-        // function i picks the component of f_0 it is tested with.
-        if (!body_force_is_zero)
-          {
-            fe_values.reinit(cell);
-            for (const unsigned int q : fe_values.quadrature_point_indices())
-              {
-                body_force.vector_value(fe_values.quadrature_point(q),
-                                        load_value);
-                if (problem.empty() && !is_finite<dim>(load_value))
-                  problem = non_finite_load(std::string("Body force"),
-                                            parameters.body_force,
-                                            load_value,
-                                            fe_values.quadrature_point(q),
-                                            time);
-                for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                  cell_rhs(i)
-                    += load_value(fe->system_to_component_index(i).first)
-                       * fe_values.shape_value(i, q) * fe_values.JxW(q);
-              }
-            has_loads = true;
-          }
-        // The surface traction on the faces of the owned cells that lie on a
-        // loaded part of the boundary.
-        for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary()
-              && is_loaded(cell->face(f)->boundary_id()))
-            {
-              fe_face_values.reinit(cell, f);
-              for (const unsigned int q :
-                   fe_face_values.quadrature_point_indices())
-                {
-                  surface_traction.vector_value(fe_face_values.quadrature_point(
-                                                  q),
-                                                load_value);
-                  if (problem.empty() && !is_finite<dim>(load_value))
-                    problem
-                      = non_finite_load(std::string("Surface traction"),
-                                        parameters.surface_traction,
-                                        load_value,
-                                        fe_face_values.quadrature_point(q),
-                                        time);
-                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                    cell_rhs(i)
-                      += load_value(fe->system_to_component_index(i).first)
-                         * fe_face_values.shape_value(i, q)
-                         * fe_face_values.JxW(q);
-                }
-              has_loads = true;
-            }
-        // Cells without any load contribute nothing and are skipped. The
-        // constraints drop the entries of clamped dofs and distribute those of
-        // hanging nodes.
-        if (has_loads)
-          {
-            cell->get_dof_indices(local_dof_indices);
-            constraints.distribute_local_to_global(cell_rhs,
-                                                   local_dof_indices,
-                                                   external_load);
-          }
-      }
+      // Cells without any load contribute nothing and are skipped. The
+      // constraints drop the entries of Dirichlet dofs and distribute those
+      // of hanging nodes.
+      if (cell_external_load(cell,
+                             fe_values,
+                             fe_face_values,
+                             cell_rhs,
+                             problem))
+        {
+          cell->get_dof_indices(local_dof_indices);
+          constraints.distribute_local_to_global(cell_rhs,
+                                                 local_dof_indices,
+                                                 external_load);
+        }
     // Contributions to ghost dofs are sent to and added by their owners; the
     // vector then holds owned entries only.
     external_load.compress(VectorOperation::add);
     FileOutput::agree_on_problem(problem, mpi_communicator);
     ++n_external_load_assemblies;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::cell_external_load}
+  //
+  // The body force at the load quadrature points and the surface traction on
+  // the faces of the cell that lie on a loaded part of the boundary; the
+  // component of shape function i picks the component of the load it is
+  // tested with. Gamma_2 is given as a list of boundary ids (Loaded boundary
+  // ids); the rest of the boundary that is neither Dirichlet nor in contact
+  // is traction free.
+  template <int dim>
+  bool
+  ViscoplasticContact<dim>::cell_external_load(
+    const typename DoFHandler<dim>::active_cell_iterator &cell,
+    FEValues<dim>                                        &fe_values,
+    FEFaceValues<dim>                                    &fe_face_values,
+    Vector<double>                                       &cell_rhs,
+    std::string                                          &problem)
+  {
+    const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
+    Vector<double>     load_value(dim);
+    cell_rhs       = 0;
+    bool has_loads = false;
+    if (!body_force_is_zero)
+      {
+        fe_values.reinit(cell);
+        for (const unsigned int q : fe_values.quadrature_point_indices())
+          {
+            body_force.vector_value(fe_values.quadrature_point(q), load_value);
+            if (problem.empty() && !is_finite<dim>(load_value))
+              problem = non_finite_load(std::string("Body force"),
+                                        parameters.body_force,
+                                        load_value,
+                                        fe_values.quadrature_point(q),
+                                        body_force.get_time());
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+              cell_rhs(i) += load_value(fe->system_to_component_index(i).first)
+                             * fe_values.shape_value(i, q) * fe_values.JxW(q);
+          }
+        has_loads = true;
+      }
+    for (const unsigned int f : cell->face_indices())
+      if (cell->face(f)->at_boundary()
+          && std::find(parameters.loaded_ids.begin(),
+                       parameters.loaded_ids.end(),
+                       cell->face(f)->boundary_id())
+               != parameters.loaded_ids.end())
+        {
+          fe_face_values.reinit(cell, f);
+          for (const unsigned int q : fe_face_values.quadrature_point_indices())
+            {
+              surface_traction.vector_value(fe_face_values.quadrature_point(q),
+                                            load_value);
+              if (problem.empty() && !is_finite<dim>(load_value))
+                problem = non_finite_load(std::string("Surface traction"),
+                                          parameters.surface_traction,
+                                          load_value,
+                                          fe_face_values.quadrature_point(q),
+                                          surface_traction.get_time());
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                cell_rhs(i)
+                  += load_value(fe->system_to_component_index(i).first)
+                     * fe_face_values.shape_value(i, q) * fe_face_values.JxW(q);
+            }
+          has_loads = true;
+        }
+    return has_loads;
   }
 
 

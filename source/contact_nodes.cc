@@ -424,4 +424,33 @@ namespace ViscoContact
       sum += force;
     return Utilities::MPI::sum(sum, communicator);
   }
+
+
+
+  // @sect4{ContactNodes::contact_area and peak_pressure}
+  //
+  // Over all ranks: the weights of the nodes in contact (status 1 or 2)
+  // summed, which is the contact width in 2D and the contact area in 3D to
+  // within the weight of the nodes at the edge of the zone, and the largest
+  // nodal pressure z_i / w_i. Both are collective.
+  double
+  ContactNodes::contact_area(const MPI_Comm communicator) const
+  {
+    double sum = 0;
+    for (unsigned int i = 0; i < size(); ++i)
+      if (status(i) > 0)
+        sum += w[i];
+    return Utilities::MPI::sum(sum, communicator);
+  }
+
+
+
+  double
+  ContactNodes::peak_pressure(const MPI_Comm communicator) const
+  {
+    double peak = 0;
+    for (unsigned int i = 0; i < size(); ++i)
+      peak = std::max(peak, contact_pressure(i));
+    return Utilities::MPI::max(peak, communicator);
+  }
 } // namespace ViscoContact

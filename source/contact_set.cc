@@ -17,6 +17,7 @@
 #include "contact_set.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <set>
 #include <sstream>
@@ -210,6 +211,57 @@ namespace ViscoContact
 
 
 
+  // @sect4{free_direction}
+  //
+  // The direction of a contact node whose other components are constrained
+  // (a node where the contact zone meets a roller, a plane of symmetry or a
+  // part whose tangential displacement is prescribed): the weighted normal
+  // without its constrained components, normalised, so that r = u . nu
+  // involves free dofs only and the contact force acts on them. A node
+  // whose constraint couples components (an oblique plane of symmetry) or
+  // whose normal lies in its constrained components (a Dirichlet condition
+  // on the zone's normal component) is refused, naming its location.
+  template <int dim>
+  Tensor<1, dim>
+  free_direction(const typename ContactSet<dim>::NodeGeometry &node,
+                 const AffineConstraints<double>              &constraints)
+  {
+    Tensor<1, dim>     direction = node.normal;
+    const double       length    = node.normal.norm();
+    std::ostringstream where;
+    where << node.location;
+    for (unsigned int c = 0; c < dim; ++c)
+      if (constraints.is_constrained(node.dofs[c]))
+        {
+          // Coupling weights at rounding level (the edge of two planes of
+          // symmetry along a coordinate axis) couple nothing.
+          const auto *entries
+            = constraints.get_constraint_entries(node.dofs[c]);
+          bool coupled = false;
+          if (entries != nullptr)
+            for (const auto &entry : *entries)
+              coupled = coupled || std::abs(entry.second) > 1e-10;
+          AssertThrow(!coupled,
+                      ExcMessage("The contact node at (" + where.str()
+                                 + ") lies on a plane of symmetry that is not "
+                                   "parallel to a coordinate plane; accepted: "
+                                   "contact zones that meet planes of symmetry "
+                                   "x = const, y = const or z = const."));
+          direction[c] = 0;
+        }
+    AssertThrow(direction.norm() > 1e-3 * length,
+                ExcMessage("The contact node at (" + where.str()
+                           + ") has its normal displacement constrained (by "
+                             "<Clamped boundary ids>, <Symmetry boundary ids> "
+                             "or a <Prescribed displacement N> of subsection "
+                             "<Boundary>); accepted: Dirichlet and symmetry "
+                             "conditions that leave the normal component of "
+                             "every contact node free."));
+    return direction / direction.norm();
+  }
+
+
+
   // @sect4{ContactSet::find_nodes}
   //
   // A vertex of Gamma_3 whose faces all belong to other ranks' cells is
@@ -244,13 +296,16 @@ namespace ViscoContact
                   node.dofs[c] = cell->face(f)->vertex_dof_index(v, c);
                 // A vertex becomes a node of this rank if this rank owns it
                 // (its dim dofs have the same owner, so the x-dof decides),
-                // it has not been taken already, and none of its components
-                // is constrained.
-                bool usable = partitioner.in_local_range(node.dofs[0])
-                              && seen.insert(node.dofs[0]).second;
+                // it has not been taken already, and not all of its
+                // components are constrained (a clamped corner, a hanging
+                // node).
+                if (!partitioner.in_local_range(node.dofs[0])
+                    || !seen.insert(node.dofs[0]).second)
+                  continue;
+                unsigned int n_constrained = 0;
                 for (unsigned int c = 0; c < dim; ++c)
-                  usable = usable && !constraints.is_constrained(node.dofs[c]);
-                if (!usable)
+                  n_constrained += constraints.is_constrained(node.dofs[c]);
+                if (n_constrained == dim)
                   continue;
                 // Its location, the local indices of its dofs (owned
                 // entries, so no ghost lookup is ever needed), and the
@@ -262,7 +317,7 @@ namespace ViscoContact
                       = partitioner.global_to_local(node.dofs[c]);
                     node.normal[c] = weighted_normals(node.dofs[c]);
                   }
-                node.normal /= node.normal.norm();
+                node.normal = free_direction<dim>(node, constraints);
                 // The same vertex's dof in the scalar dof handler of the
                 // output fields, through the same cell of the common
                 // triangulation.

@@ -1,9 +1,10 @@
-// Parsing the load expressions of subsection Loads.
+// Parsing the expressions of subsection Loads and of the prescribed
+// displacements.
 //
-// The body force f_0 and the surface traction f_2 are muparser expressions
-// in x, y (, z) and t. Two properties of an expression let the program skip
-// work: a load that does not mention t is assembled once, and a body force
-// that is zero is not integrated at all.
+// The body force f_0, the surface traction f_2 and the prescribed
+// displacements are muparser expressions in x, y (, z) and t. Two properties of
+// an expression let the program skip work: a load that does not mention t is
+// assembled once, and a body force that is zero is not integrated at all.
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
@@ -57,25 +58,29 @@ namespace ViscoContact
     return true;
   }
 
-  // Parse a load expression with dim components; turn muparser's messages
-  // into one that names the parameter. The expression may use the box's edge
-  // lengths L1, L2 (, L3) and pi as constants.
+  // Parse an expression with as many components as the function has; turn
+  // muparser's messages into one that names the parameter. The expression
+  // may use the box's edge lengths L1, L2 (, L3) and pi as constants.
   template <int dim>
   void
   initialize_load(FunctionParser<dim>       &function,
+                  const std::string         &subsection,
                   const std::string         &entry,
                   const std::string         &expression,
                   const std::vector<double> &lengths)
   {
-    // One expression per displacement component, separated by ';'.
+    // One expression per component, separated by ';'.
+    const unsigned int n_components = function.n_components;
     const unsigned int n_parts
       = Utilities::split_string_list(expression, ';').size();
-    AssertThrow(n_parts == dim,
-                ExcMessage("Invalid parameter <" + entry
-                           + "> in subsection <Loads>: value <" + expression
-                           + ">; accepted: " + std::to_string(dim)
-                           + " expressions separated by ';' (one per "
-                             "displacement component)."));
+    AssertThrow(n_parts == n_components,
+                ExcMessage(
+                  "Invalid parameter <" + entry + "> in subsection <"
+                  + subsection + ">: value <" + expression
+                  + ">; accepted: " + std::to_string(n_components)
+                  + (n_components == 1 ? " expression" : " expressions")
+                  + " separated by ';' (one per displacement "
+                    "component)."));
     // The constants every load expression may use.
     std::map<std::string, double> constants;
     for (unsigned int d = 0; d < lengths.size(); ++d)
@@ -90,7 +95,7 @@ namespace ViscoContact
                             constants,
                             /*time_dependent=*/true);
         // muparser reports unknown variables only when evaluating.
-        Vector<double> values(dim);
+        Vector<double> values(n_components);
         function.vector_value(Point<dim>(), values);
       }
     catch (const ExceptionBase &exc)
@@ -104,8 +109,8 @@ namespace ViscoContact
         parser_message = exc.what();
       }
     AssertThrow(parser_message.empty(),
-                ExcMessage("Invalid parameter <" + entry
-                           + "> in subsection <Loads>: value <" + expression
+                ExcMessage("Invalid parameter <" + entry + "> in subsection <"
+                           + subsection + ">: value <" + expression
                            + ">; accepted: muparser expressions in "
                            + load_variables<dim>()
                            + " and the constants pi, L1, L2 (, L3). "
@@ -117,9 +122,11 @@ namespace ViscoContact
   initialize_load(FunctionParser<2> &,
                   const std::string &,
                   const std::string &,
+                  const std::string &,
                   const std::vector<double> &);
   template void
   initialize_load(FunctionParser<3> &,
+                  const std::string &,
                   const std::string &,
                   const std::string &,
                   const std::vector<double> &);

@@ -159,6 +159,8 @@ namespace
     // fills them, check_parameters() checks them.
     ParameterHandler          prm;
     Parameters::AllParameters parameters;
+    parameters.prescribed_displacements.resize(
+      Parameters::count_prescribed_displacements(file));
     parameters.add_parameters(prm);
     prm.parse_input(file);
     // What the parameter file may not mean as ParameterHandler reads it is

@@ -633,18 +633,24 @@ namespace ViscoContact
                         + parameters.mesh_file + ")");
     // Each named id must be among them; the message names the entry.
     const auto check_ids = [&](const std::vector<types::boundary_id> &ids,
-                               const std::string                     &entry) {
+                               const std::string                     &entry,
+                               const std::string &subsection = "Boundary") {
       for (const auto id : ids)
         AssertThrow(present.count(id) == 1,
-                    ExcMessage("Invalid parameter <" + entry
-                               + "> in subsection <Boundary>: boundary id "
-                               + std::to_string(id)
-                               + " is not on the mesh; accepted: " + accepted
-                               + "."));
+                    ExcMessage(
+                      "Invalid parameter <" + entry + "> in subsection <"
+                      + subsection + ">: boundary id " + std::to_string(id)
+                      + " is not on the mesh; accepted: " + accepted + "."));
     };
     check_ids(parameters.clamped_ids, "Clamped boundary ids");
     check_ids(parameters.contact_ids, "Contact boundary ids");
     check_ids(parameters.loaded_ids, "Loaded boundary ids");
+    check_ids(parameters.symmetry_ids, "Symmetry boundary ids");
+    for (const auto &[number, entry] :
+         parameters.used_prescribed_displacements())
+      check_ids(entry->boundary_ids,
+                "Boundary ids",
+                "Boundary/Prescribed displacement " + std::to_string(number));
   }
 
 

@@ -435,7 +435,8 @@ namespace ViscoContact
     new_pressure.zero_out_ghost_values();
     std::vector<VectorType *> nodal_fields{&solution, &new_pressure};
     nodal_transfer.interpolate(nodal_fields);
-    constraints.distribute(solution);
+    set_dirichlet_values(schedule.current_time());
+    apply_constraints(solution);
     solution.update_ghost_values();
 
     // The stress points of the new owned cells, in the order of owned_cells.

@@ -29,11 +29,24 @@ namespace ViscoContact
 {
   namespace
   {
-    // The first line of time_series.csv: what the columns are.
-    const std::string time_series_header
-      = "step,time,active_set_iterations,unilateral_nodes,compliance_nodes,"
-        "no_contact_nodes,total_contact_force,max_von_mises,wall_time,"
-        "krylov_iterations,time_step,error_estimate\n";
+    // The first line of time_series.csv: what the columns are. After the
+    // counts and the force, the size of the contact zone (width in 2D,
+    // area in 3D) and the peak pressure, then per Dirichlet part the
+    // components of the force it exerts on the body.
+    template <int dim>
+    std::string
+    time_series_header(const std::vector<std::string> &dirichlet_parts)
+    {
+      std::string header
+        = "step,time,active_set_iterations,unilateral_nodes,compliance_nodes,"
+          "no_contact_nodes,total_contact_force,max_von_mises,wall_time,"
+          "krylov_iterations,time_step,error_estimate,contact_area,"
+          "peak_pressure";
+      for (const std::string &part : dirichlet_parts)
+        for (unsigned int c = 0; c < dim; ++c)
+          header += ",reaction_" + part + "_" + "xyz"[c];
+      return header + "\n";
+    }
   } // namespace
 
 
@@ -193,11 +206,14 @@ namespace ViscoContact
                                  ? OutputFolder::Replace::own
                                  : OutputFolder::Replace::never);
         if (!parameters.resume)
-          output_folder->stage("time_series.csv", time_series_header);
+          output_folder->stage("time_series.csv",
+                               time_series_header<dim>(dirichlet_part_names));
       }
     output_folder->commit();
     if (parameters.resume)
-      truncate_time_series(*output_folder, time_series_header, resume_step);
+      truncate_time_series(*output_folder,
+                           time_series_header<dim>(dirichlet_part_names),
+                           resume_step);
   }
 
 
@@ -221,7 +237,12 @@ namespace ViscoContact
   {
     const auto   states = count_contact_states();
     const double force  = total_contact_force();
-    std::string  problem;
+    const double size
+      = contact_enabled ? contact_set.contact_area(mpi_communicator) : 0.;
+    const double peak
+      = contact_enabled ? contact_set.peak_pressure(mpi_communicator) : 0.;
+    const std::vector<Tensor<1, dim>> reactions = reaction_forces(time);
+    std::string                       problem;
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
         std::ostringstream row;
@@ -229,7 +250,19 @@ namespace ViscoContact
             << result.iterations() << ',' << states[0] << ',' << states[1]
             << ',' << states[2] << ',' << force << ',' << max_von_mises << ','
             << wall_time << ',' << result.inner_iterations() << ',' << time_step
-            << ',' << error_estimate << '\n';
+            << ',' << error_estimate << ',' << size << ',' << peak;
+        // A component that balances to round-off of the forces (the
+        // horizontal reaction of a vertical load, say) is written as 0,
+        // not as the digits of the rounding.
+        double scale = std::abs(force);
+        for (const Tensor<1, dim> &reaction : reactions)
+          for (unsigned int c = 0; c < dim; ++c)
+            scale = std::max(scale, std::abs(reaction[c]));
+        for (const Tensor<1, dim> &reaction : reactions)
+          for (unsigned int c = 0; c < dim; ++c)
+            row << ','
+                << (std::abs(reaction[c]) > 1e-12 * scale ? reaction[c] : 0.);
+        row << '\n';
         problem = output_folder->append("time_series.csv", row.str());
       }
     FileOutput::agree_on_problem(problem, mpi_communicator);

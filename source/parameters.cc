@@ -3,11 +3,15 @@
 
 #include "parameters.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <iomanip>
 #include <limits>
+#include <map>
+#include <regex>
 #include <sstream>
 
 namespace ViscoContact
@@ -229,6 +233,83 @@ namespace ViscoContact
 
 
     void
+    PrescribedDisplacement::add_parameters(ParameterHandler  &prm,
+                                           const unsigned int number)
+    {
+      prm.enter_subsection("Prescribed displacement " + std::to_string(number));
+      {
+        prm.add_parameter(
+          "Boundary ids",
+          boundary_ids,
+          "The boundary parts whose displacement is prescribed (empty: this "
+          "entry is not used). Integers in [0, 255], each named by one "
+          "entry of subsection Boundary only.",
+          Patterns::List(Patterns::Integer(0, 255)));
+        prm.add_parameter("Components",
+                          components,
+                          "The components prescribed, e.g. \"y\" or "
+                          "\"x, y\"; the others stay free.",
+                          Patterns::List(Patterns::Selection("x|y|z"), 1, 3));
+        prm.add_parameter(
+          "Displacement",
+          displacement,
+          "One expression of x, y[, z] and t per component of Components, "
+          "separated by ';' (muparser syntax, as the loads), e.g. "
+          "\"-0.01 * t\" for Components = y, or \"0; -0.01 * min(t, 1)\" "
+          "for Components = x, y. A value that depends on t is a "
+          "displacement-controlled load (ramp, hold, unload); the operator "
+          "is still factorised once per run.");
+      }
+      prm.leave_subsection();
+    }
+
+    std::vector<unsigned int>
+    PrescribedDisplacement::component_indices() const
+    {
+      std::vector<unsigned int> indices;
+      for (const std::string &c : components)
+        indices.push_back(c == "x" ? 0 : c == "y" ? 1 : 2);
+      return indices;
+    }
+
+    void
+    PrescribedDisplacement::check_parameters(ParameterHandler  &prm,
+                                             const unsigned int number,
+                                             const unsigned int dim)
+    {
+      const std::string subsection
+        = "Boundary/Prescribed displacement " + std::to_string(number);
+      prm.enter_subsection("Prescribed displacement " + std::to_string(number));
+      {
+        const std::vector<unsigned int> indices = component_indices();
+        for (unsigned int i = 0; i < indices.size(); ++i)
+          {
+            require(indices[i] < dim,
+                    subsection,
+                    "Components",
+                    prm.get("Components"),
+                    dim == 2 ? "x and y in 2D" : "x, y and z");
+            for (unsigned int j = 0; j < i; ++j)
+              require(indices[i] != indices[j],
+                      subsection,
+                      "Components",
+                      prm.get("Components"),
+                      "each component once");
+          }
+        require(Utilities::split_string_list(displacement, ';').size()
+                  == components.size(),
+                subsection,
+                "Displacement",
+                displacement,
+                "one expression per component of Components ("
+                  + std::to_string(components.size()) + "), separated by ';'");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
     BoundaryParts::add_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Boundary");
@@ -238,9 +319,10 @@ namespace ViscoContact
           clamped_ids,
           "Boundary ids of Gamma_1 (u = 0). The generated box numbers its "
           "faces as deal.II's colorize does: 0/1 at x = 0/L1, 2/3 at y = 0/L2, "
-          "4/5 at z = 0/L3. At least one id; ids are integers in [0, 255] "
-          "and must be on the mesh.",
-          Patterns::List(Patterns::Integer(0, 255), 1));
+          "4/5 at z = 0/L3. Integers in [0, 255] that are on the mesh; may be "
+          "empty if the other boundary conditions stop every rigid motion of "
+          "the body.",
+          Patterns::List(Patterns::Integer(0, 255)));
         prm.add_parameter("Contact boundary ids",
                           contact_ids,
                           "Boundary ids of Gamma_3 (contact with the "
@@ -254,31 +336,106 @@ namespace ViscoContact
                           "traction-free. Integers in [0, 255], none of them "
                           "clamped.",
                           Patterns::List(Patterns::Integer(0, 255)));
+        prm.add_parameter(
+          "Symmetry boundary ids",
+          symmetry_ids,
+          "Planar boundary parts (of any orientation) on which the normal "
+          "displacement is zero and the tangential one free: rollers and "
+          "planes of symmetry. Integers in [0, 255].",
+          Patterns::List(Patterns::Integer(0, 255)));
+        for (unsigned int n = 0; n < prescribed_displacements.size(); ++n)
+          prescribed_displacements[n].add_parameters(prm, n + 1);
       }
       prm.leave_subsection();
     }
 
+    std::vector<std::pair<unsigned int, const PrescribedDisplacement *>>
+    BoundaryParts::used_prescribed_displacements() const
+    {
+      std::vector<std::pair<unsigned int, const PrescribedDisplacement *>> used;
+      for (unsigned int n = 0; n < prescribed_displacements.size(); ++n)
+        if (!prescribed_displacements[n].boundary_ids.empty())
+          used.emplace_back(n + 1, &prescribed_displacements[n]);
+      return used;
+    }
+
     void
-    BoundaryParts::check_parameters(ParameterHandler &prm)
+    BoundaryParts::check_parameters(ParameterHandler  &prm,
+                                    const unsigned int dim)
     {
       prm.enter_subsection("Boundary");
       {
-        for (const auto id : contact_ids)
-          for (const auto c : clamped_ids)
-            require(id != c,
-                    "Boundary",
-                    "Contact boundary ids",
-                    prm.get("Contact boundary ids"),
-                    "ids different from the Clamped boundary ids");
-        for (const auto id : loaded_ids)
-          for (const auto c : clamped_ids)
-            require(id != c,
-                    "Boundary",
-                    "Loaded boundary ids",
-                    prm.get("Loaded boundary ids"),
-                    "ids different from the Clamped boundary ids");
+        // Every boundary id belongs to one kind of part only: the entry
+        // that names an id a second time is refused, naming the first.
+        std::map<types::boundary_id, std::string> owner;
+        const auto claim = [&](const std::vector<types::boundary_id> &ids,
+                               const std::string &subsection,
+                               const std::string &entry,
+                               const std::string &value) {
+          for (const auto id : ids)
+            {
+              const auto [it, inserted]
+                = owner.emplace(id,
+                                "<" + entry + "> of subsection <" + subsection
+                                  + ">");
+              require(inserted,
+                      subsection,
+                      entry,
+                      value,
+                      "ids that no other entry names (" + std::to_string(id)
+                        + " is also in " + it->second + ")");
+            }
+        };
+        claim(clamped_ids,
+              "Boundary",
+              "Clamped boundary ids",
+              prm.get("Clamped boundary ids"));
+        claim(contact_ids,
+              "Boundary",
+              "Contact boundary ids",
+              prm.get("Contact boundary ids"));
+        claim(loaded_ids,
+              "Boundary",
+              "Loaded boundary ids",
+              prm.get("Loaded boundary ids"));
+        claim(symmetry_ids,
+              "Boundary",
+              "Symmetry boundary ids",
+              prm.get("Symmetry boundary ids"));
+        for (auto &[number, entry] : used_prescribed_displacements())
+          {
+            const std::string name
+              = "Prescribed displacement " + std::to_string(number);
+            claim(entry->boundary_ids,
+                  "Boundary/" + name,
+                  "Boundary ids",
+                  prm.get({"Prescribed displacement " + std::to_string(number)},
+                          "Boundary ids"));
+            prescribed_displacements[number - 1].check_parameters(prm,
+                                                                  number,
+                                                                  dim);
+          }
       }
       prm.leave_subsection();
+    }
+
+    unsigned int
+    count_prescribed_displacements(const std::string &parameter_file)
+    {
+      std::ifstream    in(parameter_file);
+      std::string      line;
+      unsigned int     highest = 1;
+      const std::regex subsection("^\\s*subsection\\s+Prescribed\\s+"
+                                  "displacement\\s+([0-9]{1,3})\\s*(#.*)?$");
+      while (std::getline(in, line))
+        {
+          std::smatch match;
+          if (std::regex_match(line, match, subsection))
+            highest
+              = std::max(highest,
+                         static_cast<unsigned int>(std::stoul(match[1].str())));
+        }
+      return highest;
     }
 
 
@@ -1088,7 +1245,7 @@ namespace ViscoContact
     AllParameters::check_parameters(ParameterHandler &prm)
     {
       Geometry::check_parameters(prm);
-      BoundaryParts::check_parameters(prm);
+      BoundaryParts::check_parameters(prm, dimension);
       Material::check_parameters(prm, dimension);
       Contact::check_parameters(prm);
       Time::check_parameters(prm);

@@ -20,9 +20,13 @@
 #include "constraints.h"
 #include "elastic_operator.h"
 #include "mesh.h"
+#include "robustness/file_output.h"
 #include "viscoplastic_contact.h"
 
+#include <array>
 #include <cmath>
+#include <map>
+#include <sstream>
 
 namespace ViscoContact
 {
@@ -73,6 +77,8 @@ namespace ViscoContact
     previous_step_start.reset();
     setup_system();
     setup_stress_points();
+    setup_dirichlet_dofs();
+    check_rigid_motions();
     setup_contact();
     setup_back_end();
   }
@@ -115,15 +121,20 @@ namespace ViscoContact
 
       // The constraints are stored for all locally relevant dofs, not only the
       // owned ones: the cell loops write into every dof of an owned cell, and
-      // some of those are ghosts owned by another rank. The clamped parts
-      // Gamma_1 get u = 0, which is homogeneous, so the same constraints serve
-      // every displacement and every right-hand side of the run. Hanging nodes
-      // appear where the mesh is refined toward Gamma_3.
+      // some of those are ghosts owned by another rank. The Dirichlet parts
+      // (clamped Gamma_1, prescribed displacements) get u_c = 0 here, which
+      // is homogeneous, so the same constraints serve every displacement and
+      // every right-hand side of the run; the prescribed values enter each
+      // step as a lifting (set_dirichlet_values()). Hanging nodes appear
+      // where the mesh is refined toward Gamma_3.
       make_displacement_constraints(mapping,
                                     dof_handler,
-                                    parameters.clamped_ids,
+                                    dirichlet_parts(),
+                                    parameters.symmetry_ids,
                                     locally_relevant_dofs,
-                                    constraints);
+                                    constraints,
+                                    has_prescribed_values ? &open_constraints
+                                                          : nullptr);
 
       // The sparsity pattern of the owned cells, without the entries that the
       // constraints eliminate (distribute_local_to_global() never writes them).
@@ -587,29 +598,210 @@ namespace ViscoContact
 
 
 
+  namespace
+  {
+    // The unit normal of a planar boundary part: the mean of its faces'
+    // normals (weighted by their areas, over all ranks), components at
+    // rounding level set to zero. A part that is not planar (a face whose
+    // normal differs from the mean by more than 1e-8) is refused on every
+    // rank, naming the entry, the id and the face.
+    template <int dim>
+    Tensor<1, dim>
+    plane_normal(const Mapping<dim>      &mapping,
+                 const DoFHandler<dim>   &dof_handler,
+                 const types::boundary_id id,
+                 const MPI_Comm           communicator)
+    {
+      const ReferenceCell cell_type = dof_handler.get_fe().reference_cell();
+      FEFaceValues<dim>   face_values(
+        mapping,
+        dof_handler.get_fe(),
+        cell_type.face_reference_cell(0)
+          .template get_gauss_type_quadrature<dim - 1>(1),
+        update_normal_vectors | update_JxW_values | update_quadrature_points);
+      std::vector<std::pair<Tensor<1, dim>, Point<dim>>> faces;
+      Tensor<1, dim>                                     sum;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary()
+                && cell->face(f)->boundary_id() == id)
+              {
+                face_values.reinit(cell, f);
+                sum += face_values.normal_vector(0) * face_values.JxW(0);
+                faces.emplace_back(face_values.normal_vector(0),
+                                   face_values.quadrature_point(0));
+              }
+      Tensor<1, dim> normal = Utilities::MPI::sum(sum, communicator);
+      normal /= normal.norm();
+      for (unsigned int c = 0; c < dim; ++c)
+        if (std::abs(normal[c]) < 1e-12)
+          normal[c] = 0;
+      normal /= normal.norm();
+      std::string problem;
+      for (const auto &[face_normal, center] : faces)
+        if (problem.empty() && (face_normal - normal).norm() > 1e-8)
+          {
+            std::ostringstream message;
+            message << "Invalid parameter <Symmetry boundary ids> in "
+                       "subsection <Boundary>: boundary id "
+                    << int(id) << " is not planar (its face at (" << center
+                    << ") has the normal (" << face_normal
+                    << "), the part's mean normal is (" << normal
+                    << ")); accepted: planar boundary parts.";
+            problem = message.str();
+          }
+      FileOutput::agree_on_problem(problem, communicator);
+      return normal;
+    }
+
+
+
+    // u.n = 0 at every vertex of the symmetry parts, from the normals n of
+    // the planes the vertex lies on: on one plane, the component k with the
+    // largest |n_k| is constrained, u_k = -sum_{j != k} n_j / n_k u_j (just
+    // u_k = 0 on a plane x_k = const); on two planes in 3D (an edge) u is
+    // along the edge t = n_1 x n_2; on more (2D corners, 3D vertices) u = 0.
+    // Components constrained already (hanging nodes, Dirichlet parts) keep
+    // their constraints. Only the owner of a vertex, which sees all of the
+    // cells around it, makes its lines (another rank may not see every
+    // plane there); make_consistent_in_parallel() gives them to the ranks
+    // that have the vertex as a ghost.
+    template <int dim>
+    void
+    make_symmetry_constraints(
+      const Mapping<dim>                    &mapping,
+      const DoFHandler<dim>                 &dof_handler,
+      const std::vector<types::boundary_id> &symmetry_ids,
+      AffineConstraints<double>             &constraints)
+    {
+      const MPI_Comm              communicator = dof_handler.get_communicator();
+      std::vector<Tensor<1, dim>> normals;
+      for (const auto id : symmetry_ids)
+        normals.push_back(plane_normal(mapping, dof_handler, id, communicator));
+      // The planes of every vertex (by its x-dof): parallel parts count once.
+      std::map<types::global_dof_index,
+               std::pair<std::array<types::global_dof_index, dim>,
+                         std::vector<Tensor<1, dim>>>>
+        vertices;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (!cell->is_artificial())
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary())
+              for (unsigned int p = 0; p < symmetry_ids.size(); ++p)
+                if (face->boundary_id() == symmetry_ids[p])
+                  for (const unsigned int v : face->vertex_indices())
+                    {
+                      auto &[dofs, planes]
+                        = vertices[face->vertex_dof_index(v, 0)];
+                      for (unsigned int c = 0; c < dim; ++c)
+                        dofs[c] = face->vertex_dof_index(v, c);
+                      bool known = false;
+                      for (const auto &n : planes)
+                        known
+                          = known
+                            || std::abs(std::abs(n * normals[p]) - 1) < 1e-12;
+                      if (!known)
+                        planes.push_back(normals[p]);
+                    }
+      const auto largest = [](const Tensor<1, dim> &t) {
+        unsigned int k = 0;
+        for (unsigned int c = 1; c < dim; ++c)
+          if (std::abs(t[c]) > std::abs(t[k]))
+            k = c;
+        return k;
+      };
+      const IndexSet &owned = dof_handler.locally_owned_dofs();
+      for (const auto &[x_dof, vertex] : vertices)
+        {
+          const auto &[dofs, planes] = vertex;
+          if (!owned.is_element(x_dof))
+            continue;
+          if (planes.size() == 1)
+            {
+              const Tensor<1, dim> &n = planes[0];
+              const unsigned int    k = largest(n);
+              if (constraints.is_constrained(dofs[k]))
+                continue;
+              constraints.add_line(dofs[k]);
+              for (unsigned int j = 0; j < dim; ++j)
+                if (j != k && n[j] != 0)
+                  constraints.add_entry(dofs[k], dofs[j], -n[j] / n[k]);
+            }
+          else if (dim == 3 && planes.size() == 2)
+            {
+              Tensor<1, dim> t;
+              t[0] = planes[0][1] * planes[1][2] - planes[0][2] * planes[1][1];
+              t[1] = planes[0][2] * planes[1][0] - planes[0][0] * planes[1][2];
+              t[2] = planes[0][0] * planes[1][1] - planes[0][1] * planes[1][0];
+              for (unsigned int c = 0; c < dim; ++c)
+                if (std::abs(t[c]) < 1e-12 * t.norm())
+                  t[c] = 0;
+              const unsigned int k = largest(t);
+              for (unsigned int j = 0; j < dim; ++j)
+                if (j != k && !constraints.is_constrained(dofs[j]))
+                  {
+                    constraints.add_line(dofs[j]);
+                    if (t[j] != 0)
+                      constraints.add_entry(dofs[j], dofs[k], t[j] / t[k]);
+                  }
+            }
+          else
+            for (unsigned int c = 0; c < dim; ++c)
+              if (!constraints.is_constrained(dofs[c]))
+                constraints.add_line(dofs[c]);
+        }
+    }
+  } // namespace
+
+
+
   // @sect4{make_displacement_constraints}
   //
-  // Hanging nodes first, then u = 0 on Gamma_1 (interpolate_boundary_values
-  // leaves dofs already constrained as they are).
+  // Hanging nodes first, then the Dirichlet parts (interpolate_boundary_values
+  // leaves dofs already constrained as they are), then the planes of
+  // symmetry. Each rank builds the constraints of its locally relevant dofs
+  // from its own and its ghost cells; with symmetry planes (whose
+  // constraints at a vertex depend on the faces a rank sees) they are made
+  // the same on every rank that stores them before closing.
   template <int dim>
   void
   make_displacement_constraints(
     const Mapping<dim>                    &mapping,
     const DoFHandler<dim>                 &dof_handler,
-    const std::vector<types::boundary_id> &clamped_ids,
+    const std::vector<DirichletPart>      &dirichlet_parts,
+    const std::vector<types::boundary_id> &symmetry_ids,
     const IndexSet                        &locally_relevant_dofs,
-    AffineConstraints<double>             &constraints)
+    AffineConstraints<double>             &constraints,
+    AffineConstraints<double>             *open_constraints)
   {
     constraints.reinit(locally_relevant_dofs);
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
-    const Functions::ZeroFunction<dim>                  zero(dim);
-    std::map<types::boundary_id, const Function<dim> *> clamped;
-    for (const auto id : clamped_ids)
-      clamped[id] = &zero;
-    VectorTools::interpolate_boundary_values(mapping,
-                                             dof_handler,
-                                             clamped,
-                                             constraints);
+    const Functions::ZeroFunction<dim> zero(dim);
+    for (const DirichletPart &part : dirichlet_parts)
+      {
+        std::map<types::boundary_id, const Function<dim> *> values;
+        for (const auto id : part.boundary_ids)
+          values[id] = &zero;
+        VectorTools::interpolate_boundary_values(mapping,
+                                                 dof_handler,
+                                                 values,
+                                                 constraints,
+                                                 part.components);
+      }
+    if (!symmetry_ids.empty())
+      {
+        make_symmetry_constraints(mapping,
+                                  dof_handler,
+                                  symmetry_ids,
+                                  constraints);
+        constraints.make_consistent_in_parallel(
+          dof_handler.locally_owned_dofs(),
+          locally_relevant_dofs,
+          dof_handler.get_communicator());
+      }
+    if (open_constraints != nullptr)
+      open_constraints->copy_from(constraints);
     constraints.close();
   }
 
@@ -620,13 +812,17 @@ namespace ViscoContact
   template void
   make_displacement_constraints(const Mapping<2> &,
                                 const DoFHandler<2> &,
+                                const std::vector<DirichletPart> &,
                                 const std::vector<types::boundary_id> &,
                                 const IndexSet &,
-                                AffineConstraints<double> &);
+                                AffineConstraints<double> &,
+                                AffineConstraints<double> *);
   template void
   make_displacement_constraints(const Mapping<3> &,
                                 const DoFHandler<3> &,
+                                const std::vector<DirichletPart> &,
                                 const std::vector<types::boundary_id> &,
                                 const IndexSet &,
-                                AffineConstraints<double> &);
+                                AffineConstraints<double> &,
+                                AffineConstraints<double> *);
 } // namespace ViscoContact

@@ -128,6 +128,13 @@ namespace ViscoContact
         const double k = schedule.step_length();
         assemble_right_hand_side(schedule.next_time());
         predict_step_start();
+        // The step starts with the displacement prescribed at t_n (the
+        // implicit update's first Newton iterate must have it).
+        if (has_prescribed_values)
+          {
+            apply_constraints(solution);
+            solution.update_ghost_values();
+          }
         const ActiveSetResult result
           = (implicit_update() ? solve_implicit_step(k)
                                : solve_explicit_step());
@@ -403,10 +410,10 @@ namespace ViscoContact
     if (!result.converged)
       return result;
 
-    // distribute() gives the constrained entries (clamped, hanging) their
-    // values from the constraints, then the ghosts are imported so that the
-    // stress update can read every dof of the owned cells.
-    constraints.distribute(solution);
+    // The constrained entries (Dirichlet, hanging, symmetry) get their
+    // values from the constraints and g_n, then the ghosts are imported so
+    // that the stress update can read every dof of the owned cells.
+    apply_constraints(solution);
     solution.update_ghost_values();
     // A NaN or Inf anywhere makes the global norm non-finite on every rank
     // (l2_norm() is a reduction), so all ranks declare the failure together.

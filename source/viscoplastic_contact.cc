@@ -107,16 +107,49 @@ namespace ViscoContact
     // all, and loads that do not mention t are assembled only once
     // (assemble_right_hand_side()).
     initialize_load(body_force,
+                    "Loads",
                     "Body force",
                     parameters.body_force,
                     parameters.lengths);
     initialize_load(surface_traction,
+                    "Loads",
                     "Surface traction",
                     parameters.surface_traction,
                     parameters.lengths);
     body_force_is_zero   = is_zero_expression(parameters.body_force);
     loads_depend_on_time = mentions_time(parameters.body_force)
                            || mentions_time(parameters.surface_traction);
+    // The Dirichlet parts: clamped first (u = 0), then the prescribed
+    // displacements with their functions, in the order of
+    // dirichlet_parts(). Only nonzero values need a lifting.
+    if (!parameters.clamped_ids.empty())
+      {
+        dirichlet_part_names.emplace_back("clamped");
+        dirichlet_functions.emplace_back();
+        std::vector<unsigned int> all(dim);
+        for (unsigned int c = 0; c < dim; ++c)
+          all[c] = c;
+        dirichlet_components.push_back(all);
+      }
+    for (const auto &[number, entry] :
+         parameters.used_prescribed_displacements())
+      {
+        dirichlet_part_names.push_back("prescribed_" + std::to_string(number));
+        dirichlet_components.push_back(entry->component_indices());
+        dirichlet_functions.push_back(
+          std::make_unique<FunctionParser<dim>>(entry->components.size()));
+        initialize_load(*dirichlet_functions.back(),
+                        "Boundary/Prescribed displacement "
+                          + std::to_string(number),
+                        "Displacement",
+                        entry->displacement,
+                        parameters.lengths);
+        has_prescribed_values
+          = has_prescribed_values || !is_zero_expression(entry->displacement);
+        prescribed_values_depend_on_time
+          = prescribed_values_depend_on_time
+            || mentions_time(entry->displacement);
+      }
   }
 
 
@@ -309,6 +342,7 @@ namespace ViscoContact
       schedule
         = TimeSchedule::fixed_steps(parameters.end_time, parameters.time_step);
     check_loads();
+    check_prescribed_values();
     if (parameters.resume)
       resume_from_checkpoint();
   }

@@ -11,9 +11,13 @@
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/multithread_info.h>
+#include <deal.II/base/function.h>
 #include <deal.II/base/geometry_info.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/symmetric_tensor.h>
+
+#include <deal.II/distributed/fully_distributed_tria.h>
+#include <deal.II/distributed/tria.h>
 
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/dofs/dof_tools.h>
@@ -23,10 +27,13 @@
 #include <deal.II/fe/fe_system.h>
 
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_fe.h>
+#include <deal.II/fe/mapping_q1.h>
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria.h>
+#include <deal.II/grid/tria_description.h>
 
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -47,6 +54,7 @@
 #include "contact_set.h"
 #include "material.h"
 #include "mesh.h"
+#include "rigid_motions.h"
 #include "robustness/checkpoint_file.h"
 #include "robustness/mpi_tools.h"
 #include "robustness/output_folder.h"
@@ -59,6 +67,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <random>
 
 using namespace dealii;
@@ -2014,6 +2023,274 @@ TEST(BlasThreads, ScopeGivesTheRanksThreadsAndRestores)
   EXPECT_EQ(blas_threads(), 1u);
   MultithreadInfo::set_thread_limit();
 }
+
+
+// @sect3{Free rigid motions}
+//
+// free_rigid_motions() (rigid_motions.h) on the unit square of
+// quadrilaterals with hanging nodes (p4est), of triangles (fully
+// distributed), and on the unit cube of hexahedra, with the boundary ids
+// of colorize (0 and 1 at x = 0 and 1, 2 and 3 at y = 0 and 1, 4 and 5 at
+// z = 0 and 1). The combination: u_x = 0 at the vertex (0, 1) alone leaves
+// free the translation in y and a translation in x plus a rotation about
+// z, a t_x + w r_z, whose u_x = a - w (y - 1/2)/sqrt(2) vanishes at y = 1
+// (the rotation is about the centre of the box, its positions scaled by
+// the diameter sqrt(2)): a = w/(2 sqrt(2)), the unit vector (1/3, 0,
+// sqrt(8)/3).
+namespace
+{
+  // The free rigid motions with the hanging-node constraints and those
+  // add_constraints adds, stored on the locally relevant dofs and
+  // more_lines.
+  template <int dim>
+  std::vector<std::string>
+  free_motions_with(
+    const Mapping<dim>                                     &mapping,
+    const DoFHandler<dim>                                  &dof_handler,
+    const std::function<void(AffineConstraints<double> &)> &add_constraints,
+    const IndexSet                                         &more_lines = {})
+  {
+    IndexSet lines = DoFTools::extract_locally_relevant_dofs(dof_handler);
+    if (more_lines.size() > 0)
+      lines.add_indices(more_lines);
+    AffineConstraints<double> constraints(lines);
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    add_constraints(constraints);
+    constraints.close();
+    return free_rigid_motions(mapping,
+                              dof_handler,
+                              constraints,
+                              MPI_COMM_WORLD);
+  }
+
+  // u_c = 0 for the components c of mask on the boundary part id.
+  template <int dim>
+  std::function<void(AffineConstraints<double> &)>
+  fix_on_boundary(const Mapping<dim>      &mapping,
+                  const DoFHandler<dim>   &dof_handler,
+                  const types::boundary_id id,
+                  const ComponentMask     &mask)
+  {
+    return [&mapping, &dof_handler, id, mask](
+             AffineConstraints<double> &constraints) {
+      VectorTools::interpolate_boundary_values(mapping,
+                                               dof_handler,
+                                               id,
+                                               Functions::ZeroFunction<dim>(
+                                                 dim),
+                                               constraints,
+                                               mask);
+    };
+  }
+
+  // u_c = 0 at the vertex p, on every rank that has a cell there.
+  template <int dim>
+  std::function<void(AffineConstraints<double> &)>
+  fix_at_vertex(const DoFHandler<dim> &dof_handler,
+                const Point<dim>      &p,
+                const unsigned int     c)
+  {
+    return [&dof_handler, p, c](AffineConstraints<double> &constraints) {
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (!cell->is_artificial())
+          for (const unsigned int v : cell->vertex_indices())
+            if (cell->vertex(v).distance(p) < 1e-12)
+              {
+                const types::global_dof_index i = cell->vertex_dof_index(v, c);
+                if (!constraints.is_constrained(i))
+                  constraints.add_line(i);
+              }
+    };
+  }
+
+  // The dofs of the vertex x, one per component, on every rank.
+  template <int dim>
+  std::vector<types::global_dof_index>
+  vertex_dofs(const DoFHandler<dim> &dof_handler, const Point<dim> &x)
+  {
+    std::vector<types::global_dof_index> dofs(dim, 0);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (!cell->is_artificial())
+        for (const unsigned int v : cell->vertex_indices())
+          if (cell->vertex(v).distance(x) < 1e-12)
+            for (unsigned int c = 0; c < dim; ++c)
+              dofs[c] = cell->vertex_dof_index(v, c);
+    for (types::global_dof_index &dof : dofs)
+      dof = Utilities::MPI::max(dof, MPI_COMM_WORLD);
+    return dofs;
+  }
+
+  // Both together.
+  std::function<void(AffineConstraints<double> &)>
+  both(const std::function<void(AffineConstraints<double> &)> &first,
+       const std::function<void(AffineConstraints<double> &)> &second)
+  {
+    return [first, second](AffineConstraints<double> &constraints) {
+      first(constraints);
+      second(constraints);
+    };
+  }
+
+  // The cases of the unit square: (a) no constraints (only hanging nodes),
+  // (b) u_x = 0 on the left side, (c) u = 0 on the left side, (d) u_y = 0
+  // at the bottom and u_x = 0 on the left side, (e) u_y = 0 at the corner
+  // (1, 0) and u_x = 0 on the left side, (f) u_x = 0 at the corner (0, 1)
+  // alone, (g) u(0, 0) = u(1, 1), which only the translations satisfy.
+  void
+  check_free_rigid_motions_of_square(const Mapping<2>    &mapping,
+                                     const DoFHandler<2> &dof_handler)
+  {
+    using Names                 = std::vector<std::string>;
+    const ComponentMask x_only  = std::vector<bool>{true, false};
+    const ComponentMask y_only  = std::vector<bool>{false, true};
+    const ComponentMask all     = std::vector<bool>{true, true};
+    const auto          nothing = [](AffineConstraints<double> &) {};
+
+    EXPECT_EQ(
+      free_motions_with<2>(mapping, dof_handler, nothing),
+      (Names{"translation in x", "translation in y", "rotation about z"}));
+    EXPECT_EQ(
+      free_motions_with<2>(mapping,
+                           dof_handler,
+                           fix_on_boundary<2>(mapping, dof_handler, 0, x_only)),
+      Names{"translation in y"});
+    EXPECT_EQ(
+      free_motions_with<2>(mapping,
+                           dof_handler,
+                           fix_on_boundary<2>(mapping, dof_handler, 0, all)),
+      Names{});
+    EXPECT_EQ(free_motions_with<2>(
+                mapping,
+                dof_handler,
+                both(fix_on_boundary<2>(mapping, dof_handler, 2, y_only),
+                     fix_on_boundary<2>(mapping, dof_handler, 0, x_only))),
+              Names{});
+    EXPECT_EQ(free_motions_with<2>(
+                mapping,
+                dof_handler,
+                both(fix_at_vertex<2>(dof_handler, Point<2>(1., 0.), 1),
+                     fix_on_boundary<2>(mapping, dof_handler, 0, x_only))),
+              Names{});
+    EXPECT_EQ(
+      free_motions_with<2>(mapping,
+                           dof_handler,
+                           fix_at_vertex<2>(dof_handler, Point<2>(0., 1.), 0)),
+      (Names{"0.33 translation in x + 0.94 rotation about z",
+             "translation in y"}));
+    // (g) stores the lines of both vertices on every rank (deal.II's
+    // assertions want the dofs of every entry among the stored lines), so
+    // that the rank owning (0, 0) need not know (1, 1): free_rigid_motions()
+    // then asks the owner of (1, 1) for its modes.
+    const auto p    = vertex_dofs<2>(dof_handler, Point<2>(0., 0.));
+    const auto q    = vertex_dofs<2>(dof_handler, Point<2>(1., 1.));
+    const auto ties = [&p, &q](AffineConstraints<double> &constraints) {
+      for (unsigned int c = 0; c < 2; ++c)
+        {
+          constraints.add_line(p[c]);
+          constraints.add_entry(p[c], q[c], 1.);
+        }
+    };
+    IndexSet tied(dof_handler.n_dofs());
+    tied.add_indices(p.begin(), p.end());
+    tied.add_indices(q.begin(), q.end());
+    EXPECT_EQ(free_motions_with<2>(mapping, dof_handler, ties, tied),
+              (Names{"translation in x", "translation in y"}));
+  }
+} // namespace
+
+// Quadrilaterals on p4est, the lower left quarter refined once more: the
+// hanging nodes stop nothing.
+TEST(RigidMotions, QuadrilateralsWithHangingNodes)
+{
+  parallel::distributed::Triangulation<2> triangulation(MPI_COMM_WORLD);
+  GridGenerator::hyper_cube(triangulation, 0., 1., true);
+  triangulation.refine_global(3);
+  for (const auto &cell : triangulation.active_cell_iterators())
+    if (cell->is_locally_owned() && cell->center()[0] < 0.5
+        && cell->center()[1] < 0.5)
+      cell->set_refine_flag();
+  triangulation.execute_coarsening_and_refinement();
+
+  const FESystem<2> fe(FE_Q<2>(1), 2);
+  DoFHandler<2>     dof_handler(triangulation);
+  dof_handler.distribute_dofs(fe);
+  const MappingQ1<2> mapping;
+
+  AffineConstraints<double> hanging_nodes(
+    DoFTools::extract_locally_relevant_dofs(dof_handler));
+  DoFTools::make_hanging_node_constraints(dof_handler, hanging_nodes);
+  ASSERT_GT(Utilities::MPI::sum(hanging_nodes.n_constraints(), MPI_COMM_WORLD),
+            0u);
+
+  check_free_rigid_motions_of_square(mapping, dof_handler);
+}
+
+// Triangles on a fully distributed mesh (partitioned by METIS).
+TEST(RigidMotions, Triangles)
+{
+  Triangulation<2> serial_mesh;
+  create_simplex_box(serial_mesh,
+                     {1., 1.},
+                     8,
+                     Parameters::SimplexPattern::slash);
+  GridTools::partition_triangulation(Utilities::MPI::n_mpi_processes(
+                                       MPI_COMM_WORLD),
+                                     serial_mesh);
+  parallel::fullydistributed::Triangulation<2> triangulation(MPI_COMM_WORLD);
+  triangulation.create_triangulation(
+    TriangulationDescription::Utilities::create_description_from_triangulation(
+      serial_mesh,
+      MPI_COMM_WORLD));
+
+  const FESystem<2> fe(FE_SimplexP<2>(1), 2);
+  DoFHandler<2>     dof_handler(triangulation);
+  dof_handler.distribute_dofs(fe);
+  const MappingFE<2> mapping(FE_SimplexP<2>(1));
+
+  check_free_rigid_motions_of_square(mapping, dof_handler);
+}
+
+// Hexahedra: all six motions of the free cube; u_x = 0 on the face x = 0
+// leaves the translations in y and z and the rotation about x; u = 0 there
+// stops everything.
+TEST(RigidMotions, Hexahedra)
+{
+  parallel::distributed::Triangulation<3> triangulation(MPI_COMM_WORLD);
+  GridGenerator::hyper_cube(triangulation, 0., 1., true);
+  triangulation.refine_global(2);
+  const FESystem<3> fe(FE_Q<3>(1), 3);
+  DoFHandler<3>     dof_handler(triangulation);
+  dof_handler.distribute_dofs(fe);
+  const MappingQ1<3> mapping;
+
+  using Names = std::vector<std::string>;
+  EXPECT_EQ(free_motions_with<3>(mapping,
+                                 dof_handler,
+                                 [](AffineConstraints<double> &) {}),
+            (Names{"translation in x",
+                   "translation in y",
+                   "translation in z",
+                   "rotation about x",
+                   "rotation about y",
+                   "rotation about z"}));
+  EXPECT_EQ(
+    free_motions_with<3>(
+      mapping,
+      dof_handler,
+      fix_on_boundary<3>(mapping,
+                         dof_handler,
+                         0,
+                         std::vector<bool>{true, false, false})),
+    (Names{"translation in y", "translation in z", "rotation about x"}));
+  EXPECT_EQ(free_motions_with<3>(mapping,
+                                 dof_handler,
+                                 fix_on_boundary<3>(mapping,
+                                                    dof_handler,
+                                                    0,
+                                                    ComponentMask(3, true))),
+            Names{});
+}
+
 
 
 int

@@ -504,7 +504,9 @@ namespace ViscoContact
         static_cast<long long>(contact.node(i).dofs[c]));
     }
 
-    // k nu_i nu_i^T into the diagonal block of node i.
+    // k nu_i nu_i^T into the diagonal block of node i, in the components
+    // the normal has (a constrained component has none, and its row no
+    // entries but the diagonal).
     template <int dim>
     void
     add_to_block(Epetra_CrsMatrix      &matrix,
@@ -512,20 +514,27 @@ namespace ViscoContact
                  const unsigned int     i,
                  const double           k)
     {
-      const auto &node = contact.node(i);
-      int         columns[dim];
-      double      values[dim];
+      const auto  &node = contact.node(i);
+      int          columns[dim];
+      double       values[dim];
+      unsigned int components[dim], n = 0;
       for (unsigned int d = 0; d < dim; ++d)
-        columns[d] = matrix.ColMap().LID(static_cast<long long>(node.dofs[d]));
-      for (unsigned int c = 0; c < dim; ++c)
+        if (node.normal[d] != 0)
+          {
+            components[n] = d;
+            columns[n++]
+              = matrix.ColMap().LID(static_cast<long long>(node.dofs[d]));
+          }
+      for (unsigned int m = 0; m < n; ++m)
         {
-          for (unsigned int d = 0; d < dim; ++d)
-            values[d] = k * node.normal[c] * node.normal[d];
-          const int error
-            = matrix.SumIntoMyValues(node_row(matrix, contact, i, c),
-                                     dim,
-                                     values,
-                                     columns);
+          for (unsigned int e = 0; e < n; ++e)
+            values[e]
+              = k * node.normal[components[m]] * node.normal[components[e]];
+          const int error = matrix.SumIntoMyValues(
+            node_row(matrix, contact, i, components[m]),
+            n,
+            values,
+            columns);
           AssertThrow(error == 0, ExcTrilinosError(error));
         }
     }
@@ -636,8 +645,10 @@ namespace ViscoContact
 
   // @sect4{FullSpaceContactSolver::project_fixed_rows}
   //
-  // P (M P): the dim rows of each fixed node lose their normal part column
-  // by column. The rows of a vertex have the same columns (the
+  // P (M P): the rows of each fixed node lose their normal part column by
+  // column. Only the rows of the components the normal has take part (a
+  // component constrained by a roller or symmetry plane has none, and its
+  // row only its diagonal); these rows have the same columns (the
   // vector-valued element couples all components of neighbouring
   // vertices), which is checked. Then d_i nu_i nu_i^T, d_i = nu_i^T A_ii
   // nu_i, goes back on the node's diagonal block.
@@ -651,31 +662,37 @@ namespace ViscoContact
     for (unsigned int i = 0; i < contact.size(); ++i)
       if (std::isinf(stiffness[i]))
         {
-          const auto &node = contact.node(i);
-          int         n[dim];
-          double     *values[dim];
-          int        *columns[dim];
+          const auto  &node = contact.node(i);
+          int          n[dim];
+          double      *values[dim];
+          int         *columns[dim];
+          unsigned int components[dim], n_components = 0;
           for (unsigned int c = 0; c < dim; ++c)
+            if (node.normal[c] != 0)
+              components[n_components++] = c;
+          const unsigned int first = components[0];
+          for (unsigned int m = 0; m < n_components; ++m)
             {
+              const unsigned int c = components[m];
               matrix.ExtractMyRowView(node_row(matrix, contact, i, c),
                                       n[c],
                                       values[c],
                                       columns[c]);
-              AssertThrow(n[c] == n[0]
+              AssertThrow(n[c] == n[first]
                             && std::equal(columns[c],
                                           columns[c] + n[c],
-                                          columns[0]),
+                                          columns[first]),
                           ExcMessage("The rows of a contact node's "
                                      "components do not have the same "
                                      "columns."));
             }
-          for (int e = 0; e < n[0]; ++e)
+          for (int e = 0; e < n[first]; ++e)
             {
               double sum = 0;
-              for (unsigned int c = 0; c < dim; ++c)
-                sum += node.normal[c] * values[c][e];
-              for (unsigned int c = 0; c < dim; ++c)
-                values[c][e] -= sum * node.normal[c];
+              for (unsigned int m = 0; m < n_components; ++m)
+                sum += node.normal[components[m]] * values[components[m]][e];
+              for (unsigned int m = 0; m < n_components; ++m)
+                values[components[m]][e] -= sum * node.normal[components[m]];
             }
           // d_i nu_i nu_i^T, d_i = nu_i^T A_ii nu_i, back on the diagonal.
           double d = 0;

@@ -1,0 +1,392 @@
+// ViscoplasticContact<dim>: the Dirichlet parts of the boundary (clamped, or
+// a displacement prescribed in some components as a function of x and t),
+// and the forces they exert on the body.
+//
+// A prescribed displacement g_n does not change which dofs are constrained,
+// only their values. So K is assembled and factorised once, with the
+// homogeneous constraints (u_D = 0), and every step splits u_n = u_0 + g_n:
+// g_n carries the prescribed values (and the hanging nodes and symmetry
+// constraints that depend on them), u_0 solves the step problem with the
+// right-hand side b_n - K g_n. K assembled with the constraints has lost
+// its columns of the Dirichlet dofs, so K g_n is not a product with K: it
+// is the lifting load (E eps(g_n), eps(v)), integrated over the cells
+// where g_n is not zero, at the stress points (the quadrature K was
+// assembled with, so that the two are the same bilinear form).
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
+
+#include "rigid_motions.h"
+#include "robustness/file_output.h"
+#include "time_schedule.h"
+#include "viscoplastic_contact.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+
+namespace ViscoContact
+{
+  // @sect4{ViscoplasticContact::dirichlet_parts}
+  //
+  // The clamped ids (all components), then every used Prescribed
+  // displacement entry with its components: the order of
+  // dirichlet_part_names, in which the constraints are made.
+  template <int dim>
+  std::vector<DirichletPart>
+  ViscoplasticContact<dim>::dirichlet_parts() const
+  {
+    std::vector<DirichletPart> parts;
+    if (!parameters.clamped_ids.empty())
+      parts.push_back({parameters.clamped_ids, ComponentMask()});
+    for (const auto &[number, entry] :
+         parameters.used_prescribed_displacements())
+      {
+        std::vector<bool> mask(dim, false);
+        for (const unsigned int c : entry->component_indices())
+          mask[c] = true;
+        parts.push_back({entry->boundary_ids, ComponentMask(mask)});
+      }
+    return parts;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::setup_dirichlet_dofs}
+  //
+  // The dofs of each part, found as interpolate_boundary_values() finds them
+  // when it makes the constraints: the vertex dofs of the boundary faces of
+  // the part, in the part's components, unless an earlier part or a hanging
+  // node constrains them already. Then the owned cells the per-step loops
+  // visit: those with a dof where g_n may be nonzero (the lifting), and
+  // those with a Dirichlet dof (the reactions).
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::setup_dirichlet_dofs()
+  {
+    dirichlet_dofs.clear();
+    lifting_cells.clear();
+    reaction_cells.clear();
+    dirichlet_values.reinit(solution);
+    if (has_prescribed_values)
+      lifting_load.reinit(solution);
+    const std::vector<DirichletPart>   parts = dirichlet_parts();
+    const Utilities::MPI::Partitioner &partitioner
+      = *solution.get_partitioner();
+    std::vector<bool> taken(partitioner.locally_owned_size()
+                            + partitioner.n_ghost_indices());
+    for (unsigned int p = 0; p < parts.size(); ++p)
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (!cell->is_artificial())
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary()
+                && std::find(parts[p].boundary_ids.begin(),
+                             parts[p].boundary_ids.end(),
+                             face->boundary_id())
+                     != parts[p].boundary_ids.end())
+              for (const unsigned int v : face->vertex_indices())
+                for (const unsigned int c : dirichlet_components[p])
+                  {
+                    const types::global_dof_index index
+                      = face->vertex_dof_index(v, c);
+                    if (!partitioner.in_local_range(index)
+                        && !partitioner.is_ghost_entry(index))
+                      continue;
+                    const unsigned int local
+                      = partitioner.global_to_local(index);
+                    if (taken[local])
+                      continue;
+                    taken[local] = true;
+                    // A hanging node on the face keeps its hanging-node
+                    // constraint (made first).
+                    const auto *entries
+                      = constraints.get_constraint_entries(index);
+                    if (entries != nullptr && !entries->empty())
+                      continue;
+                    dirichlet_dofs.push_back({index,
+                                              local,
+                                              partitioner.in_local_range(index),
+                                              p,
+                                              c,
+                                              face->vertex(v)});
+                  }
+
+    // The cells whose dofs carry a marker: 1 at the Dirichlet dofs (of the
+    // prescribed parts only, for the lifting), spread to the hanging nodes
+    // and symmetry constraints that depend on them.
+    const auto cells_touching = [&](const bool prescribed_only) {
+      VectorType marker(solution);
+      marker = 0;
+      for (const DirichletDof &dof : dirichlet_dofs)
+        if (!prescribed_only || dirichlet_functions[dof.part])
+          marker.local_element(dof.local_index) = 1;
+      marker.update_ghost_values();
+      // The constrained dofs that depend on a marked one: a pass of the
+      // constraint lines over the ghosted marker.
+      for (const auto &line : constraints.get_lines())
+        if (partitioner.in_local_range(line.index))
+          for (const auto &[j, weight] : line.entries)
+            if (weight != 0 && marker(j) != 0)
+              marker(line.index) = 1;
+      marker.update_ghost_values();
+      std::vector<unsigned int> cells;
+      const unsigned int        n_local = n_cell_vertices * dim;
+      for (unsigned int k = 0; k < owned_cells.size(); ++k)
+        for (unsigned int i = 0; i < n_local; ++i)
+          if (marker.local_element(
+                cell_local_dofs[std::size_t(k) * n_local + i])
+              != 0)
+            {
+              cells.push_back(k);
+              break;
+            }
+      return cells;
+    };
+    reaction_cells = cells_touching(false);
+    if (has_prescribed_values)
+      lifting_cells = cells_touching(true);
+  }
+
+
+
+  // @sect4{ViscoplasticContact::check_rigid_motions}
+  //
+  // The contact zones only push, and only where the body touches the
+  // obstacle: they cannot hold a body that the Dirichlet and symmetry
+  // conditions leave free to move rigidly, and K would be singular. Such a
+  // scene is refused before anything is written, naming the motions.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::check_rigid_motions() const
+  {
+    const std::vector<std::string> free
+      = free_rigid_motions(mapping, dof_handler, constraints, mpi_communicator);
+    if (free.empty())
+      return;
+    std::string motions;
+    for (const std::string &motion : free)
+      motions += (motions.empty() ? "" : "; ") + motion;
+    AssertThrow(false,
+                ExcMessage(
+                  "The boundary conditions leave the body free to move "
+                  "rigidly ("
+                  + motions
+                  + "): the elastic operator is singular. Stop these motions "
+                    "with <Clamped boundary ids>, <Symmetry boundary ids> or a "
+                    "<Prescribed displacement N> in subsection <Boundary> (a "
+                    "contact zone does not hold a body); accepted: boundary "
+                    "conditions that leave no rigid motion free."));
+  }
+
+
+
+  // @sect4{ViscoplasticContact::check_prescribed_values}
+  //
+  // Before anything is written: every prescribed value is finite at the
+  // dofs of its part and the times of the run (the levels of Time step and
+  // End time; at a stride beyond about 2e7 evaluations per rank). The
+  // message names the entry, the point and the time, on every rank.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::check_prescribed_values()
+  {
+    if (!has_prescribed_values)
+      return;
+    const std::uint64_t n_steps
+      = n_fixed_steps(parameters.end_time, parameters.time_step);
+    const std::uint64_t n_levels
+      = prescribed_values_depend_on_time ? n_steps + 1 : 1;
+    const std::size_t stride
+      = std::max<std::size_t>(1,
+                              std::size_t(double(dirichlet_dofs.size())
+                                          * n_levels / 2e7));
+    std::string problem;
+    for (std::uint64_t m = 0; m < n_levels && problem.empty(); ++m)
+      {
+        const double time
+          = m < n_steps ? m * parameters.time_step : parameters.end_time;
+        for (std::size_t d = 0; d < dirichlet_dofs.size() && problem.empty();
+             d += stride)
+          problem = prescribed_value(dirichlet_dofs[d], time).second;
+      }
+    FileOutput::agree_on_problem(problem, mpi_communicator);
+  }
+
+
+
+  // The value of a prescribed dof at a time, or the message that it is not
+  // finite.
+  template <int dim>
+  std::pair<double, std::string>
+  ViscoplasticContact<dim>::prescribed_value(const DirichletDof &dof,
+                                             const double        time) const
+  {
+    FunctionParser<dim> &function   = *dirichlet_functions[dof.part];
+    const auto          &components = dirichlet_components[dof.part];
+    function.set_time(time);
+    const double value = function.value(dof.location,
+                                        std::find(components.begin(),
+                                                  components.end(),
+                                                  dof.component)
+                                          - components.begin());
+    if (std::isfinite(value))
+      return {value, ""};
+    std::ostringstream message;
+    message << "Invalid parameter <Displacement> in subsection "
+            << "<Boundary/Prescribed displacement "
+            << dirichlet_part_names[dof.part].substr(11) << ">: its component "
+            << "xyz"[dof.component] << " is not finite at the point ("
+            << dof.location << ") at t = " << time
+            << "; accepted: expressions with a finite value at every point "
+               "of the part and every time of the run.";
+    return {value, message.str()};
+  }
+
+
+
+  // @sect4{ViscoplasticContact::set_dirichlet_values}
+  //
+  // The values of the prescribed parts at their dofs, set as the
+  // inhomogeneities of a copy of the open constraints, which closing
+  // resolves into the hanging nodes and symmetry constraints that depend on
+  // them; distributing them into a zero vector gives g_n. A value that is
+  // not finite stops all ranks, naming the entry, the point and the time.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::set_dirichlet_values(const double time)
+  {
+    if (!has_prescribed_values)
+      return;
+    TimerOutput::Scope t(computing_timer, "Assemble prescribed displacement");
+    current_constraints.copy_from(open_constraints);
+    std::string problem;
+    for (const DirichletDof &dof : dirichlet_dofs)
+      if (dirichlet_functions[dof.part])
+        {
+          const auto [value, message] = prescribed_value(dof, time);
+          if (problem.empty())
+            problem = message;
+          current_constraints.set_inhomogeneity(dof.index, value);
+        }
+    FileOutput::agree_on_problem(problem, mpi_communicator);
+    current_constraints.close();
+    dirichlet_values = 0;
+    current_constraints.distribute(dirichlet_values);
+    dirichlet_values.update_ghost_values();
+
+    // The implicit update's Newton iteration has g_n in its iterate, and so
+    // in its internal force: it needs no lifting load.
+    if (implicit_update())
+      return;
+    lifting_load                            = 0;
+    const SymmetricTensor<4, dim> stiffness = material.elasticity_tensor();
+    const unsigned int            n_q       = stress_quadrature.size();
+    std::vector<double>           cell_vector(n_cell_vertices * dim);
+    for (const unsigned int k : lifting_cells)
+      {
+        std::fill(cell_vector.begin(), cell_vector.end(), 0.);
+        for (unsigned int q = 0; q < n_q; ++q)
+          add_stress_point_load(
+            -(stiffness
+              * symmetrize(displacement_gradient_at(dirichlet_values, k, q))),
+            k,
+            q,
+            make_array_view(cell_vector));
+        distribute_cell_vector(k, make_array_view(cell_vector), lifting_load);
+      }
+    lifting_load.compress(VectorOperation::add);
+  }
+
+
+
+  // @sect4{ViscoplasticContact::apply_constraints}
+  //
+  // The constrained entries of u from the free ones: hanging nodes and
+  // symmetry constraints, and the values g_n of the Dirichlet parts. The
+  // caller updates the ghosts.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::apply_constraints(VectorType &u) const
+  {
+    if (has_prescribed_values)
+      current_constraints.distribute(u);
+    else
+      constraints.distribute(u);
+  }
+
+
+
+  // @sect4{ViscoplasticContact::reaction_forces}
+  //
+  // The force a Dirichlet part exerts on the body is the residual of the
+  // equilibrium equations at its dofs, (sigma_n, eps(v)) - (f_n, v), summed
+  // per component over the part's dofs. The cells around the Dirichlet dofs
+  // add their terms without the constraints (which would drop exactly these
+  // rows), into the ghosts too; the owners sum them, and the parts' sums are
+  // reduced over the ranks.
+  template <int dim>
+  std::vector<Tensor<1, dim>>
+  ViscoplasticContact<dim>::reaction_forces(const double time)
+  {
+    std::vector<Tensor<1, dim>> forces(dirichlet_part_names.size());
+    if (forces.empty())
+      return forces;
+    VectorType residual(solution);
+    residual                    = 0;
+    const unsigned int  n_q     = stress_quadrature.size();
+    const unsigned int  n_local = n_cell_vertices * dim;
+    std::vector<double> cell_vector(n_local);
+    Vector<double>      cell_load(n_local);
+    FEValues<dim>       fe_values(mapping,
+                            *fe,
+                            load_quadrature,
+                            update_values | update_quadrature_points
+                              | update_JxW_values);
+    FEFaceValues<dim>   fe_face_values(mapping,
+                                     *fe,
+                                     face_quadrature,
+                                     update_values | update_quadrature_points
+                                       | update_JxW_values);
+    body_force.set_time(time);
+    surface_traction.set_time(time);
+    std::string problem;
+    double     *values = residual.get_values(); // owned entries, then ghosts
+    for (const unsigned int k : reaction_cells)
+      {
+        std::fill(cell_vector.begin(), cell_vector.end(), 0.);
+        for (unsigned int q = 0; q < n_q; ++q)
+          add_stress_point_load(
+            quadrature_point_history[std::size_t(k) * n_q + q].stress,
+            k,
+            q,
+            make_array_view(cell_vector));
+        if (cell_external_load(owned_cells[k],
+                               fe_values,
+                               fe_face_values,
+                               cell_load,
+                               problem))
+          for (unsigned int a = 0; a < n_cell_vertices; ++a)
+            for (unsigned int c = 0; c < dim; ++c)
+              cell_vector[a * dim + c]
+                -= cell_load(fe->component_to_system_index(c, a));
+        for (unsigned int i = 0; i < n_local; ++i)
+          values[cell_local_dofs[std::size_t(k) * n_local + i]]
+            += cell_vector[i];
+      }
+    residual.compress(VectorOperation::add);
+    FileOutput::agree_on_problem(problem, mpi_communicator);
+    for (const DirichletDof &dof : dirichlet_dofs)
+      if (dof.owned)
+        forces[dof.part][dof.component]
+          += residual.local_element(dof.local_index);
+    for (Tensor<1, dim> &force : forces)
+      force = Utilities::MPI::sum(force, mpi_communicator);
+    return forces;
+  }
+
+
+
+  template class ViscoplasticContact<2>;
+  template class ViscoplasticContact<3>;
+} // namespace ViscoContact

@@ -1,0 +1,130 @@
+#!/bin/bash
+# The contact patch test (parameters/patch_test.prm, patch_test_3d.prm): a
+# block on a flat rigid support, its top pushed down by the prescribed
+# displacement D(t) = 0.01 min(t, 2 - t) (H = 1, E = 1000), rollers on the
+# sides. The exact state is uniaxial stress, p = E D / H on the whole
+# support, which the discrete solution reproduces to round-off:
+#  - elastic, on triangles, quadrilaterals, tetrahedra and hexahedra, with
+#    both back ends and on 1 and 2 ranks: in every step the contact force is
+#    p A (A = 2 in 2D, 3 in 3D), the contact area A, the peak pressure p,
+#    the reaction of the top -p A (relative error 1e-9 with the condensed
+#    back end, 1e-7 with the full space back end's Krylov tolerance), every
+#    node of the profiles at t = 1 and 1.5 has p, and the condensed back
+#    end factorises once per run;
+#  - with plasticity (explicit and implicit update): the state is still
+#    uniform and uniaxial, so every node of a profile has the same pressure
+#    (to 1e-9 relative), the force is p A, the reaction -p A and the largest
+#    von Mises stress p.
+# With "quick" as second argument (the Debug build): two elastic variants.
+#   run_patch_test.sh EXECUTABLE [quick]
+set -u
+here=$(cd "$(dirname "$0")" && pwd)
+source "$here/robustness/helpers.sh"
+executable=$1 quick=${2:-}
+parameters=$here/../parameters
+
+# run PRM RANKS NAME: the run, into results/.
+run() {
+  rm -rf results
+  "$here/run_mpi.sh" "$2" "$executable" "$1" > out.txt 2> err.txt \
+    || fail "$3: the run failed: $(cat err.txt)"
+}
+
+# check_elastic AREA TOLERANCE NAME
+check_elastic() {
+  awk -F, -v area="$1" -v tol="$2" -v name="$3" '
+    function near(a, b) { d = a - b; if (d < 0) d = -d
+                          m = b < 0 ? -b : b; return d <= tol * (m > 1 ? m : 1) }
+    NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; last = $NF; next }
+    { t = $col["time"]; p = 10 * (t < 2 - t ? t : 2 - t)
+      if (!near($col["total_contact_force"], p * area) || !near($col["contact_area"], area) \
+          || !near($col["peak_pressure"], p) || !near($NF, -p * area) || $col["no_contact_nodes"] != 0) {
+        print name ": at t = " t " force " $col["total_contact_force"] ", area " $col["contact_area"] \
+              ", peak " $col["peak_pressure"] ", " last " " $NF "; expected p = " p ", force " p * area
+        exit 1 } }' results/time_series.csv || exit 1
+  for profile in results/contact_profile_*.csv; do
+    awk -F, -v tol="$2" -v name="$3" '
+      NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+      { t = $col["time"]; p = 10 * (t < 2 - t ? t : 2 - t); d = $col["contact_pressure"] - p
+        if (d < 0) d = -d
+        if (d > tol * p) { print name ": pressure " $col["contact_pressure"] " at t = " t ", not " p; exit 1 } }' \
+      "$profile" || exit 1
+  done
+  # One factorisation per run on the condensed back end (the full space
+  # back end rebuilds its AMG when the contact set changes).
+  case "$3" in *condensed*)
+    grep -q "set up by the back end 1x" out.txt \
+      || fail "$3: the operator was set up more than once: $(grep 'operator:' out.txt)" ;;
+  esac
+}
+
+# check_uniform AREA NAME
+check_uniform() {
+  for profile in results/contact_profile_*.csv; do
+    awk -F, -v name="$2" '
+      NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+      NR == 2 { p = $col["contact_pressure"] }
+      { d = $col["contact_pressure"] - p; if (d < 0) d = -d
+        if (d > 1e-9 * p) { print name ": pressures " p " and " $col["contact_pressure"] " in one profile"; exit 1 } }' \
+      "$profile" || exit 1
+  done
+  awk -F, -v area="$1" -v name="$2" '
+    function near(a, b) { d = a - b; if (d < 0) d = -d; m = b < 0 ? -b : b; return d <= 1e-9 * (m > 1 ? m : 1) }
+    NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+    { p = $col["peak_pressure"]
+      if (!near($col["total_contact_force"], p * area) || !near($NF, -p * area) \
+          || !near($col["max_von_mises"], p)) {
+        print name ": at t = " $col["time"] " force " $col["total_contact_force"] ", reaction " $NF \
+              ", von Mises " $col["max_von_mises"] " for the pressure " p; exit 1 } }' \
+    results/time_series.csv || exit 1
+}
+
+variant() { # PRM CELL_TYPE METHOD > variant.prm
+  set_entry "Cell type" "$2" < "$1" | set_entry "Method" "$3" \
+    | set_entry "Output directory" results
+}
+
+if [ "$quick" = quick ]; then
+  variant "$parameters/patch_test.prm" simplex condensed | set_entry Subdivisions 3 > variant.prm
+  run variant.prm 1 "2D simplex, condensed"
+  check_elastic 2 1e-9 "2D simplex, condensed"
+  variant "$parameters/patch_test_3d.prm" hypercube "full space" | set_entry Subdivisions 2 > variant.prm
+  run variant.prm 1 "3D hypercube, full space"
+  check_elastic 3 1e-7 "3D hypercube, full space"
+  echo "The patch test is exact on triangles (condensed) and hexahedra (full space)."
+  exit 0
+fi
+
+n=0
+for dim in 2 3; do
+  prm=$parameters/patch_test.prm area=2
+  [ $dim -eq 3 ] && prm=$parameters/patch_test_3d.prm area=3
+  for cell in simplex hypercube; do
+    for method in condensed "full space"; do
+      tolerance=1e-9
+      [ "$method" = condensed ] || tolerance=1e-7
+      variant "$prm" $cell "$method" | set_entry Subdivisions 3 > variant.prm
+      run variant.prm 1 "${dim}D $cell, $method"
+      check_elastic $area $tolerance "${dim}D $cell, $method"
+      n=$((n + 1))
+    done
+  done
+done
+
+variant "$parameters/patch_test.prm" hypercube "full space" > variant.prm
+run variant.prm 2 "2D hypercube, full space, 2 ranks"
+check_elastic 2 1e-7 "2D hypercube, full space, 2 ranks"
+variant "$parameters/patch_test_3d.prm" simplex condensed | set_entry Subdivisions 3 > variant.prm
+run variant.prm 2 "3D simplex, condensed, 2 ranks"
+check_elastic 3 1e-9 "3D simplex, condensed, 2 ranks"
+
+variant "$parameters/patch_test.prm" hypercube condensed \
+  | set_entry Plasticity true > variant.prm
+run variant.prm 1 "2D hypercube, explicit plasticity"
+check_uniform 2 "2D hypercube, explicit plasticity"
+variant "$parameters/patch_test_3d.prm" simplex "full space" | set_entry Subdivisions 3 \
+  | set_entry Plasticity true | sed -e 's/^\(subsection Time\)$/\1\n  set Stress update = implicit/' > variant.prm
+run variant.prm 1 "3D simplex, implicit plasticity"
+check_uniform 3 "3D simplex, implicit plasticity"
+
+echo "The patch test is exact in $((n + 2)) elastic variants (both back ends, all cell types, 1 and 2 ranks) and uniform with plasticity."

@@ -66,6 +66,8 @@ namespace ViscoContact
       types::global_dof_index scalar_dof;
     };
 
+    // direction: the direction in which every node meets the obstacle
+    // (from the body into it), or nullptr for each node's outward normal.
     void
     setup(const ContactLaw                      &law,
           const Mapping<dim>                    &mapping,
@@ -74,7 +76,18 @@ namespace ViscoContact
           const Quadrature<dim - 1>             &face_quadrature,
           const std::vector<types::boundary_id> &contact_ids,
           const AffineConstraints<double>       &constraints,
-          const VectorType                      &layout);
+          const VectorType                      &layout,
+          const Tensor<1, dim>                  *direction = nullptr);
+
+    // The obstacle: s_i = gap(x_i, time) at every node, the distance from
+    // the node to the obstacle along its direction (negative where the
+    // obstacle has moved into the body), so that the law acts on the
+    // penetration r_i = nu_i . u_i - s_i. Returns the message naming the
+    // entry if a value is not finite (else empty); not collective.
+    std::string
+    set_gaps(Function<dim> &gap, const double time);
+    double
+    gap(const unsigned int i) const;
 
     // The active-set parameter of every node from the operator A of the
     // step problem: c_i = max(nu^T A_ii nu / w_i, 2 * steepest softening),
@@ -92,7 +105,8 @@ namespace ViscoContact
     types::global_dof_index
     first_global_index() const;
 
-    // nu_i . u_i, from the locally owned entries of u.
+    // nu_i . u_i, from the locally owned entries of u (the penetration is
+    // this minus gap(i)).
     double
     normal_component(const VectorType &u, const unsigned int i) const;
     // v_i += value nu_i.
@@ -131,6 +145,7 @@ namespace ViscoContact
                const VectorType                      &weighted_normals);
 
     std::vector<NodeGeometry> geometry;
+    std::vector<double>       gaps; // empty: no obstacle gap (s = 0)
     types::global_dof_index   n_global     = 0;
     types::global_dof_index   first_global = 0;
     MPI_Comm                  communicator = MPI_COMM_SELF;

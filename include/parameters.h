@@ -216,11 +216,18 @@ namespace ViscoContact
       std::vector<double> slopes;
       std::vector<double> jumps;
       bool                check_uniqueness = true;
+      // The obstacle: the gap s(x, t) along the direction d (doc/model.md).
+      std::string initial_gap   = "0";
+      std::string gap_direction = "normal";
 
       void
       add_parameters(ParameterHandler &prm);
       void
-      check_parameters(ParameterHandler &prm);
+      check_parameters(ParameterHandler &prm, const unsigned int dim);
+      // The numbers of Gap direction (empty if it is "normal" or not a list
+      // of numbers).
+      std::vector<double>
+      direction_vector() const;
     };
 
     struct Time

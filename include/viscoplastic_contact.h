@@ -661,8 +661,18 @@ namespace ViscoContact
     // then the step problem is a single linear solve.
     bool            contact_enabled = false;
     ContactSet<dim> contact_set;
-    unsigned int    total_active_set_iterations = 0;
-    unsigned int    total_inner_iterations      = 0;
+    // The obstacle (subsection Contact): the gap s(x, t) along the given
+    // direction (or the normals). Without a gap the nodes keep s = 0.
+    FunctionParser<dim>           gap_function;
+    bool                          has_gap             = false;
+    bool                          gap_depends_on_time = false;
+    std::optional<Tensor<1, dim>> gap_direction;
+    // The gaps of the contact nodes at the given time (collective: a value
+    // that is not finite stops all ranks, naming the entry).
+    void
+                 set_gaps(const double time);
+    unsigned int total_active_set_iterations = 0;
+    unsigned int total_inner_iterations      = 0;
     // Those of the solves of the initial cycles on the coarser meshes, which
     // total_active_set_iterations does not count.
     unsigned int initial_cycle_iterations = 0;

@@ -233,6 +233,8 @@ namespace ViscoContact
     if (loads_depend_on_time || n_external_load_assemblies == 0)
       assemble_external_load(time);
     set_dirichlet_values(time);
+    if (gap_depends_on_time)
+      set_gaps(time);
     system_rhs = external_load;
     // The lifting of the prescribed displacements (the implicit update has
     // them in its iterate instead).

@@ -184,15 +184,14 @@ namespace ViscoContact
   // @sect4{ViscoplasticContact::check_prescribed_values}
   //
   // Before anything is written: every prescribed value is finite at the
-  // dofs of its part and the times of the run (the levels of Time step and
-  // End time; at a stride beyond about 2e7 evaluations per rank). The
-  // message names the entry, the point and the time, on every rank.
+  // dofs of its part, and the obstacle's gap at the contact nodes, at the
+  // times of the run (the levels of Time step and End time; at a stride
+  // beyond about 2e7 evaluations per rank). The message names the entry,
+  // the point and the time, on every rank.
   template <int dim>
   void
   ViscoplasticContact<dim>::check_prescribed_values()
   {
-    if (!has_prescribed_values)
-      return;
     const std::uint64_t n_steps
       = n_fixed_steps(parameters.end_time, parameters.time_step);
     const std::uint64_t n_levels
@@ -201,14 +200,31 @@ namespace ViscoContact
       = std::max<std::size_t>(1,
                               std::size_t(double(dirichlet_dofs.size())
                                           * n_levels / 2e7));
+    const auto level = [&](const std::uint64_t m) {
+      return m < n_steps ? m * parameters.time_step : parameters.end_time;
+    };
     std::string problem;
-    for (std::uint64_t m = 0; m < n_levels && problem.empty(); ++m)
-      {
-        const double time
-          = m < n_steps ? m * parameters.time_step : parameters.end_time;
+    if (has_prescribed_values)
+      for (std::uint64_t m = 0; m < n_levels && problem.empty(); ++m)
         for (std::size_t d = 0; d < dirichlet_dofs.size() && problem.empty();
              d += stride)
-          problem = prescribed_value(dirichlet_dofs[d], time).second;
+          problem = prescribed_value(dirichlet_dofs[d], level(m)).second;
+    // The obstacle's gap at the contact nodes, at every level (or every
+    // stride-th on long runs with many nodes), then again at the current
+    // time.
+    if (has_gap && contact_enabled)
+      {
+        const std::uint64_t n_gap_levels
+          = gap_depends_on_time ? n_steps + 1 : 1;
+        const std::uint64_t gap_stride
+          = std::max<std::uint64_t>(1,
+                                    std::uint64_t(double(contact_set.size())
+                                                  * n_gap_levels / 2e7));
+        for (std::uint64_t m = 0; m < n_gap_levels && problem.empty();
+             m += gap_stride)
+          problem = contact_set.set_gaps(gap_function, level(m));
+        if (problem.empty())
+          problem = contact_set.set_gaps(gap_function, schedule.current_time());
       }
     FileOutput::agree_on_problem(problem, mpi_communicator);
   }
@@ -296,6 +312,19 @@ namespace ViscoContact
         distribute_cell_vector(k, make_array_view(cell_vector), lifting_load);
       }
     lifting_load.compress(VectorOperation::add);
+  }
+
+
+
+  // @sect4{ViscoplasticContact::set_gaps}
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::set_gaps(const double time)
+  {
+    if (!has_gap || !contact_enabled)
+      return;
+    FileOutput::agree_on_problem(contact_set.set_gaps(gap_function, time),
+                                 mpi_communicator);
   }
 
 

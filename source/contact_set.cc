@@ -132,6 +132,13 @@ namespace ViscoContact
 
 
 
+  template <int dim>
+  Tensor<1, dim>
+  free_direction(const typename ContactSet<dim>::NodeGeometry &node,
+                 const AffineConstraints<double>              &constraints);
+
+
+
   // @sect4{ContactSet::setup}
   //
   // Finds the contact nodes this rank owns, with their geometry, weights and
@@ -148,7 +155,8 @@ namespace ViscoContact
                          const Quadrature<dim - 1> &face_quadrature,
                          const std::vector<types::boundary_id> &contact_ids,
                          const AffineConstraints<double>       &constraints,
-                         const VectorType                      &layout)
+                         const VectorType                      &layout,
+                         const Tensor<1, dim>                  *direction)
   {
     // The lumped weights and weighted normals of all vertices of Gamma_3, in
     // the displacement layout, with the values of hanging vertices passed
@@ -164,12 +172,21 @@ namespace ViscoContact
     for (VectorType *vector : {&weights, &weighted_normals})
       pass_on_hanging_values(*vector, constraints, layout);
 
+    gaps.clear();
     find_nodes(dof_handler,
                scalar_dof_handler,
                contact_ids,
                constraints,
                *layout.get_partitioner(),
                weighted_normals);
+    // A given direction replaces the normals (without the constrained
+    // components, as they).
+    if (direction != nullptr)
+      for (NodeGeometry &node : geometry)
+        {
+          node.normal = *direction;
+          node.normal = free_direction<dim>(node, constraints);
+        }
 
     // Along Gamma_3: the order of the contact profiles. The order is
     // lexicographic in the coordinates (x first), with a tolerance for
@@ -509,6 +526,43 @@ namespace ViscoContact
                           const std::vector<types::boundary_id> &,
                           VectorType &,
                           VectorType &);
+  // @sect4{ContactSet::set_gaps}
+  //
+  // The gap of every node at its location, at the given time.
+  template <int dim>
+  std::string
+  ContactSet<dim>::set_gaps(Function<dim> &gap_function, const double time)
+  {
+    gap_function.set_time(time);
+    gaps.resize(geometry.size());
+    for (unsigned int i = 0; i < geometry.size(); ++i)
+      {
+        gaps[i] = gap_function.value(geometry[i].location);
+        if (!std::isfinite(gaps[i]))
+          {
+            std::ostringstream message;
+            message << "Invalid parameter <Initial gap> in subsection "
+                       "<Contact>: the gap is not finite at the contact node ("
+                    << geometry[i].location << ") at t = " << time
+                    << "; accepted: expressions with a finite value at every "
+                       "contact node and every time of the run.";
+            return message.str();
+          }
+      }
+    return "";
+  }
+
+
+
+  template <int dim>
+  double
+  ContactSet<dim>::gap(const unsigned int i) const
+  {
+    return gaps.empty() ? 0. : gaps[i];
+  }
+
+
+
   template class ContactSet<2>;
   template class ContactSet<3>;
 } // namespace ViscoContact

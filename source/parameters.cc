@@ -309,6 +309,23 @@ namespace ViscoContact
 
 
 
+    std::vector<double>
+    Contact::direction_vector() const
+    {
+      std::vector<double> d;
+      for (const std::string &x : Utilities::split_string_list(gap_direction))
+        {
+          char        *end   = nullptr;
+          const double value = std::strtod(x.c_str(), &end);
+          if (x.empty() || end != x.c_str() + x.size())
+            return {};
+          d.push_back(value);
+        }
+      return d;
+    }
+
+
+
     void
     BoundaryParts::add_parameters(ParameterHandler &prm)
     {
@@ -597,15 +614,45 @@ namespace ViscoContact
           "end, one elastic solve per iteration (about 10 to 20) on the full "
           "space back end.",
           Patterns::Bool());
+        prm.add_parameter(
+          "Initial gap",
+          initial_gap,
+          "s(x, t): the distance from a point x of Gamma_3 to the obstacle, "
+          "measured along Gap direction; a muparser expression in x, y (, z), "
+          "t (and pi, L1, L2 (, L3)). The law acts on the penetration "
+          "r = u.d - s (0: the paper's foundation along the contact "
+          "boundary). A rigid plane y = 0 under a body above it: \"y\" with "
+          "Gap direction 0, -1; an indenter that moves into the body by "
+          "0.01 t: \"... - 0.01 * t\".");
+        prm.add_parameter(
+          "Gap direction",
+          gap_direction,
+          "d: normal (each node's outward normal, the paper's model) or a "
+          "vector of dim numbers, the direction from the body into the "
+          "obstacle (minus the obstacle's normal), e.g. 0, -1.");
       }
       prm.leave_subsection();
     }
 
     void
-    Contact::check_parameters(ParameterHandler &prm)
+    Contact::check_parameters(ParameterHandler &prm, const unsigned int dim)
     {
       prm.enter_subsection("Contact");
       {
+        if (gap_direction != "normal")
+          {
+            const std::vector<double> d      = direction_vector();
+            double                    length = 0;
+            for (const double x : d)
+              length += x * x;
+            require(d.size() == dim && std::sqrt(length) > 0
+                      && std::isfinite(length),
+                    "Contact",
+                    "Gap direction",
+                    gap_direction,
+                    "normal, or " + std::to_string(dim)
+                      + " numbers separated by ',' that are not all zero");
+          }
         if (normal_compliance)
           require(gap > 0,
                   "Contact",
@@ -1247,7 +1294,7 @@ namespace ViscoContact
       Geometry::check_parameters(prm);
       BoundaryParts::check_parameters(prm, dimension);
       Material::check_parameters(prm, dimension);
-      Contact::check_parameters(prm);
+      Contact::check_parameters(prm, dimension);
       Time::check_parameters(prm);
       ActiveSetSolver::check_parameters(prm);
       MeshAdaptation::check_parameters(prm);

@@ -324,7 +324,9 @@ namespace ViscoContact
                       face_quadrature,
                       parameters.contact_ids,
                       constraints,
-                      solution);
+                      solution,
+                      gap_direction ? &*gap_direction : nullptr);
+    set_gaps(schedule.current_time());
     contact_set.set_operator(stiffness_matrix);
   }
 

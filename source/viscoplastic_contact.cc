@@ -97,6 +97,7 @@ namespace ViscoContact
                parameters.yield_stress)
     , body_force(dim)
     , surface_traction(dim)
+    , gap_function(1)
   {
     // main() instantiates the class for the Dimension the parameter file names;
     // a mismatch is a programming error.
@@ -119,6 +120,22 @@ namespace ViscoContact
     body_force_is_zero   = is_zero_expression(parameters.body_force);
     loads_depend_on_time = mentions_time(parameters.body_force)
                            || mentions_time(parameters.surface_traction);
+    // The obstacle's gap and direction.
+    initialize_load(gap_function,
+                    "Contact",
+                    "Initial gap",
+                    parameters.initial_gap,
+                    parameters.lengths);
+    has_gap             = !is_zero_expression(parameters.initial_gap);
+    gap_depends_on_time = mentions_time(parameters.initial_gap);
+    if (parameters.gap_direction != "normal")
+      {
+        const std::vector<double> d = parameters.direction_vector();
+        Tensor<1, dim>            direction;
+        for (unsigned int c = 0; c < dim; ++c)
+          direction[c] = d[c];
+        gap_direction = direction / direction.norm();
+      }
     // The Dirichlet parts: clamped first (u = 0), then the prescribed
     // displacements with their functions, in the order of
     // dirichlet_parts(). Only nonzero values need a lifting.

@@ -11,6 +11,9 @@
 #    back end, 1e-7 with the full space back end's Krylov tolerance), every
 #    node of the profiles at t = 1 and 1.5 has p, and the condensed back
 #    end factorises once per run;
+#  - with the support at a distance s = 0.002 (Initial gap, Gap direction),
+#    and with the top held and the support moving up (s = 0.002 - D(t)):
+#    p = E (D - s) / H, exactly as above;
 #  - with plasticity (explicit and implicit update): the state is still
 #    uniform and uniaxial, so every node of a profile has the same pressure
 #    (to 1e-9 relative), the force is p A, the reaction -p A and the largest
@@ -30,22 +33,23 @@ run() {
     || fail "$3: the run failed: $(cat err.txt)"
 }
 
-# check_elastic AREA TOLERANCE NAME
+# check_elastic AREA TOLERANCE NAME [OFFSET]: p = 10 min(t, 2 - t) - OFFSET
 check_elastic() {
-  awk -F, -v area="$1" -v tol="$2" -v name="$3" '
+  local offset=${4:-0}
+  awk -F, -v area="$1" -v tol="$2" -v name="$3" -v offset="$offset" '
     function near(a, b) { d = a - b; if (d < 0) d = -d
                           m = b < 0 ? -b : b; return d <= tol * (m > 1 ? m : 1) }
     NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; last = $NF; next }
-    { t = $col["time"]; p = 10 * (t < 2 - t ? t : 2 - t)
+    { t = $col["time"]; p = 10 * (t < 2 - t ? t : 2 - t) - offset
       if (!near($col["total_contact_force"], p * area) || !near($col["contact_area"], area) \
           || !near($col["peak_pressure"], p) || !near($NF, -p * area) || $col["no_contact_nodes"] != 0) {
         print name ": at t = " t " force " $col["total_contact_force"] ", area " $col["contact_area"] \
               ", peak " $col["peak_pressure"] ", " last " " $NF "; expected p = " p ", force " p * area
         exit 1 } }' results/time_series.csv || exit 1
   for profile in results/contact_profile_*.csv; do
-    awk -F, -v tol="$2" -v name="$3" '
+    awk -F, -v tol="$2" -v name="$3" -v offset="$offset" '
       NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
-      { t = $col["time"]; p = 10 * (t < 2 - t ? t : 2 - t); d = $col["contact_pressure"] - p
+      { t = $col["time"]; p = 10 * (t < 2 - t ? t : 2 - t) - offset; d = $col["contact_pressure"] - p
         if (d < 0) d = -d
         if (d > tol * p) { print name ": pressure " $col["contact_pressure"] " at t = " t ", not " p; exit 1 } }' \
       "$profile" || exit 1
@@ -118,6 +122,18 @@ variant "$parameters/patch_test_3d.prm" simplex condensed | set_entry Subdivisio
 run variant.prm 2 "3D simplex, condensed, 2 ranks"
 check_elastic 3 1e-9 "3D simplex, condensed, 2 ranks"
 
+# The support 0.002 below the block (Initial gap, along the direction
+# 0, -1): p = E (D - 0.002) / H once D > 0.002. Then the top held and the
+# support moving up instead (a gap 0.002 - D(t)): the same pressures.
+gap() { sed -e "s/^\(subsection Contact\)$/\1\n  set Initial gap = $1\n  set Gap direction = $2/"; }
+variant "$parameters/patch_test.prm" simplex condensed | gap 0.002 "0, -1" > variant.prm
+run variant.prm 1 "2D simplex, support at a distance"
+check_elastic 2 1e-9 "2D simplex, support at a distance" 2
+variant "$parameters/patch_test_3d.prm" hypercube "full space" | set_entry Subdivisions 2 \
+  | gap "0.002 - 0.01 * min(t, 2 - t)" "0, 0, -1" | set_entry Displacement 0 > variant.prm
+run variant.prm 1 "3D hexahedra, moving support"
+check_elastic 3 1e-7 "3D hexahedra, moving support" 2
+
 variant "$parameters/patch_test.prm" hypercube condensed \
   | set_entry Plasticity true > variant.prm
 run variant.prm 1 "2D hypercube, explicit plasticity"
@@ -127,4 +143,4 @@ variant "$parameters/patch_test_3d.prm" simplex "full space" | set_entry Subdivi
 run variant.prm 1 "3D simplex, implicit plasticity"
 check_uniform 3 "3D simplex, implicit plasticity"
 
-echo "The patch test is exact in $((n + 2)) elastic variants (both back ends, all cell types, 1 and 2 ranks) and uniform with plasticity."
+echo "The patch test is exact in $((n + 4)) elastic variants (both back ends, all cell types, 1 and 2 ranks, a support at a distance and a moving one) and uniform with plasticity."

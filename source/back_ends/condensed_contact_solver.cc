@@ -371,13 +371,13 @@ namespace ViscoContact
 
   // @sect4{CondensedContactSolver::set_right_hand_side}
   //
-  // The free normal displacements d = N A^{-1} b, the normal displacements
-  // the contact nodes would have without any contact force: all active-set
-  // iterations of the step problem work with d. With the factor's last
-  // block, d = X^T y_c needs only the forward half of the solve with b;
-  // otherwise the whole solve A^{-1} b is done here (and kept for finish()),
-  // and each rank evaluates d at its own nodes. d is needed on every rank,
-  // since every rank solves the whole dense problem.
+  // The free normal displacements d = N A^{-1} b - s, the penetrations the
+  // contact nodes would have without any contact force (s the obstacle's
+  // gaps): all active-set iterations of the step problem work with d. With the
+  // factor's last block, d = X^T y_c needs only the forward half of the solve
+  // with b; otherwise the whole solve A^{-1} b is done here (and kept for
+  // finish()), and each rank evaluates d at its own nodes. d is needed on every
+  // rank, since every rank solves the whole dense problem.
   template <int dim>
   void
   CondensedContactSolver<dim>::set_right_hand_side(
@@ -391,12 +391,14 @@ namespace ViscoContact
         d.reinit(contact.size());
         if (contact.size() > 0)
           normal_responses.Tvmult(d, forward_last);
+        for (unsigned int i = 0; i < contact.size(); ++i)
+          d[i] -= contact.gap(i);
         return;
       }
     factorization.solve(free_displacement, b);
     std::vector<double> own(contact.size());
     for (unsigned int i = 0; i < contact.size(); ++i)
-      own[i] = contact.normal_component(free_displacement, i);
+      own[i] = contact.normal_component(free_displacement, i) - contact.gap(i);
     const std::vector<double> all = gather_on_all_ranks(own, communicator);
     d.reinit(all.size());
     std::copy(all.begin(), all.end(), d.begin());

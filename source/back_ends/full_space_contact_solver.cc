@@ -952,13 +952,17 @@ namespace ViscoContact
       {
         const ContactLawPiece &piece = contact.law().piece(contact.piece(i));
         fixed[i]                     = piece.vertical;
+        // r = nu.u - s with the obstacle's gap s: a vertical piece fixes
+        // nu.u = beta + s, a sloped one has the intercept o - slope s in nu.u.
         if (piece.vertical)
-          contact.add_normal(u0, i, piece.r_lower);
+          contact.add_normal(u0, i, piece.r_lower + contact.gap(i));
         else
           {
             contact.add_normal(step_rhs,
                                i,
-                               -contact.weight(i) * piece.intercept);
+                               -contact.weight(i)
+                                 * (piece.intercept
+                                    - piece.slope * contact.gap(i)));
             normal_stiffness[i] = contact.weight(i) * piece.slope;
           }
       }
@@ -1083,10 +1087,10 @@ namespace ViscoContact
     for (unsigned int i = 0; i < contact.size(); ++i)
       {
         const ContactLawPiece &piece = contact.law().piece(contact.piece(i));
-        contact.r[i]                 = contact.normal_component(u, i);
-        contact.z[i]                 = (piece.vertical
-                                          ? contact.normal_component(residual, i)
-                                          : contact.weight(i)
+        contact.r[i] = contact.normal_component(u, i) - contact.gap(i);
+        contact.z[i] = (piece.vertical
+                          ? contact.normal_component(residual, i)
+                          : contact.weight(i)
                               * (piece.intercept + piece.slope * contact.r[i]));
       }
   }

@@ -132,17 +132,20 @@ namespace ViscoContact
   private:
     // The contact nodes of this rank into geometry, in the order the cells
     // come (setup() sorts them): the locally owned vertices of the faces on
-    // the boundary parts contact_ids whose dofs are all unconstrained, each
-    // with its location, its dofs (global, local in partitioner's
-    // numbering, and scalar) and its normal, the weighted normal
-    // normalised.
+    // the boundary parts contact_ids, each with its location, its dofs
+    // (global, local in partitioner's numbering, and scalar) and its
+    // direction: the given one or the weighted normal, without the
+    // components that are constrained, normalised. A vertex whose
+    // direction lies in its constrained components (a clamped corner, a
+    // hanging node) is not a contact node.
     void
     find_nodes(const DoFHandler<dim>                 &dof_handler,
                const DoFHandler<dim>                 &scalar_dof_handler,
                const std::vector<types::boundary_id> &contact_ids,
                const AffineConstraints<double>       &constraints,
                const Utilities::MPI::Partitioner     &partitioner,
-               const VectorType                      &weighted_normals);
+               const VectorType                      &weighted_normals,
+               const Tensor<1, dim>                  *direction);
 
     std::vector<NodeGeometry> geometry;
     std::vector<double>       gaps; // empty: no obstacle gap (s = 0)

@@ -18,6 +18,8 @@ Run from anywhere: python3 meshes/make_example_meshes.py
 import math
 import os
 
+from gmsh_format import gmsh_text
+
 ANGLE = math.radians(30.0)
 
 
@@ -37,20 +39,7 @@ def rotated_square(n):
         lines.append((4, index(k, n), index(k + 1, n)))
     quads = [(index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1))
              for j in range(n) for i in range(n)]
-    out = ["$MeshFormat", "2.2 0 8", "$EndMeshFormat", "$PhysicalNames", "5",
-           '1 1 "clamped"', '1 2 "free"', '1 3 "contact"', '1 4 "loaded"',
-           '2 10 "body"', "$EndPhysicalNames", "$Nodes", str(len(nodes))]
-    out += ["%d %.17g %.17g 0" % node for node in nodes]
-    out += ["$EndNodes", "$Elements", str(len(lines) + len(quads))]
-    number = 0
-    for tag, a, b in lines:
-        number += 1
-        out.append("%d 1 2 %d %d %d %d" % (number, tag, tag, a, b))
-    for quad in quads:
-        number += 1
-        out.append("%d 3 2 10 10 %d %d %d %d" % ((number,) + quad))
-    out.append("$EndElements")
-    return "\n".join(out) + "\n"
+    return gmsh_text(nodes, lines, quads, [(1, "clamped"), (2, "free"), (3, "contact"), (4, "loaded")])
 
 
 if __name__ == "__main__":

@@ -178,15 +178,8 @@ namespace ViscoContact
                contact_ids,
                constraints,
                *layout.get_partitioner(),
-               weighted_normals);
-    // A given direction replaces the normals (without the constrained
-    // components, as they).
-    if (direction != nullptr)
-      for (NodeGeometry &node : geometry)
-        {
-          node.normal = *direction;
-          node.normal = free_direction<dim>(node, constraints);
-        }
+               weighted_normals,
+               direction);
 
     // Along Gamma_3: the order of the contact profiles. The order is
     // lexicographic in the coordinates (x first), with a tolerance for
@@ -235,9 +228,9 @@ namespace ViscoContact
   // part whose tangential displacement is prescribed): the weighted normal
   // without its constrained components, normalised, so that r = u . nu
   // involves free dofs only and the contact force acts on them. A node
-  // whose constraint couples components (an oblique plane of symmetry) or
-  // whose normal lies in its constrained components (a Dirichlet condition
-  // on the zone's normal component) is refused, naming its location.
+  // whose constraint couples components (an oblique plane of symmetry) is
+  // refused, naming its location; one whose normal lies in its constrained
+  // components gets the zero vector (it is not a contact node).
   template <int dim>
   Tensor<1, dim>
   free_direction(const typename ContactSet<dim>::NodeGeometry &node,
@@ -266,14 +259,11 @@ namespace ViscoContact
                                    "x = const, y = const or z = const."));
           direction[c] = 0;
         }
-    AssertThrow(direction.norm() > 1e-3 * length,
-                ExcMessage("The contact node at (" + where.str()
-                           + ") has its normal displacement constrained (by "
-                             "<Clamped boundary ids>, <Symmetry boundary ids> "
-                             "or a <Prescribed displacement N> of subsection "
-                             "<Boundary>); accepted: Dirichlet and symmetry "
-                             "conditions that leave the normal component of "
-                             "every contact node free."));
+    // Nothing left (the node where the contact zone meets a part that
+    // prescribes its normal component): not a contact node, like a clamped
+    // corner.
+    if (direction.norm() <= 1e-3 * length)
+      return Tensor<1, dim>();
     return direction / direction.norm();
   }
 
@@ -295,7 +285,8 @@ namespace ViscoContact
     const std::vector<types::boundary_id> &contact_ids,
     const AffineConstraints<double>       &constraints,
     const Utilities::MPI::Partitioner     &partitioner,
-    const VectorType                      &weighted_normals)
+    const VectorType                      &weighted_normals,
+    const Tensor<1, dim>                  *direction)
   {
     geometry.clear();
     std::set<types::global_dof_index> seen;
@@ -334,7 +325,12 @@ namespace ViscoContact
                       = partitioner.global_to_local(node.dofs[c]);
                     node.normal[c] = weighted_normals(node.dofs[c]);
                   }
+                // A given direction replaces the normal.
+                if (direction != nullptr)
+                  node.normal = *direction;
                 node.normal = free_direction<dim>(node, constraints);
+                if (node.normal.norm() == 0)
+                  continue;
                 // The same vertex's dof in the scalar dof handler of the
                 // output fields, through the same cell of the common
                 // triangulation.

@@ -1,0 +1,145 @@
+#!/usr/bin/python3
+"""Hertz contact of a cylinder on a rigid plane (parameters/hertz_cylinder.prm)
+on the meshes N = 16, 32, 64 of meshes/make_hertz_meshes.py, against the
+closed form: with P = twice the reaction of the half model's top,
+
+    a = sqrt(4 P R / (pi E*)),   p0 = 2 P / (pi a)   (E* = E, plane stress).
+
+The numerical half-width is the zero of the pressure extrapolated from the
+last two nodes in contact with the Hertz shape (p^2 linear in x^2), not the
+last node in contact (whose error is a cell); the numerical peak pressure is
+the pressure of the node at x = 0. Prints the markdown table of
+doc/benchmarks.md and, with --figure FILE, draws the errors against the
+mesh size and against the run time (the program's own wall clock: mesh,
+set-up with the factorisation, one step at the full load; not the start of
+the process). With --check (the ctest) it fails
+unless every error is below its bound and the error in a falls from mesh
+to mesh.
+
+    benchmarks/run_hertz_cylinder.py [--executable build/viscoplastic_contact]
+        [--figure doc/figures/hertz_cylinder.png] [--check]
+"""
+
+import argparse
+import csv
+import glob
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOP = os.path.join(HERE, "..")
+E, R = 1000.0, 1.0
+# The bounds of --check: the errors of doc/benchmarks.md with a margin.
+BOUNDS = {"a": 0.04, "p0": 0.02}
+
+
+def set_entry(text, entry, value):
+    return re.sub(r"(?m)^(\s*set %s\s*=)[^#\n]*" % re.escape(entry),
+                  r"\g<1> %s " % value, text)
+
+
+def run(executable, n, folder):
+    with open(os.path.join(TOP, "parameters", "hertz_cylinder.prm")) as f:
+        text = f.read()
+    text = set_entry(text, "Mesh file", os.path.abspath(os.path.join(
+        TOP, "meshes", "hertz_cylinder_%d.msh" % n)))
+    text = set_entry(text, "Output directory", os.path.join(folder, "output"))
+    text = set_entry(text, "Time step", 1)
+    text = set_entry(text, "Profile times", 1)
+    text = set_entry(text, "Write vtu", "false")
+    prm = os.path.join(folder, "hertz.prm")
+    with open(prm, "w") as f:
+        f.write(text)
+    result = subprocess.run([executable, prm], capture_output=True, text=True)
+    if result.returncode != 0:
+        sys.exit("The run on N = %d failed:\n%s" % (n, result.stderr))
+    loop = re.search(r"Total wallclock time elapsed since start *\| *([0-9.eE+-]+)s",
+                     result.stdout)
+    return os.path.join(folder, "output"), float(loop.group(1)) if loop else 0.
+
+
+def analyse(output):
+    with open(os.path.join(output, "time_series.csv")) as f:
+        last = list(csv.DictReader(f))[-1]
+    load = 2 * abs(float(last["reaction_prescribed_1_y"]))
+    profile = sorted(glob.glob(os.path.join(output, "contact_profile_*.csv")))[-1]
+    with open(profile) as f:
+        nodes = sorted((float(r["x"]), float(r["contact_pressure"]))
+                       for r in csv.DictReader(f))
+    k = max(i for i, (_, p) in enumerate(nodes) if p > 0)
+    (x1, p1), (x2, p2) = nodes[k - 1], nodes[k]
+    a = math.sqrt(x2 ** 2 + p2 ** 2 * (x2 ** 2 - x1 ** 2) / (p1 ** 2 - p2 ** 2))
+    a_exact = math.sqrt(4 * load * R / (math.pi * E))
+    p0_exact = 2 * load / (math.pi * a_exact)
+    return {"P": load, "a": a, "a exact": a_exact, "p0": nodes[0][1],
+            "p0 exact": p0_exact, "nodes": k + 1,
+            "a error": abs(a - a_exact) / a_exact,
+            "p0 error": abs(nodes[0][1] - p0_exact) / p0_exact}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--executable", default=os.path.join(
+        TOP, "build", "viscoplastic_contact"))
+    parser.add_argument("--figure")
+    parser.add_argument("--check", action="store_true")
+    arguments = parser.parse_args()
+    results = []
+    for n in (16, 32, 64):
+        with tempfile.TemporaryDirectory() as folder:
+            output, wall = run(arguments.executable, n, folder)
+            result = analyse(output)
+        result["N"], result["wall"] = n, wall
+        results.append(result)
+    print("| N | nodes in contact | P | a | Hertz a | error | p0 | Hertz p0 "
+          "| error | run time |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    for r in results:
+        print("| %d | %d | %.5f | %.5f | %.5f | %.2e | %.3f | %.3f | %.2e | "
+              "%.3f s |" % (r["N"], r["nodes"], r["P"], r["a"], r["a exact"],
+                            r["a error"], r["p0"], r["p0 exact"],
+                            r["p0 error"], r["wall"]))
+    for i in range(1, len(results)):
+        print("observed order N = %d -> %d: a %.2f, p0 %.2f" % (
+            results[i - 1]["N"], results[i]["N"],
+            math.log(results[i - 1]["a error"] / results[i]["a error"], 2),
+            math.log(results[i - 1]["p0 error"] / results[i]["p0 error"], 2)))
+    if arguments.figure:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        figure, axes = plt.subplots(1, 2, figsize=(10, 4))
+        for key, label in (("a error", "half-width a"), ("p0 error", "peak pressure p0")):
+            axes[0].loglog([1 / r["N"] for r in results],
+                           [r[key] for r in results], "o-", label=label)
+            axes[1].loglog([r["wall"] for r in results],
+                           [r[key] for r in results], "o-", label=label)
+        axes[0].set_xlabel("mesh parameter 1/N")
+        axes[1].set_xlabel("run time [s] (set-up and one step)")
+        for axis in axes:
+            axis.set_ylabel("relative error against Hertz")
+            axis.grid(True, which="both", alpha=0.3)
+            axis.legend()
+        figure.suptitle("Hertz contact of a cylinder on a plane (2D, a = 0.1 R)")
+        figure.tight_layout()
+        figure.savefig(arguments.figure, dpi=100)
+    if arguments.check:
+        for r in results:
+            for key in ("a", "p0"):
+                if r[key + " error"] > BOUNDS[key]:
+                    sys.exit("N = %d: the error in %s is %.2e, above %.2e." % (
+                        r["N"], key, r[key + " error"], BOUNDS[key]))
+        for i in range(1, len(results)):
+            if results[i]["a error"] >= results[i - 1]["a error"]:
+                sys.exit("The error in a does not fall from N = %d to %d." % (
+                    results[i - 1]["N"], results[i]["N"]))
+        print("Hertz: a and p0 within %.0f%% and %.0f%% of the closed form, "
+              "the error in a falling." % (100 * BOUNDS["a"], 100 * BOUNDS["p0"]))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,71 @@
+#!/usr/bin/python3
+"""Writes the Gmsh meshes (format 2.2, ASCII) of the 2D Hertz benchmark:
+the right half (x >= 0) of the lower half of a cylinder of radius R = 1
+whose lowest point touches the plane y = 0, i.e. the quarter disk
+x >= 0, y <= 1, x^2 + (y - 1)^2 <= 1 (the half model of a half cylinder
+pressed onto a rigid plane by its flat top, with the symmetry line x = 0).
+
+hertz_cylinder_N.msh: N x N quadrilaterals, the unit square mapped onto the
+quarter disk by transfinite (Coons) interpolation of its sides: the left
+side x = 0, the top y = 1, and the arc in two halves (from the contact point
+(0, 0) to the point at 45 degrees, and on to (1, 1)). The square's
+coordinates are graded as (i/N)^2 toward the contact point, so that about a
+third of the arc's nodes lie within a contact half-width of 0.1. All arc
+nodes lie on the circle. Physical groups (the boundary ids of the parameter
+file):
+  1  the symmetry line x = 0
+  2  the top y = 1 (its displacement is prescribed)
+  3  the arc (contact with the plane y = 0)
+
+Run from anywhere: python3 meshes/make_hertz_meshes.py
+"""
+import math
+import os
+
+from gmsh_format import gmsh_text
+
+R = 1.0
+
+
+def arc(theta):
+    return (R * math.cos(theta), R + R * math.sin(theta))
+
+
+def point(xi, eta):
+    """The Coons patch of the quarter disk at (xi, eta) in [0, 1]^2."""
+    bottom = arc(-math.pi / 2 + xi * math.pi / 4)      # (0, 0) .. 45 degrees
+    right = arc(-math.pi / 4 + eta * math.pi / 4)      # 45 degrees .. (1, 1)
+    top = (xi * R, R)                                  # (0, 1) .. (1, 1)
+    left = (0.0, eta * R)                              # (0, 0) .. (0, 1)
+    p00, p10, p01, p11 = arc(-math.pi / 2), arc(-math.pi / 4), (0.0, R), (R, R)
+    return tuple((1 - eta) * bottom[c] + eta * top[c] + (1 - xi) * left[c]
+                 + xi * right[c]
+                 - ((1 - xi) * (1 - eta) * p00[c] + xi * (1 - eta) * p10[c]
+                    + (1 - xi) * eta * p01[c] + xi * eta * p11[c])
+                 for c in range(2))
+
+
+def quarter_disk(n):
+    index = lambda i, j: j * (n + 1) + i + 1
+    graded = [(k / n) ** 2 for k in range(n + 1)]
+    nodes = []
+    for j in range(n + 1):
+        for i in range(n + 1):
+            x, y = point(graded[i], graded[j])
+            nodes.append((index(i, j), x, y))
+    lines = []
+    for k in range(n):
+        lines.append((1, index(0, k), index(0, k + 1)))          # x = 0
+        lines.append((2, index(k, n), index(k + 1, n)))          # y = 1
+        lines.append((3, index(k, 0), index(k + 1, 0)))          # arc, bottom
+        lines.append((3, index(n, k), index(n, k + 1)))          # arc, right
+    quads = [(index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1))
+             for j in range(n) for i in range(n)]
+    return gmsh_text(nodes, lines, quads, [(1, "symmetry"), (2, "top"), (3, "contact")])
+
+
+if __name__ == "__main__":
+    folder = os.path.dirname(os.path.abspath(__file__))
+    for n in (16, 32, 64):
+        with open(os.path.join(folder, "hertz_cylinder_%d.msh" % n), "w") as f:
+            f.write(quarter_disk(n))

@@ -552,6 +552,8 @@ namespace ViscoContact
     // which give the constrained entries of u.
     AffineConstraints<double> open_constraints;
     AffineConstraints<double> current_constraints;
+    // The hanging nodes alone (for the Dirichlet dofs and the reactions).
+    AffineConstraints<double> hanging_node_constraints;
 
     // The elastic operator K (assembled once per run) and, for the implicit
     // update, the tangent and internal force of the current Newton iterate. The

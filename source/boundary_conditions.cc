@@ -16,6 +16,8 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 
+#include <deal.II/dofs/dof_tools.h>
+
 #include "rigid_motions.h"
 #include "robustness/file_output.h"
 #include "time_schedule.h"
@@ -76,6 +78,13 @@ namespace ViscoContact
       = *solution.get_partitioner();
     std::vector<bool> taken(partitioner.locally_owned_size()
                             + partitioner.n_ghost_indices());
+    // The hanging nodes, which keep their constraints (made first): the
+    // closed constraints cannot tell them apart from Dirichlet dofs where
+    // all their parents are Dirichlet dofs too.
+    hanging_node_constraints.reinit(locally_relevant_dofs);
+    DoFTools::make_hanging_node_constraints(dof_handler,
+                                            hanging_node_constraints);
+    hanging_node_constraints.close();
     for (unsigned int p = 0; p < parts.size(); ++p)
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (!cell->is_artificial())
@@ -98,11 +107,7 @@ namespace ViscoContact
                     if (taken[local])
                       continue;
                     taken[local] = true;
-                    // A hanging node on the face keeps its hanging-node
-                    // constraint (made first).
-                    const auto *entries
-                      = constraints.get_constraint_entries(index);
-                    if (entries != nullptr && !entries->empty())
+                    if (hanging_node_constraints.is_constrained(index))
                       continue;
                     dirichlet_dofs.push_back({index,
                                               local,
@@ -112,24 +117,8 @@ namespace ViscoContact
                                               face->vertex(v)});
                   }
 
-    // The cells whose dofs carry a marker: 1 at the Dirichlet dofs (of the
-    // prescribed parts only, for the lifting), spread to the hanging nodes
-    // and symmetry constraints that depend on them.
-    const auto cells_touching = [&](const bool prescribed_only) {
-      VectorType marker(solution);
-      marker = 0;
-      for (const DirichletDof &dof : dirichlet_dofs)
-        if (!prescribed_only || dirichlet_functions[dof.part])
-          marker.local_element(dof.local_index) = 1;
-      marker.update_ghost_values();
-      // The constrained dofs that depend on a marked one: a pass of the
-      // constraint lines over the ghosted marker.
-      for (const auto &line : constraints.get_lines())
-        if (partitioner.in_local_range(line.index))
-          for (const auto &[j, weight] : line.entries)
-            if (weight != 0 && marker(j) != 0)
-              marker(line.index) = 1;
-      marker.update_ghost_values();
+    // The owned cells with a dof where a marker is not zero.
+    const auto cells_touching = [&](const VectorType &marker) {
       std::vector<unsigned int> cells;
       const unsigned int        n_local = n_cell_vertices * dim;
       for (unsigned int k = 0; k < owned_cells.size(); ++k)
@@ -143,9 +132,36 @@ namespace ViscoContact
             }
       return cells;
     };
-    reaction_cells = cells_touching(false);
+    // The reactions need the residual at the Dirichlet dofs and at the
+    // hanging nodes that pass theirs on to them.
+    VectorType marker(solution);
+    marker = 0;
+    for (const DirichletDof &dof : dirichlet_dofs)
+      marker.local_element(dof.local_index) = 1;
+    marker.update_ghost_values();
+    for (const auto &line : hanging_node_constraints.get_lines())
+      if (partitioner.in_local_range(line.index))
+        for (const auto &[parent, weight] : line.entries)
+          if (marker(parent) != 0)
+            marker(line.index) = 1;
+    marker.update_ghost_values();
+    reaction_cells = cells_touching(marker);
+    // The lifting needs the cells where g_n may be nonzero: the constraints
+    // with the value 1 at every prescribed dof, closed and distributed,
+    // mark them (hanging nodes and symmetry constraints included).
     if (has_prescribed_values)
-      lifting_cells = cells_touching(true);
+      {
+        AffineConstraints<double> ones;
+        ones.copy_from(open_constraints);
+        for (const DirichletDof &dof : dirichlet_dofs)
+          if (dirichlet_functions[dof.part])
+            ones.set_inhomogeneity(dof.index, 1.);
+        ones.close();
+        marker = 0;
+        ones.distribute(marker);
+        marker.update_ghost_values();
+        lifting_cells = cells_touching(marker);
+      }
   }
 
 
@@ -350,10 +366,12 @@ namespace ViscoContact
   //
   // The force a Dirichlet part exerts on the body is the residual of the
   // equilibrium equations at its dofs, (sigma_n, eps(v)) - (f_n, v), summed
-  // per component over the part's dofs. The cells around the Dirichlet dofs
-  // add their terms without the constraints (which would drop exactly these
-  // rows), into the ghosts too; the owners sum them, and the parts' sums are
-  // reduced over the ranks.
+  // per component over the part's dofs. The residual of a hanging node
+  // belongs to its parents, with the weights of its constraint (a hanging
+  // node on a refined face next to the part, or on the part itself). The cells
+  // around the Dirichlet dofs add their terms without the constraints (which
+  // would drop exactly these rows), into the ghosts too; the owners sum them,
+  // and the parts' sums are reduced over the ranks.
   template <int dim>
   std::vector<Tensor<1, dim>>
   ViscoplasticContact<dim>::reaction_forces(const double time)
@@ -405,10 +423,18 @@ namespace ViscoContact
       }
     residual.compress(VectorOperation::add);
     FileOutput::agree_on_problem(problem, mpi_communicator);
+    // The residuals of the owned hanging nodes passed on to their parents
+    // (those of ghost parents sent to their owners).
+    VectorType condensed(residual);
+    for (const auto &line : hanging_node_constraints.get_lines())
+      if (residual.get_partitioner()->in_local_range(line.index))
+        for (const auto &[parent, weight] : line.entries)
+          condensed(parent) += weight * residual(line.index);
+    condensed.compress(VectorOperation::add);
     for (const DirichletDof &dof : dirichlet_dofs)
       if (dof.owned)
         forces[dof.part][dof.component]
-          += residual.local_element(dof.local_index);
+          += condensed.local_element(dof.local_index);
     for (Tensor<1, dim> &force : forces)
       force = Utilities::MPI::sum(force, mpi_communicator);
     return forces;

@@ -14,6 +14,9 @@
 #  - with the support at a distance s = 0.002 (Initial gap, Gap direction),
 #    and with the top held and the support moving up (s = 0.002 - D(t)):
 #    p = E (D - s) / H, exactly as above;
+#  - with hanging nodes on the roller, the support and a second prescribed
+#    part (the right side, given the exact u_x = nu D x / H): the same, and
+#    no reaction on the right side;
 #  - with plasticity (explicit and implicit update): the state is still
 #    uniform and uniaxial, so every node of a profile has the same pressure
 #    (to 1e-9 relative), the force is p A, the reaction -p A and the largest
@@ -39,12 +42,13 @@ check_elastic() {
   awk -F, -v area="$1" -v tol="$2" -v name="$3" -v offset="$offset" '
     function near(a, b) { d = a - b; if (d < 0) d = -d
                           m = b < 0 ? -b : b; return d <= tol * (m > 1 ? m : 1) }
-    NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; last = $NF; next }
+    NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i
+              top = col["reaction_prescribed_1_" (area == 2 ? "y" : "z")]; next }
     { t = $col["time"]; p = 10 * (t < 2 - t ? t : 2 - t) - offset
       if (!near($col["total_contact_force"], p * area) || !near($col["contact_area"], area) \
-          || !near($col["peak_pressure"], p) || !near($NF, -p * area) || $col["no_contact_nodes"] != 0) {
+          || !near($col["peak_pressure"], p) || !near($top, -p * area) || $col["no_contact_nodes"] != 0) {
         print name ": at t = " t " force " $col["total_contact_force"] ", area " $col["contact_area"] \
-              ", peak " $col["peak_pressure"] ", " last " " $NF "; expected p = " p ", force " p * area
+              ", peak " $col["peak_pressure"] ", reaction of the top " $top "; expected p = " p ", force " p * area
         exit 1 } }' results/time_series.csv || exit 1
   for profile in results/contact_profile_*.csv; do
     awk -F, -v tol="$2" -v name="$3" -v offset="$offset" '
@@ -134,6 +138,19 @@ variant "$parameters/patch_test_3d.prm" hypercube "full space" | set_entry Subdi
 run variant.prm 1 "3D hexahedra, moving support"
 check_elastic 3 1e-7 "3D hexahedra, moving support" 2
 
+# Hanging nodes (Contact refinement levels) on the roller, the support and
+# a second prescribed part, the right side, given the exact u_x = nu D x / H:
+# the same pressures, and no reaction on the right side.
+variant "$parameters/patch_test.prm" hypercube condensed | set_entry Subdivisions 4 \
+  | sed -e 's/^\(subsection Geometry\)$/\1\n  set Contact refinement levels = 2/' \
+        -e '0,/^  end$/s//  end\n  subsection Prescribed displacement 2\n    set Boundary ids = 1\n    set Components = x\n    set Displacement = 0.003 * min(t, 2 - t) * x\n  end/' \
+  > variant.prm
+run variant.prm 1 "2D quadrilaterals, hanging nodes, two prescribed parts"
+check_elastic 2 1e-9 "2D quadrilaterals, hanging nodes, two prescribed parts"
+awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+  { r = $col["reaction_prescribed_2_x"]; if (r > 1e-9 || r < -1e-9) { print "reaction of the right side " r; exit 1 } }' \
+  results/time_series.csv || fail "2D quadrilaterals, hanging nodes: the right side carries a force."
+
 variant "$parameters/patch_test.prm" hypercube condensed \
   | set_entry Plasticity true > variant.prm
 run variant.prm 1 "2D hypercube, explicit plasticity"
@@ -143,4 +160,4 @@ variant "$parameters/patch_test_3d.prm" simplex "full space" | set_entry Subdivi
 run variant.prm 1 "3D simplex, implicit plasticity"
 check_uniform 3 "3D simplex, implicit plasticity"
 
-echo "The patch test is exact in $((n + 4)) elastic variants (both back ends, all cell types, 1 and 2 ranks, a support at a distance and a moving one) and uniform with plasticity."
+echo "The patch test is exact in $((n + 5)) elastic variants (both back ends, all cell types, 1 and 2 ranks, a support at a distance and a moving one, hanging nodes on prescribed parts) and uniform with plasticity."

@@ -70,6 +70,8 @@ namespace ViscoContact
     dirichlet_dofs.clear();
     lifting_cells.clear();
     reaction_cells.clear();
+    // The values of the old mesh (set_dirichlet_values() sets them anew).
+    current_constraints.clear();
     dirichlet_values.reinit(solution);
     if (has_prescribed_values)
       lifting_load.reinit(solution);
@@ -284,11 +286,15 @@ namespace ViscoContact
   // resolves into the hanging nodes and symmetry constraints that depend on
   // them; distributing them into a zero vector gives g_n. A value that is
   // not finite stops all ranks, naming the entry, the point and the time.
+  // Values that do not depend on t are set once per mesh (the closed
+  // constraints have lines from then on).
   template <int dim>
   void
   ViscoplasticContact<dim>::set_dirichlet_values(const double time)
   {
-    if (!has_prescribed_values)
+    if (!has_prescribed_values
+        || (!prescribed_values_depend_on_time
+            && current_constraints.n_constraints() > 0))
       return;
     TimerOutput::Scope t(computing_timer, "Assemble prescribed displacement");
     current_constraints.copy_from(open_constraints);
@@ -424,17 +430,25 @@ namespace ViscoContact
     residual.compress(VectorOperation::add);
     FileOutput::agree_on_problem(problem, mpi_communicator);
     // The residuals of the owned hanging nodes passed on to their parents
-    // (those of ghost parents sent to their owners).
-    VectorType condensed(residual);
-    for (const auto &line : hanging_node_constraints.get_lines())
-      if (residual.get_partitioner()->in_local_range(line.index))
-        for (const auto &[parent, weight] : line.entries)
-          condensed(parent) += weight * residual(line.index);
-    condensed.compress(VectorOperation::add);
+    // (those of ghost parents sent to their owners), on meshes that have
+    // hanging nodes (the decision is the same on every rank).
+    if (Utilities::MPI::max(static_cast<unsigned int>(
+                              hanging_node_constraints.n_constraints()),
+                            mpi_communicator)
+        > 0)
+      {
+        VectorType condensed(residual);
+        for (const auto &line : hanging_node_constraints.get_lines())
+          if (residual.get_partitioner()->in_local_range(line.index))
+            for (const auto &[parent, weight] : line.entries)
+              condensed(parent) += weight * residual(line.index);
+        condensed.compress(VectorOperation::add);
+        residual = condensed;
+      }
     for (const DirichletDof &dof : dirichlet_dofs)
       if (dof.owned)
         forces[dof.part][dof.component]
-          += condensed.local_element(dof.local_index);
+          += residual.local_element(dof.local_index);
     for (Tensor<1, dim> &force : forces)
       force = Utilities::MPI::sum(force, mpi_communicator);
     return forces;

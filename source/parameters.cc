@@ -439,18 +439,31 @@ namespace ViscoContact
     unsigned int
     count_prescribed_displacements(const std::string &parameter_file)
     {
-      std::ifstream    in(parameter_file);
-      std::string      line;
-      unsigned int     highest = 1;
+      // The files an "include" line names are read as ParameterHandler
+      // reads them (the name as given), to a depth that no sensible file
+      // reaches (ParameterHandler itself reports a cycle).
       const std::regex subsection("^\\s*subsection\\s+Prescribed\\s+"
                                   "displacement\\s+([0-9]{1,3})\\s*(#.*)?$");
-      while (std::getline(in, line))
+      const std::regex include("^\\s*include\\s+(\\S+)\\s*(#.*)?$");
+      std::vector<std::pair<std::string, unsigned int>> files{
+        {parameter_file, 0}};
+      unsigned int highest = 1;
+      while (!files.empty())
         {
-          std::smatch match;
-          if (std::regex_match(line, match, subsection))
-            highest
-              = std::max(highest,
-                         static_cast<unsigned int>(std::stoul(match[1].str())));
+          const auto [file, depth] = files.back();
+          files.pop_back();
+          std::ifstream in(file);
+          std::string   line;
+          while (std::getline(in, line))
+            {
+              std::smatch match;
+              if (std::regex_match(line, match, subsection))
+                highest = std::max(highest,
+                                   static_cast<unsigned int>(
+                                     std::stoul(match[1].str())));
+              else if (depth < 16 && std::regex_match(line, match, include))
+                files.emplace_back(match[1].str(), depth + 1);
+            }
         }
       return highest;
     }

@@ -432,12 +432,15 @@ namespace PreconditionerComparison
                                         parameters.viscosity,
                                         parameters.yield_stress);
     // K as the program assembles it; b by the loop below.
-    assemble_elastic_operator(mapping,
-                              dof_handler,
-                              stress_quadrature,
-                              material.elasticity_tensor(),
-                              constraints,
-                              K);
+    assemble_elastic_operator(
+      mapping,
+      dof_handler,
+      stress_quadrature,
+      [&](const auto &) -> const auto & {
+        return material.elasticity_tensor();
+      },
+      constraints,
+      K);
     const unsigned int                   n = fe->n_dofs_per_cell();
     Vector<double>                       cell_rhs(n);
     std::vector<types::global_dof_index> dof_indices(n);

@@ -11,6 +11,8 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 
+#include <functional>
+
 namespace ViscoContact
 {
   using namespace dealii;
@@ -20,13 +22,18 @@ namespace ViscoContact
   // the constrained rows and columns condensed as the cell matrices are
   // added, and compressed: the elastic operator of the program
   // (ViscoplasticContact::assemble_elastic_operator()), for the benchmark
-  // programs too. The matrix must have its sparsity pattern.
+  // programs too. The matrix must have its sparsity pattern. E is the
+  // elasticity tensor of each cell (of its material).
+  template <int dim>
+  using ElasticityOfCell = std::function<const SymmetricTensor<4, dim> &(
+    const typename DoFHandler<dim>::active_cell_iterator &)>;
+
   template <int dim>
   void
   assemble_elastic_operator(const Mapping<dim>              &mapping,
                             const DoFHandler<dim>           &dof_handler,
                             const Quadrature<dim>           &quadrature,
-                            const SymmetricTensor<4, dim>   &elasticity,
+                            const ElasticityOfCell<dim>     &elasticity,
                             const AffineConstraints<double> &constraints,
                             TrilinosWrappers::SparseMatrix  &matrix);
 } // namespace ViscoContact

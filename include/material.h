@@ -37,10 +37,13 @@ namespace ViscoContact
   class PerzynaMaterial
   {
   public:
+    // plasticity = false: an elastic material (G = 0), whose stress points
+    // keep no history.
     PerzynaMaterial(const double young_modulus,
                     const double poisson_ratio,
                     const double viscosity,
-                    const double yield_stress);
+                    const double yield_stress,
+                    const bool   plasticity = true);
 
     const SymmetricTensor<4, dim> &
     elasticity_tensor() const;
@@ -88,12 +91,15 @@ namespace ViscoContact
     viscosity() const;
     double
     yield_stress() const;
+    bool
+    is_plastic() const;
 
   private:
-    const double            young_modulus;
-    const double            poisson_ratio;
-    const double            lambda_viscosity;
-    const double            sigma_yield;
+    double                  young_modulus;
+    double                  poisson_ratio;
+    double                  lambda_viscosity;
+    double                  sigma_yield;
+    bool                    plastic;
     SymmetricTensor<4, dim> stiffness;
   };
 

@@ -28,8 +28,9 @@ namespace ViscoContact
   //    Boundary, on a serial Triangulation;
   //  - refine_mesh(): the uniform refinements and the refinement toward
   //    Gamma_3 (only locally owned cells are flagged);
-  //  - check_boundary_ids(): the boundary parts the parameter file names
-  //    exist, across all MPI ranks.
+  //  - check_boundary_ids(), check_material_ids(): the boundary parts and
+  //    the material ids the parameter file names exist, across all MPI
+  //    ranks, and every material id of the mesh has its material.
   // multigrid_hierarchy: a p4est mesh with the level hierarchy (and the
   // level difference limited at vertices) that geometric multigrid needs;
   // the program's runs do not use it.
@@ -75,6 +76,12 @@ namespace ViscoContact
   template <int dim>
   void
   check_boundary_ids(const Parameters::AllParameters &parameters,
+                     const Triangulation<dim>        &triangulation,
+                     const MPI_Comm                   communicator);
+
+  template <int dim>
+  void
+  check_material_ids(const Parameters::AllParameters &parameters,
                      const Triangulation<dim>        &triangulation,
                      const MPI_Comm                   communicator);
 } // namespace ViscoContact

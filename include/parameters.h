@@ -123,6 +123,9 @@ namespace ViscoContact
       CellType            cell_type    = CellType::simplex;
       SimplexPattern      simplex_pattern = SimplexPattern::slash;
       std::string         mesh_file; // Gmsh .msh; empty: the generated box
+      // The material id of each cell of the coarse mesh as a function of
+      // its centre (empty: the mesh's own ids).
+      std::string  material_id_function;
       unsigned int global_refinements  = 0; // uniform, after generation/reading
       unsigned int contact_refinements = 0; // extra levels near Gamma_3
 
@@ -176,24 +179,31 @@ namespace ViscoContact
       used_prescribed_displacements() const;
     };
 
-    // The highest N of the subsections "Prescribed displacement N" in a
-    // parameter file, at least 1: how many such subsections to declare
-    // before the file is parsed.
+    // The highest N of the subsections "<name> N" in a parameter file (and
+    // in the files it includes), at least 1: how many such subsections to
+    // declare before the file is parsed.
     unsigned int
-    count_prescribed_displacements(const std::string &parameter_file);
+    count_numbered_subsections(const std::string &parameter_file,
+                               const std::string &name);
 
+    // The material of the cells with the given material ids: subsection
+    // "Material" (whose empty list means every cell of a mesh with one
+    // material id) and the numbered "Material N", N >= 2 (empty: not used).
     struct Material
     {
-      double young_modulus = 1000;
-      double poisson_ratio = 0.4;
-      double viscosity     = 50;
-      double yield_stress  = 2;
-      bool   plasticity    = true;
+      std::vector<types::material_id> material_ids;
+      double                          young_modulus = 1000;
+      double                          poisson_ratio = 0.4;
+      double                          viscosity     = 50;
+      double                          yield_stress  = 2;
+      bool                            plasticity    = true;
 
       void
-      add_parameters(ParameterHandler &prm);
+      add_parameters(ParameterHandler &prm, const std::string &subsection);
       void
-      check_parameters(ParameterHandler &prm, const unsigned int dim);
+      check_parameters(ParameterHandler  &prm,
+                       const unsigned int dim,
+                       const std::string &subsection) const;
     };
 
     struct Loads
@@ -376,6 +386,19 @@ namespace ViscoContact
                            public Output,
                            public Checkpoint
     {
+      // The materials "Material 2", "Material 3", ...: sized before
+      // add_parameters() to the numbered subsections of the parameter file
+      // (at least one, so that --print-parameters documents the list).
+      std::vector<Material> further_materials = std::vector<Material>(1);
+      // The materials that are used, with the names of their subsections:
+      // subsection Material first, then those of further_materials with
+      // material ids.
+      std::vector<std::pair<std::string, const Material *>>
+      used_materials() const;
+      // Whether any material that is used is viscoplastic.
+      bool
+      any_plasticity() const;
+
       // Every entry of the file, bound to the members of this object (which
       // must outlive the parsing); then the checks of every subsection and
       // those between subsections.
@@ -384,6 +407,8 @@ namespace ViscoContact
       void
       check_parameters(ParameterHandler &prm);
       // The checks between subsections, after every subsection is checked.
+      void
+      check_material_entries() const;
       void
       check_study_entries() const;
       void

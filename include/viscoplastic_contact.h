@@ -38,6 +38,7 @@
 
 #include <fstream>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -273,14 +274,16 @@ namespace ViscoContact
     solve_explicit_step();
     ActiveSetResult
     solve_implicit_step(const double time_step);
-    // Newton's method for the implicit step at the viscous parameter a; the
-    // continuation of solve_implicit_step() calls it with a/J, 2a/J, ..., a.
+    // Newton's method for the implicit step with the step length k in the
+    // viscous parameters a = k/(2 lambda) of the materials; the continuation
+    // of solve_implicit_step() calls it with k/J, 2k/J, ..., k.
     bool
-    implicit_newton(const double     a,
+    implicit_newton(const double     time_step,
                     VectorType      &iterate,
                     ActiveSetResult &result);
     void
-    assemble_tangent_system(const VectorType &displacement, const double a);
+    assemble_tangent_system(const VectorType &displacement,
+                            const double      time_step);
     // After a cut step: H_n with the new step length (explicit update only).
     void
     rescale_history_increment(const double old_step, const double new_step);
@@ -297,13 +300,14 @@ namespace ViscoContact
     // a = k_n/(2 lambda) of the implicit update, and E^-1 for the estimate.
     struct StressUpdateStep
     {
-      bool                    implicit;
-      bool                    update_history;
-      bool                    estimate;
-      double                  current_time_step;
-      double                  next_time_step;
-      double                  viscous_parameter;
-      SymmetricTensor<4, dim> compliance;
+      bool   implicit;
+      bool   update_history;
+      bool   estimate;
+      double current_time_step;
+      double next_time_step;
+      // Per material: a = k/(2 lambda) and E^-1.
+      std::vector<double>                  viscous_parameters;
+      std::vector<SymmetricTensor<4, dim>> compliances;
     };
     StressUpdateStep
     stress_update_step(const double current_time_step,
@@ -593,17 +597,37 @@ namespace ViscoContact
     std::optional<StepStart> previous_step_start;
     bool                     pieces_predictable = true;
 
-    // Material, loads, and the state at the stress points of the locally owned
-    // cells. quadrature_point_history is a flat array: the record of stress
-    // point q of the k-th owned cell is entry k * n_q + q, with n_q =
+    // Materials, loads, and the state at the stress points of the locally
+    // owned cells. materials holds those of subsection Material and of the
+    // numbered ones that are used, in that order; material_index the index
+    // of each material id (empty with one material for every cell),
+    // cell_material that of each owned cell k (material_of(k)).
+    // quadrature_point_history is a flat array: the record of stress point q
+    // of the k-th owned cell is entry k * n_q + q, with n_q =
     // stress_quadrature.size(), holding sigma_n, the history H_{n+1} of the
     // next step and the last plastic multiplier. max_von_mises is the maximum
     // over all ranks of the last stress update.
-    PerzynaMaterial<dim> material;
-    FunctionParser<dim>  body_force;
-    FunctionParser<dim>  surface_traction;
-    bool                 body_force_is_zero;
-    bool                 loads_depend_on_time;
+    std::vector<PerzynaMaterial<dim>>          materials;
+    std::map<types::material_id, unsigned int> material_index;
+    std::vector<unsigned int>                  cell_material;
+    unsigned int
+    material_number(const types::material_id id) const
+    {
+      return material_index.empty() ? 0 : material_index.at(id);
+    }
+    const PerzynaMaterial<dim> &
+    material_of(const unsigned int k) const
+    {
+      return materials[cell_material[k]];
+    }
+    // The largest step of the explicit history update that is stable: the
+    // smallest 4 lambda / lambda_max(E) of the viscoplastic materials.
+    double
+                        explicit_stability_limit() const;
+    FunctionParser<dim> body_force;
+    FunctionParser<dim> surface_traction;
+    bool                body_force_is_zero;
+    bool                loads_depend_on_time;
 
     // The Dirichlet parts (dirichlet_parts()): their names in the time
     // series ("clamped", "prescribed_N"), the function of each prescribed

@@ -65,7 +65,7 @@ namespace ViscoContact
   assemble_elastic_operator(const Mapping<dim>              &mapping,
                             const DoFHandler<dim>           &dof_handler,
                             const Quadrature<dim>           &quadrature,
-                            const SymmetricTensor<4, dim>   &elasticity,
+                            const ElasticityOfCell<dim>     &elasticity,
                             const AffineConstraints<double> &constraints,
                             TrilinosWrappers::SparseMatrix  &matrix)
   {
@@ -78,11 +78,11 @@ namespace ViscoContact
     FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
     std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
     std::vector<SymmetricTensor<2, dim>> strains(dofs_per_cell);
-    const SymmetricTensor<4, dim>       &E = elasticity;
 
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
+          const SymmetricTensor<4, dim> &E = elasticity(cell);
           fe_values.reinit(cell);
           cell_matrix = 0;
           for (const unsigned int q : fe_values.quadrature_point_indices())
@@ -396,18 +396,19 @@ namespace ViscoContact
     const unsigned int  n_q = stress_quadrature.size();
     std::vector<double> cell_vector(n_cell_vertices * dim);
     // The history of stress point q of the k-th owned cell is record
-    // k * n_q + q.
+    // k * n_q + q; the cells of elastic materials have none.
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
-      {
-        std::fill(cell_vector.begin(), cell_vector.end(), 0.);
-        for (unsigned int q = 0; q < n_q; ++q)
-          add_stress_point_load(
-            -quadrature_point_history[std::size_t(k) * n_q + q].history,
-            k,
-            q,
-            make_array_view(cell_vector));
-        distribute_cell_vector(k, make_array_view(cell_vector), history_load);
-      }
+      if (material_of(k).is_plastic())
+        {
+          std::fill(cell_vector.begin(), cell_vector.end(), 0.);
+          for (unsigned int q = 0; q < n_q; ++q)
+            add_stress_point_load(
+              -quadrature_point_history[std::size_t(k) * n_q + q].history,
+              k,
+              q,
+              make_array_view(cell_vector));
+          distribute_cell_vector(k, make_array_view(cell_vector), history_load);
+        }
     // Send the ghost contributions to their owners.
     history_load.compress(VectorOperation::add);
   }
@@ -428,19 +429,18 @@ namespace ViscoContact
   // K_T u = f - F_int(u_k) + K_T u_k - N^T z. In 2D plane stress K_T is
   // unsymmetric (the projection is orthogonal in the energy inner product, not
   // the Euclidean one), so the full matrix is assembled, not a triangle. The
-  // argument a = k/(2 lambda) may be smaller than the step's own while the
-  // continuation of solve_implicit_step() runs.
+  // step length k of a = k/(2 lambda) may be smaller than the step's own while
+  // the continuation of solve_implicit_step() runs.
   template <int dim>
   void
   ViscoplasticContact<dim>::assemble_tangent_system(
     const VectorType &displacement,
-    const double      a)
+    const double      time_step)
   {
     TimerOutput::Scope t(computing_timer, "Assemble tangent system");
     // Reset values only; the sparsity pattern of K is kept.
     tangent_matrix                               = 0;
     internal_force                               = 0;
-    const SymmetricTensor<4, dim>       &E       = material.elasticity_tensor();
     const unsigned int                   n_q     = stress_quadrature.size();
     const unsigned int                   n_a     = n_cell_vertices;
     const unsigned int                   n_local = n_a * dim;
@@ -455,8 +455,11 @@ namespace ViscoContact
 
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
       {
-        cell_matrix = 0;
-        cell_force  = 0;
+        const PerzynaMaterial<dim>    &material = material_of(k);
+        const SymmetricTensor<4, dim> &E        = material.elasticity_tensor();
+        const double a = time_step / (2 * material.viscosity());
+        cell_matrix    = 0;
+        cell_force     = 0;
         for (unsigned int q = 0; q < n_q; ++q)
           {
             // The stored geometry of stress point q of cell k: JxW and the
@@ -474,13 +477,13 @@ namespace ViscoContact
             // respect to the trial stress. The multiplier of this projection is
             // written back only as the starting guess of the next one; sigma_n
             // itself is stored by update_stresses() once the step has
-            // converged. Without plasticity the stress is elastic and the
-            // tangent is E, so K_T = K.
+            // converged. In an elastic material the stress is elastic and
+            // the tangent is E.
             QuadraturePointHistory<dim> &state
               = quadrature_point_history[point];
             SymmetricTensor<4, dim> trial_tangent = identity_tensor<dim>();
             const SymmetricTensor<2, dim> stress
-              = (parameters.plasticity ? material.implicit_stress_update(
+              = (material.is_plastic() ? material.implicit_stress_update(
                    E * symmetrize(displacement_gradient) + state.history,
                    a,
                    &trial_tangent,
@@ -534,14 +537,14 @@ namespace ViscoContact
   assemble_elastic_operator(const Mapping<2> &,
                             const DoFHandler<2> &,
                             const Quadrature<2> &,
-                            const SymmetricTensor<4, 2> &,
+                            const ElasticityOfCell<2> &,
                             const AffineConstraints<double> &,
                             TrilinosWrappers::SparseMatrix &);
   template void
   assemble_elastic_operator(const Mapping<3> &,
                             const DoFHandler<3> &,
                             const Quadrature<3> &,
-                            const SymmetricTensor<4, 3> &,
+                            const ElasticityOfCell<3> &,
                             const AffineConstraints<double> &,
                             TrilinosWrappers::SparseMatrix &);
   template class ViscoplasticContact<2>;

@@ -317,16 +317,15 @@ namespace ViscoContact
     // in its internal force: it needs no lifting load.
     if (implicit_update())
       return;
-    lifting_load                            = 0;
-    const SymmetricTensor<4, dim> stiffness = material.elasticity_tensor();
-    const unsigned int            n_q       = stress_quadrature.size();
-    std::vector<double>           cell_vector(n_cell_vertices * dim);
+    lifting_load            = 0;
+    const unsigned int  n_q = stress_quadrature.size();
+    std::vector<double> cell_vector(n_cell_vertices * dim);
     for (const unsigned int k : lifting_cells)
       {
         std::fill(cell_vector.begin(), cell_vector.end(), 0.);
         for (unsigned int q = 0; q < n_q; ++q)
           add_stress_point_load(
-            -(stiffness
+            -(material_of(k).elasticity_tensor()
               * symmetrize(displacement_gradient_at(dirichlet_values, k, q))),
             k,
             q,

@@ -160,7 +160,10 @@ namespace
     ParameterHandler          prm;
     Parameters::AllParameters parameters;
     parameters.prescribed_displacements.resize(
-      Parameters::count_prescribed_displacements(file));
+      Parameters::count_numbered_subsections(file, "Prescribed displacement"));
+    parameters.further_materials.resize(
+      std::max(2u, Parameters::count_numbered_subsections(file, "Material"))
+      - 1);
     parameters.add_parameters(prm);
     prm.parse_input(file);
     // What the parameter file may not mean as ParameterHandler reads it is

@@ -18,11 +18,13 @@ namespace ViscoContact
   PerzynaMaterial<dim>::PerzynaMaterial(const double young_modulus,
                                         const double poisson_ratio,
                                         const double viscosity,
-                                        const double yield_stress)
+                                        const double yield_stress,
+                                        const bool   plasticity)
     : young_modulus(young_modulus)
     , poisson_ratio(poisson_ratio)
     , lambda_viscosity(viscosity)
     , sigma_yield(yield_stress)
+    , plastic(plasticity)
   {
     const double E = young_modulus, k = poisson_ratio;
     const double lame_lambda
@@ -93,6 +95,15 @@ namespace ViscoContact
   PerzynaMaterial<dim>::yield_stress() const
   {
     return sigma_yield;
+  }
+
+
+
+  template <int dim>
+  bool
+  PerzynaMaterial<dim>::is_plastic() const
+  {
+    return plastic;
   }
 
 

@@ -21,11 +21,13 @@
 #include <deal.II/grid/tria_accessor.h>
 #include <deal.II/grid/tria_iterator.h>
 
+#include "loads.h"
 #include "mesh.h"
 #include "robustness/mesh_checks.h"
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -41,6 +43,64 @@ namespace ViscoContact
              const types::boundary_id               id)
     {
       return std::find(ids.begin(), ids.end(), id) != ids.end();
+    }
+
+    // The union over all ranks of the ids each rank has.
+    template <typename Id>
+    std::set<Id>
+    union_over_ranks(const std::set<Id> &local_ids, const MPI_Comm communicator)
+    {
+      const std::vector<Id> ids
+        = Utilities::MPI::compute_set_union(std::vector<Id>(local_ids.begin(),
+                                                            local_ids.end()),
+                                            communicator);
+      return std::set<Id>(ids.begin(), ids.end());
+    }
+
+    // The ids as "1, 2, 5".
+    template <typename Id>
+    std::string
+    list_ids(const std::set<Id> &ids)
+    {
+      std::string list;
+      for (const auto id : ids)
+        list += (list.empty() ? "" : ", ") + std::to_string(id);
+      return list;
+    }
+
+    // The Material id function at the centre of every cell of the coarse
+    // mesh. Children inherit their parent's id when a cell is refined, also
+    // when p4est rebuilds a repartitioned mesh from the coarse one, so the
+    // ids survive refinement, repartitioning and resume.
+    template <int dim>
+    void
+    set_material_ids(const Parameters::AllParameters &parameters,
+                     Triangulation<dim>              &triangulation)
+    {
+      FunctionParser<dim> region(1);
+      initialize_load(region,
+                      "Geometry",
+                      "Material id function",
+                      parameters.material_id_function,
+                      parameters.lengths);
+      for (const auto &cell : triangulation.active_cell_iterators())
+        {
+          const Point<dim>   centre = cell->center();
+          const double       value  = region.value(centre);
+          std::ostringstream where;
+          where << "(" << centre << ")";
+          AssertThrow(std::isfinite(value) && value >= 0
+                        && value < numbers::invalid_material_id
+                        && value == std::round(value),
+                      ExcMessage("Invalid parameter <Material id function> in "
+                                 "subsection <Geometry>: value <"
+                                 + parameters.material_id_function + ">; it is "
+                                 + std::to_string(value)
+                                 + " at the cell centre " + where.str()
+                                 + "; accepted: a whole number >= 0 at the "
+                                   "centre of every cell."));
+          cell->set_material_id(static_cast<types::material_id>(value));
+        }
     }
   } // namespace
 
@@ -304,10 +364,44 @@ namespace ViscoContact
 
 
 
+  // @sect4{create_box}
+  //
+  // The box (0,L1)x(0,L2)(x(0,L3)) of Subdivisions squares (cubes) along each
+  // edge, its faces colorized.
+  template <int dim>
+  void
+  create_box(const Parameters::AllParameters &parameters,
+             Triangulation<dim>              &triangulation)
+  {
+    const bool simplex
+      = (parameters.cell_type == Parameters::CellType::simplex);
+
+    // The generated box: its far corner and the number of squares (cubes)
+    // along each edge.
+    Point<dim>                corner;
+    std::vector<unsigned int> repetitions(dim, parameters.subdivisions);
+    for (unsigned int d = 0; d < dim; ++d)
+      corner[d] = parameters.lengths[d];
+
+    if (simplex)
+      create_simplex_box(triangulation,
+                         parameters.lengths,
+                         parameters.subdivisions,
+                         parameters.simplex_pattern);
+    else
+      GridGenerator::subdivided_hyper_rectangle(triangulation,
+                                                repetitions,
+                                                Point<dim>(),
+                                                corner,
+                                                /*colorize=*/true);
+  }
+
+
+
   // @sect4{create_coarse_mesh}
   //
   // The box (0,L1)x(0,L2)(x(0,L3)) with Subdivisions squares (cubes) along
-  // each edge, on simplex meshes cut by the Simplex pattern
+  // each edge (create_box()), on simplex meshes cut by the Simplex pattern
   // (create_simplex_box(); deal.II 9.4 cannot colorize its simplex
   // generator, so the boundary ids are set from the face centres with the
   // numbering colorize uses for hypercubes: 2d and 2d+1 at x_d = 0 and L_d).
@@ -318,7 +412,8 @@ namespace ViscoContact
   //
   // Every problem with the file is reported as an invalid value of Mesh
   // file, with what is accepted, rather than as an exception from deep
-  // inside the reader.
+  // inside the reader. Last, a Material id function overrides the cells'
+  // material ids.
   template <int dim>
   void
   create_coarse_mesh(const Parameters::AllParameters &parameters,
@@ -393,27 +488,11 @@ namespace ViscoContact
         // Coincident nodes, conformity.
         check_mesh_conformity(checked_mesh, file);
         triangulation.copy_triangulation(checked_mesh);
-        return;
       }
-
-    // The generated box: its far corner and the number of squares (cubes)
-    // along each edge.
-    Point<dim>                corner;
-    std::vector<unsigned int> repetitions(dim, parameters.subdivisions);
-    for (unsigned int d = 0; d < dim; ++d)
-      corner[d] = parameters.lengths[d];
-
-    if (simplex)
-      create_simplex_box(triangulation,
-                         parameters.lengths,
-                         parameters.subdivisions,
-                         parameters.simplex_pattern);
     else
-      GridGenerator::subdivided_hyper_rectangle(triangulation,
-                                                repetitions,
-                                                Point<dim>(),
-                                                corner,
-                                                /*colorize=*/true);
+      create_box(parameters, triangulation);
+    if (!parameters.material_id_function.empty())
+      set_material_ids(parameters, triangulation);
   }
 
 
@@ -427,7 +506,9 @@ namespace ViscoContact
   // each of its four half-size squares, cut the same way; tetrahedra are
   // refined into other shapes than Kuhn's). Returns the parameters of the
   // coarse box and j, taking at most max_refinements factors of 2 out of
-  // Subdivisions (none for a Gmsh mesh and the other simplex patterns).
+  // Subdivisions (none for a Gmsh mesh and the other simplex patterns, and
+  // none with a Material id function, which is evaluated on the cells of
+  // Subdivisions).
   namespace
   {
     std::pair<Parameters::AllParameters, unsigned int>
@@ -437,6 +518,7 @@ namespace ViscoContact
       using Pattern = Parameters::SimplexPattern;
       const bool refinement_reproduces_box
         = parameters.mesh_file.empty()
+          && parameters.material_id_function.empty()
           && (parameters.cell_type == Parameters::CellType::hypercube
               || (parameters.dimension == 2
                   && (parameters.simplex_pattern == Pattern::slash
@@ -533,8 +615,10 @@ namespace ViscoContact
         refine_mesh(parameters, *distributed_mesh);
         mesh = std::move(distributed_mesh);
       }
-    // Last, the boundary parts the parameter file names must exist.
+    // Last, the boundary parts and materials the parameter file names must
+    // exist, and every material id of the mesh must have its material.
     check_boundary_ids(parameters, *mesh, communicator);
+    check_material_ids(parameters, *mesh, communicator);
     return mesh;
   }
 
@@ -614,23 +698,17 @@ namespace ViscoContact
         for (const unsigned int f : cell->face_indices())
           if (cell->face(f)->at_boundary())
             local_ids.insert(cell->face(f)->boundary_id());
-    const std::vector<types::boundary_id> present_list
-      = Utilities::MPI::compute_set_union(
-        std::vector<types::boundary_id>(local_ids.begin(), local_ids.end()),
-        communicator);
-    const std::set<types::boundary_id> present(present_list.begin(),
-                                               present_list.end());
+    const std::set<types::boundary_id> present
+      = union_over_ranks(local_ids, communicator);
 
     // The message lists the ids that are there, and where they come from.
-    std::string accepted;
-    for (const auto id : present)
-      accepted += (accepted.empty() ? "" : ", ") + std::to_string(id);
-    accepted = "ids of this mesh: " + accepted
-               + (parameters.mesh_file.empty()
-                    ? " (the generated box: 0/1 at x = 0/L1, 2/3 at y = 0/L2, "
-                      "4/5 at z = 0/L3)"
-                    : " (the physical groups of the boundary faces in "
-                        + parameters.mesh_file + ")");
+    const std::string accepted
+      = "ids of this mesh: " + list_ids(present)
+        + (parameters.mesh_file.empty()
+             ? " (the generated box: 0/1 at x = 0/L1, 2/3 at y = 0/L2, "
+               "4/5 at z = 0/L3)"
+             : " (the physical groups of the boundary faces in "
+                 + parameters.mesh_file + ")");
     // Each named id must be among them; the message names the entry.
     const auto check_ids = [&](const std::vector<types::boundary_id> &ids,
                                const std::string                     &entry,
@@ -651,6 +729,77 @@ namespace ViscoContact
       check_ids(entry->boundary_ids,
                 "Boundary ids",
                 "Boundary/Prescribed displacement " + std::to_string(number));
+  }
+
+
+
+  // @sect4{check_material_ids}
+  //
+  // The material ids of the mesh and those of the materials must be the same
+  // sets: a cell without a material, or a material without cells (a typing
+  // error, most likely), is refused, naming the ids.
+  template <int dim>
+  void
+  check_material_ids(const Parameters::AllParameters &parameters,
+                     const Triangulation<dim>        &triangulation,
+                     const MPI_Comm                   communicator)
+  {
+    std::set<types::material_id> local_ids;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        local_ids.insert(cell->material_id());
+    const std::set<types::material_id> present
+      = union_over_ranks(local_ids, communicator);
+    const std::string source
+      = "the material ids of this mesh: " + list_ids(present)
+        + (!parameters.material_id_function.empty()
+             ? " (the values of <Material id function> in subsection "
+               "<Geometry>)"
+           : parameters.mesh_file.empty()
+             ? " (the generated box)"
+             : " (the physical groups of the cells in " + parameters.mesh_file
+                 + ")");
+
+    std::set<types::material_id> named;
+    for (const auto &[name, material] : parameters.used_materials())
+      for (const auto id : material->material_ids)
+        {
+          AssertThrow(present.count(id) == 1,
+                      ExcMessage("Invalid parameter <Material ids> in "
+                                 "subsection <"
+                                 + name + ">: material id " + std::to_string(id)
+                                 + " is not on the mesh; accepted: " + source
+                                 + "."));
+          named.insert(id);
+        }
+    // Subsection Material without ids is every cell of a one-material mesh.
+    if (named.empty())
+      {
+        AssertThrow(present.size() == 1,
+                    ExcMessage("Invalid parameter <Material ids> in subsection "
+                               "<Material>: value <>; accepted: an empty list "
+                               "only for a mesh with one material id, but "
+                               + source
+                               + ". Name each of them in <Material ids> of "
+                                 "subsection <Material> or of a subsection "
+                                 "<Material N> (N = 2, 3, ...)."));
+      }
+    else
+      {
+        std::set<types::material_id> missing;
+        std::set_difference(present.begin(),
+                            present.end(),
+                            named.begin(),
+                            named.end(),
+                            std::inserter(missing, missing.end()));
+        AssertThrow(missing.empty(),
+                    ExcMessage("The mesh has cells of material id "
+                               + list_ids(missing) + " that no material names ("
+                               + source
+                               + "); name each in <Material ids> of "
+                                 "subsection <Material> or of a subsection "
+                                 "<Material N> (N = 2, 3, ...)."));
+      }
   }
 
 
@@ -678,6 +827,14 @@ namespace ViscoContact
                      const MPI_Comm);
   template void
   check_boundary_ids(const Parameters::AllParameters &,
+                     const Triangulation<3> &,
+                     const MPI_Comm);
+  template void
+  check_material_ids(const Parameters::AllParameters &,
+                     const Triangulation<2> &,
+                     const MPI_Comm);
+  template void
+  check_material_ids(const Parameters::AllParameters &,
                      const Triangulation<3> &,
                      const MPI_Comm);
 } // namespace ViscoContact

@@ -160,15 +160,18 @@ namespace ViscoContact
         cell->index(),
         &scalar_dof_handler);
     };
-    if (parameters.plasticity)
+    if (parameters.any_plasticity())
       {
         for (unsigned int k = 0; k < owned_cells.size(); ++k)
           {
-            bool plastic = false, elastic = false;
+            const PerzynaMaterial<dim> &material = material_of(k);
+            bool                        plastic = false, elastic = false;
             for (unsigned int q = 0; q < n_q; ++q)
-              (material.equivalent_stress(
-                 quadrature_point_history[std::size_t(k) * n_q + q].stress)
-                   > material.yield_stress()
+              (material.is_plastic()
+                   && material.equivalent_stress(
+                        quadrature_point_history[std::size_t(k) * n_q + q]
+                          .stress)
+                        > material.yield_stress()
                  ? plastic
                  : elastic)
                 = true;
@@ -517,7 +520,7 @@ namespace ViscoContact
               const QuadraturePointHistory<dim> &state
                 = quadrature_point_history[std::size_t(k) * n_q + q];
               const SymmetricTensor<2, dim> elastic
-                = material.elasticity_tensor()
+                = material_of(k).elasticity_tensor()
                   * symmetrize(displacement_gradient_at(solution, k, q));
               Assert((state.stress - state.history - elastic).norm()
                        <= 1e-10 * (1 + state.stress.norm()),
@@ -598,7 +601,7 @@ namespace ViscoContact
           }
         else
           {
-            if (parameters.plasticity)
+            if (parameters.any_plasticity())
               update_stresses(schedule.step_length(), 0.);
             marked = mark_cells_by_indicators();
           }

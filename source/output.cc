@@ -309,7 +309,8 @@ namespace ViscoContact
   // like every field of a deal.II .vtu file they are written at the
   // vertices of each cell, so ParaView lists them as point data,
   // discontinuous from cell to cell. The contact fields are nodal, zero
-  // away from Gamma_3; "subdomain" is the rank that owns the cell.
+  // away from Gamma_3; "subdomain" is the rank that owns the cell, and
+  // "material_id" (with several materials) the cell's material id.
   //
   // With another file stem (failed_step) the record is written for
   // inspection only and not listed in solution.pvd.
@@ -379,6 +380,16 @@ namespace ViscoContact
     data_out.add_data_vector(subdomain,
                              "subdomain",
                              DataOut<dim>::type_cell_data);
+    Vector<float> material_ids;
+    if (materials.size() > 1)
+      {
+        material_ids.reinit(n_cells);
+        for (const auto &cell : owned_cells)
+          material_ids[cell->active_cell_index()] = cell->material_id();
+        data_out.add_data_vector(material_ids,
+                                 "material_id",
+                                 DataOut<dim>::type_cell_data);
+      }
     const char *contact_names[4] = {"contact_pressure",
                                     "compliance_pressure",
                                     "foundation_pressure",
@@ -434,13 +445,14 @@ namespace ViscoContact
     Vector<float>              &von_mises,
     Vector<float>              &subdomain) const
   {
-    const unsigned int             n_components = stress.size();
-    const unsigned int             n_q          = stress_quadrature.size();
-    const SymmetricTensor<4, dim> &E            = material.elasticity_tensor();
+    const unsigned int n_components = stress.size();
+    const unsigned int n_q          = stress_quadrature.size();
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
       {
-        const unsigned int c = owned_cells[k]->active_cell_index();
-        subdomain[c]         = owned_cells[k]->subdomain_id();
+        const PerzynaMaterial<dim>    &material = material_of(k);
+        const SymmetricTensor<4, dim> &E        = material.elasticity_tensor();
+        const unsigned int             c = owned_cells[k]->active_cell_index();
+        subdomain[c]                     = owned_cells[k]->subdomain_id();
         for (unsigned int q = 0; q < n_q; ++q)
           {
             // The viscoplastic part is recomputed as sigma_n - E eps(u_n)

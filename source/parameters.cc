@@ -174,6 +174,18 @@ namespace ViscoContact
           "file. Faces without a physical group get boundary id 0. Empty: the "
           "box of Lengths and Subdivisions.",
           Patterns::Anything());
+        prm.add_parameter(
+          "Material id function",
+          material_id_function,
+          "The material id of each cell as a muparser expression of x, y[, "
+          "z] (and the constants L1, L2[, L3]), evaluated at the centre of "
+          "every cell of the generated box (Subdivisions per edge) or of the "
+          "Gmsh file, before any refinement; refined cells inherit it. Its "
+          "value, an integer >= 0, selects the material (subsection Material "
+          "and Material N). Example: \"y > 0.8 ? 1 : 0\" for a layer on top. "
+          "Empty: the mesh's own ids (0 on the generated box, the physical "
+          "groups of the cells of a Gmsh file).",
+          Patterns::Anything());
         prm.add_parameter("Global refinements",
                           global_refinements,
                           "Uniform refinements of the generated or read mesh; "
@@ -437,13 +449,17 @@ namespace ViscoContact
     }
 
     unsigned int
-    count_prescribed_displacements(const std::string &parameter_file)
+    count_numbered_subsections(const std::string &parameter_file,
+                               const std::string &name)
     {
       // The files an "include" line names are read as ParameterHandler
       // reads them (the name as given), to a depth that no sensible file
-      // reaches (ParameterHandler itself reports a cycle).
-      const std::regex subsection("^\\s*subsection\\s+Prescribed\\s+"
-                                  "displacement\\s+([0-9]{1,3})\\s*(#.*)?$");
+      // reaches (ParameterHandler itself reports a cycle). The name is
+      // matched with any run of blanks between its words.
+      const std::string pattern
+        = std::regex_replace(name, std::regex(" "), "\\s+");
+      const std::regex subsection("^\\s*subsection\\s+" + pattern
+                                  + "\\s+([0-9]{1,3})\\s*(#.*)?$");
       const std::regex include("^\\s*include\\s+(\\S+)\\s*(#.*)?$");
       std::vector<std::pair<std::string, unsigned int>> files{
         {parameter_file, 0}};
@@ -471,10 +487,25 @@ namespace ViscoContact
 
 
     void
-    Material::add_parameters(ParameterHandler &prm)
+    Material::add_parameters(ParameterHandler  &prm,
+                             const std::string &subsection)
     {
-      prm.enter_subsection("Material");
+      prm.enter_subsection(subsection);
       {
+        prm.add_parameter(
+          "Material ids",
+          material_ids,
+          subsection == "Material"
+            ? "The material ids of the cells of this material: the "
+              "physical groups of the cells of a Gmsh file, or the values "
+              "of <Material id function> in subsection Geometry (the "
+              "generated box has id 0). Empty: every cell, if the mesh has "
+              "one material id only. Further materials are subsections "
+              "\"Material 2\", \"Material 3\", ... with the same entries; "
+              "each id of the mesh must be named by exactly one of them."
+            : "The material ids of the cells of this material (empty: this "
+              "material is not used). Each id is named by one material only.",
+          Patterns::List(Patterns::Integer(0)));
         prm.add_parameter("Young's modulus",
                           young_modulus,
                           "E > 0 [N/m^2].",
@@ -495,37 +526,41 @@ namespace ViscoContact
                           Patterns::Double());
         prm.add_parameter("Plasticity",
                           plasticity,
-                          "false: linear elasticity (G = 0); the history "
-                          "terms are then skipped altogether.",
+                          "false: linear elasticity (G = 0): the cells of "
+                          "this material keep no history and cost no stress "
+                          "update; without any viscoplastic material the "
+                          "history terms are skipped altogether.",
                           Patterns::Bool());
       }
       prm.leave_subsection();
     }
 
     void
-    Material::check_parameters(ParameterHandler &prm, const unsigned int dim)
+    Material::check_parameters(ParameterHandler  &prm,
+                               const unsigned int dim,
+                               const std::string &subsection) const
     {
-      prm.enter_subsection("Material");
+      prm.enter_subsection(subsection);
       {
         require(young_modulus > 0,
-                "Material",
+                subsection,
                 "Young's modulus",
                 to_string(young_modulus),
                 "E > 0");
         const double k_max = (dim == 2 ? 1.0 : 0.5);
         require(poisson_ratio > -1 && poisson_ratio < k_max,
-                "Material",
+                subsection,
                 "Poisson ratio",
                 to_string(poisson_ratio),
                 std::string("-1 < k < ")
                   + (dim == 2 ? "1 (2D plane stress)" : "0.5 (3D)"));
         require(viscosity > 0,
-                "Material",
+                subsection,
                 "Viscosity",
                 to_string(viscosity),
                 "lambda > 0");
         require(yield_stress > 0,
-                "Material",
+                subsection,
                 "Yield stress",
                 to_string(yield_stress),
                 "sigma_Y > 0");
@@ -1289,7 +1324,11 @@ namespace ViscoContact
     {
       Geometry::add_parameters(prm);
       BoundaryParts::add_parameters(prm);
-      Material::add_parameters(prm);
+      Material::add_parameters(prm, "Material");
+      for (unsigned int n = 0; n < further_materials.size(); ++n)
+        further_materials[n].add_parameters(prm,
+                                            "Material "
+                                              + std::to_string(n + 2));
       Loads::add_parameters(prm);
       Contact::add_parameters(prm);
       Time::add_parameters(prm);
@@ -1306,7 +1345,9 @@ namespace ViscoContact
     {
       Geometry::check_parameters(prm);
       BoundaryParts::check_parameters(prm, dimension);
-      Material::check_parameters(prm, dimension);
+      for (const auto &[name, material] : used_materials())
+        material->check_parameters(prm, dimension, name);
+      check_material_entries();
       Contact::check_parameters(prm, dimension);
       Time::check_parameters(prm);
       ActiveSetSolver::check_parameters(prm);
@@ -1317,6 +1358,60 @@ namespace ViscoContact
       check_mesh_adaptation_entries();
       check_schedule_size(prm);
       check_unused_entries(prm);
+    }
+
+    std::vector<std::pair<std::string, const Material *>>
+    AllParameters::used_materials() const
+    {
+      std::vector<std::pair<std::string, const Material *>> used{
+        {"Material", this}};
+      for (unsigned int n = 0; n < further_materials.size(); ++n)
+        if (!further_materials[n].material_ids.empty())
+          used.emplace_back("Material " + std::to_string(n + 2),
+                            &further_materials[n]);
+      return used;
+    }
+
+    bool
+    AllParameters::any_plasticity() const
+    {
+      for (const auto &[name, material] : used_materials())
+        if (material->plasticity)
+          return true;
+      return false;
+    }
+
+    // Each material id belongs to one material; with several materials,
+    // subsection Material names its ids too (its empty list means "every
+    // cell" only when it is the only material).
+    void
+    AllParameters::check_material_entries() const
+    {
+      const auto materials = used_materials();
+      if (materials.size() > 1)
+        require(!material_ids.empty(),
+                "Material",
+                "Material ids",
+                "",
+                "the material ids of subsection Material when subsection <"
+                  + materials[1].first
+                  + "> names some too (empty means every cell only for a "
+                    "single material)");
+      std::map<types::material_id, std::string> owner;
+      for (const auto &[name, material] : materials)
+        for (const auto id : material->material_ids)
+          {
+            const auto [it, inserted] = owner.emplace(id, name);
+            std::string value;
+            for (const auto i : material->material_ids)
+              value += (value.empty() ? "" : ", ") + std::to_string(i);
+            require(inserted,
+                    name,
+                    "Material ids",
+                    value,
+                    "ids that no other material names (" + std::to_string(id)
+                      + " is also in subsection <" + it->second + ">)");
+          }
     }
 
     // What a convergence study needs of the other subsections.

@@ -198,10 +198,17 @@ namespace ViscoContact
   ViscoplasticContact<dim>::assemble_elastic_operator()
   {
     TimerOutput::Scope t(computing_timer, "Setup: assemble elastic operator");
+    const auto         elasticity_of_cell
+      = [this](const typename DoFHandler<dim>::active_cell_iterator &cell)
+      -> const SymmetricTensor<4, dim> & {
+      return materials[material_number(cell->material_id())]
+        .elasticity_tensor();
+    };
     ViscoContact::assemble_elastic_operator(mapping,
                                             dof_handler,
                                             stress_quadrature,
-                                            material.elasticity_tensor(),
+                                            ElasticityOfCell<dim>(
+                                              elasticity_of_cell),
                                             constraints,
                                             stiffness_matrix);
     ++n_operator_assemblies;
@@ -232,9 +239,13 @@ namespace ViscoContact
     // artificial cells have no stress points here: their stresses belong to the
     // rank that owns them.
     owned_cells.clear();
+    cell_material.clear();
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
-        owned_cells.push_back(cell);
+        {
+          owned_cells.push_back(cell);
+          cell_material.push_back(material_number(cell->material_id()));
+        }
     const std::size_t  n_cells = owned_cells.size();
     const unsigned int n_q     = stress_quadrature.size();
     quadrature_point_history.assign(n_cells * n_q,
@@ -395,8 +406,15 @@ namespace ViscoContact
                   ? "refined globally"
                   : "refined adaptively")
             << '\n';
-    pcout << "Model: " << (parameters.plasticity ? "viscoplastic" : "elastic")
-          << ", contact " << (contact_enabled ? "on" : "off") << ", "
+    pcout << "Model: "
+          << (parameters.any_plasticity() ? "viscoplastic" : "elastic");
+    if (materials.size() > 1)
+      pcout << " (" << materials.size() << " materials, "
+            << std::count_if(materials.begin(),
+                             materials.end(),
+                             [](const auto &m) { return m.is_plastic(); })
+            << " viscoplastic)";
+    pcout << ", contact " << (contact_enabled ? "on" : "off") << ", "
           << (parameters.stress_update
                   == Parameters::StressUpdate::explicit_euler
                 ? "explicit"
@@ -437,10 +455,9 @@ namespace ViscoContact
       pcout << "Implicit (backward-Euler) history update: no stability limit "
                "on k (doc/model.md, section 3); k = "
             << parameters.time_step << " s\n";
-    else if (parameters.plasticity)
+    else if (explicit_history_update())
       {
-        const double bound
-          = 4 * material.viscosity() / material.largest_elastic_eigenvalue();
+        const double bound = explicit_stability_limit();
         pcout << "Explicit history update: stable for k < 4 lambda / "
                  "lambda_max(E) = "
               << bound << " s; k = " << parameters.time_step << " s\n";
@@ -464,9 +481,7 @@ namespace ViscoContact
         pcout << (parameters.resume ? ", next step " : ", first step ")
               << schedule.proposed_step() << " s\n";
         if (explicit_history_update()
-            && controller.maximum_step
-                 >= 4 * material.viscosity()
-                      / material.largest_elastic_eigenvalue())
+            && controller.maximum_step >= explicit_stability_limit())
           pcout << "WARNING: Minimum time step exceeds the stability limit of "
                    "the explicit history update (doc/model.md, section 3).\n";
       }

@@ -167,15 +167,22 @@ namespace ViscoContact
     const double current_time_step,
     const double next_time_step) const
   {
-    const SymmetricTensor<4, dim> &E = material.elasticity_tensor();
-    const double modulus             = material.largest_elastic_eigenvalue();
-    return {implicit_update(),
-            explicit_history_update() && next_time_step > 0,
-            parameters.plasticity && current_time_step > 0,
-            current_time_step,
-            next_time_step,
-            current_time_step / (2 * material.viscosity()),
-            invert(E / modulus) / modulus};
+    StressUpdateStep step{implicit_update(),
+                          explicit_history_update() && next_time_step > 0,
+                          parameters.any_plasticity() && current_time_step > 0,
+                          current_time_step,
+                          next_time_step,
+                          {},
+                          {}};
+    for (const PerzynaMaterial<dim> &material : materials)
+      {
+        const double modulus = material.largest_elastic_eigenvalue();
+        step.viscous_parameters.push_back(current_time_step
+                                          / (2 * material.viscosity()));
+        step.compliances.push_back(
+          invert(material.elasticity_tensor() / modulus) / modulus);
+      }
+    return step;
   }
 
 
@@ -194,7 +201,7 @@ namespace ViscoContact
     message << "The stresses are no longer finite (NaN or Inf). With the "
                "explicit history update this means the time step is too "
                "large: it is stable for k < 4 lambda / lambda_max(E) = "
-            << 4 * material.viscosity() / material.largest_elastic_eigenvalue()
+            << explicit_stability_limit()
             << " s (doc/model.md, section 3); <Time step> in subsection "
                "<Time> is "
             << parameters.time_step << " s.";
@@ -226,17 +233,22 @@ namespace ViscoContact
     const unsigned int           n_q = stress_quadrature.size();
     QuadraturePointHistory<dim> &state
       = quadrature_point_history[std::size_t(k) * n_q + q];
+    const unsigned int          m        = cell_material[k];
+    const PerzynaMaterial<dim> &material = materials[m];
     // E eps(u_n), from the ghosted u_n (solve_contact_problem() has
     // imported the ghosts).
     const SymmetricTensor<2, dim> elastic_stress
       = material.elasticity_tensor()
         * symmetrize(displacement_gradient_at(solution, k, q));
+    // An elastic material has no history: its stress is elastic, it has no
+    // rate and no load, and only its stress counts in the estimate.
+    const bool              plastic = material.is_plastic();
     SymmetricTensor<2, dim> rate;
-    if (step.implicit)
+    if (plastic && step.implicit)
       {
         state.stress
           = material.implicit_stress_update(elastic_stress + state.history,
-                                            step.viscous_parameter,
+                                            step.viscous_parameters[m],
                                             nullptr,
                                             &state.plastic_multiplier);
         const SymmetricTensor<2, dim> new_history
@@ -254,27 +266,32 @@ namespace ViscoContact
     max_von_mises_of_cell  = std::isfinite(von_mises)
                                ? std::max(max_von_mises_of_cell, von_mises)
                                : std::numeric_limits<double>::infinity();
-    if (!step.implicit && (step.update_history || step.estimate))
+    if (plastic && !step.implicit && (step.update_history || step.estimate))
       rate
         = material.viscoplastic_rate(state.stress, &state.plastic_multiplier);
-    if (step.update_history)
+    if (plastic && step.update_history)
       {
         state.history += step.next_time_step * rate;
         add_stress_point_load(-state.history, k, q, cell_vector);
       }
     // The estimate's terms at this point (per cell: the sums of
     // (E^-1 dG, dG) JxW with dG = G(sigma_n) - G(sigma_{n-1}), of
-    // (E^-1 sigma_n, sigma_n) JxW and of JxW), and the rate kept for the
-    // next step's estimate.
+    // (E^-1 sigma_n, sigma_n) JxW and of sigma_Y^2 / lambda_max(E) JxW), and
+    // the rate kept for the next step's estimate.
     if (step.estimate)
       {
         const double JxW = stress_point_JxW[std::size_t(k) * n_q + q];
-        const SymmetricTensor<2, dim> change = rate - state.rate;
-        estimate_sums[0] += (step.compliance * change) * change * JxW;
         estimate_sums[1]
-          += (step.compliance * state.stress) * state.stress * JxW;
-        estimate_sums[2] += JxW;
-        state.rate = rate;
+          += (step.compliances[m] * state.stress) * state.stress * JxW;
+        if (plastic)
+          {
+            const SymmetricTensor<2, dim> change = rate - state.rate;
+            estimate_sums[0] += (step.compliances[m] * change) * change * JxW;
+            estimate_sums[2] += material.yield_stress()
+                                * material.yield_stress()
+                                / material.largest_elastic_eigenvalue() * JxW;
+            state.rate = rate;
+          }
       }
   }
 
@@ -287,11 +304,11 @@ namespace ViscoContact
   // (backward Euler: k_n G(sigma_n)) and the trapezoidal one
   // k_n/2 (G(sigma_{n-1}) + G(sigma_n)), in the energy norm
   // (E^-1 tau, tau)^(1/2) over the body, relative to the stress in the same
-  // norm, but at least to sigma_Y (|Omega| / lambda_max(E))^(1/2), the size
-  // of a stress at the yield limit, so that an unloaded body does not make
-  // the estimate blow up. The sums are added in the order of the cells, so
-  // the estimate does not depend on the number of threads; one sum over the
-  // ranks.
+  // norm, but at least to sigma_Y (|Omega| / lambda_max(E))^(1/2) (over the
+  // viscoplastic materials), the size of a stress at the yield limit, so
+  // that an unloaded body does not make the estimate blow up. The sums are
+  // added in the order of the cells, so the estimate does not depend on the
+  // number of threads; one sum over the ranks.
   template <int dim>
   double
   ViscoplasticContact<dim>::step_error_estimate(
@@ -302,11 +319,7 @@ namespace ViscoContact
     Utilities::MPI::sum(ArrayView<const double>(local_sums.data(), 3),
                         mpi_communicator,
                         ArrayView<double>(sums.data(), 3));
-    const double scale
-      = std::max(std::sqrt(sums[1]),
-                 material.yield_stress()
-                   * std::sqrt(sums[2]
-                               / material.largest_elastic_eigenvalue()));
+    const double scale = std::max(std::sqrt(sums[1]), std::sqrt(sums[2]));
     return time_step / 2 * std::sqrt(sums[0])
            / std::max(scale, std::numeric_limits<double>::min());
   }

@@ -264,9 +264,7 @@ namespace ViscoContact
     controller.maximum_step = parameters.maximum_time_step;
     if (explicit_history_update())
       controller.maximum_step
-        = std::min(controller.maximum_step,
-                   0.9 * 4 * material.viscosity()
-                     / material.largest_elastic_eigenvalue());
+        = std::min(controller.maximum_step, 0.9 * explicit_stability_limit());
     controller.maximum_step
       = std::max(controller.maximum_step, controller.minimum_step);
     return controller;
@@ -447,7 +445,8 @@ namespace ViscoContact
   // @sect4{ViscoplasticContact::implicit_newton}
   //
   // Newton's method for the step problem of the backward-Euler scheme with
-  // the viscous parameter a = k/(2 lambda): linearise sigma(eps(u)) at the
+  // the step length k (the viscous parameter a = k/(2 lambda) of each
+  // material): linearise sigma(eps(u)) at the
   // current iterate with the consistent tangent, hand the tangent to the
   // back end, solve the linearised contact problem exactly (the active set
   // on the tangent), repeat until the update is at rounding level. The
@@ -462,7 +461,7 @@ namespace ViscoContact
   // contact zone has settled it needs few iterations.
   template <int dim>
   bool
-  ViscoplasticContact<dim>::implicit_newton(const double     a,
+  ViscoplasticContact<dim>::implicit_newton(const double     time_step,
                                             VectorType      &iterate,
                                             ActiveSetResult &result)
   {
@@ -472,7 +471,7 @@ namespace ViscoContact
         // The tangent assembly reads the displacement at every dof of the owned
         // cells, the ghosts included.
         iterate.update_ghost_values();
-        assemble_tangent_system(iterate, a);
+        assemble_tangent_system(iterate, time_step);
         // K_T u_new = f - F_int(u) + K_T u - N^T z.
         tangent_matrix.vmult(rhs, iterate);
         rhs += system_rhs;
@@ -556,7 +555,6 @@ namespace ViscoContact
   {
     // Every attempt starts from the state at the start of the step (start);
     // iterate carries the solution from stage to stage.
-    const double    a = time_step / (2 * material.viscosity());
     ActiveSetResult result;
     VectorType      start(solution), iterate(solution);
     // stages = 1 is plain Newton with the step's own a; then 2, 4, ..., 64
@@ -569,10 +567,12 @@ namespace ViscoContact
                 << stages << " stages\n";
         iterate        = start;
         bool converged = true;
-        // The stages of one attempt: a/J, 2a/J, ..., a, each from the previous
-        // stage's solution; the attempt fails as soon as one stage fails.
+        // The stages of one attempt: a/J, 2a/J, ..., a (k/J, 2k/J, ..., k in
+        // a = k/(2 lambda)), each from the previous stage's solution; the
+        // attempt fails as soon as one stage fails.
         for (unsigned int stage = 1; stage <= stages && converged; ++stage)
-          converged = implicit_newton(a * stage / stages, iterate, result);
+          converged
+            = implicit_newton(time_step * stage / stages, iterate, result);
         // The last stage was the step's own problem: its solution is u_n.
         if (converged)
           {
@@ -612,10 +612,18 @@ namespace ViscoContact
   ViscoplasticContact<dim>::rescale_history_increment(const double old_step,
                                                       const double new_step)
   {
-    for (QuadraturePointHistory<dim> &state : quadrature_point_history)
-      state.history += (new_step - old_step)
-                       * material.viscoplastic_rate(state.stress,
+    const unsigned int n_q = stress_quadrature.size();
+    for (unsigned int k = 0; k < owned_cells.size(); ++k)
+      if (material_of(k).is_plastic())
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            QuadraturePointHistory<dim> &state
+              = quadrature_point_history[std::size_t(k) * n_q + q];
+            state.history
+              += (new_step - old_step)
+                 * material_of(k).viscoplastic_rate(state.stress,
                                                     &state.plastic_multiplier);
+          }
     assemble_history_load();
   }
 

@@ -49,6 +49,34 @@ namespace ViscoContact
         return std::make_unique<FE_SimplexP<dim>>(1);
       return std::make_unique<FE_Q<dim>>(1);
     }
+
+    // The materials that are used, in the order of used_materials(), and the
+    // number of each material id among them (none with one material for
+    // every cell, whose subsection Material has no ids).
+    template <int dim>
+    std::vector<PerzynaMaterial<dim>>
+    make_materials(const Parameters::AllParameters &parameters)
+    {
+      std::vector<PerzynaMaterial<dim>> materials;
+      for (const auto &[name, material] : parameters.used_materials())
+        materials.emplace_back(material->young_modulus,
+                               material->poisson_ratio,
+                               material->viscosity,
+                               material->yield_stress,
+                               material->plasticity);
+      return materials;
+    }
+
+    std::map<types::material_id, unsigned int>
+    material_numbers(const Parameters::AllParameters &parameters)
+    {
+      std::map<types::material_id, unsigned int> numbers;
+      const auto materials = parameters.used_materials();
+      for (unsigned int m = 0; m < materials.size(); ++m)
+        for (const auto id : materials[m].second->material_ids)
+          numbers[id] = m;
+      return numbers;
+    }
   } // namespace
 
 
@@ -91,10 +119,8 @@ namespace ViscoContact
     , load_quadrature(reference_cell.template get_gauss_type_quadrature<dim>(2))
     , face_quadrature(reference_cell.face_reference_cell(0)
                         .template get_gauss_type_quadrature<dim - 1>(2))
-    , material(parameters.young_modulus,
-               parameters.poisson_ratio,
-               parameters.viscosity,
-               parameters.yield_stress)
+    , materials(make_materials<dim>(parameters))
+    , material_index(material_numbers(parameters))
     , body_force(dim)
     , surface_traction(dim)
     , gap_function(1)
@@ -191,7 +217,7 @@ namespace ViscoContact
   bool
   ViscoplasticContact<dim>::implicit_update() const
   {
-    return parameters.plasticity
+    return parameters.any_plasticity()
            && parameters.stress_update
                 == Parameters::StressUpdate::implicit_euler;
   }
@@ -202,7 +228,27 @@ namespace ViscoContact
   bool
   ViscoplasticContact<dim>::explicit_history_update() const
   {
-    return parameters.plasticity && !implicit_update();
+    return parameters.any_plasticity() && !implicit_update();
+  }
+
+
+
+  // @sect4{ViscoplasticContact::explicit_stability_limit}
+  //
+  // Forward Euler on the relaxation of each viscoplastic material is stable
+  // for k < 4 lambda / lambda_max(E) (doc/model.md, section 3); an elastic
+  // material sets no limit.
+  template <int dim>
+  double
+  ViscoplasticContact<dim>::explicit_stability_limit() const
+  {
+    double limit = std::numeric_limits<double>::infinity();
+    for (const PerzynaMaterial<dim> &material : materials)
+      if (material.is_plastic())
+        limit = std::min(limit,
+                         4 * material.viscosity()
+                           / material.largest_elastic_eigenvalue());
+    return limit;
   }
 
 

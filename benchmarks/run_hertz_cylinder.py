@@ -1,9 +1,11 @@
 #!/usr/bin/python3
 """Hertz contact of a cylinder on a rigid plane (parameters/hertz_cylinder.prm)
-on the meshes N = 16, 32, 64 of meshes/make_hertz_meshes.py, against the
-closed form: with P = twice the reaction of the half model's top,
+on the meshes N = 16, 32, 64 of meshes/make_hertz_meshes.py, in plane stress
+and in plane strain, against the closed form: with P = twice the reaction
+of the half model's top,
 
-    a = sqrt(4 P R / (pi E*)),   p0 = 2 P / (pi a)   (E* = E, plane stress).
+    a = sqrt(4 P R / (pi E*)),   p0 = 2 P / (pi a),
+    E* = E (plane stress),  E* = E / (1 - nu^2) (plane strain).
 
 The numerical half-width is the zero of the pressure extrapolated from the
 last two nodes in contact with the Hertz shape (p^2 linear in x^2), not the
@@ -18,6 +20,7 @@ to mesh.
 
     benchmarks/run_hertz_cylinder.py [--executable build/viscoplastic_contact]
         [--figure doc/figures/hertz_cylinder.png] [--check]
+        [--model "plane stress"|"plane strain"|both]
 """
 
 import argparse
@@ -32,7 +35,8 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.join(HERE, "..")
-E, R = 1000.0, 1.0
+E, NU, R = 1000.0, 0.3, 1.0
+MODELS = ("plane stress", "plane strain")
 # The bounds of --check: the errors of doc/benchmarks.md with a margin.
 BOUNDS = {"a": 0.04, "p0": 0.02}
 
@@ -42,9 +46,11 @@ def set_entry(text, entry, value):
                   r"\g<1> %s " % value, text)
 
 
-def run(executable, n, folder):
+def run(executable, n, model, folder):
     with open(os.path.join(TOP, "parameters", "hertz_cylinder.prm")) as f:
         text = f.read()
+    text = re.sub(r"(?m)^(set Dimension = 2)$",
+                  r"\g<1>\nset Plane model = %s" % model, text)
     text = set_entry(text, "Mesh file", os.path.abspath(os.path.join(
         TOP, "meshes", "hertz_cylinder_%d.msh" % n)))
     text = set_entry(text, "Output directory", os.path.join(folder, "output"))
@@ -62,7 +68,7 @@ def run(executable, n, folder):
     return os.path.join(folder, "output"), float(loop.group(1)) if loop else 0.
 
 
-def analyse(output):
+def analyse(output, model):
     with open(os.path.join(output, "time_series.csv")) as f:
         last = list(csv.DictReader(f))[-1]
     load = 2 * abs(float(last["reaction_prescribed_1_y"]))
@@ -73,7 +79,8 @@ def analyse(output):
     k = max(i for i, (_, p) in enumerate(nodes) if p > 0)
     (x1, p1), (x2, p2) = nodes[k - 1], nodes[k]
     a = math.sqrt(x2 ** 2 + p2 ** 2 * (x2 ** 2 - x1 ** 2) / (p1 ** 2 - p2 ** 2))
-    a_exact = math.sqrt(4 * load * R / (math.pi * E))
+    e_star = E if model == "plane stress" else E / (1 - NU ** 2)
+    a_exact = math.sqrt(4 * load * R / (math.pi * e_star))
     p0_exact = 2 * load / (math.pi * a_exact)
     return {"P": load, "a": a, "a exact": a_exact, "p0": nodes[0][1],
             "p0 exact": p0_exact, "nodes": k + 1,
@@ -87,37 +94,49 @@ def main():
         TOP, "build", "viscoplastic_contact"))
     parser.add_argument("--figure")
     parser.add_argument("--check", action="store_true")
+    parser.add_argument("--model", choices=MODELS + ("both",), default="both")
     arguments = parser.parse_args()
-    results = []
-    for n in (16, 32, 64):
-        with tempfile.TemporaryDirectory() as folder:
-            output, wall = run(arguments.executable, n, folder)
-            result = analyse(output)
-        result["N"], result["wall"] = n, wall
-        results.append(result)
-    print("| N | nodes in contact | P | a | Hertz a | error | p0 | Hertz p0 "
-          "| error | run time |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
-    for r in results:
-        print("| %d | %d | %.5f | %.5f | %.5f | %.2e | %.3f | %.3f | %.2e | "
-              "%.3f s |" % (r["N"], r["nodes"], r["P"], r["a"], r["a exact"],
-                            r["a error"], r["p0"], r["p0 exact"],
-                            r["p0 error"], r["wall"]))
-    for i in range(1, len(results)):
-        print("observed order N = %d -> %d: a %.2f, p0 %.2f" % (
-            results[i - 1]["N"], results[i]["N"],
-            math.log(results[i - 1]["a error"] / results[i]["a error"], 2),
-            math.log(results[i - 1]["p0 error"] / results[i]["p0 error"], 2)))
+    models = MODELS if arguments.model == "both" else (arguments.model,)
+    runs = {}
+    for model in models:
+        runs[model] = []
+        for n in (16, 32, 64):
+            with tempfile.TemporaryDirectory() as folder:
+                output, wall = run(arguments.executable, n, model, folder)
+                result = analyse(output, model)
+            result["N"], result["wall"] = n, wall
+            runs[model].append(result)
+    print("| model | N | nodes in contact | P | a | Hertz a | error | p0 "
+          "| Hertz p0 | error | run time |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    for model, results in runs.items():
+        for r in results:
+            print("| %s | %d | %d | %.5f | %.5f | %.5f | %.2e | %.3f | %.3f | "
+                  "%.2e | %.3f s |" % (model, r["N"], r["nodes"], r["P"],
+                                       r["a"], r["a exact"], r["a error"],
+                                       r["p0"], r["p0 exact"], r["p0 error"],
+                                       r["wall"]))
+    for model, results in runs.items():
+        for i in range(1, len(results)):
+            print("%s, observed order N = %d -> %d: a %.2f, p0 %.2f" % (
+                model, results[i - 1]["N"], results[i]["N"],
+                math.log(results[i - 1]["a error"] / results[i]["a error"], 2),
+                math.log(results[i - 1]["p0 error"] / results[i]["p0 error"],
+                         2)))
     if arguments.figure:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         figure, axes = plt.subplots(1, 2, figsize=(10, 4))
-        for key, label in (("a error", "half-width a"), ("p0 error", "peak pressure p0")):
-            axes[0].loglog([1 / r["N"] for r in results],
-                           [r[key] for r in results], "o-", label=label)
-            axes[1].loglog([r["wall"] for r in results],
-                           [r[key] for r in results], "o-", label=label)
+        for model, results in runs.items():
+            style = "o-" if model == "plane stress" else "s--"
+            for key, label in (("a error", "half-width a"),
+                               ("p0 error", "peak pressure p0")):
+                label = "%s, %s" % (label, model)
+                axes[0].loglog([1 / r["N"] for r in results],
+                               [r[key] for r in results], style, label=label)
+                axes[1].loglog([r["wall"] for r in results],
+                               [r[key] for r in results], style, label=label)
         axes[0].set_xlabel("mesh parameter 1/N")
         axes[1].set_xlabel("run time [s] (set-up and one step)")
         for axis in axes:
@@ -128,17 +147,21 @@ def main():
         figure.tight_layout()
         figure.savefig(arguments.figure, dpi=100)
     if arguments.check:
-        for r in results:
-            for key in ("a", "p0"):
-                if r[key + " error"] > BOUNDS[key]:
-                    sys.exit("N = %d: the error in %s is %.2e, above %.2e." % (
-                        r["N"], key, r[key + " error"], BOUNDS[key]))
-        for i in range(1, len(results)):
-            if results[i]["a error"] >= results[i - 1]["a error"]:
-                sys.exit("The error in a does not fall from N = %d to %d." % (
-                    results[i - 1]["N"], results[i]["N"]))
-        print("Hertz: a and p0 within %.0f%% and %.0f%% of the closed form, "
-              "the error in a falling." % (100 * BOUNDS["a"], 100 * BOUNDS["p0"]))
+        for model, results in runs.items():
+            for r in results:
+                for key in ("a", "p0"):
+                    if r[key + " error"] > BOUNDS[key]:
+                        sys.exit("%s, N = %d: the error in %s is %.2e, above "
+                                 "%.2e." % (model, r["N"], key,
+                                            r[key + " error"], BOUNDS[key]))
+            for i in range(1, len(results)):
+                if results[i]["a error"] >= results[i - 1]["a error"]:
+                    sys.exit("%s: the error in a does not fall from N = %d to "
+                             "%d." % (model, results[i - 1]["N"],
+                                      results[i]["N"]))
+        print("Hertz (%s): a and p0 within %.0f%% and %.0f%% of the closed "
+              "form, the error in a falling." % (
+                  ", ".join(models), 100 * BOUNDS["a"], 100 * BOUNDS["p0"]))
 
 
 if __name__ == "__main__":

@@ -25,9 +25,9 @@ namespace ViscoContact
   // @sect3{The Perzyna viscoplastic material}
   //
   // Everything that happens at one quadrature point: Hooke's law
-  // (plane stress in 2D, isotropic in 3D), the von Mises set K, the
-  // orthogonal projection onto K in the energy inner product (E tau, tau) and
-  // the Perzyna rate G(sigma) = -(1/(2 lambda)) E (sigma - P_K sigma) of
+  // (plane stress or plane strain in 2D, isotropic in 3D), the von Mises set K,
+  // the orthogonal projection onto K in the energy inner product (E tau, tau)
+  // and the Perzyna rate G(sigma) = -(1/(2 lambda)) E (sigma - P_K sigma) of
   // doc/model.md, section 1.
   //
   // In 2D the projection is the solution of one scalar monotone equation for
@@ -38,19 +38,25 @@ namespace ViscoContact
   {
   public:
     // plasticity = false: an elastic material (G = 0), whose stress points
-    // keep no history.
+    // keep no history. plane_strain (2D, elastic only): eps_zz = 0 instead
+    // of sigma_zz = 0.
     PerzynaMaterial(const double young_modulus,
                     const double poisson_ratio,
                     const double viscosity,
                     const double yield_stress,
-                    const bool   plasticity = true);
+                    const bool   plasticity   = true,
+                    const bool   plane_strain = false);
 
     const SymmetricTensor<4, dim> &
     elasticity_tensor() const;
 
-    // The von Mises equivalent stress; tau is in K iff it is <= sigma_Y.
+    // The von Mises equivalent stress; tau is in K iff it is <= sigma_Y. In
+    // plane strain it includes the out-of-plane stress.
     double
     equivalent_stress(const SymmetricTensor<2, dim> &tau) const;
+    // sigma_zz of an elastic plane-strain stress (0 in plane stress).
+    double
+    out_of_plane_stress(const SymmetricTensor<2, dim> &sigma) const;
 
     // P_K tau in the inner product (E a, b). If given, *multiplier is on
     // input a guess of the Lagrange multiplier of the constraint (e.g. the
@@ -100,6 +106,7 @@ namespace ViscoContact
     double                  lambda_viscosity;
     double                  sigma_yield;
     bool                    plastic;
+    bool                    plane_strain;
     SymmetricTensor<4, dim> stiffness;
   };
 

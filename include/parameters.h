@@ -115,9 +115,18 @@ namespace ViscoContact
     };
 
 
+    // What a 2D body is: a thin plate (sigma_zz = 0, the paper's model) or
+    // a cross-section of a long body (eps_zz = 0).
+    enum class PlaneModel
+    {
+      plane_stress,
+      plane_strain
+    };
+
     struct Geometry
     {
       unsigned int        dimension    = 2;
+      PlaneModel          plane_model  = PlaneModel::plane_stress;
       std::vector<double> lengths      = {1, 1}; // L1, L2 (, L3)
       unsigned int        subdivisions = 32; // squares (cubes) along each edge
       CellType            cell_type    = CellType::simplex;
@@ -206,13 +215,40 @@ namespace ViscoContact
                        const std::string &subsection) const;
     };
 
+    enum class SurfaceLoadType
+    {
+      traction, // a vector
+      pressure  // along the inward normal
+    };
+
+    // A load on some boundary parts, a traction vector or a normal pressure
+    // as a function of (x, y[, z], t): one numbered subsection
+    // "Surface load N" of subsection Loads each.
+    struct SurfaceLoad
+    {
+      std::vector<types::boundary_id> boundary_ids; // empty: not used
+      SurfaceLoadType                 type  = SurfaceLoadType::pressure;
+      std::string                     value = "0";
+
+      void
+      add_parameters(ParameterHandler &prm, const unsigned int number);
+      void
+      check_parameters(const unsigned int number, const unsigned int dim) const;
+    };
+
     struct Loads
     {
       std::string body_force = "0; 0"; // FunctionParser expression, dim parts
       std::string surface_traction = "0; -5"; // the same
+      // Sized before add_parameters() to the highest N of the subsections
+      // "Surface load N" (at least one, to document the list).
+      std::vector<SurfaceLoad> surface_loads = std::vector<SurfaceLoad>(1);
 
       void
       add_parameters(ParameterHandler &prm);
+      // The entries that are used (with boundary ids), with their numbers.
+      std::vector<std::pair<unsigned int, const SurfaceLoad *>>
+      used_surface_loads() const;
     };
 
     struct Contact
@@ -409,6 +445,8 @@ namespace ViscoContact
       // The checks between subsections, after every subsection is checked.
       void
       check_material_entries() const;
+      void
+      check_surface_load_entries() const;
       void
       check_study_entries() const;
       void

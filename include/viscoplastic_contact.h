@@ -623,11 +623,29 @@ namespace ViscoContact
     // The largest step of the explicit history update that is stable: the
     // smallest 4 lambda / lambda_max(E) of the viscoplastic materials.
     double
-                        explicit_stability_limit() const;
+    explicit_stability_limit() const;
+
     FunctionParser<dim> body_force;
-    FunctionParser<dim> surface_traction;
     bool                body_force_is_zero;
     bool                loads_depend_on_time;
+    // The loads on boundary parts: the Surface traction of subsection Loads
+    // on the Loaded boundary ids first, then each Surface load N; and the
+    // load of each boundary id that has one.
+    struct SurfaceLoadPart
+    {
+      std::unique_ptr<FunctionParser<dim>> function;
+      bool                                 pressure;
+      std::string                          subsection, entry, expression;
+    };
+    std::vector<SurfaceLoadPart>               surface_loads;
+    std::map<types::boundary_id, unsigned int> surface_load_of_id;
+    // The load of a boundary part at a time (set_time() of its function)
+    // and a point with outward normal n: the traction, or -p n.
+    void
+    surface_load_value(const SurfaceLoadPart &load,
+                       const Point<dim>      &point,
+                       const Tensor<1, dim>  &normal,
+                       Vector<double>        &value) const;
 
     // The Dirichlet parts (dirichlet_parts()): their names in the time
     // series ("clamped", "prescribed_N"), the function of each prescribed

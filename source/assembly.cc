@@ -23,7 +23,8 @@ namespace ViscoContact
     // entry, its value, the point and the time, and what is accepted.
     template <int dim>
     std::string
-    non_finite_load(const std::string    &entry,
+    non_finite_load(const std::string    &subsection,
+                    const std::string    &entry,
                     const std::string    &expression,
                     const Vector<double> &value,
                     const Point<dim>     &point,
@@ -35,10 +36,11 @@ namespace ViscoContact
           text << (d > 0 ? ", " : "") << values[d];
         return text.str();
       };
-      return "Invalid parameter <" + entry + "> in subsection <Loads>: value <"
-             + expression + "> is not finite at the point (" + list(point, dim)
+      return "Invalid parameter <" + entry + "> in subsection <" + subsection
+             + ">: value <" + expression + "> is not finite at the point ("
+             + list(point, dim)
              + ") at t = " + list(std::vector<double>{time}, 1) + " (it gives "
-             + list(value, dim)
+             + list(value, value.size())
              + "); accepted: expressions with a finite value at every load "
                "point of the mesh and every time of the run.";
     }
@@ -140,16 +142,20 @@ namespace ViscoContact
     const auto          level    = [&](const std::uint64_t m) {
       return m < n_steps ? m * parameters.time_step : parameters.end_time;
     };
-    // The points first, once: the geometry does not change with time.
-    std::vector<Point<dim>> body_points, traction_points;
-    FEValues<dim>           fe_values(mapping,
+    // The points first, once: the geometry does not change with time. The
+    // points of each surface load come with their normals.
+    std::vector<Point<dim>> body_points;
+    std::vector<std::vector<std::pair<Point<dim>, Tensor<1, dim>>>>
+                      surface_points(surface_loads.size());
+    FEValues<dim>     fe_values(mapping,
                             *fe,
                             load_quadrature,
                             update_quadrature_points);
-    FEFaceValues<dim>       fe_face_values(mapping,
+    FEFaceValues<dim> fe_face_values(mapping,
                                      *fe,
                                      face_quadrature,
-                                     update_quadrature_points);
+                                     update_quadrature_points
+                                       | update_normal_vectors);
     for (const auto &cell : owned_cells)
       {
         if (!body_force_is_zero)
@@ -159,16 +165,18 @@ namespace ViscoContact
               body_points.push_back(fe_values.quadrature_point(q));
           }
         for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary()
-              && std::find(parameters.loaded_ids.begin(),
-                           parameters.loaded_ids.end(),
-                           cell->face(f)->boundary_id())
-                   != parameters.loaded_ids.end())
+          if (cell->face(f)->at_boundary())
             {
+              const auto part
+                = surface_load_of_id.find(cell->face(f)->boundary_id());
+              if (part == surface_load_of_id.end())
+                continue;
               fe_face_values.reinit(cell, f);
               for (const unsigned int q :
                    fe_face_values.quadrature_point_indices())
-                traction_points.push_back(fe_face_values.quadrature_point(q));
+                surface_points[part->second].emplace_back(
+                  fe_face_values.quadrature_point(q),
+                  fe_face_values.normal_vector(q));
             }
       }
 
@@ -180,30 +188,48 @@ namespace ViscoContact
     };
     std::string    problem;
     Vector<double> value(dim);
-    const auto     check = [&](FunctionParser<dim>           &load,
-                           const std::string             &entry,
-                           const std::string             &expression,
-                           const std::vector<Point<dim>> &points) {
-      const std::size_t stride = stride_of(points.size());
-      for (std::uint64_t m = 0; m < n_levels; ++m)
-        {
-          const double t = level(m);
-          load.set_time(t);
-          for (std::size_t i = 0; i < points.size() && problem.empty();
-               i += stride)
-            {
-              load.vector_value(points[i], value);
-              if (!is_finite<dim>(value))
-                problem
-                  = non_finite_load(entry, expression, value, points[i], t);
-            }
-        }
-    };
-    check(surface_traction,
-          "Surface traction",
-          parameters.surface_traction,
-          traction_points);
-    check(body_force, "Body force", parameters.body_force, body_points);
+    for (unsigned int l = 0; l < surface_loads.size(); ++l)
+      {
+        const SurfaceLoadPart &load   = surface_loads[l];
+        const auto            &points = surface_points[l];
+        const std::size_t      stride = stride_of(points.size());
+        for (std::uint64_t m = 0; m < n_levels && problem.empty(); ++m)
+          {
+            load.function->set_time(level(m));
+            for (std::size_t i = 0; i < points.size() && problem.empty();
+                 i += stride)
+              {
+                surface_load_value(load,
+                                   points[i].first,
+                                   points[i].second,
+                                   value);
+                if (!is_finite<dim>(value))
+                  problem = non_finite_load(load.subsection,
+                                            load.entry,
+                                            load.expression,
+                                            value,
+                                            points[i].first,
+                                            level(m));
+              }
+          }
+      }
+    const std::size_t stride = stride_of(body_points.size());
+    for (std::uint64_t m = 0; m < n_levels && problem.empty(); ++m)
+      {
+        body_force.set_time(level(m));
+        for (std::size_t i = 0; i < body_points.size() && problem.empty();
+             i += stride)
+          {
+            body_force.vector_value(body_points[i], value);
+            if (!is_finite<dim>(value))
+              problem = non_finite_load("Loads",
+                                        "Body force",
+                                        parameters.body_force,
+                                        value,
+                                        body_points[i],
+                                        level(m));
+          }
+      }
     // One outcome for all ranks: the message of the lowest rank that found
     // a point.
     FileOutput::agree_on_problem(problem, mpi_communicator);
@@ -265,7 +291,8 @@ namespace ViscoContact
     // the contributions to dofs other ranks own.
     external_load = 0;
     body_force.set_time(time);
-    surface_traction.set_time(time);
+    for (SurfaceLoadPart &load : surface_loads)
+      load.function->set_time(time);
     const unsigned int                   dofs_per_cell = fe->n_dofs_per_cell();
     Vector<double>                       cell_rhs(dofs_per_cell);
     std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
@@ -278,6 +305,7 @@ namespace ViscoContact
                                      *fe,
                                      face_quadrature,
                                      update_values | update_quadrature_points
+                                       | update_normal_vectors
                                        | update_JxW_values);
     // The first value that is not finite, if any (check_loads() has checked
     // the loads before the run, possibly only at some of the points).
@@ -308,12 +336,12 @@ namespace ViscoContact
 
   // @sect4{ViscoplasticContact::cell_external_load}
   //
-  // The body force at the load quadrature points and the surface traction on
-  // the faces of the cell that lie on a loaded part of the boundary; the
-  // component of shape function i picks the component of the load it is
-  // tested with. Gamma_2 is given as a list of boundary ids (Loaded boundary
-  // ids); the rest of the boundary that is neither Dirichlet nor in contact
-  // is traction free.
+  // The body force at the load quadrature points and the surface load on
+  // the faces of the cell that lie on a loaded part of the boundary (the
+  // Surface traction on the Loaded boundary ids, each Surface load N on its
+  // own ids); the component of shape function i picks the component of the
+  // load it is tested with. The rest of the boundary that is neither
+  // Dirichlet nor in contact is traction free.
   template <int dim>
   bool
   ViscoplasticContact<dim>::cell_external_load(
@@ -334,7 +362,8 @@ namespace ViscoContact
           {
             body_force.vector_value(fe_values.quadrature_point(q), load_value);
             if (problem.empty() && !is_finite<dim>(load_value))
-              problem = non_finite_load(std::string("Body force"),
+              problem = non_finite_load(std::string("Loads"),
+                                        std::string("Body force"),
                                         parameters.body_force,
                                         load_value,
                                         fe_values.quadrature_point(q),
@@ -347,22 +376,24 @@ namespace ViscoContact
       }
     for (const unsigned int f : cell->face_indices())
       if (cell->face(f)->at_boundary()
-          && std::find(parameters.loaded_ids.begin(),
-                       parameters.loaded_ids.end(),
-                       cell->face(f)->boundary_id())
-               != parameters.loaded_ids.end())
+          && surface_load_of_id.count(cell->face(f)->boundary_id()) == 1)
         {
+          const SurfaceLoadPart &load = surface_loads[surface_load_of_id.at(
+            cell->face(f)->boundary_id())];
           fe_face_values.reinit(cell, f);
           for (const unsigned int q : fe_face_values.quadrature_point_indices())
             {
-              surface_traction.vector_value(fe_face_values.quadrature_point(q),
-                                            load_value);
+              surface_load_value(load,
+                                 fe_face_values.quadrature_point(q),
+                                 fe_face_values.normal_vector(q),
+                                 load_value);
               if (problem.empty() && !is_finite<dim>(load_value))
-                problem = non_finite_load(std::string("Surface traction"),
-                                          parameters.surface_traction,
+                problem = non_finite_load(load.subsection,
+                                          load.entry,
+                                          load.expression,
                                           load_value,
                                           fe_face_values.quadrature_point(q),
-                                          surface_traction.get_time());
+                                          load.function->get_time());
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 cell_rhs(i)
                   += load_value(fe->system_to_component_index(i).first)
@@ -371,6 +402,29 @@ namespace ViscoContact
           has_loads = true;
         }
     return has_loads;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::surface_load_value}
+  //
+  // A pressure p acts along the inward normal: the traction is -p n with the
+  // outward normal n of the face, on curved parts too.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::surface_load_value(const SurfaceLoadPart &load,
+                                               const Point<dim>      &point,
+                                               const Tensor<1, dim>  &normal,
+                                               Vector<double> &value) const
+  {
+    if (load.pressure)
+      {
+        const double p = load.function->value(point);
+        for (unsigned int d = 0; d < dim; ++d)
+          value(d) = -p * normal[d];
+      }
+    else
+      load.function->vector_value(point, value);
   }
 
 

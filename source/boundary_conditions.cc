@@ -399,9 +399,11 @@ namespace ViscoContact
                                      *fe,
                                      face_quadrature,
                                      update_values | update_quadrature_points
+                                       | update_normal_vectors
                                        | update_JxW_values);
     body_force.set_time(time);
-    surface_traction.set_time(time);
+    for (SurfaceLoadPart &load : surface_loads)
+      load.function->set_time(time);
     std::string problem;
     double     *values = residual.get_values(); // owned entries, then ghosts
     for (const unsigned int k : reaction_cells)

@@ -161,6 +161,8 @@ namespace
     Parameters::AllParameters parameters;
     parameters.prescribed_displacements.resize(
       Parameters::count_numbered_subsections(file, "Prescribed displacement"));
+    parameters.surface_loads.resize(
+      Parameters::count_numbered_subsections(file, "Surface load"));
     parameters.further_materials.resize(
       std::max(2u, Parameters::count_numbered_subsections(file, "Material"))
       - 1);

@@ -11,24 +11,30 @@ namespace ViscoContact
   // @sect4{PerzynaMaterial::PerzynaMaterial}
   //
   // Hooke's law is stored as a rank-4 symmetric tensor
-  // E = lambda* I (x) I + 2 mu* Id. In 2D (plane stress) the Lame-type
+  // E = lambda* I (x) I + 2 mu* Id. In 2D plane stress the Lame-type
   // constants are lambda* = E k/(1-k^2), 2 mu* = E/(1+k), which is the
-  // formula of doc/model.md; in 3D they are the usual isotropic ones.
+  // formula of doc/model.md; in 3D and in 2D plane strain (the in-plane
+  // part of the 3D law) they are the usual isotropic ones.
   template <int dim>
   PerzynaMaterial<dim>::PerzynaMaterial(const double young_modulus,
                                         const double poisson_ratio,
                                         const double viscosity,
                                         const double yield_stress,
-                                        const bool   plasticity)
+                                        const bool   plasticity,
+                                        const bool   plane_strain)
     : young_modulus(young_modulus)
     , poisson_ratio(poisson_ratio)
     , lambda_viscosity(viscosity)
     , sigma_yield(yield_stress)
     , plastic(plasticity)
+    , plane_strain(dim == 2 && plane_strain)
   {
+    Assert(!(this->plane_strain && plastic),
+           ExcMessage("Plane strain is for elastic materials only."));
     const double E = young_modulus, k = poisson_ratio;
     const double lame_lambda
-      = (dim == 2 ? E * k / (1 - k * k) : E * k / ((1 + k) * (1 - 2 * k)));
+      = (dim == 2 && !this->plane_strain ? E * k / (1 - k * k)
+                                         : E * k / ((1 + k) * (1 - 2 * k)));
     const double two_mu = E / (1 + k);
     stiffness           = lame_lambda
                   * outer_product(unit_symmetric_tensor<dim>(),
@@ -73,10 +79,11 @@ namespace ViscoContact
   PerzynaMaterial<dim>::largest_elastic_eigenvalue() const
   {
     const double E = young_modulus, k = poisson_ratio;
-    // 2D: E/(1-k) on the spherical part, E/(1+k) on the deviatoric part;
-    // 3D: 3 kappa = E/(1-2k) and 2 mu = E/(1+k).
-    return (dim == 2 ? std::max(E / (1 - k), E / (1 + k))
-                     : std::max(E / (1 - 2 * k), E / (1 + k)));
+    // Plane stress: E/(1-k) on the spherical part, E/(1+k) on the
+    // deviatoric part; 3D and plane strain: 3 kappa = E/(1-2k) and
+    // 2 mu = E/(1+k).
+    return (dim == 2 && !plane_strain ? std::max(E / (1 - k), E / (1 + k))
+                                      : std::max(E / (1 - 2 * k), E / (1 + k)));
   }
 
 
@@ -104,6 +111,18 @@ namespace ViscoContact
   PerzynaMaterial<dim>::is_plastic() const
   {
     return plastic;
+  }
+
+
+
+  // sigma_zz = lambda tr(eps) = k (sigma_11 + sigma_22) of an elastic plane
+  // strain state; zero in plane stress (and not a component in 3D).
+  template <int dim>
+  double
+  PerzynaMaterial<dim>::out_of_plane_stress(
+    const SymmetricTensor<2, dim> &sigma) const
+  {
+    return plane_strain ? poisson_ratio * trace(sigma) : 0.;
   }
 
 
@@ -219,7 +238,16 @@ namespace ViscoContact
   double
   PerzynaMaterial<2>::equivalent_stress(const SymmetricTensor<2, 2> &tau) const
   {
-    return yield_norm(to_coordinates(tau));
+    if (!plane_strain)
+      return yield_norm(to_coordinates(tau));
+    // Plane strain: with the out-of-plane stress s, 3 J2 =
+    // ((t11 - t22)^2 + (t22 - s)^2 + (s - t11)^2) / 2 + 3 t12^2.
+    const double s = out_of_plane_stress(tau);
+    return std::sqrt(0.5
+                       * (std::pow(tau[0][0] - tau[1][1], 2)
+                          + std::pow(tau[1][1] - s, 2)
+                          + std::pow(s - tau[0][0], 2))
+                     + 3 * tau[0][1] * tau[0][1]);
   }
 
 

@@ -729,6 +729,10 @@ namespace ViscoContact
       check_ids(entry->boundary_ids,
                 "Boundary ids",
                 "Boundary/Prescribed displacement " + std::to_string(number));
+    for (const auto &[number, load] : parameters.used_surface_loads())
+      check_ids(load->boundary_ids,
+                "Boundary ids",
+                "Loads/Surface load " + std::to_string(number));
   }
 
 

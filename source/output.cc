@@ -310,7 +310,8 @@ namespace ViscoContact
   // vertices of each cell, so ParaView lists them as point data,
   // discontinuous from cell to cell. The contact fields are nodal, zero
   // away from Gamma_3; "subdomain" is the rank that owns the cell, and
-  // "material_id" (with several materials) the cell's material id.
+  // "material_id" (with several materials) the cell's material id. In plane
+  // strain "stress_zz" is the out-of-plane stress.
   //
   // With another file stem (failed_step) the record is written for
   // inspection only and not listed in solution.pvd.
@@ -388,6 +389,23 @@ namespace ViscoContact
           material_ids[cell->active_cell_index()] = cell->material_id();
         data_out.add_data_vector(material_ids,
                                  "material_id",
+                                 DataOut<dim>::type_cell_data);
+      }
+    // Plane strain: sigma_zz, from the in-plane stress of each cell.
+    Vector<float> stress_zz;
+    if (parameters.plane_model == Parameters::PlaneModel::plane_strain)
+      {
+        stress_zz.reinit(n_cells);
+        for (unsigned int k = 0; k < owned_cells.size(); ++k)
+          {
+            const unsigned int      c = owned_cells[k]->active_cell_index();
+            SymmetricTensor<2, dim> sigma;
+            for (unsigned int i = 0; i < stress.size(); ++i)
+              sigma[sigma.unrolled_to_component_indices(i)] = stress[i][c];
+            stress_zz[c] = material_of(k).out_of_plane_stress(sigma);
+          }
+        data_out.add_data_vector(stress_zz,
+                                 "stress_zz",
                                  DataOut<dim>::type_cell_data);
       }
     const char *contact_names[4] = {"contact_pressure",

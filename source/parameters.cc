@@ -21,7 +21,8 @@ namespace ViscoContact
     namespace
     {
       // One place that formats the message of a rejected entry, so that every
-      // error names the subsection, the entry, the value and what is accepted.
+      // error names the subsection (none for an entry at the top level), the
+      // entry, the value and what is accepted.
       void
       require(const bool         condition,
               const std::string &subsection,
@@ -31,8 +32,11 @@ namespace ViscoContact
       {
         AssertThrow(condition,
                     ExcMessage("Invalid parameter <" + entry
-                               + "> in subsection <" + subsection + ">: value <"
-                               + value + ">; accepted: " + accepted + "."));
+                               + (subsection.empty()
+                                    ? ">"
+                                    : "> in subsection <" + subsection + ">")
+                               + ": value <" + value
+                               + ">; accepted: " + accepted + "."));
       }
 
       std::string
@@ -41,6 +45,19 @@ namespace ViscoContact
         std::ostringstream s;
         s << value;
         return s.str();
+      }
+
+      // The entries of a numbered list ("Prescribed displacement N", "Surface
+      // load N") that name boundary ids, with their numbers N.
+      template <typename Entry>
+      std::vector<std::pair<unsigned int, const Entry *>>
+      used_entries(const std::vector<Entry> &list)
+      {
+        std::vector<std::pair<unsigned int, const Entry *>> used;
+        for (unsigned int n = 0; n < list.size(); ++n)
+          if (!list[n].boundary_ids.empty())
+            used.emplace_back(n + 1, &list[n]);
+        return used;
       }
 
       // An entry whose text is one of the keys of choices, bound to an enum
@@ -117,8 +134,19 @@ namespace ViscoContact
     {
       prm.add_parameter("Dimension",
                         dimension,
-                        "Space dimension: 2 (plane stress) or 3.",
+                        "Space dimension: 2 (see Plane model) or 3.",
                         Patterns::Integer(2, 3));
+      add_selection(prm,
+                    "Plane model",
+                    plane_model,
+                    {{"plane stress", PlaneModel::plane_stress},
+                     {"plane strain", PlaneModel::plane_strain}},
+                    "In 2D: plane stress (sigma_zz = 0, a thin plate; the "
+                    "paper's model) or plane strain (eps_zz = 0, a "
+                    "cross-section of a long body; the out-of-plane stress "
+                    "is written as stress_zz). Plane strain is for elastic "
+                    "materials (Plasticity = false) so far. Plane stress in "
+                    "3D.");
       prm.enter_subsection("Geometry");
       {
         prm.add_parameter(
@@ -381,11 +409,7 @@ namespace ViscoContact
     std::vector<std::pair<unsigned int, const PrescribedDisplacement *>>
     BoundaryParts::used_prescribed_displacements() const
     {
-      std::vector<std::pair<unsigned int, const PrescribedDisplacement *>> used;
-      for (unsigned int n = 0; n < prescribed_displacements.size(); ++n)
-        if (!prescribed_displacements[n].boundary_ids.empty())
-          used.emplace_back(n + 1, &prescribed_displacements[n]);
-      return used;
+      return used_entries(prescribed_displacements);
     }
 
     void
@@ -588,12 +612,73 @@ namespace ViscoContact
           "Surface traction",
           surface_traction,
           "f_2(x,t) [N/m in 2D] on the Loaded boundary ids, same syntax as "
-          "the body force; every value must be finite.",
+          "the body force; every value must be finite. Other loads on other "
+          "parts: subsections \"Surface load N\".",
+          Patterns::Anything());
+        for (unsigned int n = 0; n < surface_loads.size(); ++n)
+          surface_loads[n].add_parameters(prm, n + 1);
+      }
+      prm.leave_subsection();
+    }
+
+    std::vector<std::pair<unsigned int, const SurfaceLoad *>>
+    Loads::used_surface_loads() const
+    {
+      return used_entries(surface_loads);
+    }
+
+
+
+    void
+    SurfaceLoad::add_parameters(ParameterHandler  &prm,
+                                const unsigned int number)
+    {
+      prm.enter_subsection("Surface load " + std::to_string(number));
+      {
+        prm.add_parameter(
+          "Boundary ids",
+          boundary_ids,
+          "The boundary parts that carry this load (empty: this entry is not "
+          "used). Integers in [0, 255], each named by one entry of "
+          "subsections Boundary and Loads only.",
+          Patterns::List(Patterns::Integer(0, 255)));
+        add_selection(prm,
+                      "Type",
+                      type,
+                      {{"traction", SurfaceLoadType::traction},
+                       {"pressure", SurfaceLoadType::pressure}},
+                      "traction: the force per area as a vector; pressure: "
+                      "a force per area p along the inward normal, "
+                      "-p n (positive p pushes into the body; also on curved "
+                      "parts).");
+        prm.add_parameter(
+          "Value",
+          value,
+          "traction: one expression of x, y[, z] and t per component, "
+          "separated by ';' (as Surface traction); pressure: one "
+          "expression, e.g. \"2 * min(t, 1)\". Every value must be finite.",
           Patterns::Anything());
       }
       prm.leave_subsection();
     }
 
+    void
+    SurfaceLoad::check_parameters(const unsigned int number,
+                                  const unsigned int dim) const
+    {
+      const unsigned int n_expressions
+        = Utilities::split_string_list(value, ';').size();
+      const unsigned int expected
+        = (type == SurfaceLoadType::traction ? dim : 1);
+      require(n_expressions == expected,
+              "Loads/Surface load " + std::to_string(number),
+              "Value",
+              value,
+              type == SurfaceLoadType::traction
+                ? std::to_string(dim)
+                    + " expressions separated by ';' for Type = traction"
+                : std::string("one expression for Type = pressure"));
+    }
 
 
     void
@@ -1348,6 +1433,7 @@ namespace ViscoContact
       for (const auto &[name, material] : used_materials())
         material->check_parameters(prm, dimension, name);
       check_material_entries();
+      check_surface_load_entries();
       Contact::check_parameters(prm, dimension);
       Time::check_parameters(prm);
       ActiveSetSolver::check_parameters(prm);
@@ -1383,10 +1469,37 @@ namespace ViscoContact
 
     // Each material id belongs to one material; with several materials,
     // subsection Material names its ids too (its empty list means "every
-    // cell" only when it is the only material).
+    // cell" only when it is the only material). Plane strain is a 2D model of
+    // elastic materials with k < 1/2.
     void
     AllParameters::check_material_entries() const
     {
+      if (plane_model == PlaneModel::plane_strain)
+        {
+          require(dimension == 2,
+                  "",
+                  "Plane model",
+                  "plane strain",
+                  "plane stress (the default) when Dimension = 3, where the "
+                  "body needs no plane model");
+          for (const auto &[name, material] : used_materials())
+            {
+              require(!material->plasticity,
+                      "",
+                      "Plane model",
+                      "plane strain",
+                      "plane stress when a material is viscoplastic "
+                      "(Plasticity = true in subsection <"
+                        + name
+                        + ">): the viscoplastic update in plane strain (its "
+                          "out-of-plane history) is not there yet");
+              require(material->poisson_ratio < 0.5,
+                      name,
+                      "Poisson ratio",
+                      to_string(material->poisson_ratio),
+                      "-1 < k < 0.5 in plane strain");
+            }
+        }
       const auto materials = used_materials();
       if (materials.size() > 1)
         require(!material_ids.empty(),
@@ -1412,6 +1525,51 @@ namespace ViscoContact
                     "ids that no other material names (" + std::to_string(id)
                       + " is also in subsection <" + it->second + ">)");
           }
+    }
+
+    // Each surface load has the right number of expressions, and its
+    // boundary ids are named by no other entry of subsections Boundary and
+    // Loads.
+    void
+    AllParameters::check_surface_load_entries() const
+    {
+      std::map<types::boundary_id, std::string> owner;
+      const auto claim = [&](const std::vector<types::boundary_id> &ids,
+                             const std::string                     &name) {
+        for (const auto id : ids)
+          owner.emplace(id, name);
+      };
+      claim(clamped_ids, "<Clamped boundary ids> of subsection <Boundary>");
+      claim(contact_ids, "<Contact boundary ids> of subsection <Boundary>");
+      claim(loaded_ids, "<Loaded boundary ids> of subsection <Boundary>");
+      claim(symmetry_ids, "<Symmetry boundary ids> of subsection <Boundary>");
+      for (const auto &[number, entry] : used_prescribed_displacements())
+        claim(entry->boundary_ids,
+              "<Boundary ids> of subsection <Boundary/Prescribed "
+              "displacement "
+                + std::to_string(number) + ">");
+      for (const auto &[number, load] : used_surface_loads())
+        {
+          const std::string subsection
+            = "Loads/Surface load " + std::to_string(number);
+          std::string value;
+          for (const auto id : load->boundary_ids)
+            value += (value.empty() ? "" : ", ") + std::to_string(id);
+          for (const auto id : load->boundary_ids)
+            {
+              const auto [it, inserted]
+                = owner.emplace(id,
+                                "<Boundary ids> of subsection <" + subsection
+                                  + ">");
+              require(inserted,
+                      subsection,
+                      "Boundary ids",
+                      value,
+                      "ids that no other entry names (" + std::to_string(id)
+                        + " is also in " + it->second + ")");
+            }
+          load->check_parameters(number, dimension);
+        }
     }
 
     // What a convergence study needs of the other subsections.

@@ -408,6 +408,8 @@ namespace ViscoContact
             << '\n';
     pcout << "Model: "
           << (parameters.any_plasticity() ? "viscoplastic" : "elastic");
+    if (parameters.plane_model == Parameters::PlaneModel::plane_strain)
+      pcout << " plane strain";
     if (materials.size() > 1)
       pcout << " (" << materials.size() << " materials, "
             << std::count_if(materials.begin(),

@@ -63,7 +63,9 @@ namespace ViscoContact
                                material->poisson_ratio,
                                material->viscosity,
                                material->yield_stress,
-                               material->plasticity);
+                               material->plasticity,
+                               parameters.plane_model
+                                 == Parameters::PlaneModel::plane_strain);
       return materials;
     }
 
@@ -122,7 +124,6 @@ namespace ViscoContact
     , materials(make_materials<dim>(parameters))
     , material_index(material_numbers(parameters))
     , body_force(dim)
-    , surface_traction(dim)
     , gap_function(1)
   {
     // main() instantiates the class for the Dimension the parameter file names;
@@ -138,14 +139,44 @@ namespace ViscoContact
                     "Body force",
                     parameters.body_force,
                     parameters.lengths);
-    initialize_load(surface_traction,
-                    "Loads",
-                    "Surface traction",
-                    parameters.surface_traction,
-                    parameters.lengths);
     body_force_is_zero   = is_zero_expression(parameters.body_force);
-    loads_depend_on_time = mentions_time(parameters.body_force)
-                           || mentions_time(parameters.surface_traction);
+    loads_depend_on_time = mentions_time(parameters.body_force);
+    // The loads on boundary parts, and the part of each boundary id (the
+    // parameters name each id once).
+    const auto add_surface_load
+      = [&](const std::vector<types::boundary_id> &ids,
+            const bool                             pressure,
+            const std::string                     &subsection,
+            const std::string                     &entry,
+            const std::string                     &expression) {
+          SurfaceLoadPart load{std::make_unique<FunctionParser<dim>>(
+                                 pressure ? 1 : dim),
+                               pressure,
+                               subsection,
+                               entry,
+                               expression};
+          initialize_load(*load.function,
+                          subsection,
+                          entry,
+                          expression,
+                          parameters.lengths);
+          loads_depend_on_time
+            = loads_depend_on_time || mentions_time(expression);
+          for (const auto id : ids)
+            surface_load_of_id[id] = surface_loads.size();
+          surface_loads.push_back(std::move(load));
+        };
+    add_surface_load(parameters.loaded_ids,
+                     false,
+                     "Loads",
+                     "Surface traction",
+                     parameters.surface_traction);
+    for (const auto &[number, load] : parameters.used_surface_loads())
+      add_surface_load(load->boundary_ids,
+                       load->type == Parameters::SurfaceLoadType::pressure,
+                       "Loads/Surface load " + std::to_string(number),
+                       "Value",
+                       load->value);
     // The obstacle's gap and direction.
     initialize_load(gap_function,
                     "Contact",

@@ -17,6 +17,7 @@
 #  - with hanging nodes on the roller, the support and a second prescribed
 #    part (the right side, given the exact u_x = nu D x / H): the same, and
 #    no reaction on the right side;
+#  - in plane strain (E = 910, so that E / (1 - nu^2) = 1000): the same;
 #  - with plasticity (explicit and implicit update): the state is still
 #    uniform and uniaxial, so every node of a profile has the same pressure
 #    (to 1e-9 relative), the force is p A, the reaction -p A and the largest
@@ -151,6 +152,13 @@ awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
   { r = $col["reaction_prescribed_2_x"]; if (r > 1e-9 || r < -1e-9) { print "reaction of the right side " r; exit 1 } }' \
   results/time_series.csv || fail "2D quadrilaterals, hanging nodes: the right side carries a force."
 
+# Plane strain: p = E D / ((1 - nu^2) H), the same pressures with
+# E = 1000 (1 - 0.3^2) = 910.
+variant "$parameters/patch_test.prm" hypercube condensed | set_entry "Young's modulus" 910 \
+  | sed -e 's/^\(set Dimension = 2\)$/\1\nset Plane model = plane strain/' > variant.prm
+run variant.prm 1 "2D quadrilaterals, plane strain"
+check_elastic 2 1e-9 "2D quadrilaterals, plane strain"
+
 variant "$parameters/patch_test.prm" hypercube condensed \
   | set_entry Plasticity true > variant.prm
 run variant.prm 1 "2D hypercube, explicit plasticity"
@@ -160,4 +168,4 @@ variant "$parameters/patch_test_3d.prm" simplex "full space" | set_entry Subdivi
 run variant.prm 1 "3D simplex, implicit plasticity"
 check_uniform 3 "3D simplex, implicit plasticity"
 
-echo "The patch test is exact in $((n + 5)) elastic variants (both back ends, all cell types, 1 and 2 ranks, a support at a distance and a moving one, hanging nodes on prescribed parts) and uniform with plasticity."
+echo "The patch test is exact in $((n + 6)) elastic variants (both back ends, all cell types, 1 and 2 ranks, a support at a distance and a moving one, hanging nodes on prescribed parts, plane strain) and uniform with plasticity."

@@ -12,6 +12,7 @@
 #    (condensed, 1 rank), quadrilaterals (full space, 2 ranks, one global
 #    refinement: the children inherit the ids), tetrahedra and hexahedra;
 #  - the materials as the physical groups of a Gmsh mesh (ids 10 and 20);
+#  - plane strain (triangles, full space), where M is that of 3D;
 #  - the soft layer viscoplastic (explicit and implicit update): the state
 #    is still uniform in each layer, so every node of a profile has the same
 #    pressure and the reaction is minus the contact force.
@@ -29,10 +30,11 @@ run() { # PRM RANKS NAME: the run, into results/
     || fail "$3: the run failed: $(cat err.txt)"
 }
 
-# check_exact DIM TOLERANCE NAME: the closed form in every step and profile.
+# check_exact MODEL TOLERANCE NAME: the closed form in every step and
+# profile; MODEL is "stress" (2D plane stress) or "strain" (3D, plane strain).
 check_exact() {
-  awk -F, -v dim="$1" -v tol="$2" -v name="$3" '
-    function modulus(E, nu) { return dim == 2 ? E / (1 - nu * nu) : E * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) }
+  awk -F, -v model="$1" -v tol="$2" -v name="$3" '
+    function modulus(E, nu) { return model == "stress" ? E / (1 - nu * nu) : E * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) }
     function near(a, b) { d = a - b; if (d < 0) d = -d
                           m = b < 0 ? -b : b; return d <= tol * (m > 1 ? m : 1) }
     BEGIN { c = 0.5 / modulus(1000, 0.3) + 0.5 / modulus(100, 0.3) }
@@ -77,10 +79,10 @@ three_d() {
 
 variant simplex condensed > variant.prm
 run variant.prm 1 "2D triangles, condensed"
-check_exact 2 1e-9 "2D triangles, condensed"
+check_exact stress 1e-9 "2D triangles, condensed"
 variant hypercube "full space" | three_d | set_entry Subdivisions 2 > variant.prm
 run variant.prm 1 "3D hexahedra, full space"
-check_exact 3 1e-7 "3D hexahedra, full space"
+check_exact strain 1e-7 "3D hexahedra, full space"
 if [ "$quick" = quick ]; then
   echo "The two-layer column is exact on triangles (condensed) and hexahedra (full space)."
   exit 0
@@ -88,17 +90,21 @@ fi
 
 variant hypercube "full space" | set_entry "Global refinements" 1 > variant.prm
 run variant.prm 2 "2D quadrilaterals, full space, refined, 2 ranks"
-check_exact 2 1e-7 "2D quadrilaterals, full space, refined, 2 ranks"
+check_exact stress 1e-7 "2D quadrilaterals, full space, refined, 2 ranks"
 variant simplex condensed | three_d | set_entry Subdivisions 2 > variant.prm
 run variant.prm 2 "3D tetrahedra, condensed, 2 ranks"
-check_exact 3 1e-9 "3D tetrahedra, condensed, 2 ranks"
+check_exact strain 1e-9 "3D tetrahedra, condensed, 2 ranks"
+# Plane strain: the modulus of uniaxial strain is that of 3D.
+variant simplex "full space" | sed -e 's/^\(set Dimension = 2\)$/\1\nset Plane model = plane strain/' > variant.prm
+run variant.prm 1 "2D triangles, plane strain, full space"
+check_exact strain 1e-7 "2D triangles, plane strain, full space"
 variant hypercube condensed | set_entry "Material id function" "" \
   | sed -e "s|^\(subsection Geometry\)$|\1\n  set Mesh file = $here/../meshes/two_layer_column_4.msh|" \
   | set_entry "Boundary ids" 4 | set_entry "Contact boundary ids" 3 \
   | set_entry "Symmetry boundary ids" "1, 2" \
   | sed -e '0,/Material ids .*/s//Material ids = 10/' -e 's/Material ids *= 2$/Material ids = 20/' > variant.prm
 run variant.prm 1 "2D Gmsh mesh, condensed"
-check_exact 2 1e-9 "2D Gmsh mesh, condensed"
+check_exact stress 1e-9 "2D Gmsh mesh, condensed"
 grep -q "Model: elastic (2 materials" out.txt || fail "Gmsh mesh: not two materials: $(grep Model: out.txt)"
 
 # The soft layer viscoplastic (yield stress below the stress it reaches).
@@ -115,4 +121,4 @@ variant simplex "full space" | three_d | set_entry Subdivisions 2 | plastic_soft
 run variant.prm 1 "3D tetrahedra, viscoplastic soft layer, implicit"
 check_uniform "3D tetrahedra, viscoplastic soft layer, implicit"
 
-echo "The two-layer column is exact in 5 elastic variants (all cell types, both back ends, 1 and 2 ranks, regions of a function and of a Gmsh mesh) and uniform with a viscoplastic layer."
+echo "The two-layer column is exact in 6 elastic variants (all cell types, both back ends, 1 and 2 ranks, regions of a function and of a Gmsh mesh, plane strain) and uniform with a viscoplastic layer."

@@ -1,0 +1,73 @@
+#!/bin/bash
+# Loads per boundary part (subsection Loads, "Surface load N"): a traction
+# vector or a pressure along the inward normal on any number of parts. The
+# reactions of a clamped part balance the loads exactly (the discrete
+# residual sums to the discrete load, and the faces are straight), so:
+#  - the block (0, 2) x (0, 1) of parameters/patch_test.prm clamped at its
+#    bottom, a pressure p = 3 t on its top (Surface load 1) and a traction
+#    (0.5 t, 0) on its right side (Surface load 2): the reaction of the
+#    bottom is (-0.5 t, 6 t) (triangles, condensed; in 3D on hexahedra,
+#    full space, 2 ranks, with the top 2 x 1.5: (-0.75 t, 0, 9 t) with the
+#    traction (0.5 t, 0, 0) on a side of area 1.5);
+#  - the half cylinder of parameters/hertz_cylinder.prm clamped at its flat
+#    top, a pressure 2 t on its arc (a curved part: the normals of the
+#    faces): on the quarter arc from (0, 0) to (1, 1) the outward normals
+#    integrate to (1, -1), so the load is 2 t (-1, 1); its x part is held by
+#    the roller at x = 0 too, so the y part of the top's reaction, -2 t, is
+#    compared.
+#   run_surface_loads.sh EXECUTABLE
+set -u
+here=$(cd "$(dirname "$0")" && pwd)
+source "$here/robustness/helpers.sh"
+executable=$1
+parameters=$here/../parameters
+
+run() { # PRM RANKS NAME: the run, into results/
+  rm -rf results
+  "$here/run_mpi.sh" "$2" "$executable" "$1" > out.txt 2> err.txt \
+    || fail "$3: the run failed: $(cat err.txt)"
+}
+
+# check COLUMN SLOPE TOLERANCE NAME: the column is SLOPE t in every step.
+check() {
+  awk -F, -v column="$1" -v slope="$2" -v tol="$3" -v name="$4" '
+    NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i
+              if (!(column in col)) { print name ": no column " column; exit 1 }; next }
+    { t = $col["time"]; expected = slope * t; d = $col[column] - expected; if (d < 0) d = -d
+      if (d > tol * (1 + (expected < 0 ? -expected : expected))) {
+        print name ": " column " = " $col[column] " at t = " t ", not " expected; exit 1 } }' \
+    results/time_series.csv || exit 1
+}
+
+# The loaded block: no contact, clamped bottom, the two surface loads.
+loads() { # DIM > PRM
+  local traction="0.5 * t; 0" bottom=2 top=3
+  [ "$1" -eq 3 ] && traction="0.5 * t; 0; 0" bottom=4 top=5
+  sed -e "s/^\( *set Clamped boundary ids *=\).*/\1 $bottom/" \
+      -e 's/^\( *set Contact boundary ids *=\).*/\1/' \
+      -e 's/^\( *set Symmetry boundary ids *=\).*/\1/' \
+      -e '/subsection Prescribed displacement 1/,/^  end/d' \
+      -e "s/^\(subsection Loads\)$/\1\n  subsection Surface load 1\n    set Boundary ids = $top\n    set Type = pressure\n    set Value = 3 * t\n  end\n  subsection Surface load 2\n    set Boundary ids = 1\n    set Type = traction\n    set Value = $traction\n  end/" \
+    | set_entry "Output directory" results
+}
+loads 2 < "$parameters/patch_test.prm" | set_entry "Cell type" simplex > variant.prm
+run variant.prm 1 "2D triangles, condensed"
+check reaction_clamped_x -0.5 1e-9 "2D triangles, condensed"
+check reaction_clamped_y 6 1e-9 "2D triangles, condensed"
+loads 3 < "$parameters/patch_test_3d.prm" | set_entry "Cell type" hypercube \
+  | set_entry Method "full space" | set_entry Subdivisions 2 > variant.prm
+run variant.prm 2 "3D hexahedra, full space, 2 ranks"
+check reaction_clamped_x -0.75 1e-7 "3D hexahedra, full space, 2 ranks"
+check reaction_clamped_z 9 1e-7 "3D hexahedra, full space, 2 ranks"
+
+# A pressure on the curved arc of the half cylinder (no contact).
+sed -e 's/^\( *set Clamped boundary ids *=\).*/\1 2/' \
+    -e 's/^\( *set Contact boundary ids *=\).*/\1/' \
+    -e '/subsection Prescribed displacement 1/,/^  end/d' \
+    -e 's|^\( *set Mesh file *=\).*|\1 '"$here"'/../meshes/hertz_cylinder_16.msh|' \
+    -e 's/^\(subsection Loads\)$/\1\n  subsection Surface load 1\n    set Boundary ids = 3\n    set Value = 2 * t\n  end/' \
+    "$parameters/hertz_cylinder.prm" | set_entry "Output directory" results > variant.prm
+run variant.prm 1 "2D quadrilaterals, pressure on an arc"
+check reaction_clamped_y -2 1e-9 "2D quadrilaterals, pressure on an arc"
+
+echo "Surface loads: the reactions balance a pressure and a traction on the block (2D triangles, 3D hexahedra on 2 ranks) and a pressure on a curved arc."

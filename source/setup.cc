@@ -70,11 +70,17 @@ namespace ViscoContact
   // caller carries the state over (adapt_mesh(), resume_from_checkpoint()).
   // The start of the previous step is not carried over, so the first step on
   // a new mesh starts from u_{n-1} (predict_step_start()).
+  //
+  // The back end of the previous mesh goes first: a factorisation may refer
+  // to the matrix it was set up with (Amesos' MUMPS asks it for its
+  // communicator when it is destroyed), and setup_system() replaces that
+  // matrix.
   template <int dim>
   void
   ViscoplasticContact<dim>::setup_on_mesh()
   {
     previous_step_start.reset();
+    contact_solver.reset();
     setup_system();
     setup_stress_points();
     setup_dirichlet_dofs();

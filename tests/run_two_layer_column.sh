@@ -13,6 +13,9 @@
 #    refinement: the children inherit the ids), tetrahedra and hexahedra;
 #  - the materials as the physical groups of a Gmsh mesh (ids 10 and 20);
 #  - plane strain (triangles, full space), where M is that of 3D;
+#  - an adaptive mesh (quadrilaterals, condensed, 2 ranks, the soft layer
+#    viscoplastic): refined and coarsened cells keep their material, the
+#    state stays uniform in each layer (checked as below);
 #  - the soft layer viscoplastic (explicit and implicit update): the state
 #    is still uniform in each layer, so every node of a profile has the same
 #    pressure and the reaction is minus the contact force.
@@ -66,6 +69,10 @@ check_uniform() {
     ' results/time_series.csv results/contact_profile_*.csv || exit 1
 }
 
+# The soft layer viscoplastic (yield stress below the stress it reaches).
+plastic_soft_layer() {
+  sed -e '/^subsection Material 2/,/^end/{s/Plasticity *= false/Plasticity = true\n  set Yield stress = 0.5\n  set Viscosity = 10/}'
+}
 variant() { # CELL_TYPE METHOD > variant.prm
   set_entry "Cell type" "$1" < "$prm" | set_entry Method "$2" \
     | set_entry "Output directory" results
@@ -91,6 +98,12 @@ fi
 variant hypercube "full space" | set_entry "Global refinements" 1 > variant.prm
 run variant.prm 2 "2D quadrilaterals, full space, refined, 2 ranks"
 check_exact stress 1e-7 "2D quadrilaterals, full space, refined, 2 ranks"
+# Adaptive meshes: the cells refined and coarsened during the run keep
+# their material (the interface stays a mesh line, hanging nodes on it).
+variant hypercube condensed | plastic_soft_layer \
+  | sed -e 's/^\(subsection Output\)$/subsection Mesh adaptation\n  set Adaptive refinement = true\n  set Refinement interval = 1\n  set Refine fraction = 0.5\nend\n\n\1/' > variant.prm
+run variant.prm 2 "2D quadrilaterals, adaptive mesh, 2 ranks"
+check_uniform "2D quadrilaterals, adaptive mesh, 2 ranks"
 variant simplex condensed | three_d | set_entry Subdivisions 2 > variant.prm
 run variant.prm 2 "3D tetrahedra, condensed, 2 ranks"
 check_exact strain 1e-9 "3D tetrahedra, condensed, 2 ranks"
@@ -107,10 +120,6 @@ run variant.prm 1 "2D Gmsh mesh, condensed"
 check_exact stress 1e-9 "2D Gmsh mesh, condensed"
 grep -q "Model: elastic (2 materials" out.txt || fail "Gmsh mesh: not two materials: $(grep Model: out.txt)"
 
-# The soft layer viscoplastic (yield stress below the stress it reaches).
-plastic_soft_layer() {
-  sed -e '/^subsection Material 2/,/^end/{s/Plasticity *= false/Plasticity = true\n  set Yield stress = 0.5\n  set Viscosity = 1/}'
-}
 variant hypercube condensed | plastic_soft_layer > variant.prm
 run variant.prm 1 "2D quadrilaterals, viscoplastic soft layer, explicit"
 check_uniform "2D quadrilaterals, viscoplastic soft layer, explicit"

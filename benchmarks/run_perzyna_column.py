@@ -1,0 +1,194 @@
+#!/usr/bin/python3
+"""The Perzyna column (parameters/perzyna_column.prm) against an independent
+computation of the same scheme, and against the stress ODE as k -> 0.
+
+The strain of the column is uniform and uniaxial, eps = diag(0, 0, e): on
+the support e = -D(t), D(t) = 0.01 min(t, 2 - t); lifted off (no contact
+force) e is such that sigma_zz = 0. Every stress point then follows one
+stress tensor, and with the isotropic E (Lame constants l, m) the E-norm
+projection onto the von Mises set is the radial return of the deviator s
+(q = sqrt(3/2) |s|):
+
+    G(sigma) = -(m / lambda) s (1 - sigma_Y / q)^+,
+    explicit: sigma_n = E eps_n + H_n,  H_{n+1} = H_n + k G(sigma_n),
+    implicit: trial = E eps_n + sigma_{n-1} - E eps_{n-1}, volumetric part
+              kept, s = s_trial q / q_trial with
+              q = (q_trial + 2 a m sigma_Y) / (1 + 2 a m), a = k / (2 lambda),
+              where q_trial > sigma_Y.
+
+The contact pressure is p = -sigma_zz (the contact force on the unit
+support). --check runs the program with both updates and requires p and
+the von Mises stress of every step to agree with this recursion to 1e-9
+relative; --order runs k = 0.05 ... 0.00625 and prints the error of p at
+t = 1 against the solution of the ODE d sigma / dt = E d eps / dt +
+G(sigma) (RK4 with k = 1e-4), with its observed order.
+
+    benchmarks/run_perzyna_column.py [--executable build/viscoplastic_contact]
+        [--check] [--order]
+"""
+
+import argparse
+import csv
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOP = os.path.join(HERE, "..")
+E, NU, VISCOSITY, YIELD = 1000.0, 0.3, 50.0, 1.0
+LAME = E * NU / ((1 + NU) * (1 - 2 * NU))
+MU = E / (2 * (1 + NU))
+
+
+def hooke(eps):
+    return LAME * np.trace(eps) * np.eye(3) + 2 * MU * eps
+
+
+def deviator(tau):
+    return tau - np.trace(tau) / 3 * np.eye(3)
+
+
+def von_mises(tau):
+    return math.sqrt(1.5 * np.sum(deviator(tau) ** 2))
+
+
+def rate(sigma):
+    q = von_mises(sigma)
+    return -(MU / VISCOSITY) * deviator(sigma) * max(0.0, 1 - YIELD / q) if q > 0 else 0 * sigma
+
+
+def implicit_update(trial, a):
+    q_trial = von_mises(trial)
+    if q_trial <= YIELD:
+        return trial
+    q = (q_trial + 2 * a * MU * YIELD) / (1 + 2 * a * MU)
+    s = deviator(trial)
+    return trial - s + s * q / q_trial
+
+
+def strain(e):
+    return np.diag([0.0, 0.0, e])
+
+
+def top_displacement(t):
+    return 0.01 * min(t, 2 - t)
+
+
+def recursion(k, end_time, implicit):
+    """p_n and the von Mises stress of every step of the scheme."""
+    n_steps = int(round(end_time / k))
+    history = np.zeros((3, 3))  # H_n (explicit); sigma_{n-1} - E eps_{n-1}
+    results = []
+    for n in range(1, n_steps + 1):
+        t = n * k if n < n_steps else end_time
+
+        def stress(e):
+            trial = hooke(strain(e)) + history
+            return implicit_update(trial, k / (2 * VISCOSITY)) if implicit else trial
+
+        e = -top_displacement(t)
+        sigma = stress(e)
+        if sigma[2, 2] > 0:  # it would pull the support: lifted off, sigma_zz = 0
+            lower, upper = e - 1.0, e
+            for _ in range(200):
+                middle = 0.5 * (lower + upper)
+                if stress(middle)[2, 2] > 0:
+                    upper = middle
+                else:
+                    lower = middle
+            e = 0.5 * (lower + upper)
+            sigma = stress(e)
+        results.append((t, -sigma[2, 2], von_mises(sigma)))
+        history = sigma - hooke(strain(e)) if implicit else history + k * rate(sigma)
+    return results
+
+
+def ode_pressure_at(t_end, k=1e-4):
+    """p(t_end) of d sigma / dt = E d eps / dt + G(sigma), loading (t_end <= 1)."""
+    sigma = np.zeros((3, 3))
+    load = hooke(strain(-0.01))
+    f = lambda s: load + rate(s)
+    for _ in range(int(round(t_end / k))):
+        k1 = f(sigma)
+        k2 = f(sigma + k / 2 * k1)
+        k3 = f(sigma + k / 2 * k2)
+        k4 = f(sigma + k * k3)
+        sigma = sigma + k / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+    return -sigma[2, 2]
+
+
+def run(executable, update, time_step, end_time, folder):
+    with open(os.path.join(TOP, "parameters", "perzyna_column.prm")) as f:
+        text = f.read()
+    text = re.sub(r"(?m)^(\s*set Time step\s*=).*$", r"\g<1> %r" % time_step, text)
+    text = re.sub(r"(?m)^(\s*set End time\s*=).*$", r"\g<1> %r" % end_time, text)
+    text = re.sub(r"(?m)^(\s*set Output directory\s*=).*$",
+                  r"\g<1> %s" % os.path.join(folder, "output"), text)
+    text = re.sub(r"(?m)^(\s*set Profile times\s*=).*$", r"\g<1> %r" % end_time, text)
+    text = re.sub(r"(?m)^(subsection Time)$",
+                  r"\g<1>\n  set Stress update = %s" % update, text)
+    text = re.sub(r"(?m)^(subsection Output)$", r"\g<1>\n  set Write vtu = false", text)
+    prm = os.path.join(folder, "column.prm")
+    with open(prm, "w") as f:
+        f.write(text)
+    result = subprocess.run([executable, prm], capture_output=True, text=True)
+    if result.returncode != 0:
+        sys.exit("The %s run with k = %g failed:\n%s" % (update, time_step, result.stderr))
+    with open(os.path.join(folder, "output", "time_series.csv")) as f:
+        return [(float(r["time"]), float(r["total_contact_force"]),
+                 float(r["max_von_mises"])) for r in csv.DictReader(f)]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--executable", default=os.path.join(TOP, "build", "viscoplastic_contact"))
+    parser.add_argument("--check", action="store_true")
+    parser.add_argument("--order", action="store_true")
+    arguments = parser.parse_args()
+    if arguments.check:
+        for update in ("explicit", "implicit"):
+            with tempfile.TemporaryDirectory() as folder:
+                program = run(arguments.executable, update, 0.05, 2.0, folder)
+            reference = recursion(0.05, 2.0, update == "implicit")
+            if len(program) != len(reference):
+                sys.exit("%s: %d steps, expected %d" % (update, len(program), len(reference)))
+            worst = 0.0
+            for (t, p, vm), (t_ref, p_ref, vm_ref) in zip(program, reference):
+                for value, expected, name in ((p, p_ref, "pressure"), (vm, vm_ref, "von Mises stress")):
+                    error = abs(value - expected) / (1 + abs(expected))
+                    worst = max(worst, error)
+                    if error > 1e-9:
+                        sys.exit("%s update, t = %g: %s %.12g, the recursion gives %.12g"
+                                 % (update, t, name, value, expected))
+            print("%s update: 40 steps (loading, unloading, lift-off) agree with the "
+                  "recursion to %.1e" % (update, worst))
+    if arguments.order:
+        exact = ode_pressure_at(1.0)
+        print("p(1) of the ODE: %.10f" % exact)
+        print("| k | explicit p(1) | error | implicit p(1) | error |")
+        print("| --- | --- | --- | --- | --- |")
+        errors = {"explicit": [], "implicit": []}
+        steps = (0.05, 0.025, 0.0125, 0.00625)
+        rows = []
+        for k in steps:
+            row = [k]
+            for update in ("explicit", "implicit"):
+                with tempfile.TemporaryDirectory() as folder:
+                    p = run(arguments.executable, update, k, 1.0, folder)[-1][1]
+                errors[update].append(abs(p - exact) / exact)
+                row += [p, errors[update][-1]]
+            rows.append(row)
+            print("| %g | %.6f | %.2e | %.6f | %.2e |" % tuple(row))
+        for update in ("explicit", "implicit"):
+            orders = [math.log(errors[update][i - 1] / errors[update][i], 2)
+                      for i in range(1, len(steps))]
+            print("%s, observed orders: %s" % (update, ", ".join("%.2f" % o for o in orders)))
+
+
+if __name__ == "__main__":
+    main()

@@ -17,8 +17,9 @@ projection onto the von Mises set is the radial return of the deviator s
               where q_trial > sigma_Y.
 
 The contact pressure is p = -sigma_zz (the contact force on the unit
-support). --check runs the program with both updates and requires p and
-the von Mises stress of every step to agree with this recursion to 1e-9
+support). --check runs the program with both updates, in 3D and as a 2D
+plane-strain square (the same uniaxial strain), and requires p and the
+von Mises stress of every step to agree with this recursion to 1e-9
 relative; --order runs k = 0.05 ... 0.00625 and prints the error of p at
 t = 1 against the solution of the ODE d sigma / dt = E d eps / dt +
 G(sigma) (RK4 with k = 1e-4), with its observed order.
@@ -122,9 +123,23 @@ def ode_pressure_at(t_end, k=1e-4):
     return -sigma[2, 2]
 
 
-def run(executable, update, time_step, end_time, folder):
+def plane_strain(text):
+    """The column as a 2D plane-strain square: the same uniaxial strain."""
+    for entry, value in (("Dimension", "2\nset Plane model = plane strain"),
+                         ("Lengths", "1, 1"), ("Contact boundary ids", "2"),
+                         ("Symmetry boundary ids", "0, 1"),
+                         ("Boundary ids", "3"), ("Components", "y"),
+                         ("Body force", "0; 0"), ("Surface traction", "0; 0")):
+        text = re.sub(r"(?m)^(\s*set %s\s*=)[^#\n]*" % re.escape(entry),
+                      r"\g<1> %s " % value, text)
+    return text
+
+
+def run(executable, update, time_step, end_time, folder, two_d=False):
     with open(os.path.join(TOP, "parameters", "perzyna_column.prm")) as f:
         text = f.read()
+    if two_d:
+        text = plane_strain(text)
     text = re.sub(r"(?m)^(\s*set Time step\s*=).*$", r"\g<1> %r" % time_step, text)
     text = re.sub(r"(?m)^(\s*set End time\s*=).*$", r"\g<1> %r" % end_time, text)
     text = re.sub(r"(?m)^(\s*set Output directory\s*=).*$",
@@ -151,22 +166,25 @@ def main():
     parser.add_argument("--order", action="store_true")
     arguments = parser.parse_args()
     if arguments.check:
-        for update in ("explicit", "implicit"):
+        for update, two_d in (("explicit", False), ("implicit", False),
+                              ("explicit", True), ("implicit", True)):
+            name = update + (", 2D plane strain" if two_d else ", 3D")
             with tempfile.TemporaryDirectory() as folder:
-                program = run(arguments.executable, update, 0.05, 2.0, folder)
+                program = run(arguments.executable, update, 0.05, 2.0, folder, two_d)
             reference = recursion(0.05, 2.0, update == "implicit")
             if len(program) != len(reference):
-                sys.exit("%s: %d steps, expected %d" % (update, len(program), len(reference)))
+                sys.exit("%s: %d steps, expected %d" % (name, len(program), len(reference)))
             worst = 0.0
             for (t, p, vm), (t_ref, p_ref, vm_ref) in zip(program, reference):
-                for value, expected, name in ((p, p_ref, "pressure"), (vm, vm_ref, "von Mises stress")):
+                for value, expected, quantity in ((p, p_ref, "pressure"),
+                                                  (vm, vm_ref, "von Mises stress")):
                     error = abs(value - expected) / (1 + abs(expected))
                     worst = max(worst, error)
                     if error > 1e-9:
-                        sys.exit("%s update, t = %g: %s %.12g, the recursion gives %.12g"
-                                 % (update, t, name, value, expected))
-            print("%s update: 40 steps (loading, unloading, lift-off) agree with the "
-                  "recursion to %.1e" % (update, worst))
+                        sys.exit("%s, t = %g: %s %.12g, the recursion gives %.12g"
+                                 % (name, t, quantity, value, expected))
+            print("%s: 40 steps (loading, unloading, lift-off) agree with the "
+                  "recursion to %.1e" % (name, worst))
     if arguments.order:
         exact = ode_pressure_at(1.0)
         print("p(1) of the ODE: %.10f" % exact)

@@ -3,14 +3,32 @@
 
 #include <deal.II/base/symmetric_tensor.h>
 
+#include <memory>
+
 namespace ViscoContact
 {
   using namespace dealii;
 
   // The state of the material at one stress point (a cell of a simplex mesh,
   // a Gauss point of a hypercube mesh).
+  //
+  // In 2D plane strain eps_zz = 0, but sigma_zz and the history's zz part
+  // are not: a 2D record carries them (zero in plane stress); a 3D record has
+  // them among its components.
   template <int dim>
-  struct QuadraturePointHistory
+  struct OutOfPlaneState
+  {};
+
+  template <>
+  struct OutOfPlaneState<2>
+  {
+    double stress_zz  = 0;
+    double history_zz = 0;
+    double rate_zz    = 0;
+  };
+
+  template <int dim>
+  struct QuadraturePointHistory : OutOfPlaneState<dim>
   {
     SymmetricTensor<2, dim> stress;  // sigma_n
     SymmetricTensor<2, dim> history; // H_{n+1}: the history part of the
@@ -38,8 +56,8 @@ namespace ViscoContact
   {
   public:
     // plasticity = false: an elastic material (G = 0), whose stress points
-    // keep no history. plane_strain (2D, elastic only): eps_zz = 0 instead
-    // of sigma_zz = 0.
+    // keep no history. plane_strain (2D): eps_zz = 0 instead of
+    // sigma_zz = 0.
     PerzynaMaterial(const double young_modulus,
                     const double poisson_ratio,
                     const double viscosity,
@@ -50,13 +68,41 @@ namespace ViscoContact
     const SymmetricTensor<4, dim> &
     elasticity_tensor() const;
 
-    // The von Mises equivalent stress; tau is in K iff it is <= sigma_Y. In
-    // plane strain it includes the out-of-plane stress.
+    // The von Mises equivalent stress; tau is in K iff it is <= sigma_Y.
     double
     equivalent_stress(const SymmetricTensor<2, dim> &tau) const;
-    // sigma_zz of an elastic plane-strain stress (0 in plane stress).
+
+    // @sect4{Plane strain}
+    //
+    // In 2D plane strain the state is the in-plane tensor and its zz
+    // component, and the law is the 3D one on the tensor they make
+    // (is_plane_strain(); elsewhere these ignore the zz arguments and are
+    // the functions above). The zz component of E eps is lambda tr(eps);
+    // the implicit update returns the consistent tangent d sigma / d eps
+    // of the in-plane components itself (E included).
+    bool
+    is_plane_strain() const;
     double
-    out_of_plane_stress(const SymmetricTensor<2, dim> &sigma) const;
+    out_of_plane_elastic_stress(const SymmetricTensor<2, dim> &strain) const;
+    double
+    equivalent_stress(const SymmetricTensor<2, dim> &tau,
+                      const double                   tau_zz) const;
+    SymmetricTensor<2, dim>
+    viscoplastic_rate(const SymmetricTensor<2, dim> &sigma,
+                      const double                   sigma_zz,
+                      double                        &rate_zz,
+                      double *multiplier = nullptr) const;
+    SymmetricTensor<2, dim>
+    implicit_stress_update(const SymmetricTensor<2, dim> &trial,
+                           const double                   trial_zz,
+                           const double                   a,
+                           double                        &stress_zz,
+                           SymmetricTensor<4, dim>       *consistent_tangent,
+                           double                        *multiplier) const;
+    // (E^-1 tau, tau), for the error estimate's norm.
+    double
+    complementary_energy(const SymmetricTensor<2, dim> &tau,
+                         const double                   tau_zz) const;
 
     // P_K tau in the inner product (E a, b). If given, *multiplier is on
     // input a guess of the Lagrange multiplier of the constraint (e.g. the
@@ -108,6 +154,8 @@ namespace ViscoContact
     bool                    plastic;
     bool                    plane_strain;
     SymmetricTensor<4, dim> stiffness;
+    // Plane strain: the same material in 3D.
+    std::shared_ptr<const PerzynaMaterial<3>> three_dimensional;
   };
 
   // The dimension-specific members, defined in material.cc.

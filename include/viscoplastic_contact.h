@@ -620,6 +620,17 @@ namespace ViscoContact
     {
       return materials[cell_material[k]];
     }
+    // The von Mises stress of a record of the k-th owned cell (with its
+    // sigma_zz in 2D plane strain).
+    double
+    von_mises_stress(const unsigned int                 k,
+                     const QuadraturePointHistory<dim> &state) const
+    {
+      double stress_zz = 0;
+      if constexpr (dim == 2)
+        stress_zz = state.stress_zz;
+      return material_of(k).equivalent_stress(state.stress, stress_zz);
+    }
     // The largest step of the explicit history update that is stable: the
     // smallest 4 lambda / lambda_max(E) of the viscoplastic materials.
     double

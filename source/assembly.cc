@@ -528,22 +528,30 @@ namespace ViscoContact
             // The trial stress is E eps(u) plus the history
             // sigma_{n-1} - E eps(u_{n-1}) stored at the point, and the
             // backward-Euler update returns sigma and its derivative with
-            // respect to the trial stress. The multiplier of this projection is
+            // respect to the strain. The multiplier of this projection is
             // written back only as the starting guess of the next one; sigma_n
             // itself is stored by update_stresses() once the step has
             // converged. In an elastic material the stress is elastic and
-            // the tangent is E.
+            // the tangent is E. In 2D plane strain the trial stress has its
+            // zz component (lambda tr eps + H_zz) too, and the update gives
+            // the in-plane consistent tangent C = d sigma / d eps.
             QuadraturePointHistory<dim> &state
               = quadrature_point_history[point];
-            SymmetricTensor<4, dim> trial_tangent = identity_tensor<dim>();
+            const SymmetricTensor<2, dim> strain
+              = symmetrize(displacement_gradient);
+            double history_zz = 0, stress_zz = 0;
+            if constexpr (dim == 2)
+              history_zz = state.history_zz;
+            SymmetricTensor<4, dim>       C = E;
             const SymmetricTensor<2, dim> stress
               = (material.is_plastic() ? material.implicit_stress_update(
-                   E * symmetrize(displacement_gradient) + state.history,
+                   E * strain + state.history,
+                   material.out_of_plane_elastic_stress(strain) + history_zz,
                    a,
-                   &trial_tangent,
+                   stress_zz,
+                   &C,
                    &state.plastic_multiplier)
-                                       : E * symmetrize(displacement_gradient));
-            const SymmetricTensor<4, dim> C = trial_tangent * E;
+                                       : E * strain);
 
             // The cell dof i is (vertex ai, component ci), in the order of
             // cell_local_dofs. With eps(N_a e_c) = sym(e_c (x) grad N_a) and

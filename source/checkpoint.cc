@@ -188,8 +188,8 @@ namespace ViscoContact
     // A record: the cell id in binary form, the dofs_per_cell values of u, of
     // the contact state, of u_{n-1} and of the nodes' history, in the cell's
     // dof order, and the n_q stress-point records of the cell, copied as
-    // raw bytes (QuadraturePointHistory is plain data: two symmetric tensors
-    // and a double).
+    // raw bytes (QuadraturePointHistory is plain data: symmetric tensors and
+    // doubles, with the zz components in 2D).
     using Key                        = CellId::binary_type;
     const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
     const unsigned int n_q           = stress_quadrature.size();

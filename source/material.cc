@@ -29,8 +29,13 @@ namespace ViscoContact
     , plastic(plasticity)
     , plane_strain(dim == 2 && plane_strain)
   {
-    Assert(!(this->plane_strain && plastic),
-           ExcMessage("Plane strain is for elastic materials only."));
+    if (this->plane_strain)
+      three_dimensional
+        = std::make_shared<const PerzynaMaterial<3>>(young_modulus,
+                                                     poisson_ratio,
+                                                     viscosity,
+                                                     yield_stress,
+                                                     plasticity);
     const double E = young_modulus, k = poisson_ratio;
     const double lame_lambda
       = (dim == 2 && !this->plane_strain ? E * k / (1 - k * k)
@@ -115,14 +120,140 @@ namespace ViscoContact
 
 
 
-  // sigma_zz = lambda tr(eps) = k (sigma_11 + sigma_22) of an elastic plane
-  // strain state; zero in plane stress (and not a component in 3D).
+  // @sect4{Plane strain}
+  //
+  // The 2D state (tau, tau_zz) is the 3D tensor with these components
+  // (tau_xz = tau_yz = 0, which the isotropic law keeps zero), and every
+  // function is the 3D one on it.
+  namespace
+  {
+    template <int dim>
+    SymmetricTensor<2, 3>
+    embed(const SymmetricTensor<2, dim> &tau, const double tau_zz)
+    {
+      SymmetricTensor<2, 3> t;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j)
+          t[i][j] = tau[i][j];
+      t[2][2] = tau_zz;
+      return t;
+    }
+
+    template <int dim>
+    SymmetricTensor<2, dim>
+    in_plane(const SymmetricTensor<2, 3> &t)
+    {
+      SymmetricTensor<2, dim> tau;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j)
+          tau[i][j] = t[i][j];
+      return tau;
+    }
+  } // namespace
+
+  template <int dim>
+  bool
+  PerzynaMaterial<dim>::is_plane_strain() const
+  {
+    return plane_strain;
+  }
+
   template <int dim>
   double
-  PerzynaMaterial<dim>::out_of_plane_stress(
-    const SymmetricTensor<2, dim> &sigma) const
+  PerzynaMaterial<dim>::out_of_plane_elastic_stress(
+    const SymmetricTensor<2, dim> &strain) const
   {
-    return plane_strain ? poisson_ratio * trace(sigma) : 0.;
+    const double E = young_modulus, k = poisson_ratio;
+    return plane_strain ? E * k / ((1 + k) * (1 - 2 * k)) * trace(strain) : 0.;
+  }
+
+  template <int dim>
+  double
+  PerzynaMaterial<dim>::equivalent_stress(const SymmetricTensor<2, dim> &tau,
+                                          const double tau_zz) const
+  {
+    return plane_strain
+             ? three_dimensional->equivalent_stress(embed(tau, tau_zz))
+             : equivalent_stress(tau);
+  }
+
+  template <int dim>
+  SymmetricTensor<2, dim>
+  PerzynaMaterial<dim>::viscoplastic_rate(const SymmetricTensor<2, dim> &sigma,
+                                          const double sigma_zz,
+                                          double      &rate_zz,
+                                          double      *multiplier) const
+  {
+    rate_zz = 0;
+    if (!plane_strain)
+      return viscoplastic_rate(sigma, multiplier);
+    const SymmetricTensor<2, 3> rate
+      = three_dimensional->viscoplastic_rate(embed(sigma, sigma_zz),
+                                             multiplier);
+    rate_zz = rate[2][2];
+    return in_plane<dim>(rate);
+  }
+
+  // The consistent tangent: trial = E eps + H with eps_zz = 0, so
+  // d sigma / d eps = (d sigma / d trial) E of the 3D law, restricted to the
+  // in-plane components (the zz row of E, lambda I, enters through the
+  // contraction).
+  template <int dim>
+  SymmetricTensor<2, dim>
+  PerzynaMaterial<dim>::implicit_stress_update(
+    const SymmetricTensor<2, dim> &trial,
+    const double                   trial_zz,
+    const double                   a,
+    double                        &stress_zz,
+    SymmetricTensor<4, dim>       *consistent_tangent,
+    double                        *multiplier) const
+  {
+    if (!plane_strain)
+      {
+        stress_zz = 0;
+        const SymmetricTensor<2, dim> sigma
+          = implicit_stress_update(trial, a, consistent_tangent, multiplier);
+        if (consistent_tangent != nullptr)
+          *consistent_tangent = *consistent_tangent * stiffness;
+        return sigma;
+      }
+    SymmetricTensor<4, 3>       tangent;
+    const SymmetricTensor<2, 3> sigma
+      = three_dimensional->implicit_stress_update(embed(trial, trial_zz),
+                                                  a,
+                                                  consistent_tangent != nullptr
+                                                    ? &tangent
+                                                    : nullptr,
+                                                  multiplier);
+    stress_zz = sigma[2][2];
+    if (consistent_tangent != nullptr)
+      {
+        const SymmetricTensor<4, 3> C
+          = tangent * three_dimensional->elasticity_tensor();
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = i; j < dim; ++j)
+            for (unsigned int k = 0; k < dim; ++k)
+              for (unsigned int l = k; l < dim; ++l)
+                (*consistent_tangent)[i][j][k][l] = C[i][j][k][l];
+      }
+    return in_plane<dim>(sigma);
+  }
+
+  // Isotropic E: (E^-1 tau, tau) = |dev tau|^2 / (2 mu) + (tr tau)^2 / (9
+  // kappa) in 3D; in 2D plane stress E^-1 of the 2D law.
+  template <int dim>
+  double
+  PerzynaMaterial<dim>::complementary_energy(const SymmetricTensor<2, dim> &tau,
+                                             const double tau_zz) const
+  {
+    if (!plane_strain)
+      return (invert(stiffness) * tau) * tau;
+    const SymmetricTensor<2, 3> t = embed(tau, tau_zz);
+    const double                E = young_modulus, k = poisson_ratio;
+    const double two_mu = E / (1 + k), three_kappa = E / (1 - 2 * k);
+    const double volumetric = trace(t);
+    return deviator(t) * deviator(t) / two_mu
+           + volumetric * volumetric / (3 * three_kappa);
   }
 
 
@@ -238,16 +369,7 @@ namespace ViscoContact
   double
   PerzynaMaterial<2>::equivalent_stress(const SymmetricTensor<2, 2> &tau) const
   {
-    if (!plane_strain)
-      return yield_norm(to_coordinates(tau));
-    // Plane strain: with the out-of-plane stress s, 3 J2 =
-    // ((t11 - t22)^2 + (t22 - s)^2 + (s - t11)^2) / 2 + 3 t12^2.
-    const double s = out_of_plane_stress(tau);
-    return std::sqrt(0.5
-                       * (std::pow(tau[0][0] - tau[1][1], 2)
-                          + std::pow(tau[1][1] - s, 2)
-                          + std::pow(s - tau[0][0], 2))
-                     + 3 * tau[0][1] * tau[0][1]);
+    return yield_norm(to_coordinates(tau));
   }
 
 

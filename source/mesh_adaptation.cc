@@ -50,13 +50,15 @@ namespace ViscoContact
   {
     // The data of one stress point as doubles: sigma (its independent
     // components), the history, the rate G(sigma) of the last update (for the
-    // error estimate of adaptive time steps), the plastic multiplier; a
-    // hypercube cell has 2^dim of them. A fixed-size array is plain data, which
+    // error estimate of adaptive time steps), the plastic multiplier, and in
+    // 2D the zz components of the first three (plane strain); a hypercube
+    // cell has 2^dim of them. A fixed-size array is plain data, which
     // CellDataTransfer packs by copying (no serialisation, the same size for
     // every cell).
     template <int dim>
     constexpr unsigned int n_point_fields
-      = 3 * SymmetricTensor<2, dim>::n_independent_components + 1;
+      = 3 * SymmetricTensor<2, dim>::n_independent_components + 1
+        + (dim == 2 ? 3 : 0);
     template <int dim>
     using CellRecord
       = std::array<double,
@@ -75,6 +77,12 @@ namespace ViscoContact
           out[2 * n + i] = state.rate.access_raw_entry(i);
         }
       out[3 * n] = state.plastic_multiplier;
+      if constexpr (dim == 2)
+        {
+          out[3 * n + 1] = state.stress_zz;
+          out[3 * n + 2] = state.history_zz;
+          out[3 * n + 3] = state.rate_zz;
+        }
     }
 
     template <int dim>
@@ -92,6 +100,12 @@ namespace ViscoContact
       // The multiplier is only the starting guess of the next projection; a
       // fitted value below zero (the multiplier is >= 0) starts from zero.
       state.plastic_multiplier = std::max(in[3 * n], 0.);
+      if constexpr (dim == 2)
+        {
+          state.stress_zz  = in[3 * n + 1];
+          state.history_zz = in[3 * n + 2];
+          state.rate_zz    = in[3 * n + 3];
+        }
     }
   } // namespace
 
@@ -168,9 +182,9 @@ namespace ViscoContact
             bool                        plastic = false, elastic = false;
             for (unsigned int q = 0; q < n_q; ++q)
               (material.is_plastic()
-                   && material.equivalent_stress(
-                        quadrature_point_history[std::size_t(k) * n_q + q]
-                          .stress)
+                   && von_mises_stress(
+                        k,
+                        quadrature_point_history[std::size_t(k) * n_q + q])
                         > material.yield_stress()
                  ? plastic
                  : elastic)

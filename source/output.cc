@@ -391,23 +391,22 @@ namespace ViscoContact
                                  "material_id",
                                  DataOut<dim>::type_cell_data);
       }
-    // Plane strain: sigma_zz, from the in-plane stress of each cell.
+    // Plane strain: sigma_zz, averaged over the stress points of each cell.
     Vector<float> stress_zz;
-    if (parameters.plane_model == Parameters::PlaneModel::plane_strain)
-      {
-        stress_zz.reinit(n_cells);
-        for (unsigned int k = 0; k < owned_cells.size(); ++k)
-          {
-            const unsigned int      c = owned_cells[k]->active_cell_index();
-            SymmetricTensor<2, dim> sigma;
-            for (unsigned int i = 0; i < stress.size(); ++i)
-              sigma[sigma.unrolled_to_component_indices(i)] = stress[i][c];
-            stress_zz[c] = material_of(k).out_of_plane_stress(sigma);
-          }
-        data_out.add_data_vector(stress_zz,
-                                 "stress_zz",
-                                 DataOut<dim>::type_cell_data);
-      }
+    if constexpr (dim == 2)
+      if (parameters.plane_model == Parameters::PlaneModel::plane_strain)
+        {
+          const unsigned int n_q = stress_quadrature.size();
+          stress_zz.reinit(n_cells);
+          for (unsigned int k = 0; k < owned_cells.size(); ++k)
+            for (unsigned int q = 0; q < n_q; ++q)
+              stress_zz[owned_cells[k]->active_cell_index()]
+                += quadrature_point_history[std::size_t(k) * n_q + q].stress_zz
+                   / n_q;
+          data_out.add_data_vector(stress_zz,
+                                   "stress_zz",
+                                   DataOut<dim>::type_cell_data);
+        }
     const char *contact_names[4] = {"contact_pressure",
                                     "compliance_pressure",
                                     "foundation_pressure",
@@ -491,7 +490,11 @@ namespace ViscoContact
                 stress[i][c] += sigma[index] / n_q;
                 viscoplastic[i][c] += vp[index] / n_q;
               }
-            von_mises[c] += material.equivalent_stress(sigma) / n_q;
+            von_mises[c]
+              += von_mises_stress(
+                   k,
+                   quadrature_point_history[std::size_t(k) * n_q + q])
+                 / n_q;
           }
       }
   }

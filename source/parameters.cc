@@ -144,9 +144,7 @@ namespace ViscoContact
                     "In 2D: plane stress (sigma_zz = 0, a thin plate; the "
                     "paper's model) or plane strain (eps_zz = 0, a "
                     "cross-section of a long body; the out-of-plane stress "
-                    "is written as stress_zz). Plane strain is for elastic "
-                    "materials (Plasticity = false) so far. Plane stress in "
-                    "3D.");
+                    "is written as stress_zz). Plane stress in 3D.");
       prm.enter_subsection("Geometry");
       {
         prm.add_parameter(
@@ -1469,8 +1467,8 @@ namespace ViscoContact
 
     // Each material id belongs to one material; with several materials,
     // subsection Material names its ids too (its empty list means "every
-    // cell" only when it is the only material). Plane strain is a 2D model of
-    // elastic materials with k < 1/2.
+    // cell" only when it is the only material). Plane strain is a 2D model,
+    // with k < 1/2.
     void
     AllParameters::check_material_entries() const
     {
@@ -1484,15 +1482,6 @@ namespace ViscoContact
                   "body needs no plane model");
           for (const auto &[name, material] : used_materials())
             {
-              require(!material->plasticity,
-                      "",
-                      "Plane model",
-                      "plane strain",
-                      "plane stress when a material is viscoplastic "
-                      "(Plasticity = true in subsection <"
-                        + name
-                        + ">): the viscoplastic update in plane strain (its "
-                          "out-of-plane history) is not there yet");
               require(material->poisson_ratio < 0.5,
                       name,
                       "Poisson ratio",

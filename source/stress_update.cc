@@ -220,6 +220,10 @@ namespace ViscoContact
   // the previous step, then H_{n+1} = H_n + k_{n+1} G(sigma_n) with the
   // plastic multiplier as the starting guess of the projection, and the
   // point's contribution -(H_{n+1}, eps(v)) JxW to the next step's load.
+  //
+  // In 2D plane strain the zz components of sigma, H and G follow the same
+  // formulas (the zz component of E eps(u) is lambda tr eps(u)); they enter
+  // the von Mises stress and the projection, not the load (eps_zz(v) = 0).
   template <int dim>
   void
   ViscoplasticContact<dim>::update_stress_point(
@@ -237,41 +241,63 @@ namespace ViscoContact
     const PerzynaMaterial<dim> &material = materials[m];
     // E eps(u_n), from the ghosted u_n (solve_contact_problem() has
     // imported the ghosts).
+    const SymmetricTensor<2, dim> strain
+      = symmetrize(displacement_gradient_at(solution, k, q));
     const SymmetricTensor<2, dim> elastic_stress
-      = material.elasticity_tensor()
-        * symmetrize(displacement_gradient_at(solution, k, q));
+      = material.elasticity_tensor() * strain;
+    // The zz components (a copy, written back at the end; zero but in 2D
+    // plane strain).
+    OutOfPlaneState<2> zz;
+    if constexpr (dim == 2)
+      zz = state;
+    const double elastic_zz = material.out_of_plane_elastic_stress(strain);
     // An elastic material has no history: its stress is elastic, it has no
     // rate and no load, and only its stress counts in the estimate.
     const bool              plastic = material.is_plastic();
     SymmetricTensor<2, dim> rate;
+    double                  rate_zz = 0;
     if (plastic && step.implicit)
       {
         state.stress
           = material.implicit_stress_update(elastic_stress + state.history,
+                                            elastic_zz + zz.history_zz,
                                             step.viscous_parameters[m],
+                                            zz.stress_zz,
                                             nullptr,
                                             &state.plastic_multiplier);
         const SymmetricTensor<2, dim> new_history
           = state.stress - elastic_stress;
+        const double new_history_zz = zz.stress_zz - elastic_zz;
         if (step.estimate)
-          rate = (new_history - state.history) / step.current_time_step;
+          {
+            rate    = (new_history - state.history) / step.current_time_step;
+            rate_zz = (new_history_zz - zz.history_zz) / step.current_time_step;
+          }
         state.history = new_history;
+        zz.history_zz = new_history_zz;
       }
     else
-      state.stress = elastic_stress + state.history;
+      {
+        state.stress = elastic_stress + state.history;
+        zz.stress_zz = elastic_zz + zz.history_zz;
+      }
     // The largest von Mises stress, for the time series. std::max would
     // silently drop a NaN, so a non-finite value is recorded as infinity,
     // which survives the maximum over the ranks.
-    const double von_mises = material.equivalent_stress(state.stress);
-    max_von_mises_of_cell  = std::isfinite(von_mises)
-                               ? std::max(max_von_mises_of_cell, von_mises)
-                               : std::numeric_limits<double>::infinity();
+    const double von_mises
+      = material.equivalent_stress(state.stress, zz.stress_zz);
+    max_von_mises_of_cell = std::isfinite(von_mises)
+                              ? std::max(max_von_mises_of_cell, von_mises)
+                              : std::numeric_limits<double>::infinity();
     if (plastic && !step.implicit && (step.update_history || step.estimate))
-      rate
-        = material.viscoplastic_rate(state.stress, &state.plastic_multiplier);
+      rate = material.viscoplastic_rate(state.stress,
+                                        zz.stress_zz,
+                                        rate_zz,
+                                        &state.plastic_multiplier);
     if (plastic && step.update_history)
       {
         state.history += step.next_time_step * rate;
+        zz.history_zz += step.next_time_step * rate_zz;
         add_stress_point_load(-state.history, k, q, cell_vector);
       }
     // The estimate's terms at this point (per cell: the sums of
@@ -280,19 +306,27 @@ namespace ViscoContact
     // the rate kept for the next step's estimate.
     if (step.estimate)
       {
+        const auto energy
+          = [&](const SymmetricTensor<2, dim> &tau, const double tau_zz) {
+              return material.is_plane_strain()
+                       ? material.complementary_energy(tau, tau_zz)
+                       : (step.compliances[m] * tau) * tau;
+            };
         const double JxW = stress_point_JxW[std::size_t(k) * n_q + q];
-        estimate_sums[1]
-          += (step.compliances[m] * state.stress) * state.stress * JxW;
+        estimate_sums[1] += energy(state.stress, zz.stress_zz) * JxW;
         if (plastic)
           {
-            const SymmetricTensor<2, dim> change = rate - state.rate;
-            estimate_sums[0] += (step.compliances[m] * change) * change * JxW;
+            estimate_sums[0]
+              += energy(rate - state.rate, rate_zz - zz.rate_zz) * JxW;
             estimate_sums[2] += material.yield_stress()
                                 * material.yield_stress()
                                 / material.largest_elastic_eigenvalue() * JxW;
             state.rate = rate;
+            zz.rate_zz = rate_zz;
           }
       }
+    if constexpr (dim == 2)
+      static_cast<OutOfPlaneState<2> &>(state) = zz;
   }
 
 
@@ -340,7 +374,11 @@ namespace ViscoContact
   {
     TimerOutput::Scope t(computing_timer, "Stress update");
     for (QuadraturePointHistory<dim> &state : quadrature_point_history)
-      state.history += next_time_step * state.rate;
+      {
+        state.history += next_time_step * state.rate;
+        if constexpr (dim == 2)
+          state.history_zz += next_time_step * state.rate_zz;
+      }
     assemble_history_load();
   }
 

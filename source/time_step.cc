@@ -619,10 +619,17 @@ namespace ViscoContact
           {
             QuadraturePointHistory<dim> &state
               = quadrature_point_history[std::size_t(k) * n_q + q];
+            double stress_zz = 0, rate_zz = 0;
+            if constexpr (dim == 2)
+              stress_zz = state.stress_zz;
             state.history
               += (new_step - old_step)
                  * material_of(k).viscoplastic_rate(state.stress,
+                                                    stress_zz,
+                                                    rate_zz,
                                                     &state.plastic_multiplier);
+            if constexpr (dim == 2)
+              state.history_zz += (new_step - old_step) * rate_zz;
           }
     assemble_history_load();
   }

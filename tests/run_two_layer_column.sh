@@ -13,9 +13,10 @@
 #    refinement: the children inherit the ids), tetrahedra and hexahedra;
 #  - the materials as the physical groups of a Gmsh mesh (ids 10 and 20);
 #  - plane strain (triangles, full space), where M is that of 3D;
-#  - an adaptive mesh (quadrilaterals, condensed, 2 ranks, the soft layer
-#    viscoplastic): refined and coarsened cells keep their material, the
-#    state stays uniform in each layer (checked as below);
+#  - an adaptive mesh (quadrilaterals, plane strain, condensed, 2 ranks,
+#    the soft layer viscoplastic): refined and coarsened cells keep their
+#    material and their out-of-plane state, the state stays uniform in each
+#    layer (checked as below);
 #  - the soft layer viscoplastic (explicit and implicit update): the state
 #    is still uniform in each layer, so every node of a profile has the same
 #    pressure and the reaction is minus the contact force.
@@ -101,9 +102,10 @@ check_exact stress 1e-7 "2D quadrilaterals, full space, refined, 2 ranks"
 # Adaptive meshes: the cells refined and coarsened during the run keep
 # their material (the interface stays a mesh line, hanging nodes on it).
 variant hypercube condensed | plastic_soft_layer \
-  | sed -e 's/^\(subsection Output\)$/subsection Mesh adaptation\n  set Adaptive refinement = true\n  set Refinement interval = 1\n  set Refine fraction = 0.5\nend\n\n\1/' > variant.prm
-run variant.prm 2 "2D quadrilaterals, adaptive mesh, 2 ranks"
-check_uniform "2D quadrilaterals, adaptive mesh, 2 ranks"
+  | sed -e 's/^\(subsection Output\)$/subsection Mesh adaptation\n  set Adaptive refinement = true\n  set Refinement interval = 1\n  set Refine fraction = 0.5\nend\n\n\1/' \
+        -e 's/^\(set Dimension = 2\)$/\1\nset Plane model = plane strain/' > variant.prm
+run variant.prm 2 "2D quadrilaterals, plane strain, adaptive mesh, 2 ranks"
+check_uniform "2D quadrilaterals, plane strain, adaptive mesh, 2 ranks"
 variant simplex condensed | three_d | set_entry Subdivisions 2 > variant.prm
 run variant.prm 2 "3D tetrahedra, condensed, 2 ranks"
 check_exact strain 1e-9 "3D tetrahedra, condensed, 2 ranks"

@@ -306,6 +306,81 @@ TEST(ImplicitUpdate3D, SolvesLocalEquationAndTangentMatchesFiniteDifferences)
 
 
 
+// Plane strain: with eps_zz = 0 and a history H (with its zz part), the 2D
+// update of E eps + H is the 3D update of the embedded tensor (sigma and
+// sigma_zz, and the rate), and the consistent tangent d sigma / d eps
+// agrees with central finite differences in the in-plane strain.
+TEST(PlaneStrain, IsTheThreeDimensionalLawAndTangentMatchesFiniteDifferences)
+{
+  const PerzynaMaterial<2> plane(1000, 0.3, 50, 2, true, true);
+  const PerzynaMaterial<3> solid(1000, 0.3, 50, 2, true);
+  std::mt19937             generator(5);
+  const auto embed = [](const SymmetricTensor<2, 2> &t, const double zz) {
+    SymmetricTensor<2, 3> e;
+    e[0][0] = t[0][0];
+    e[1][1] = t[1][1];
+    e[0][1] = t[0][1];
+    e[2][2] = zz;
+    return e;
+  };
+  for (const double a : {1e-4, 1e-2})
+    for (unsigned int sample = 0; sample < 100; ++sample)
+      {
+        const SymmetricTensor<2, 2> strain  = random_tensor<2>(generator, 0.02);
+        const SymmetricTensor<2, 2> history = random_tensor<2>(generator, 5.);
+        const double                history_zz
+          = std::uniform_real_distribution<>(-5, 5)(generator);
+        const auto stress_of = [&](const SymmetricTensor<2, 2> &eps,
+                                   double                      &zz,
+                                   SymmetricTensor<4, 2>       *tangent) {
+          return plane.implicit_stress_update(
+            plane.elasticity_tensor() * eps + history,
+            plane.out_of_plane_elastic_stress(eps) + history_zz,
+            a,
+            zz,
+            tangent,
+            nullptr);
+        };
+        double                      sigma_zz = 0;
+        SymmetricTensor<4, 2>       tangent;
+        const SymmetricTensor<2, 2> sigma
+          = stress_of(strain, sigma_zz, &tangent);
+        const SymmetricTensor<2, 3> expected
+          = solid.implicit_stress_update(solid.elasticity_tensor()
+                                             * embed(strain, 0)
+                                           + embed(history, history_zz),
+                                         a);
+        EXPECT_LE((embed(sigma, sigma_zz) - expected).norm(),
+                  1e-12 * (expected.norm() + 1));
+        EXPECT_NEAR(plane.equivalent_stress(sigma, sigma_zz),
+                    solid.equivalent_stress(expected),
+                    1e-12 * (expected.norm() + 1));
+        double                      rate_zz = 0;
+        const SymmetricTensor<2, 2> rate
+          = plane.viscoplastic_rate(sigma, sigma_zz, rate_zz);
+        EXPECT_LE(
+          (embed(rate, rate_zz) - solid.viscoplastic_rate(expected)).norm(),
+          1e-12 * (expected.norm() + 1));
+
+        const double step = 1e-6 * strain.norm();
+        for (unsigned int i = 0; i < 2; ++i)
+          for (unsigned int j = i; j < 2; ++j)
+            {
+              SymmetricTensor<2, 2> direction;
+              direction[i][j]                     = (i == j ? 1. : 0.5);
+              double                      zz_plus = 0, zz_minus = 0;
+              const SymmetricTensor<2, 2> difference
+                = (stress_of(strain + step * direction, zz_plus, nullptr)
+                   - stress_of(strain - step * direction, zz_minus, nullptr))
+                  / (2 * step);
+              EXPECT_LE((difference - tangent * direction).norm(),
+                        1e-6 * (tangent.norm() + 1));
+            }
+      }
+}
+
+
+
 TEST(Perzyna, RateVanishesInsideAndRelaxesOutside)
 {
   const PerzynaMaterial<2> material = benchmark_material<2>();

@@ -33,6 +33,18 @@
 
 namespace ViscoContact
 {
+  // The rows of a matrix that lives on one rank in compressed sparse row
+  // form with global column indices, sorted in each row: what CHOLMOD (read
+  // as the columns of the symmetric matrix) and UMFPACK (as the columns of
+  // the transpose) take. Not in the anonymous namespace: the solver's
+  // implementation holds one.
+  struct CompressedRows
+  {
+    std::vector<SuiteSparse_long> row_start;
+    std::vector<SuiteSparse_long> column;
+    std::vector<double>           value;
+  };
+
   namespace
   {
     // CHOLMOD's status codes in words, for the messages of failed
@@ -62,17 +74,6 @@ namespace ViscoContact
     }
 
 
-
-    // The rows of a matrix that lives on one rank in compressed sparse row
-    // form with global column indices, sorted in each row: what CHOLMOD
-    // (read as the columns of the symmetric matrix) and UMFPACK (as the
-    // columns of the transpose) take.
-    struct CompressedRows
-    {
-      std::vector<SuiteSparse_long> row_start;
-      std::vector<SuiteSparse_long> column;
-      std::vector<double>           value;
-    };
 
     // keep(i, j): which entries to take (CHOLMOD reads one triangle only).
     // Each row is read through Epetra's local view, its column indices are

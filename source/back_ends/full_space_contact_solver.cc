@@ -666,7 +666,7 @@ namespace ViscoContact
           int          n[dim];
           double      *values[dim];
           int         *columns[dim];
-          unsigned int components[dim], n_components = 0;
+          unsigned int components[dim] = {}, n_components = 0;
           for (unsigned int c = 0; c < dim; ++c)
             if (node.normal[c] != 0)
               components[n_components++] = c;

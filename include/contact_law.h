@@ -99,6 +99,55 @@ namespace ViscoContact
     std::vector<ContactLawPiece> pieces;
     double                       gap_value;
   };
+
+  // @sect3{The laws of several contact zones}
+  //
+  // Each contact zone has its own law. The active-set method and the back
+  // ends see one table of pieces: the pieces of zone 0, then those of zone
+  // 1, and so on, so that a piece index names a piece of one zone's law,
+  // and a back end reads a node's piece without knowing its zone. Finding
+  // a node's next piece needs its zone.
+  class ContactLaws
+  {
+  public:
+    ContactLaws() = default;
+    explicit ContactLaws(const std::vector<ContactLaw> &zone_laws);
+    // One zone.
+    ContactLaws(const ContactLaw &law);
+
+    unsigned int
+    n_zones() const;
+    const ContactLaw &
+    zone_law(const unsigned int zone) const;
+
+    // The pieces of all zones, zone by zone, and the zone of a piece.
+    unsigned int
+    n_pieces() const;
+    const ContactLawPiece &
+    piece(const unsigned int index) const;
+    unsigned int
+    zone_of_piece(const unsigned int index) const;
+
+    // ContactLaw::find_piece and next_piece of the zone's law, in the
+    // indices of the table.
+    unsigned int
+    find_piece(const unsigned int zone, const double q, const double c) const;
+    unsigned int
+    next_piece(const unsigned int zone,
+               const unsigned int current,
+               const double       q,
+               const double       c) const;
+
+    // Over all zones: the steepest softening and the largest gap.
+    double
+    steepest_softening() const;
+    double
+    largest_gap() const;
+
+  private:
+    std::vector<ContactLaw>   laws;
+    std::vector<unsigned int> first_piece; // of each zone, and the total
+  };
 } // namespace ViscoContact
 
 #endif

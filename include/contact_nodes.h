@@ -72,11 +72,13 @@ namespace ViscoContact
   class ContactNodes
   {
   public:
-    // The law and the lumped weights of the locally owned contact nodes;
-    // every node starts at r = z = 0 (on the piece of that state once the
-    // parameters c are set).
+    // The laws of the contact zones, and the zone and the lumped weight of
+    // every locally owned contact node; every node starts at r = z = 0 (on
+    // the piece of that state once the parameters c are set).
     void
-    reinit(const ContactLaw &law, const std::vector<double> &weights);
+    reinit(const ContactLaws               &laws,
+           const std::vector<unsigned int> &zones,
+           const std::vector<double>       &weights);
 
     // The parameter c_i of the update rule, one per node: it must exceed
     // the steepest softening of the law, so that q = p + c r increases
@@ -116,12 +118,17 @@ namespace ViscoContact
 
     unsigned int
     size() const;
-    const ContactLaw &
-    law() const;
+    // The laws of all zones; the pieces are indices into their table.
+    const ContactLaws &
+    laws() const;
+    unsigned int
+    zone(const unsigned int i) const;
     double
     weight(const unsigned int i) const;
     unsigned int
     piece(const unsigned int i) const;
+    const ContactLawPiece &
+    current_piece(const unsigned int i) const;
     void
     set_piece(const unsigned int i, const unsigned int piece);
     const std::vector<unsigned int> &
@@ -147,6 +154,9 @@ namespace ViscoContact
     count_states(const MPI_Comm communicator) const;
     double
     total_force(const MPI_Comm communicator) const;
+    // Over all ranks: sum_i z_i over the nodes of each zone.
+    std::vector<double>
+    zone_forces(const MPI_Comm communicator) const;
     // Over all ranks: the sum of the weights of the nodes in contact (the
     // contact width in 2D, the area in 3D) and the largest pressure z / w.
     double
@@ -155,7 +165,8 @@ namespace ViscoContact
     peak_pressure(const MPI_Comm communicator) const;
 
   private:
-    std::optional<ContactLaw> contact_law;
+    ContactLaws               contact_laws;
+    std::vector<unsigned int> node_zones;
     std::vector<double>       w, c;
     std::vector<unsigned int> node_pieces;
     bool                      placed = false;

@@ -16,6 +16,7 @@
 #include "back_ends/linear_algebra.h"
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,21 @@ namespace ViscoContact
                           const std::vector<types::boundary_id> &boundary_ids,
                           VectorType                            &weights,
                           VectorType &weighted_normals);
+
+  // A contact zone as the contact set needs it: its number (1 for
+  // subsection Contact, N for Contact zone N) and the subsection of the
+  // parameter file that defines it (for outputs and messages), its law, its
+  // boundary parts, and the direction in which its nodes meet the obstacle
+  // (from the body into it; none: each node's outward normal).
+  template <int dim>
+  struct ContactZoneDescription
+  {
+    unsigned int                    number;
+    std::string                     subsection;
+    ContactLaw                      law;
+    std::vector<types::boundary_id> boundary_ids;
+    std::optional<Tensor<1, dim>>   direction;
+  };
 
   // @sect3{The contact set}
   //
@@ -64,28 +80,29 @@ namespace ViscoContact
       std::array<unsigned int, dim> local_dofs;
       // The vertex's dof of the scalar output fields.
       types::global_dof_index scalar_dof;
+      // The contact zone (index into the zones of setup()).
+      unsigned int zone;
     };
 
-    // direction: the direction in which every node meets the obstacle
-    // (from the body into it), or nullptr for each node's outward normal.
+    // A vertex on the boundary parts of several zones belongs to the first
+    // of them.
     void
-    setup(const ContactLaw                      &law,
-          const Mapping<dim>                    &mapping,
-          const DoFHandler<dim>                 &dof_handler,
-          const DoFHandler<dim>                 &scalar_dof_handler,
-          const Quadrature<dim - 1>             &face_quadrature,
-          const std::vector<types::boundary_id> &contact_ids,
-          const AffineConstraints<double>       &constraints,
-          const VectorType                      &layout,
-          const Tensor<1, dim>                  *direction = nullptr);
+    setup(const std::vector<ContactZoneDescription<dim>> &zones,
+          const Mapping<dim>                             &mapping,
+          const DoFHandler<dim>                          &dof_handler,
+          const DoFHandler<dim>                          &scalar_dof_handler,
+          const Quadrature<dim - 1>                      &face_quadrature,
+          const AffineConstraints<double>                &constraints,
+          const VectorType                               &layout);
 
-    // The obstacle: s_i = gap(x_i, time) at every node, the distance from
-    // the node to the obstacle along its direction (negative where the
-    // obstacle has moved into the body), so that the law acts on the
-    // penetration r_i = nu_i . u_i - s_i. Returns the message naming the
-    // entry if a value is not finite (else empty); not collective.
+    // The obstacle: s_i = gap(x_i, time) at every node, gap the function of
+    // the node's zone (nullptr: s = 0), the distance from the node to the
+    // obstacle along its direction (negative where the obstacle has moved
+    // into the body), so that the law acts on the penetration
+    // r_i = nu_i . u_i - s_i. Returns the message naming the entry if a
+    // value is not finite (else empty); not collective.
     std::string
-    set_gaps(Function<dim> &gap, const double time);
+    set_gaps(const std::vector<Function<dim> *> &zone_gaps, const double time);
     double
     gap(const unsigned int i) const;
 
@@ -116,7 +133,8 @@ namespace ViscoContact
     // This rank's block of the contact profile along Gamma_3 (rank 0's with
     // the header), one line per node: the coordinates, the time, u_nu, the
     // pressures of the layer, of the foundation and in all, the nodal force,
-    // the weight and the status.
+    // the weight and the status (and the zone number if there are several
+    // zones).
     std::string
     profile_text(const double time) const;
 
@@ -130,24 +148,25 @@ namespace ViscoContact
                        VectorType &contact_status) const;
 
   private:
-    // The contact nodes of this rank into geometry, in the order the cells
-    // come (setup() sorts them): the locally owned vertices of the faces on
-    // the boundary parts contact_ids, each with its location, its dofs
-    // (global, local in partitioner's numbering, and scalar) and its
-    // direction: the given one or the weighted normal, without the
-    // components that are constrained, normalised. A vertex whose
+    // The contact nodes of this rank into geometry, in the order the zones
+    // and the cells come (setup() sorts them): the locally owned vertices of
+    // the faces on the boundary parts of each zone, each with its location,
+    // its dofs (global, local in partitioner's numbering, and scalar), its
+    // zone and its direction: the zone's or the weighted normal, without
+    // the components that are constrained, normalised. A vertex whose
     // direction lies in its constrained components (a clamped corner, a
     // hanging node) is not a contact node.
     void
-    find_nodes(const DoFHandler<dim>                 &dof_handler,
-               const DoFHandler<dim>                 &scalar_dof_handler,
-               const std::vector<types::boundary_id> &contact_ids,
-               const AffineConstraints<double>       &constraints,
-               const Utilities::MPI::Partitioner     &partitioner,
-               const VectorType                      &weighted_normals,
-               const Tensor<1, dim>                  *direction);
+    find_nodes(const std::vector<ContactZoneDescription<dim>> &zones,
+               const DoFHandler<dim>                          &dof_handler,
+               const DoFHandler<dim>             &scalar_dof_handler,
+               const AffineConstraints<double>   &constraints,
+               const Utilities::MPI::Partitioner &partitioner,
+               const VectorType                  &weighted_normals);
 
     std::vector<NodeGeometry> geometry;
+    std::vector<std::string>  zone_subsections;
+    std::vector<unsigned int> zone_numbers;
     std::vector<double>       gaps; // empty: no obstacle gap (s = 0)
     types::global_dof_index   n_global     = 0;
     types::global_dof_index   first_global = 0;

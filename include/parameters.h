@@ -251,8 +251,14 @@ namespace ViscoContact
       used_surface_loads() const;
     };
 
+    // A contact zone: the law of its layer and foundation, and its
+    // obstacle. Subsection "Contact" is zone 1 (its boundary parts are
+    // Contact boundary ids of subsection Boundary); the numbered
+    // "Contact zone N", N >= 2, name their own boundary ids (empty: not
+    // used).
     struct Contact
     {
+      std::vector<types::boundary_id> boundary_ids;     // zones N >= 2 only
       bool                unilateral_constraint = true; // rigid foundation
       bool                normal_compliance     = true; // the deformable layer
       double              gap                   = 0.01; // g, layer thickness
@@ -267,13 +273,26 @@ namespace ViscoContact
       std::string gap_direction = "normal";
 
       void
-      add_parameters(ParameterHandler &prm);
+      add_parameters(ParameterHandler  &prm,
+                     const std::string &subsection = "Contact");
       void
-      check_parameters(ParameterHandler &prm, const unsigned int dim);
+      check_parameters(ParameterHandler  &prm,
+                       const unsigned int dim,
+                       const std::string &subsection = "Contact") const;
       // The numbers of Gap direction (empty if it is "normal" or not a list
       // of numbers).
       std::vector<double>
       direction_vector() const;
+    };
+
+    // A contact zone that is used: its subsection, its boundary ids and its
+    // law and obstacle.
+    struct ContactZone
+    {
+      unsigned int                    number; // 1: subsection Contact
+      std::string                     subsection;
+      std::vector<types::boundary_id> boundary_ids;
+      const Contact                  *contact;
     };
 
     struct Time
@@ -434,6 +453,16 @@ namespace ViscoContact
       // Whether any material that is used is viscoplastic.
       bool
       any_plasticity() const;
+      // The contact zones "Contact zone 2", "Contact zone 3", ...: sized like
+      // further_materials.
+      std::vector<Contact> further_contact_zones = std::vector<Contact>(1);
+      // The zones that name boundary parts: subsection Contact with Contact
+      // boundary ids first, then the numbered ones with ids, in order.
+      std::vector<ContactZone>
+      used_contact_zones() const;
+      // Every boundary id of every contact zone.
+      std::vector<types::boundary_id>
+      all_contact_ids() const;
 
       // Every entry of the file, bound to the members of this object (which
       // must outlive the parsing); then the checks of every subsection and
@@ -446,7 +475,7 @@ namespace ViscoContact
       void
       check_material_entries() const;
       void
-      check_surface_load_entries() const;
+      check_boundary_id_claims() const;
       void
       check_study_entries() const;
       void

@@ -716,12 +716,18 @@ namespace ViscoContact
     // then the step problem is a single linear solve.
     bool            contact_enabled = false;
     ContactSet<dim> contact_set;
-    // The obstacle (subsection Contact): the gap s(x, t) along the given
-    // direction (or the normals). Without a gap the nodes keep s = 0.
-    FunctionParser<dim>           gap_function;
-    bool                          has_gap             = false;
-    bool                          gap_depends_on_time = false;
-    std::optional<Tensor<1, dim>> gap_direction;
+    // The contact zones (subsection Contact and the numbered Contact zone
+    // N that name boundary parts, without those whose law is void), and the
+    // obstacle of each: the gap s(x, t) along the zone's direction (or the
+    // normals), nullptr where it is zero (the nodes keep s = 0).
+    std::vector<ContactZoneDescription<dim>>          contact_zones;
+    std::vector<std::unique_ptr<FunctionParser<dim>>> zone_gap_functions;
+    bool                                              has_gap = false;
+    bool gap_depends_on_time                                  = false;
+    std::vector<Function<dim> *>
+    zone_gaps() const;
+    std::vector<unsigned int>
+    contact_zone_numbers() const;
     // The gaps of the contact nodes at the given time (collective: a value
     // that is not finite stops all ranks, naming the entry).
     void

@@ -18,12 +18,20 @@ materials: physical group 10 "stiff" below y = 1/2, 20 "soft" above (the
 material ids of the parameter file). Boundary lines: 1 x = 0, 2 x = 1,
 3 y = 0 (the support), 4 y = 1 (the top); parameters/two_layer_column.prm.
 
+two_columns_{quadrilateral,triangle}_N.msh, two_columns_hexahedron_N.msh:
+two unit columns side by side, [0, 1] and [2, 3] in x, 0 <= y <= 1 (and
+0 <= z <= 1 in 3D), not connected, N cells along each edge (triangles: each
+square cut by its diagonal from (x_i, y_j) to (x_i+1, y_j+1)). Boundary
+tags: 1 the sides x = 0 and x = 2, 2 the sides x = 1 and x = 3, 6 the sides
+z = 0 and 7 z = 1 (3D), 3 the bottom of the first column, 5 the bottom of
+the second, 4 both tops; parameters/two_columns.prm (contact zones).
+
 Run from anywhere: python3 meshes/make_example_meshes.py
 """
 import math
 import os
 
-from gmsh_format import gmsh_text
+from gmsh_format import gmsh_elements_text, gmsh_text
 
 ANGLE = math.radians(30.0)
 
@@ -67,6 +75,49 @@ def two_layer_column(n):
                      tags, [(10, "stiff"), (20, "soft")])
 
 
+def two_columns(n, dim, simplex=False):
+    """The mesh of the two columns (see the top of the file)."""
+    nz = n if dim == 3 else 0
+    index = lambda b, i, j, k: ((b * (nz + 1) + k) * (n + 1) + j) * (n + 1) + i + 1
+    nodes = [(index(b, i, j, k), 2 * b + i / n, j / n, k / n if dim == 3 else 0.0)
+             for b in range(2) for k in range(nz + 1) for j in range(n + 1) for i in range(n + 1)]
+    boundary, cells = [], []
+    for b in range(2):
+        bottom = 3 if b == 0 else 5
+        if dim == 2:
+            v = lambda i, j: index(b, i, j, 0)
+            for k in range(n):
+                boundary += [(1, 1, v(0, k), v(0, k + 1)), (1, 2, v(n, k), v(n, k + 1)),
+                             (1, bottom, v(k, 0), v(k + 1, 0)), (1, 4, v(k, n), v(k + 1, n))]
+            for j in range(n):
+                for i in range(n):
+                    a, b_, c, d = v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)
+                    cells += ([(2, 10, a, b_, c), (2, 10, a, c, d)] if simplex
+                              else [(3, 10, a, b_, c, d)])
+        else:
+            v = lambda i, j, k: index(b, i, j, k)
+            # The faces of the cube surface: (tag, fixed axis, fixed index).
+            for tag, axis, fixed in ((1, 0, 0), (2, 0, n), (bottom, 1, 0), (4, 1, n), (6, 2, 0), (7, 2, n)):
+                for p in range(n):
+                    for q in range(n):
+                        corners = []
+                        for dp, dq in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                            ijk = [0, 0, 0]
+                            others = [a for a in range(3) if a != axis]
+                            ijk[axis], ijk[others[0]], ijk[others[1]] = fixed, p + dp, q + dq
+                            corners.append(v(*ijk))
+                        boundary.append((3, tag) + tuple(corners))
+            for k in range(n):
+                for j in range(n):
+                    for i in range(n):
+                        cells.append((5, 10, v(i, j, k), v(i + 1, j, k), v(i + 1, j + 1, k), v(i, j + 1, k),
+                                      v(i, j, k + 1), v(i + 1, j, k + 1), v(i + 1, j + 1, k + 1), v(i, j + 1, k + 1)))
+    names = [(1, "left_sides"), (2, "right_sides"), (3, "support_1"), (4, "tops"), (5, "support_2")]
+    if dim == 3:
+        names += [(6, "front_sides"), (7, "back_sides")]
+    return gmsh_elements_text(nodes, boundary, cells, names, [(10, "columns")])
+
+
 if __name__ == "__main__":
     folder = os.path.dirname(os.path.abspath(__file__))
     for n in (8, 16):
@@ -74,3 +125,7 @@ if __name__ == "__main__":
             f.write(rotated_square(n))
     with open(os.path.join(folder, "two_layer_column_4.msh"), "w") as f:
         f.write(two_layer_column(4))
+    for name, dim, simplex, n in (("quadrilateral", 2, False, 4), ("triangle", 2, True, 4),
+                                  ("hexahedron", 3, False, 2)):
+        with open(os.path.join(folder, "two_columns_%s_%d.msh" % (name, n)), "w") as f:
+            f.write(two_columns(n, dim, simplex))

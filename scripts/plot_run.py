@@ -6,8 +6,8 @@ Usage: scripts/plot_run.py OUTPUT_FOLDER [--out DIR]
 Reads OUTPUT_FOLDER/time_series.csv and OUTPUT_FOLDER/contact_profile_NNNN.csv
 (by column name; columns added later are ignored) and writes
 
-  forces.png             total_contact_force and every reaction_* column
-                         against time;
+  forces.png             total_contact_force, every contact_force_zone_* and
+                         every reaction_* column against time;
   contact.png            contact_area and peak_pressure against time, or,
                          for runs without these columns, the numbers of
                          unilateral, compliance and no-contact nodes;
@@ -270,7 +270,8 @@ def forces_figure(series):
     figure, axes = plt.subplots(figsize=(8, 4.5))
     time = series.column("time")
     names = [n for n in ("total_contact_force",) if series.has(n)]
-    names += [n for n in series.header if n.startswith("reaction_")]
+    names += [n for n in series.header
+              if n.startswith("contact_force_zone_") or n.startswith("reaction_")]
     for name in names:
         axes.plot(time, series.column(name), ".-", markersize=3, label=name)
     if names:

@@ -240,9 +240,9 @@ namespace ViscoContact
                                                   * n_gap_levels / 2e7));
         for (std::uint64_t m = 0; m < n_gap_levels && problem.empty();
              m += gap_stride)
-          problem = contact_set.set_gaps(gap_function, level(m));
+          problem = contact_set.set_gaps(zone_gaps(), level(m));
         if (problem.empty())
-          problem = contact_set.set_gaps(gap_function, schedule.current_time());
+          problem = contact_set.set_gaps(zone_gaps(), schedule.current_time());
       }
     FileOutput::agree_on_problem(problem, mpi_communicator);
   }
@@ -337,6 +337,19 @@ namespace ViscoContact
 
 
 
+  // The gap functions of the zones, nullptr where the gap is zero.
+  template <int dim>
+  std::vector<Function<dim> *>
+  ViscoplasticContact<dim>::zone_gaps() const
+  {
+    std::vector<Function<dim> *> gaps;
+    for (const auto &gap : zone_gap_functions)
+      gaps.push_back(gap.get());
+    return gaps;
+  }
+
+
+
   // @sect4{ViscoplasticContact::set_gaps}
   template <int dim>
   void
@@ -344,7 +357,7 @@ namespace ViscoContact
   {
     if (!has_gap || !contact_enabled)
       return;
-    FileOutput::agree_on_problem(contact_set.set_gaps(gap_function, time),
+    FileOutput::agree_on_problem(contact_set.set_gaps(zone_gaps(), time),
                                  mpi_communicator);
   }
 

@@ -469,7 +469,11 @@ namespace ViscoContact
       {
         const auto  &dofs  = contact_set.node(i).local_dofs;
         const double piece = vectors.contact_state.local_element(dofs[0]) - 1.;
-        if (!(piece >= 0 && piece < contact_set.law().n_pieces()))
+        // A piece of the node's own zone's law.
+        if (!(piece >= 0 && piece < contact_set.laws().n_pieces())
+            || contact_set.laws().zone_of_piece(
+                 static_cast<unsigned int>(piece + 0.5))
+                 != contact_set.zone(i))
           {
             pieces_valid = false;
             continue;

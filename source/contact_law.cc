@@ -279,4 +279,112 @@ namespace ViscoContact
   {
     return gap_value;
   }
+
+
+  // @sect4{ContactLaws}
+  //
+  // The table of the pieces of all zones: zone z's pieces are the indices
+  // first_piece[z], ..., first_piece[z + 1] - 1.
+  ContactLaws::ContactLaws(const std::vector<ContactLaw> &zone_laws)
+    : laws(zone_laws)
+    , first_piece{0}
+  {
+    for (const ContactLaw &law : laws)
+      first_piece.push_back(first_piece.back() + law.n_pieces());
+  }
+
+
+
+  ContactLaws::ContactLaws(const ContactLaw &law)
+    : ContactLaws(std::vector<ContactLaw>{law})
+  {}
+
+
+
+  unsigned int
+  ContactLaws::n_zones() const
+  {
+    return laws.size();
+  }
+
+
+
+  const ContactLaw &
+  ContactLaws::zone_law(const unsigned int zone) const
+  {
+    AssertIndexRange(zone, laws.size());
+    return laws[zone];
+  }
+
+
+
+  unsigned int
+  ContactLaws::n_pieces() const
+  {
+    return first_piece.back();
+  }
+
+
+
+  const ContactLawPiece &
+  ContactLaws::piece(const unsigned int index) const
+  {
+    const unsigned int zone = zone_of_piece(index);
+    return laws[zone].piece(index - first_piece[zone]);
+  }
+
+
+
+  unsigned int
+  ContactLaws::zone_of_piece(const unsigned int index) const
+  {
+    AssertIndexRange(index, n_pieces());
+    return std::upper_bound(first_piece.begin(), first_piece.end(), index)
+           - first_piece.begin() - 1;
+  }
+
+
+
+  unsigned int
+  ContactLaws::find_piece(const unsigned int zone,
+                          const double       q,
+                          const double       c) const
+  {
+    return first_piece[zone] + zone_law(zone).find_piece(q, c);
+  }
+
+
+
+  unsigned int
+  ContactLaws::next_piece(const unsigned int zone,
+                          const unsigned int current,
+                          const double       q,
+                          const double       c) const
+  {
+    Assert(zone_of_piece(current) == zone, ExcInternalError());
+    return first_piece[zone]
+           + zone_law(zone).next_piece(current - first_piece[zone], q, c);
+  }
+
+
+
+  double
+  ContactLaws::steepest_softening() const
+  {
+    double softening = 0;
+    for (const ContactLaw &law : laws)
+      softening = std::max(softening, law.steepest_softening());
+    return softening;
+  }
+
+
+
+  double
+  ContactLaws::largest_gap() const
+  {
+    double gap = 0;
+    for (const ContactLaw &law : laws)
+      gap = std::max(gap, law.gap());
+    return gap;
+  }
 } // namespace ViscoContact

@@ -92,11 +92,14 @@ namespace ViscoContact
   // chosen by the first set_parameters(), since finding the piece of a state
   // needs c.
   void
-  ContactNodes::reinit(const ContactLaw          &law,
-                       const std::vector<double> &weights)
+  ContactNodes::reinit(const ContactLaws               &laws,
+                       const std::vector<unsigned int> &zones,
+                       const std::vector<double>       &weights)
   {
-    contact_law.emplace(law);
-    w = weights;
+    AssertDimension(zones.size(), weights.size());
+    contact_laws = laws;
+    node_zones   = zones;
+    w            = weights;
     c.assign(w.size(), 0.);
     r.assign(w.size(), 0.);
     z.assign(w.size(), 0.);
@@ -120,15 +123,16 @@ namespace ViscoContact
   ContactNodes::set_parameters(const std::vector<double> &parameters)
   {
     AssertDimension(parameters.size(), size());
-    for (const double value : parameters)
-      AssertThrow(value > contact_law->steepest_softening(),
+    for (unsigned int i = 0; i < size(); ++i)
+      AssertThrow(parameters[i]
+                    > contact_laws.zone_law(node_zones[i]).steepest_softening(),
                   ExcInternalError());
     c = parameters;
     // The first call places every node on the piece of its state r = z = 0
     // (q = 0), the state before the first load. Later calls keep the pieces.
     if (!placed)
       for (unsigned int i = 0; i < size(); ++i)
-        node_pieces[i] = contact_law->find_piece(0., c[i]);
+        node_pieces[i] = contact_laws.find_piece(node_zones[i], 0., c[i]);
     placed = true;
   }
 
@@ -146,7 +150,8 @@ namespace ViscoContact
     for (unsigned int i = 0; i < size(); ++i)
       {
         const unsigned int next
-          = contact_law->next_piece(node_pieces[i],
+          = contact_laws.next_piece(node_zones[i],
+                                    node_pieces[i],
                                     z[i] / w[i] + c[i] * r[i],
                                     c[i]);
         if (next != node_pieces[i])
@@ -156,7 +161,7 @@ namespace ViscoContact
           }
         // After the move: the nodes now at the rigid limit, for the
         // iteration history.
-        if (contact_law->piece(node_pieces[i]).rigid)
+        if (current_piece(i).rigid)
           ++rigid;
       }
     return {{changed, rigid}};
@@ -308,8 +313,8 @@ namespace ViscoContact
 
   // @sect4{Access to the nodes}
   //
-  // Plain access: the number of nodes of this rank, the law, and per node
-  // the weight w_i and the piece. set_piece() is for
+  // Plain access: the number of nodes of this rank, the laws, and per node
+  // the zone, the weight w_i and the piece. set_piece() is for
   // restoring a state node by node (a resumed checkpoint).
   unsigned int
   ContactNodes::size() const
@@ -319,10 +324,18 @@ namespace ViscoContact
 
 
 
-  const ContactLaw &
-  ContactNodes::law() const
+  const ContactLaws &
+  ContactNodes::laws() const
   {
-    return *contact_law;
+    return contact_laws;
+  }
+
+
+
+  unsigned int
+  ContactNodes::zone(const unsigned int i) const
+  {
+    return node_zones[i];
   }
 
 
@@ -346,8 +359,17 @@ namespace ViscoContact
   void
   ContactNodes::set_piece(const unsigned int i, const unsigned int piece)
   {
-    AssertIndexRange(piece, contact_law->n_pieces());
+    Assert(contact_laws.zone_of_piece(piece) == node_zones[i],
+           ExcInternalError());
     node_pieces[i] = piece;
+  }
+
+
+
+  const ContactLawPiece &
+  ContactNodes::current_piece(const unsigned int i) const
+  {
+    return contact_laws.piece(node_pieces[i]);
   }
 
 
@@ -368,7 +390,7 @@ namespace ViscoContact
   unsigned int
   ContactNodes::status(const unsigned int i) const
   {
-    if (contact_law->piece(node_pieces[i]).rigid)
+    if (current_piece(i).rigid)
       return 2;
     if (r[i] > 0 || z[i] > 0)
       return 1;
@@ -393,7 +415,7 @@ namespace ViscoContact
   double
   ContactNodes::compliance_pressure(const unsigned int i) const
   {
-    const ContactLawPiece &current = contact_law->piece(node_pieces[i]);
+    const ContactLawPiece &current = current_piece(i);
     return current.rigid ? current.p_lower : contact_pressure(i);
   }
 
@@ -423,6 +445,21 @@ namespace ViscoContact
     for (const double force : z)
       sum += force;
     return Utilities::MPI::sum(sum, communicator);
+  }
+
+
+
+  std::vector<double>
+  ContactNodes::zone_forces(const MPI_Comm communicator) const
+  {
+    std::vector<double> forces(contact_laws.n_zones(), 0.);
+    for (unsigned int i = 0; i < size(); ++i)
+      forces[node_zones[i]] += z[i];
+    std::vector<double> sums(forces.size());
+    Utilities::MPI::sum(ArrayView<const double>(forces.data(), forces.size()),
+                        communicator,
+                        ArrayView<double>(sums.data(), sums.size()));
+    return sums;
   }
 
 

@@ -148,20 +148,31 @@ namespace ViscoContact
   // Gamma_3, and their global numbers.
   template <int dim>
   void
-  ContactSet<dim>::setup(const ContactLaw          &law,
-                         const Mapping<dim>        &mapping,
-                         const DoFHandler<dim>     &dof_handler,
-                         const DoFHandler<dim>     &scalar_dof_handler,
-                         const Quadrature<dim - 1> &face_quadrature,
-                         const std::vector<types::boundary_id> &contact_ids,
-                         const AffineConstraints<double>       &constraints,
-                         const VectorType                      &layout,
-                         const Tensor<1, dim>                  *direction)
+  ContactSet<dim>::setup(const std::vector<ContactZoneDescription<dim>> &zones,
+                         const Mapping<dim>              &mapping,
+                         const DoFHandler<dim>           &dof_handler,
+                         const DoFHandler<dim>           &scalar_dof_handler,
+                         const Quadrature<dim - 1>       &face_quadrature,
+                         const AffineConstraints<double> &constraints,
+                         const VectorType                &layout)
   {
-    // The lumped weights and weighted normals of all vertices of Gamma_3, in
-    // the displacement layout, with the values of hanging vertices passed
-    // on to their parents.
+    // The lumped weights and weighted normals of all vertices of Gamma_3 (of
+    // every zone), in the displacement layout, with the values of hanging
+    // vertices passed on to their parents.
     communicator = layout.get_mpi_communicator();
+    std::vector<types::boundary_id> contact_ids;
+    zone_subsections.clear();
+    zone_numbers.clear();
+    std::vector<ContactLaw> laws;
+    for (const ContactZoneDescription<dim> &zone : zones)
+      {
+        contact_ids.insert(contact_ids.end(),
+                           zone.boundary_ids.begin(),
+                           zone.boundary_ids.end());
+        zone_subsections.push_back(zone.subsection);
+        zone_numbers.push_back(zone.number);
+        laws.push_back(zone.law);
+      }
     VectorType weights(layout), weighted_normals(layout);
     assemble_lumped_weights(mapping,
                             dof_handler,
@@ -173,13 +184,12 @@ namespace ViscoContact
       pass_on_hanging_values(*vector, constraints, layout);
 
     gaps.clear();
-    find_nodes(dof_handler,
+    find_nodes(zones,
+               dof_handler,
                scalar_dof_handler,
-               contact_ids,
                constraints,
                *layout.get_partitioner(),
-               weighted_normals,
-               direction);
+               weighted_normals);
 
     // Along Gamma_3: the order of the contact profiles. The order is
     // lexicographic in the coordinates (x first), with a tolerance for
@@ -194,10 +204,14 @@ namespace ViscoContact
                 return false;
               });
     // The weight of a node sits at its x-dof; the nodes start at r = z = 0.
-    std::vector<double> node_weights(geometry.size());
+    std::vector<double>       node_weights(geometry.size());
+    std::vector<unsigned int> node_zones(geometry.size());
     for (unsigned int i = 0; i < geometry.size(); ++i)
-      node_weights[i] = weights(geometry[i].dofs[0]);
-    reinit(law, node_weights);
+      {
+        node_weights[i] = weights(geometry[i].dofs[0]);
+        node_zones[i]   = geometry[i].zone;
+      }
+    reinit(ContactLaws(laws), node_zones, node_weights);
 
     // Numbering across ranks: rank p's nodes come after those of ranks
     // 0, ..., p - 1, which is how deal.II's Partitioner numbers a vector
@@ -209,14 +223,28 @@ namespace ViscoContact
                                                 communicator);
     n_global     = numbering.size();
     first_global = numbering.local_range().first;
-    // A contact boundary whose nodes are all clamped has nothing to solve;
-    // say so in the terms of the parameter file.
-    AssertThrow(n_global > 0,
-                ExcMessage("Invalid parameter <Contact boundary ids> in "
-                           "subsection <Boundary>: Gamma_3 has no node that "
-                           "is free to move (all its nodes are clamped); "
-                           "accepted: ids of boundary parts with at least one "
-                           "node off Gamma_1."));
+    // A contact zone whose nodes are all clamped has nothing to solve; say
+    // so in the terms of the parameter file.
+    std::vector<unsigned int> zone_sizes(zones.size(), 0);
+    for (const unsigned int zone : node_zones)
+      ++zone_sizes[zone];
+    const std::vector<unsigned int> local_sizes = zone_sizes;
+    Utilities::MPI::sum(
+      ArrayView<const unsigned int>(local_sizes.data(), local_sizes.size()),
+      communicator,
+      ArrayView<unsigned int>(zone_sizes.data(), zone_sizes.size()));
+    for (unsigned int z = 0; z < zones.size(); ++z)
+      AssertThrow(zone_sizes[z] > 0,
+                  ExcMessage(
+                    (zones[z].subsection == "Contact"
+                       ? std::string("Invalid parameter <Contact boundary "
+                                     "ids> in subsection <Boundary>")
+                       : "Invalid parameter <Boundary ids> in subsection <"
+                           + zones[z].subsection + ">")
+                    + ": the contact zone has no node that is free to move "
+                      "(all its nodes are clamped or belong to a zone "
+                      "listed before it); accepted: ids of boundary parts "
+                      "with at least one node of their own off Gamma_1."));
   }
 
 
@@ -280,68 +308,73 @@ namespace ViscoContact
   template <int dim>
   void
   ContactSet<dim>::find_nodes(
-    const DoFHandler<dim>                 &dof_handler,
-    const DoFHandler<dim>                 &scalar_dof_handler,
-    const std::vector<types::boundary_id> &contact_ids,
-    const AffineConstraints<double>       &constraints,
-    const Utilities::MPI::Partitioner     &partitioner,
-    const VectorType                      &weighted_normals,
-    const Tensor<1, dim>                  *direction)
+    const std::vector<ContactZoneDescription<dim>> &zones,
+    const DoFHandler<dim>                          &dof_handler,
+    const DoFHandler<dim>                          &scalar_dof_handler,
+    const AffineConstraints<double>                &constraints,
+    const Utilities::MPI::Partitioner              &partitioner,
+    const VectorType                               &weighted_normals)
   {
     geometry.clear();
     std::set<types::global_dof_index> seen;
     // Every vertex of every contact face of the owned and ghost cells, once
-    // (the set seen remembers the x-dofs taken).
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (!cell->is_artificial())
-        for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary()
-              && is_one_of(cell->face(f)->boundary_id(), contact_ids))
-            for (const unsigned int v : cell->face(f)->vertex_indices())
-              {
-                NodeGeometry node;
-                for (unsigned int c = 0; c < dim; ++c)
-                  node.dofs[c] = cell->face(f)->vertex_dof_index(v, c);
-                // A vertex becomes a node of this rank if this rank owns it
-                // (its dim dofs have the same owner, so the x-dof decides),
-                // it has not been taken already, and not all of its
-                // components are constrained (a clamped corner, a hanging
-                // node).
-                if (!partitioner.in_local_range(node.dofs[0])
-                    || !seen.insert(node.dofs[0]).second)
-                  continue;
-                unsigned int n_constrained = 0;
-                for (unsigned int c = 0; c < dim; ++c)
-                  n_constrained += constraints.is_constrained(node.dofs[c]);
-                if (n_constrained == dim)
-                  continue;
-                // Its location, the local indices of its dofs (owned
-                // entries, so no ghost lookup is ever needed), and the
-                // normal: the weighted normal, normalised.
-                node.location = cell->face(f)->vertex(v);
-                for (unsigned int c = 0; c < dim; ++c)
-                  {
-                    node.local_dofs[c]
-                      = partitioner.global_to_local(node.dofs[c]);
-                    node.normal[c] = weighted_normals(node.dofs[c]);
-                  }
-                // A given direction replaces the normal.
-                if (direction != nullptr)
-                  node.normal = *direction;
-                node.normal = free_direction<dim>(node, constraints);
-                if (node.normal.norm() == 0)
-                  continue;
-                // The same vertex's dof in the scalar dof handler of the
-                // output fields, through the same cell of the common
-                // triangulation.
-                const typename DoFHandler<dim>::active_cell_iterator
-                  scalar_cell(&dof_handler.get_triangulation(),
-                              cell->level(),
-                              cell->index(),
-                              &scalar_dof_handler);
-                node.scalar_dof = scalar_cell->face(f)->vertex_dof_index(v, 0);
-                geometry.push_back(node);
-              }
+    // (the set seen remembers the x-dofs taken), zone by zone: a vertex of
+    // two zones goes to the first, on every partition (its owner sees all
+    // the faces around it).
+    for (unsigned int zone = 0; zone < zones.size(); ++zone)
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (!cell->is_artificial())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary()
+                && is_one_of(cell->face(f)->boundary_id(),
+                             zones[zone].boundary_ids))
+              for (const unsigned int v : cell->face(f)->vertex_indices())
+                {
+                  NodeGeometry node;
+                  for (unsigned int c = 0; c < dim; ++c)
+                    node.dofs[c] = cell->face(f)->vertex_dof_index(v, c);
+                  // A vertex becomes a node of this rank if this rank owns it
+                  // (its dim dofs have the same owner, so the x-dof decides),
+                  // it has not been taken already, and not all of its
+                  // components are constrained (a clamped corner, a hanging
+                  // node).
+                  if (!partitioner.in_local_range(node.dofs[0])
+                      || !seen.insert(node.dofs[0]).second)
+                    continue;
+                  unsigned int n_constrained = 0;
+                  for (unsigned int c = 0; c < dim; ++c)
+                    n_constrained += constraints.is_constrained(node.dofs[c]);
+                  if (n_constrained == dim)
+                    continue;
+                  // Its location, the local indices of its dofs (owned
+                  // entries, so no ghost lookup is ever needed), and the
+                  // normal: the weighted normal, normalised.
+                  node.location = cell->face(f)->vertex(v);
+                  for (unsigned int c = 0; c < dim; ++c)
+                    {
+                      node.local_dofs[c]
+                        = partitioner.global_to_local(node.dofs[c]);
+                      node.normal[c] = weighted_normals(node.dofs[c]);
+                    }
+                  // The zone's direction replaces the normal.
+                  node.zone = zone;
+                  if (zones[zone].direction)
+                    node.normal = *zones[zone].direction;
+                  node.normal = free_direction<dim>(node, constraints);
+                  if (node.normal.norm() == 0)
+                    continue;
+                  // The same vertex's dof in the scalar dof handler of the
+                  // output fields, through the same cell of the common
+                  // triangulation.
+                  const typename DoFHandler<dim>::active_cell_iterator
+                    scalar_cell(&dof_handler.get_triangulation(),
+                                cell->level(),
+                                cell->index(),
+                                &scalar_dof_handler);
+                  node.scalar_dof
+                    = scalar_cell->face(f)->vertex_dof_index(v, 0);
+                  geometry.push_back(node);
+                }
   }
 
 
@@ -357,11 +390,11 @@ namespace ViscoContact
   void
   ContactSet<dim>::set_operator(const MatrixType &A)
   {
-    const double        softening = law().steepest_softening();
     std::vector<double> c(size());
     for (unsigned int i = 0; i < size(); ++i)
       {
-        const NodeGeometry &n                = geometry[i];
+        const double softening = laws().zone_law(zone(i)).steepest_softening();
+        const NodeGeometry &n  = geometry[i];
         double              normal_stiffness = 0;
         for (unsigned int a = 0; a < dim; ++a)
           for (unsigned int b = 0; b < dim; ++b)
@@ -460,7 +493,8 @@ namespace ViscoContact
         for (unsigned int d = 0; d < dim; ++d)
           out << coordinates[d] << ',';
         out << "time,u_nu,compliance_pressure,foundation_pressure,"
-               "contact_pressure,nodal_force,weight,status\n";
+               "contact_pressure,nodal_force,weight,status"
+            << (laws().n_zones() > 1 ? ",zone\n" : "\n");
       }
     // The foundation's pressure is what the layer does not carry.
     for (unsigned int i = 0; i < size(); ++i)
@@ -470,7 +504,10 @@ namespace ViscoContact
         out << time << ',' << r[i] << ',' << compliance_pressure(i) << ','
             << contact_pressure(i) - compliance_pressure(i) << ','
             << contact_pressure(i) << ',' << z[i] << ',' << weight(i) << ','
-            << status(i) << '\n';
+            << status(i);
+        if (laws().n_zones() > 1)
+          out << ',' << zone_numbers[zone(i)];
+        out << '\n';
       }
     return out.str();
   }
@@ -527,18 +564,24 @@ namespace ViscoContact
   // The gap of every node at its location, at the given time.
   template <int dim>
   std::string
-  ContactSet<dim>::set_gaps(Function<dim> &gap_function, const double time)
+  ContactSet<dim>::set_gaps(const std::vector<Function<dim> *> &zone_gaps,
+                            const double                        time)
   {
-    gap_function.set_time(time);
+    AssertDimension(zone_gaps.size(), zone_subsections.size());
+    for (Function<dim> *gap_function : zone_gaps)
+      if (gap_function != nullptr)
+        gap_function->set_time(time);
     gaps.resize(geometry.size());
     for (unsigned int i = 0; i < geometry.size(); ++i)
       {
-        gaps[i] = gap_function.value(geometry[i].location);
+        Function<dim> *gap_function = zone_gaps[zone(i)];
+        gaps[i] = gap_function ? gap_function->value(geometry[i].location) : 0.;
         if (!std::isfinite(gaps[i]))
           {
             std::ostringstream message;
-            message << "Invalid parameter <Initial gap> in subsection "
-                       "<Contact>: the gap is not finite at the contact node ("
+            message << "Invalid parameter <Initial gap> in subsection <"
+                    << zone_subsections[zone(i)]
+                    << ">: the gap is not finite at the contact node ("
                     << geometry[i].location << ") at t = " << time
                     << "; accepted: expressions with a finite value at every "
                        "contact node and every time of the run.";

@@ -166,6 +166,9 @@ namespace
     parameters.further_materials.resize(
       std::max(2u, Parameters::count_numbered_subsections(file, "Material"))
       - 1);
+    parameters.further_contact_zones.resize(
+      std::max(2u, Parameters::count_numbered_subsections(file, "Contact zone"))
+      - 1);
     parameters.add_parameters(prm);
     prm.parse_input(file);
     // What the parameter file may not mean as ParameterHandler reads it is

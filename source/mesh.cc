@@ -650,14 +650,15 @@ namespace ViscoContact
         // a vertex only is refined too. Ghost cells are included, so that an
         // owned cell whose contact vertex lies on a face of a ghost cell is
         // found.
+        const std::vector<types::boundary_id> contact_ids
+          = parameters.all_contact_ids();
         std::vector<bool> on_contact_boundary(triangulation.n_vertices(),
                                               false);
         for (const auto &cell : triangulation.active_cell_iterators())
           if (!cell->is_artificial())
             for (const unsigned int f : cell->face_indices())
               if (cell->face(f)->at_boundary()
-                  && contains(parameters.contact_ids,
-                              cell->face(f)->boundary_id()))
+                  && contains(contact_ids, cell->face(f)->boundary_id()))
                 for (const unsigned int v : cell->face(f)->vertex_indices())
                   on_contact_boundary[cell->face(f)->vertex_index(v)] = true;
         // Flag every owned cell with at least one such vertex; one is
@@ -729,6 +730,9 @@ namespace ViscoContact
       check_ids(entry->boundary_ids,
                 "Boundary ids",
                 "Boundary/Prescribed displacement " + std::to_string(number));
+    for (const auto &zone : parameters.used_contact_zones())
+      if (zone.subsection != "Contact")
+        check_ids(zone.boundary_ids, "Boundary ids", zone.subsection);
     for (const auto &[number, load] : parameters.used_surface_loads())
       check_ids(load->boundary_ids,
                 "Boundary ids",

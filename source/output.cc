@@ -31,17 +31,22 @@ namespace ViscoContact
   {
     // The first line of time_series.csv: what the columns are. After the
     // counts and the force, the size of the contact zone (width in 2D,
-    // area in 3D) and the peak pressure, then per Dirichlet part the
-    // components of the force it exerts on the body.
+    // area in 3D) and the peak pressure, with several contact zones the
+    // contact force of each, then per Dirichlet part the components of the
+    // force it exerts on the body.
     template <int dim>
     std::string
-    time_series_header(const std::vector<std::string> &dirichlet_parts)
+    time_series_header(const std::vector<unsigned int> &contact_zone_numbers,
+                       const std::vector<std::string>  &dirichlet_parts)
     {
       std::string header
         = "step,time,active_set_iterations,unilateral_nodes,compliance_nodes,"
           "no_contact_nodes,total_contact_force,max_von_mises,wall_time,"
           "krylov_iterations,time_step,error_estimate,contact_area,"
           "peak_pressure";
+      if (contact_zone_numbers.size() > 1)
+        for (const unsigned int number : contact_zone_numbers)
+          header += ",contact_force_zone_" + std::to_string(number);
       for (const std::string &part : dirichlet_parts)
         for (unsigned int c = 0; c < dim; ++c)
           header += ",reaction_" + part + "_" + "xyz"[c];
@@ -207,13 +212,29 @@ namespace ViscoContact
                                  : OutputFolder::Replace::never);
         if (!parameters.resume)
           output_folder->stage("time_series.csv",
-                               time_series_header<dim>(dirichlet_part_names));
+                               time_series_header<dim>(contact_zone_numbers(),
+                                                       dirichlet_part_names));
       }
     output_folder->commit();
     if (parameters.resume)
       truncate_time_series(*output_folder,
-                           time_series_header<dim>(dirichlet_part_names),
+                           time_series_header<dim>(contact_zone_numbers(),
+                                                   dirichlet_part_names),
                            resume_step);
+  }
+
+
+
+  // The numbers of the contact zones (1 for subsection Contact, N for
+  // Contact zone N), in the order of contact_zones.
+  template <int dim>
+  std::vector<unsigned int>
+  ViscoplasticContact<dim>::contact_zone_numbers() const
+  {
+    std::vector<unsigned int> numbers;
+    for (const auto &zone : contact_zones)
+      numbers.push_back(zone.number);
+    return numbers;
   }
 
 
@@ -241,6 +262,9 @@ namespace ViscoContact
       = contact_enabled ? contact_set.contact_area(mpi_communicator) : 0.;
     const double peak
       = contact_enabled ? contact_set.peak_pressure(mpi_communicator) : 0.;
+    const std::vector<double> zone_forces
+      = contact_enabled ? contact_set.zone_forces(mpi_communicator)
+                        : std::vector<double>(contact_zones.size(), 0.);
     const std::vector<Tensor<1, dim>> reactions = reaction_forces(time);
     std::string                       problem;
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
@@ -251,6 +275,9 @@ namespace ViscoContact
             << ',' << states[2] << ',' << force << ',' << max_von_mises << ','
             << wall_time << ',' << result.inner_iterations() << ',' << time_step
             << ',' << error_estimate << ',' << size << ',' << peak;
+        if (zone_forces.size() > 1)
+          for (const double zone_force : zone_forces)
+            row << ',' << zone_force;
         // A component that balances to round-off of the forces (the
         // horizontal reaction of a vertical load, say) is written as 0,
         // not as the digits of the rounding.

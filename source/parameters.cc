@@ -381,8 +381,11 @@ namespace ViscoContact
         prm.add_parameter("Contact boundary ids",
                           contact_ids,
                           "Boundary ids of Gamma_3 (contact with the "
-                          "foundation). Every other boundary part is Gamma_2. "
-                          "Integers in [0, 255], none of them clamped.",
+                          "foundation), the contact zone of subsection "
+                          "Contact; further zones with laws of their own: "
+                          "subsections \"Contact zone N\". Every other "
+                          "boundary part is Gamma_2. Integers in [0, 255], "
+                          "none of them clamped.",
                           Patterns::List(Patterns::Integer(0, 255)));
         prm.add_parameter("Loaded boundary ids",
                           loaded_ids,
@@ -680,10 +683,21 @@ namespace ViscoContact
 
 
     void
-    Contact::add_parameters(ParameterHandler &prm)
+    Contact::add_parameters(ParameterHandler  &prm,
+                            const std::string &subsection)
     {
-      prm.enter_subsection("Contact");
+      const bool first_zone = (subsection == "Contact");
+      prm.enter_subsection(subsection);
       {
+        if (!first_zone)
+          prm.add_parameter(
+            "Boundary ids",
+            boundary_ids,
+            "The boundary ids of this contact zone (empty: the subsection is "
+            "not used); the law, layer and obstacle entries below mean what "
+            "they mean in subsection Contact. A vertex shared with a zone of "
+            "a lower number belongs to that zone.",
+            Patterns::List(Patterns::Integer(0, 255)));
         prm.add_parameter("Unilateral constraint",
                           unilateral_constraint,
                           "Rigid foundation under the layer: u_nu <= g.",
@@ -735,16 +749,18 @@ namespace ViscoContact
           "Piecewise-linear law: K jumps p(b_k+) - p(b_k-) >= 0 (empty: all "
           "zero). A jump makes the Clarke subdifferential an interval.",
           Patterns::List(Patterns::Double()));
-        prm.add_parameter(
-          "Check uniqueness",
-          check_uniqueness,
-          "At set-up, compute the smallest generalised eigenvalue of "
-          "(stiffness, lumped normal boundary mass) by a Lanczos iteration and "
-          "compare it with the steepest softening of the law (doc/model.md, "
-          "section 4): a dense product per iteration on the condensed back "
-          "end, one elastic solve per iteration (about 10 to 20) on the full "
-          "space back end.",
-          Patterns::Bool());
+        if (first_zone)
+          prm.add_parameter(
+            "Check uniqueness",
+            check_uniqueness,
+            "At set-up, compute the smallest generalised eigenvalue of "
+            "(stiffness, lumped normal boundary mass) by a Lanczos iteration "
+            "and "
+            "compare it with the steepest softening of the law (doc/model.md, "
+            "section 4): a dense product per iteration on the condensed back "
+            "end, one elastic solve per iteration (about 10 to 20) on the full "
+            "space back end.",
+            Patterns::Bool());
         prm.add_parameter(
           "Initial gap",
           initial_gap,
@@ -766,9 +782,11 @@ namespace ViscoContact
     }
 
     void
-    Contact::check_parameters(ParameterHandler &prm, const unsigned int dim)
+    Contact::check_parameters(ParameterHandler  &prm,
+                              const unsigned int dim,
+                              const std::string &subsection) const
     {
-      prm.enter_subsection("Contact");
+      prm.enter_subsection(subsection);
       {
         if (gap_direction != "normal")
           {
@@ -778,7 +796,7 @@ namespace ViscoContact
               length += x * x;
             require(d.size() == dim && std::sqrt(length) > 0
                       && std::isfinite(length),
-                    "Contact",
+                    subsection,
                     "Gap direction",
                     gap_direction,
                     "normal, or " + std::to_string(dim)
@@ -786,50 +804,50 @@ namespace ViscoContact
           }
         if (normal_compliance)
           require(gap > 0,
-                  "Contact",
+                  subsection,
                   "Layer thickness",
                   to_string(gap),
                   "g > 0");
         else
           require(gap >= 0,
-                  "Contact",
+                  subsection,
                   "Layer thickness",
                   to_string(gap),
                   "g >= 0");
 
         if (normal_compliance && law_type == ContactLawType::nonmonotone)
           {
-            require(c1 >= 0, "Contact", "c1", to_string(c1), "c1 >= 0");
-            require(u1 >= 0, "Contact", "u1", to_string(u1), "u1 >= 0");
+            require(c1 >= 0, subsection, "c1", to_string(c1), "c1 >= 0");
+            require(u1 >= 0, subsection, "u1", to_string(u1), "u1 >= 0");
           }
         if (normal_compliance && law_type == ContactLawType::piecewise_linear)
           {
             require(breakpoints.size() >= 1,
-                    "Contact",
+                    subsection,
                     "Breakpoints",
                     prm.get("Breakpoints"),
                     "at least one breakpoint for Law = piecewise linear");
             for (unsigned int k = 1; k < breakpoints.size(); ++k)
               require(breakpoints[k] > breakpoints[k - 1],
-                      "Contact",
+                      subsection,
                       "Breakpoints",
                       prm.get("Breakpoints"),
                       "strictly increasing values");
             require(slopes.size() == breakpoints.size() + 1,
-                    "Contact",
+                    subsection,
                     "Slopes",
                     prm.get("Slopes"),
                     "one more slope than breakpoints ("
                       + std::to_string(breakpoints.size() + 1) + " values)");
             require(jumps.empty() || jumps.size() == breakpoints.size(),
-                    "Contact",
+                    subsection,
                     "Jumps",
                     prm.get("Jumps"),
                     "empty or one jump per breakpoint ("
                       + std::to_string(breakpoints.size()) + " values)");
             for (const double jump : jumps)
               require(jump >= 0,
-                      "Contact",
+                      subsection,
                       "Jumps",
                       prm.get("Jumps"),
                       "non-negative jumps (an upward jump is a vertical piece "
@@ -1414,6 +1432,10 @@ namespace ViscoContact
                                               + std::to_string(n + 2));
       Loads::add_parameters(prm);
       Contact::add_parameters(prm);
+      for (unsigned int n = 0; n < further_contact_zones.size(); ++n)
+        further_contact_zones[n].add_parameters(prm,
+                                                "Contact zone "
+                                                  + std::to_string(n + 2));
       Time::add_parameters(prm);
       ActiveSetSolver::add_parameters(prm);
       LinearSolver::add_parameters(prm);
@@ -1431,8 +1453,12 @@ namespace ViscoContact
       for (const auto &[name, material] : used_materials())
         material->check_parameters(prm, dimension, name);
       check_material_entries();
-      check_surface_load_entries();
+      // Subsection Contact is checked even when no boundary part uses it.
       Contact::check_parameters(prm, dimension);
+      for (const ContactZone &zone : used_contact_zones())
+        if (zone.contact != this)
+          zone.contact->check_parameters(prm, dimension, zone.subsection);
+      check_boundary_id_claims();
       Time::check_parameters(prm);
       ActiveSetSolver::check_parameters(prm);
       MeshAdaptation::check_parameters(prm);
@@ -1454,6 +1480,32 @@ namespace ViscoContact
           used.emplace_back("Material " + std::to_string(n + 2),
                             &further_materials[n]);
       return used;
+    }
+
+    std::vector<ContactZone>
+    AllParameters::used_contact_zones() const
+    {
+      std::vector<ContactZone> used;
+      if (!contact_ids.empty())
+        used.push_back({1, "Contact", contact_ids, this});
+      for (unsigned int n = 0; n < further_contact_zones.size(); ++n)
+        if (!further_contact_zones[n].boundary_ids.empty())
+          used.push_back({n + 2,
+                          "Contact zone " + std::to_string(n + 2),
+                          further_contact_zones[n].boundary_ids,
+                          &further_contact_zones[n]});
+      return used;
+    }
+
+    std::vector<types::boundary_id>
+    AllParameters::all_contact_ids() const
+    {
+      std::vector<types::boundary_id> ids;
+      for (const ContactZone &zone : used_contact_zones())
+        ids.insert(ids.end(),
+                   zone.boundary_ids.begin(),
+                   zone.boundary_ids.end());
+      return ids;
     }
 
     bool
@@ -1516,11 +1568,13 @@ namespace ViscoContact
           }
     }
 
-    // Each surface load has the right number of expressions, and its
-    // boundary ids are named by no other entry of subsections Boundary and
-    // Loads.
+    // The boundary ids of the further contact zones and of the surface loads
+    // are named by no other entry of subsections Boundary, Contact zone N and
+    // Loads (those of subsection Boundary are checked among themselves by
+    // BoundaryParts::check_parameters()); each surface load has the right
+    // number of expressions.
     void
-    AllParameters::check_surface_load_entries() const
+    AllParameters::check_boundary_id_claims() const
     {
       std::map<types::boundary_id, std::string> owner;
       const auto claim = [&](const std::vector<types::boundary_id> &ids,
@@ -1537,26 +1591,35 @@ namespace ViscoContact
               "<Boundary ids> of subsection <Boundary/Prescribed "
               "displacement "
                 + std::to_string(number) + ">");
+      // The ids of an entry "Boundary ids" of the given subsection, each
+      // refused if an earlier entry names it.
+      const auto claim_exclusively
+        = [&](const std::vector<types::boundary_id> &ids,
+              const std::string                     &subsection) {
+            std::string value;
+            for (const auto id : ids)
+              value += (value.empty() ? "" : ", ") + std::to_string(id);
+            for (const auto id : ids)
+              {
+                const auto [it, inserted]
+                  = owner.emplace(id,
+                                  "<Boundary ids> of subsection <" + subsection
+                                    + ">");
+                require(inserted,
+                        subsection,
+                        "Boundary ids",
+                        value,
+                        "ids that no other entry names (" + std::to_string(id)
+                          + " is also in " + it->second + ")");
+              }
+          };
+      for (const ContactZone &zone : used_contact_zones())
+        if (zone.subsection != "Contact")
+          claim_exclusively(zone.boundary_ids, zone.subsection);
       for (const auto &[number, load] : used_surface_loads())
         {
-          const std::string subsection
-            = "Loads/Surface load " + std::to_string(number);
-          std::string value;
-          for (const auto id : load->boundary_ids)
-            value += (value.empty() ? "" : ", ") + std::to_string(id);
-          for (const auto id : load->boundary_ids)
-            {
-              const auto [it, inserted]
-                = owner.emplace(id,
-                                "<Boundary ids> of subsection <" + subsection
-                                  + ">");
-              require(inserted,
-                      subsection,
-                      "Boundary ids",
-                      value,
-                      "ids that no other entry names (" + std::to_string(id)
-                        + " is also in " + it->second + ")");
-            }
+          claim_exclusively(load->boundary_ids,
+                            "Loads/Surface load " + std::to_string(number));
           load->check_parameters(number, dimension);
         }
     }
@@ -1743,14 +1806,18 @@ namespace ViscoContact
       // The points of a piecewise-linear law mean nothing to the benchmark
       // law (their defaults are empty, so a value is a mistake, not a
       // leftover default).
-      if (law_type == ContactLawType::nonmonotone)
-        for (const std::string entry : {"Breakpoints", "Slopes", "Jumps"})
-          require(prm.get({"Contact"}, entry).empty(),
-                  "Contact",
-                  entry,
-                  prm.get({"Contact"}, entry),
-                  "empty when Law = nonmonotone (it is used by Law = "
-                  "piecewise linear only)");
+      std::vector<ContactZone> zones = used_contact_zones();
+      if (contact_ids.empty())
+        zones.insert(zones.begin(), {1, "Contact", {}, this});
+      for (const ContactZone &zone : zones)
+        if (zone.contact->law_type == ContactLawType::nonmonotone)
+          for (const std::string entry : {"Breakpoints", "Slopes", "Jumps"})
+            require(prm.get({zone.subsection}, entry).empty(),
+                    zone.subsection,
+                    entry,
+                    prm.get({zone.subsection}, entry),
+                    "empty when Law = nonmonotone (it is used by Law = "
+                    "piecewise linear only)");
     }
 
     void

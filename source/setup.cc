@@ -329,20 +329,17 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::setup_contact()
   {
-    const ContactLaw law = ContactLaw::from_parameters(parameters);
-    contact_enabled      = !parameters.contact_ids.empty() && !law.is_void();
+    contact_enabled = !contact_zones.empty();
     if (!contact_enabled)
       return;
     TimerOutput::Scope t(computing_timer, "Setup: contact nodes");
-    contact_set.setup(law,
+    contact_set.setup(contact_zones,
                       mapping,
                       dof_handler,
                       scalar_dof_handler,
                       face_quadrature,
-                      parameters.contact_ids,
                       constraints,
-                      solution,
-                      gap_direction ? &*gap_direction : nullptr);
+                      solution);
     set_gaps(schedule.current_time());
     contact_set.set_operator(stiffness_matrix);
   }
@@ -430,10 +427,13 @@ namespace ViscoContact
           << " stress update\n";
     // Contact off because no boundary part is named is most likely a
     // mistake in the parameter file: said, not silently accepted.
-    if (parameters.contact_ids.empty())
+    if (parameters.used_contact_zones().empty())
       pcout << "WARNING: contact is off: <Contact boundary ids> in subsection "
-               "<Boundary> names no boundary part, so the body has no contact "
-               "boundary and the contact law is not used.\n";
+               "<Boundary> names no boundary part (nor does any subsection "
+               "Contact zone N), so the body has no contact boundary and the "
+               "contact law is not used.\n";
+    else if (contact_zones.size() > 1)
+      pcout << "Contact zones: " << contact_zones.size() << '\n';
     pcout << "Back end: " << contact_solver->description() << " ("
           << method_reason << ")\n"
           << "Parallel: " << Utilities::MPI::n_mpi_processes(mpi_communicator)
@@ -501,11 +501,11 @@ namespace ViscoContact
       {
         TimerOutput::Scope t(computing_timer, "Setup: uniqueness margin");
         const double       eigenvalue = smallest_uniqueness_eigenvalue();
-        const double       softening  = contact_set.law().steepest_softening();
+        const double       softening  = contact_set.laws().steepest_softening();
         pcout << "Uniqueness: smallest eigenvalue of (stiffness, lumped "
                  "normal boundary mass) = "
-              << eigenvalue
-              << ", steepest softening of the contact law = " << softening
+              << eigenvalue << ", steepest softening of the contact law"
+              << (contact_zones.size() > 1 ? "s" : "") << " = " << softening
               << '\n';
         // Several solutions possible: a predicted start must not move the
         // run to another branch (predict_step_start()).

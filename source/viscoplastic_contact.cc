@@ -124,7 +124,6 @@ namespace ViscoContact
     , materials(make_materials<dim>(parameters))
     , material_index(material_numbers(parameters))
     , body_force(dim)
-    , gap_function(1)
   {
     // main() instantiates the class for the Dimension the parameter file names;
     // a mismatch is a programming error.
@@ -177,21 +176,43 @@ namespace ViscoContact
                        "Loads/Surface load " + std::to_string(number),
                        "Value",
                        load->value);
-    // The obstacle's gap and direction.
-    initialize_load(gap_function,
-                    "Contact",
-                    "Initial gap",
-                    parameters.initial_gap,
-                    parameters.lengths);
-    has_gap             = !is_zero_expression(parameters.initial_gap);
-    gap_depends_on_time = mentions_time(parameters.initial_gap);
-    if (parameters.gap_direction != "normal")
+    // The contact zones, each with its law, its obstacle's gap and its
+    // direction. A zone whose law does nothing (no layer, no rigid limit)
+    // has no contact nodes.
+    for (const Parameters::ContactZone &zone : parameters.used_contact_zones())
       {
-        const std::vector<double> d = parameters.direction_vector();
-        Tensor<1, dim>            direction;
-        for (unsigned int c = 0; c < dim; ++c)
-          direction[c] = d[c];
-        gap_direction = direction / direction.norm();
+        const Parameters::Contact  &entries = *zone.contact;
+        ContactZoneDescription<dim> description{zone.number,
+                                                zone.subsection,
+                                                ContactLaw::from_parameters(
+                                                  entries),
+                                                zone.boundary_ids,
+                                                {}};
+        if (description.law.is_void())
+          continue;
+        if (entries.gap_direction != "normal")
+          {
+            const std::vector<double> d = entries.direction_vector();
+            Tensor<1, dim>            direction;
+            for (unsigned int c = 0; c < dim; ++c)
+              direction[c] = d[c];
+            description.direction = direction / direction.norm();
+          }
+        std::unique_ptr<FunctionParser<dim>> gap;
+        if (!is_zero_expression(entries.initial_gap))
+          {
+            gap = std::make_unique<FunctionParser<dim>>(1);
+            initialize_load(*gap,
+                            zone.subsection,
+                            "Initial gap",
+                            entries.initial_gap,
+                            parameters.lengths);
+            has_gap = true;
+            gap_depends_on_time
+              = gap_depends_on_time || mentions_time(entries.initial_gap);
+          }
+        contact_zones.push_back(std::move(description));
+        zone_gap_functions.push_back(std::move(gap));
       }
     // The Dirichlet parts: clamped first (u = 0), then the prescribed
     // displacements with their functions, in the order of

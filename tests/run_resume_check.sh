@@ -21,6 +21,12 @@ here=$(dirname "$0")
 executable=$1 prm=$2
 shift 2
 stop=$(sed -n 's/^# stop after: //p' "$prm")
+# The copies of the parameter file live elsewhere: a relative mesh file
+# becomes absolute.
+prm_dir=$(cd "$(dirname "$prm")" && pwd)
+copy_prm() { # sed expression, output
+  sed -e "$1" -e "s|^\( *set Mesh file *= *\)\([^/ ].*\)$|\1$prm_dir/\2|" "$prm" > "$2"
+}
 
 run() { # directory, parameter file, ranks
   (cd "$1" && "$here/run_mpi.sh" "$3" "$executable" "$2" > output.txt 2> error.txt)
@@ -38,8 +44,8 @@ written_on() { # W
   [ -d "full_np$1" ] && return
   mkdir -p "full_np$1" "stopped_np$1"
   run "full_np$1" "$prm" "$1"
-  sed -e "s/^\( *set Stop after step *=\).*/\1 $stop/" "$prm" > "stopped_np$1/stop.prm"
-  sed -e "s/^\( *set Resume *=\).*/\1 true/" "$prm" > "stopped_np$1/resume.prm"
+  copy_prm "s/^\( *set Stop after step *=\).*/\1 $stop/" "stopped_np$1/stop.prm"
+  copy_prm "s/^\( *set Resume *=\).*/\1 true/" "stopped_np$1/resume.prm"
   run "stopped_np$1" stop.prm "$1"
   if ! grep -q "^Stopped after step $stop " "stopped_np$1/output.txt"; then
     echo "The interrupted run on $1 rank(s) did not stop after step $stop."

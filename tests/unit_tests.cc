@@ -582,16 +582,22 @@ namespace
   // stiffness per unit weight.
   struct DenseActiveSet
   {
-    DenseActiveSet(const ContactLaw          &law,
-                   const FullMatrix<double>  &S,
-                   const std::vector<double> &w)
+    // zones: the zone of each node (empty: all in zone 0).
+    DenseActiveSet(const ContactLaws               &laws,
+                   const FullMatrix<double>        &S,
+                   const std::vector<double>       &w,
+                   const std::vector<unsigned int> &zones = {})
     {
-      nodes.reinit(law, w);
+      nodes.reinit(laws,
+                   zones.empty() ? std::vector<unsigned int>(w.size(), 0)
+                                 : zones,
+                   w);
       std::vector<double> c(w.size());
       for (unsigned int i = 0; i < w.size(); ++i)
-        c[i] = std::max(1. / (w[i] * S(i, i)), 2 * law.steepest_softening());
+        c[i] = std::max(1. / (w[i] * S(i, i)),
+                        2 * laws.zone_law(nodes.zone(i)).steepest_softening());
       nodes.set_parameters(c);
-      system.reinit(law, S, w);
+      system.reinit(laws, S, w);
     }
 
     ActiveSetResult
@@ -657,6 +663,71 @@ TEST(ActiveSetSolver, DecoupledNodesMatchClosedForm)
   const unsigned int factorizations = solver.system.n_factorizations();
   EXPECT_EQ(solver.solve(d_vector, 50, 1e-12).iterations(), 1u);
   EXPECT_EQ(solver.system.n_factorizations(), factorizations);
+}
+
+
+
+// Contact zones: the decoupled nodes alternately on the benchmark law and
+// on Signorini's condition with gap 0.004 (r <= g: z = 0 below it,
+// z = (d - g) / S_ii at it) each reach the closed form of their own law,
+// and the pieces are those of their zone's part of the table.
+TEST(ActiveSetSolver, ZonesFollowTheirOwnLaws)
+{
+  const DecoupledNodes            nodes;
+  const std::vector<double>      &d = nodes.d, &w = nodes.w;
+  const FullMatrix<double>       &S = nodes.S;
+  const ContactLaw                signorini({}, {0.}, {}, true, 0.004);
+  const ContactLaws               laws({benchmark_law, signorini});
+  const std::vector<unsigned int> zones = {0, 1, 0, 1, 0};
+
+  DenseActiveSet solver(laws, S, w, zones);
+  Vector<double> d_vector(d.begin(), d.end());
+  ASSERT_TRUE(solver.solve(d_vector, 50, 1e-12).converged);
+  for (unsigned int i = 0; i < nodes.m; ++i)
+    {
+      EXPECT_EQ(laws.zone_of_piece(solver.nodes.piece(i)), zones[i]);
+      const double expected = zones[i] == 0
+                                ? decoupled_force(d[i], S(i, i), w[i])
+                                : std::max(0., (d[i] - 0.004) / S(i, i));
+      EXPECT_NEAR(solver.nodes.z[i], expected, 1e-13) << "node " << i;
+    }
+  // Node 1 (d = 0.002) is short of the gap, node 3 (d = 0.009) at it.
+  EXPECT_FALSE(solver.nodes.current_piece(1).rigid);
+  EXPECT_TRUE(solver.nodes.current_piece(3).rigid);
+  EXPECT_EQ(solver.nodes.status(3), 2u);
+  const std::vector<double> forces = solver.nodes.zone_forces(MPI_COMM_SELF);
+  EXPECT_NEAR(forces[0],
+              solver.nodes.z[0] + solver.nodes.z[2] + solver.nodes.z[4],
+              1e-14);
+  EXPECT_NEAR(forces[1], solver.nodes.z[1] + solver.nodes.z[3], 1e-14);
+}
+
+
+
+// The table of pieces of several zones: zone by zone, each piece found
+// through its zone's law.
+TEST(ContactLaw, ZonesShareOneTableOfPieces)
+{
+  const ContactLaw   signorini({}, {0.}, {}, true, 0.004);
+  const ContactLaws  laws({benchmark_law, signorini});
+  const unsigned int first = benchmark_law.n_pieces();
+  ASSERT_EQ(laws.n_zones(), 2u);
+  ASSERT_EQ(laws.n_pieces(), first + signorini.n_pieces());
+  for (unsigned int p = 0; p < laws.n_pieces(); ++p)
+    EXPECT_EQ(laws.zone_of_piece(p), p < first ? 0u : 1u);
+  EXPECT_TRUE(laws.piece(first + 1).rigid);
+  EXPECT_EQ(laws.piece(first + 1).r_lower, 0.004);
+  for (const double q : {-1., 0., 0.5, 3., 100.})
+    {
+      EXPECT_EQ(laws.find_piece(0, q, 1000.),
+                benchmark_law.find_piece(q, 1000.));
+      EXPECT_EQ(laws.find_piece(1, q, 1000.),
+                first + signorini.find_piece(q, 1000.));
+      EXPECT_EQ(laws.next_piece(1, first, q, 1000.),
+                first + signorini.next_piece(0, q, 1000.));
+    }
+  EXPECT_EQ(laws.steepest_softening(), 100.);
+  EXPECT_EQ(laws.largest_gap(), 0.01);
 }
 
 

@@ -41,7 +41,7 @@ namespace ViscoContact
     // std::move, so that m^2 doubles are not copied) and the lumped weights
     // of all m contact nodes.
     void
-    reinit(const ContactLaw          &law,
+    reinit(const ContactLaws         &laws,
            FullMatrix<double>         compliance,
            const std::vector<double> &weights);
 
@@ -102,9 +102,9 @@ namespace ViscoContact
     void
     apply_inverse(Vector<double> &x) const;
 
-    std::optional<ContactLaw> contact_law;
-    FullMatrix<double>        S;
-    std::vector<double>       w;
+    ContactLaws         contact_laws;
+    FullMatrix<double>  S;
+    std::vector<double> w;
 
     // The base: the rows it was factorised for, its nodes of unknown force
     // (row and column a of factorized_matrix belong to unknown_nodes[a]),

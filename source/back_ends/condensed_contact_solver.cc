@@ -259,7 +259,7 @@ namespace ViscoContact
     std::vector<double> weights(contact.size());
     for (unsigned int i = 0; i < contact.size(); ++i)
       weights[i] = contact.weight(i);
-    condensed_system.reinit(contact.law(),
+    condensed_system.reinit(contact.laws(),
                             std::move(S),
                             gather_on_all_ranks(weights, communicator));
   }

@@ -37,15 +37,15 @@ namespace ViscoContact
   // clearing the rows it was made for makes the next solve() factorise
   // again, even if the pieces have not changed.
   void
-  CondensedContactSystem::reinit(const ContactLaw          &law,
+  CondensedContactSystem::reinit(const ContactLaws         &laws,
                                  FullMatrix<double>         compliance,
                                  const std::vector<double> &weights)
   {
     AssertDimension(compliance.m(), weights.size());
     AssertDimension(compliance.n(), weights.size());
-    contact_law.emplace(law);
-    S = std::move(compliance);
-    w = weights;
+    contact_laws = laws;
+    S            = std::move(compliance);
+    w            = weights;
     factorized_rows.clear();
     updated_pieces.clear();
   }
@@ -66,7 +66,7 @@ namespace ViscoContact
   CondensedContactSystem::row(const unsigned int node,
                               const unsigned int piece_index) const
   {
-    const ContactLawPiece &piece = contact_law->piece(piece_index);
+    const ContactLawPiece &piece = contact_laws.piece(piece_index);
     if (piece.vertical)
       return {true, 0.};
     if (!is_flat(node, piece))
@@ -351,7 +351,7 @@ namespace ViscoContact
     z.reinit(m);
     for (unsigned int i = 0; i < m; ++i)
       {
-        const ContactLawPiece &piece = contact_law->piece(pieces[i]);
+        const ContactLawPiece &piece = contact_laws.piece(pieces[i]);
         if (piece.vertical)
           z[i] = d[i] - piece.r_lower;
         else if (!is_flat(i, piece))
@@ -379,14 +379,14 @@ namespace ViscoContact
     // to move the node by a unit. For |s| >> k_i this is the residual in r;
     // for s -> 0 it is the pressure's residual in displacement units, the
     // accuracy the body's stiffness allows.
-    double scale = std::max(d.linfty_norm(), contact_law->gap());
+    double scale = std::max(d.linfty_norm(), contact_laws.largest_gap());
     if (!(scale > 0))
       scale = 1;
     Vector<double> residual(m);
     const auto     defect_of_forces = [&]() {
       for (unsigned int i = 0; i < m; ++i)
         {
-          const ContactLawPiece &piece = contact_law->piece(pieces[i]);
+          const ContactLawPiece &piece = contact_laws.piece(pieces[i]);
           if (is_flat(i, piece))
             z[i] = w[i] * piece.intercept;
         }
@@ -396,7 +396,7 @@ namespace ViscoContact
       double largest = 0;
       for (unsigned int i = 0; i < m; ++i)
         {
-          const ContactLawPiece &piece = contact_law->piece(pieces[i]);
+          const ContactLawPiece &piece = contact_laws.piece(pieces[i]);
           const bool             flat  = is_flat(i, piece);
           residual[i]            = piece.vertical ? r[i] - piece.r_lower
                                        : !flat

@@ -950,7 +950,7 @@ namespace ViscoContact
   {
     for (unsigned int i = 0; i < contact.size(); ++i)
       {
-        const ContactLawPiece &piece = contact.law().piece(contact.piece(i));
+        const ContactLawPiece &piece = contact.current_piece(i);
         fixed[i]                     = piece.vertical;
         // r = nu.u - s with the obstacle's gap s: a vertical piece fixes
         // nu.u = beta + s, a sloped one has the intercept o - slope s in nu.u.
@@ -1086,7 +1086,7 @@ namespace ViscoContact
   {
     for (unsigned int i = 0; i < contact.size(); ++i)
       {
-        const ContactLawPiece &piece = contact.law().piece(contact.piece(i));
+        const ContactLawPiece &piece = contact.current_piece(i);
         contact.r[i] = contact.normal_component(u, i) - contact.gap(i);
         contact.z[i] = (piece.vertical
                           ? contact.normal_component(residual, i)

@@ -788,8 +788,9 @@ namespace ViscoContact
   //
   // The one Krylov solve of this back end, for the step operator as well as
   // for A alone. The tolerance is relative to reference_norm; for the
-  // active-set solves that is the norm of the step's right-hand side b, the
-  // same measure for every iteration of a step, whatever the pieces. A
+  // active-set solves that is the size of the step's loads: the largest of
+  // the norms of b, of the loads of the nodes' pieces and of the
+  // obstacle's prescribed normal displacements (solve_for_pieces()). A
   // symmetric operator gets CG. An unsymmetric one gets GMRES with right
   // preconditioning, so that the residual it monitors is the true residual,
   // as with CG, and the same Tolerance means the same thing for both; it
@@ -816,10 +817,18 @@ namespace ViscoContact
       }
     };
 
+    // No load at all (a step whose only load is an obstacle not yet
+    // touched): the solution is zero, which no relative tolerance can
+    // certify.
+    LinearSolveReport report;
+    if (reference_norm == 0 && rhs.linfty_norm() == 0)
+      {
+        y = 0;
+        return report;
+      }
     // At most 10000 iterations. The lower bound 1e-300 keeps the tolerance
     // and the relative residual defined when the reference norm is zero.
     SolverControl control(10000, accuracy * std::max(reference_norm, 1e-300));
-    LinearSolveReport report;
     try
       {
         if (symmetric)
@@ -893,6 +902,15 @@ namespace ViscoContact
     // step_rhs = b - sum_i w_i o_i nu_i - A u_0: the prescribed part of u
     // moves to the right-hand side.
     A->vmult(A_u0, u0);
+    // The scale of the tolerance: the largest of the loads b, of the pieces'
+    // loads and of A u_0. A body loaded through the obstacle alone (an
+    // indenter moving in, with no other load) has b = 0, and its load is
+    // the normal displacement the obstacle prescribes at the fixed nodes.
+    VectorType piece_loads(step_rhs);
+    piece_loads -= b;
+    const double piece_load_norm = piece_loads.l2_norm();
+    const double reference_norm
+      = std::max({b_norm, piece_load_norm, A_u0.l2_norm()});
     step_rhs -= A_u0;
 
     const Apply preconditioner
@@ -910,7 +928,7 @@ namespace ViscoContact
       projected(preconditioner, preconditioner_scratch, contact, fixed),
       u,
       step_rhs,
-      b_norm,
+      reference_norm,
       accuracy);
     // u = u_0 + y: now u.nu_i = beta at the fixed nodes.
     u += u0;

@@ -1,0 +1,225 @@
+#!/usr/bin/python3
+"""Hertz contact of a sphere (parameters/hertz_sphere.prm): a rigid sphere of
+radius R = 1 pressed into an elastic block by a moving obstacle, the
+indentation d(t) = 0.01 t, on the quarter model [0, 1]^3 of
+meshes/make_hertz_sphere_meshes.py (hexahedra and tetrahedra, N cells per
+edge, graded toward the contact point), against the closed form of a rigid
+sphere on an elastic half-space, E* = E / (1 - nu^2):
+
+    F(d) = 4/3 E* sqrt(R) d^(3/2),
+    a = (3 F R / (4 E*))^(1/3),   p0 = 3 F / (2 pi a^2),
+
+F = 4 times the quarter model's contact force. a and p0 are compared with
+the values of Hertz for the computed force F (the shape of the contact is
+local; the block's finite size changes mostly the approach d), F(d) with
+Hertz's curve (there the finite block is the modelling error). The
+numerical contact radius is the zero of the pressure along the x axis
+extrapolated from the last two nodes in contact with the Hertz shape (p^2
+linear in x^2); the numerical peak pressure is that of the node at the
+contact point. Prints the markdown tables of doc/benchmarks.md; --figure
+FILE draws the force-indentation curves and the errors against the mesh
+size and the run time (the program's wall clock). --check (the ctest):
+N = 12 and 16 on both cell types, bounds on the errors, the error in p0
+falling, and 2-rank runs on N = 8 (full space back end) equal to the
+1-rank ones (condensed) to 1e-6.
+
+    benchmarks/run_hertz_sphere.py [--executable build/viscoplastic_contact]
+        [--meshes 8,16,24,32] [--cells hexahedron,tetrahedron]
+        [--figure doc/figures/hertz_sphere.png] [--check]
+"""
+
+import argparse
+import csv
+import glob
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOP = os.path.join(HERE, "..")
+E, NU, R, D = 1000.0, 0.3, 1.0, 0.01
+E_STAR = E / (1 - NU ** 2)
+# The bounds of --check on its coarse meshes (N = 12, 16), with a margin.
+BOUNDS = {"a": 0.12, "p0": 0.06, "F": 0.2}
+
+
+def set_entry(text, entry, value):
+    return re.sub(r"(?m)^(\s*set %s\s*=)[^#\n]*" % re.escape(entry),
+                  r"\g<1> %s " % value, text)
+
+
+def hertz_force(d):
+    return 4.0 / 3.0 * E_STAR * math.sqrt(R) * d ** 1.5
+
+
+def run(executable, n, cells, ranks, folder):
+    sys.path.insert(0, os.path.join(TOP, "meshes"))
+    from make_hertz_sphere_meshes import hertz_sphere_block
+    mesh = os.path.join(folder, "hertz_sphere.msh")
+    with open(mesh, "w") as f:
+        f.write(hertz_sphere_block(n, cells == "tetrahedron"))
+    with open(os.path.join(TOP, "parameters", "hertz_sphere.prm")) as f:
+        text = f.read()
+    text = set_entry(text, "Mesh file", mesh)
+    text = set_entry(text, "Cell type",
+                     "simplex" if cells == "tetrahedron" else "hypercube")
+    text = set_entry(text, "Output directory", os.path.join(folder, "output"))
+    text = set_entry(text, "Profile times", 1)
+    text = set_entry(text, "Write vtu", "false")
+    prm = os.path.join(folder, "hertz.prm")
+    with open(prm, "w") as f:
+        f.write(text)
+    command = [os.path.join(TOP, "tests", "run_mpi.sh"), str(ranks),
+               executable, prm]
+    result = subprocess.run(command, capture_output=True, text=True)
+    if result.returncode != 0:
+        sys.exit("The run on %s, N = %d, %d rank(s) failed:\n%s"
+                 % (cells, n, ranks, result.stderr))
+    loop = re.search(r"Total wallclock time elapsed since start *\| *([0-9.eE+-]+)s",
+                     result.stdout)
+    return os.path.join(folder, "output"), float(loop.group(1)) if loop else 0.
+
+
+def analyse(output):
+    with open(os.path.join(output, "time_series.csv")) as f:
+        series = list(csv.DictReader(f))
+    curve = [(D * float(r["time"]), 4 * float(r["total_contact_force"]))
+             for r in series]
+    force = curve[-1][1]
+    profile = sorted(glob.glob(os.path.join(output, "contact_profile_*.csv")))[-1]
+    with open(profile) as f:
+        rows = list(csv.DictReader(f))
+    axis = sorted((float(r["x"]), float(r["contact_pressure"]))
+                  for r in rows if abs(float(r["z"])) < 1e-12)
+    k = max(i for i, (_, p) in enumerate(axis) if p > 0)
+    (x1, p1), (x2, p2) = axis[k - 1], axis[k]
+    a = math.sqrt(x2 ** 2 + p2 ** 2 * (x2 ** 2 - x1 ** 2) / (p1 ** 2 - p2 ** 2))
+    a_hertz = (3 * force * R / (4 * E_STAR)) ** (1 / 3)
+    p0_hertz = 3 * force / (2 * math.pi * a_hertz ** 2)
+    p0 = axis[0][1]
+    return {"F": force, "F Hertz": hertz_force(D), "curve": curve, "a": a,
+            "a Hertz": a_hertz, "p0": p0, "p0 Hertz": p0_hertz,
+            "nodes": sum(1 for r in rows if float(r["contact_pressure"]) > 0),
+            "a error": abs(a - a_hertz) / a_hertz,
+            "p0 error": abs(p0 - p0_hertz) / p0_hertz,
+            "F error": abs(force - hertz_force(D)) / hertz_force(D)}
+
+
+def run_all(executable, meshes, cell_types, ranks):
+    runs = {}
+    for cells in cell_types:
+        runs[cells] = []
+        for n in meshes:
+            with tempfile.TemporaryDirectory() as folder:
+                output, wall = run(executable, n, cells, ranks, folder)
+                result = analyse(output)
+            result["N"], result["wall"] = n, wall
+            runs[cells].append(result)
+    return runs
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--executable", default=os.path.join(
+        TOP, "build", "viscoplastic_contact"))
+    parser.add_argument("--meshes", default="8,16,24,32")
+    parser.add_argument("--cells", default="hexahedron,tetrahedron")
+    parser.add_argument("--figure")
+    parser.add_argument("--check", action="store_true")
+    arguments = parser.parse_args()
+    meshes = [12, 16] if arguments.check else [
+        int(n) for n in arguments.meshes.split(",")]
+    cell_types = arguments.cells.split(",")
+    runs = run_all(arguments.executable, meshes, cell_types, 1)
+
+    print("| cells | N | nodes in contact | F | Hertz F(d) | error | a | Hertz a(F) "
+          "| error | p0 | Hertz p0(F) | error | run time |")
+    print("| --- " * 13 + "|")
+    for cells, results in runs.items():
+        for r in results:
+            print("| %s | %d | %d | %.4f | %.4f | %.2e | %.4f | %.4f | %.2e | "
+                  "%.2f | %.2f | %.2e | %.2f s |" % (
+                      cells, r["N"], r["nodes"], r["F"], r["F Hertz"],
+                      r["F error"], r["a"], r["a Hertz"], r["a error"],
+                      r["p0"], r["p0 Hertz"], r["p0 error"], r["wall"]))
+    for cells, results in runs.items():
+        for i in range(1, len(results)):
+            print("%s, observed order in h (h ~ 1/N), N = %d -> %d: a %.2f, "
+                  "p0 %.2f" % (cells, results[i - 1]["N"], results[i]["N"],
+                  math.log(results[i - 1]["a error"] / results[i]["a error"])
+                  / math.log(results[i]["N"] / results[i - 1]["N"]),
+                  math.log(results[i - 1]["p0 error"] / results[i]["p0 error"])
+                  / math.log(results[i]["N"] / results[i - 1]["N"])))
+
+    if arguments.figure:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        figure, axes = plt.subplots(1, 3, figsize=(15, 4.2))
+        d = [D * k / 100 for k in range(101)]
+        axes[0].plot(d, [hertz_force(x) for x in d], "k-", label="Hertz")
+        for cells, results in runs.items():
+            style = "o" if cells == "hexahedron" else "s"
+            r = results[-1]
+            axes[0].plot([c[0] for c in r["curve"]], [c[1] for c in r["curve"]],
+                         style, label="%s, N = %d" % (cells, r["N"]))
+            for key, label in (("a error", "contact radius a"),
+                               ("p0 error", "peak pressure p0"),
+                               ("F error", "force F(d)")):
+                line = "%s-" % style if key != "F error" else "%s:" % style
+                axes[1].loglog([1 / r["N"] for r in results],
+                               [r[key] for r in results], line,
+                               label="%s, %s" % (label, cells))
+                axes[2].loglog([r["wall"] for r in results],
+                               [r[key] for r in results], line,
+                               label="%s, %s" % (label, cells))
+        axes[0].set_xlabel("indentation d")
+        axes[0].set_ylabel("force F (whole sphere)")
+        axes[0].legend()
+        axes[1].set_xlabel("mesh parameter 1/N")
+        axes[2].set_xlabel("run time [s] (set-up and 4 steps)")
+        for axis in axes[1:]:
+            axis.set_ylabel("relative error against Hertz")
+            axis.grid(True, which="both", alpha=0.3)
+            axis.legend(fontsize="x-small")
+        axes[0].grid(alpha=0.3)
+        figure.suptitle("Hertz contact of a sphere (3D quarter model, a = 0.1 R, "
+                        "block of edge 10 a)")
+        figure.tight_layout()
+        figure.savefig(arguments.figure, dpi=100)
+
+    if arguments.check:
+        for cells, results in runs.items():
+            for r in results:
+                for key in ("a", "p0", "F"):
+                    if r[key + " error"] > BOUNDS[key]:
+                        sys.exit("%s, N = %d: the error in %s is %.2e, above "
+                                 "%.2e." % (cells, r["N"], key,
+                                            r[key + " error"], BOUNDS[key]))
+            if results[1]["p0 error"] >= results[0]["p0 error"]:
+                sys.exit("%s: the error in p0 does not fall from N = 12 to "
+                         "16." % cells)
+        # Two ranks (the full space back end) against one (condensed).
+        serial = run_all(arguments.executable, [8], cell_types, 1)
+        parallel = run_all(arguments.executable, [8], cell_types, 2)
+        for cells in cell_types:
+            one, two = serial[cells][0], parallel[cells][0]
+            for (d1, f1), (d2, f2) in zip(one["curve"], two["curve"]):
+                if abs(f1 - f2) > 1e-6 * abs(f1):
+                    sys.exit("%s, N = 8: the force at d = %g is %.10g on 1 "
+                             "rank, %.10g on 2." % (cells, d1, f1, f2))
+            if abs(one["p0"] - two["p0"]) > 1e-6 * one["p0"]:
+                sys.exit("%s, N = 8: p0 %.10g on 1 rank, %.10g on 2."
+                         % (cells, one["p0"], two["p0"]))
+        print("Hertz sphere (%s): a, p0 and F(d) within %.0f%%, %.0f%% and "
+              "%.0f%% of the closed form on N = 12, 16, the error in p0 "
+              "falling; 2 ranks agree with 1." % (
+                  ", ".join(cell_types), 100 * BOUNDS["a"],
+                  100 * BOUNDS["p0"], 100 * BOUNDS["F"]))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,93 @@
+#!/usr/bin/python3
+"""Writes the Gmsh meshes (format 2.2, ASCII) of the 3D Hertz benchmark: a
+rigid sphere pressed into an elastic block, whose quarter model is the cube
+[0, L]^3 (y up) with the contact point at the corner (0, L, 0) of its top
+face and the planes of symmetry x = 0 and z = 0 (parameters/hertz_sphere.prm).
+
+hertz_sphere_hexahedron_8.msh (and hertz_sphere_block(N, simplex) for
+other N, and tetrahedra): N cells along each edge, the
+coordinates graded as L (k/N)^2 toward the contact corner (x and z from 0,
+y from the top), so that about a third of the edge's cells lie within a
+contact radius of L/10; tetrahedra: each hexahedron cut into the six
+around its diagonal from its lowest to its highest corner (Kuhn's
+subdivision, conforming across faces). Physical groups (the boundary ids of
+the parameter file):
+  1  the plane of symmetry x = 0       2  the plane of symmetry z = 0
+  3  the bottom y = 0                  4  the top y = L (contact)
+  5  the side x = L                    6  the side z = L
+
+Run from anywhere: python3 meshes/make_hertz_sphere_meshes.py
+"""
+import itertools
+import os
+
+from gmsh_format import gmsh_elements_text
+
+L = 1.0
+NAMES = [(1, "symmetry_x"), (2, "symmetry_z"), (3, "bottom"), (4, "top"),
+         (5, "side_x"), (6, "side_z")]
+
+
+def signed_volume(points):
+    a, b, c, d = points
+    u = [b[i] - a[i] for i in range(3)]
+    v = [c[i] - a[i] for i in range(3)]
+    w = [d[i] - a[i] for i in range(3)]
+    return (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+            + u[2] * (v[0] * w[1] - v[1] * w[0]))
+
+
+def hertz_sphere_block(n, simplex=False, length=L):
+    graded = [length * (k / n) ** 2 for k in range(n + 1)]
+    coordinate = (lambda i: graded[i], lambda j: length - graded[n - j], lambda k: graded[k])
+    index = lambda i, j, k: (k * (n + 1) + j) * (n + 1) + i + 1
+    nodes, where = [], {}
+    for k in range(n + 1):
+        for j in range(n + 1):
+            for i in range(n + 1):
+                point = (coordinate[0](i), coordinate[1](j), coordinate[2](k))
+                nodes.append((index(i, j, k),) + point)
+                where[index(i, j, k)] = point
+    boundary, cells = [], []
+    # The faces on the surface: (tag, axis, index of the plane).
+    for tag, axis, fixed in ((1, 0, 0), (2, 2, 0), (3, 1, 0), (4, 1, n), (5, 0, n), (6, 2, n)):
+        others = [a for a in range(3) if a != axis]
+        for p in range(n):
+            for q in range(n):
+                corners = {}
+                for dp, dq in itertools.product((0, 1), repeat=2):
+                    ijk = [0, 0, 0]
+                    ijk[axis], ijk[others[0]], ijk[others[1]] = fixed, p + dp, q + dq
+                    corners[(dp, dq)] = index(*ijk)
+                if simplex:
+                    # Kuhn's diagonal of the face: lowest to highest corner.
+                    for middle in ((1, 0), (0, 1)):
+                        boundary.append((2, tag, corners[(0, 0)], corners[middle], corners[(1, 1)]))
+                else:
+                    boundary.append((3, tag, corners[(0, 0)], corners[(1, 0)],
+                                     corners[(1, 1)], corners[(0, 1)]))
+    for k in range(n):
+        for j in range(n):
+            for i in range(n):
+                v = lambda a, b, c: index(i + a, j + b, k + c)
+                if not simplex:
+                    cells.append((5, 10, v(0, 0, 0), v(1, 0, 0), v(1, 1, 0), v(0, 1, 0),
+                                  v(0, 0, 1), v(1, 0, 1), v(1, 1, 1), v(0, 1, 1)))
+                    continue
+                for order in itertools.permutations(range(3)):
+                    step, path = [0, 0, 0], [v(0, 0, 0)]
+                    for axis in order:
+                        step[axis] = 1
+                        path.append(v(*step))
+                    if signed_volume([where[p] for p in path]) < 0:
+                        path[1], path[2] = path[2], path[1]
+                    cells.append((4, 10) + tuple(path))
+    return gmsh_elements_text(nodes, boundary, cells, NAMES, [(10, "block")])
+
+
+if __name__ == "__main__":
+    folder = os.path.dirname(os.path.abspath(__file__))
+    # The mesh of parameters/hertz_sphere.prm; benchmarks/run_hertz_sphere.py
+    # writes the others where it needs them.
+    with open(os.path.join(folder, "hertz_sphere_hexahedron_8.msh"), "w") as f:
+        f.write(hertz_sphere_block(8))

@@ -375,11 +375,13 @@ namespace ViscoContact
         has_loads = true;
       }
     for (const unsigned int f : cell->face_indices())
-      if (cell->face(f)->at_boundary()
-          && surface_load_of_id.count(cell->face(f)->boundary_id()) == 1)
+      if (cell->face(f)->at_boundary())
         {
-          const SurfaceLoadPart &load = surface_loads[surface_load_of_id.at(
-            cell->face(f)->boundary_id())];
+          const auto part
+            = surface_load_of_id.find(cell->face(f)->boundary_id());
+          if (part == surface_load_of_id.end())
+            continue;
+          const SurfaceLoadPart &load = surface_loads[part->second];
           fe_face_values.reinit(cell, f);
           for (const unsigned int q : fe_face_values.quadrature_point_indices())
             {

@@ -247,7 +247,10 @@ namespace ViscoContact
                                              const double tau_zz) const
   {
     if (!plane_strain)
-      return (invert(stiffness) * tau) * tau;
+      {
+        Assert(tau_zz == 0, ExcInternalError()); // sigma_zz = 0 or 3D
+        return (invert(stiffness) * tau) * tau;
+      }
     const SymmetricTensor<2, 3> t = embed(tau, tau_zz);
     const double                E = young_modulus, k = poisson_ratio;
     const double two_mu = E / (1 + k), three_kappa = E / (1 - 2 * k);

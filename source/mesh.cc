@@ -85,20 +85,24 @@ namespace ViscoContact
                       parameters.lengths);
       for (const auto &cell : triangulation.active_cell_iterators())
         {
-          const Point<dim>   centre = cell->center();
-          const double       value  = region.value(centre);
-          std::ostringstream where;
-          where << "(" << centre << ")";
-          AssertThrow(std::isfinite(value) && value >= 0
-                        && value < numbers::invalid_material_id
-                        && value == std::round(value),
-                      ExcMessage("Invalid parameter <Material id function> in "
-                                 "subsection <Geometry>: value <"
-                                 + parameters.material_id_function + ">; it is "
-                                 + std::to_string(value)
-                                 + " at the cell centre " + where.str()
-                                 + "; accepted: a whole number >= 0 at the "
-                                   "centre of every cell."));
+          const Point<dim> centre = cell->center();
+          const double     value  = region.value(centre);
+          if (!(std::isfinite(value) && value >= 0
+                && value < numbers::invalid_material_id
+                && value == std::round(value)))
+            {
+              std::ostringstream where;
+              where << "(" << centre << ")";
+              AssertThrow(false,
+                          ExcMessage(
+                            "Invalid parameter <Material id function> in "
+                            "subsection <Geometry>: value <"
+                            + parameters.material_id_function + ">; it is "
+                            + std::to_string(value) + " at the cell centre "
+                            + where.str()
+                            + "; accepted: a whole number >= 0 at the centre "
+                              "of every cell."));
+            }
           cell->set_material_id(static_cast<types::material_id>(value));
         }
     }

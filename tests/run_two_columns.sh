@@ -14,7 +14,8 @@
 # the pressure of every node of its zone (the profile's zone column), in
 # each variant: quadrilaterals (condensed), triangles (full space,
 # 2 ranks), hexahedra (both back ends, 1 and 2 ranks), plane strain, an
-# adaptive mesh (2 ranks), and the second zone numbered 3.
+# adaptive mesh (2 ranks), a moving support on an adaptive mesh (full
+# space, 2 ranks), and the second zone numbered 3.
 # With "quick" as second argument (the Debug build): two variants.
 #   run_two_columns.sh EXECUTABLE [quick]
 set -u
@@ -30,18 +31,20 @@ run() { # PRM RANKS NAME: the run, into results/
     || fail "$3: the run failed: $(cat err.txt)"
 }
 
-# check_exact MODEL TOLERANCE NAME [ZONE]: the closed forms in every step
-# and profile; MODEL is "stress" (2D plane stress) or "strain" (3D, plane
-# strain); ZONE the number of the second zone (2).
+# check_exact MODEL TOLERANCE NAME [ZONE [SPEED]]: the closed forms in
+# every step and profile; MODEL is "stress" (2D plane stress) or "strain"
+# (3D, plane strain); ZONE the number of the second zone (2); SPEED the
+# speed v at which the second support moves up, s = 0.002 - v t (0).
 check_exact() {
-  awk -F, -v model="$1" -v tol="$2" -v name="$3" -v zone="${4:-2}" '
+  awk -F, -v model="$1" -v tol="$2" -v name="$3" -v zone="${4:-2}" -v v="${5:-0}" '
     function near(a, b) { d = a - b; if (d < 0) d = -d
                           m = b < 0 ? -b : b; return d <= tol * (m > 1 ? m : 1) }
     BEGIN { E = 1000; nu = 0.3
             M = model == "stress" ? E / (1 - nu * nu) : E * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) }
     FNR == 1 { delete col; for (i = 1; i <= NF; ++i) col[$i] = i; next }
     { t = $col["time"]; D = 0.01 * (t < 2 - t ? t : 2 - t)
-      p[1] = M * D; p[zone] = D > 0.002 ? (D - 0.002) / (1 / M + 1 / 2000) : 0 }
+      s = 0.002 - v * t
+      p[1] = M * D; p[zone] = D > s ? (D - s) / (1 / M + 1 / 2000) : 0 }
     FILENAME ~ /time_series/ {
       f1 = $col["contact_force_zone_1"]; f2 = $col["contact_force_zone_" zone]
       if (!("contact_force_zone_" zone in col) || !near(f1, p[1]) || !near(f2, p[zone]) \
@@ -97,6 +100,13 @@ variant two_columns_quadrilateral_4.msh hypercube condensed \
   | sed -e 's/^\(subsection Output\)$/subsection Mesh adaptation\n  set Adaptive refinement = true\n  set Refinement interval = 1\n  set Refine fraction = 0.5\nend\n\n\1/' > variant.prm
 run variant.prm 2 "2D quadrilaterals, adaptive mesh, 2 ranks"
 check_exact stress 1e-7 "2D quadrilaterals, adaptive mesh, 2 ranks"
+# A moving support (s = 0.002 - 0.004 t: it rises into the second column)
+# on an adaptive mesh, on the full space back end.
+variant two_columns_quadrilateral_4.msh hypercube "full space" \
+  | set_entry "Initial gap" "0.002 - 0.004 * t" \
+  | sed -e 's/^\(subsection Output\)$/subsection Mesh adaptation\n  set Adaptive refinement = true\n  set Refinement interval = 2\n  set Refine fraction = 0.5\nend\n\n\1/' > variant.prm
+run variant.prm 2 "2D quadrilaterals, moving support, adaptive mesh, full space, 2 ranks"
+check_exact stress 1e-7 "2D quadrilaterals, moving support, adaptive mesh, full space, 2 ranks" 2 0.004
 # The zones are named by their numbers, which need not follow each other.
 variant two_columns_quadrilateral_4.msh hypercube "full space" \
   | sed -e 's/^subsection Contact zone 2 /subsection Contact zone 3 /' > variant.prm
@@ -104,4 +114,4 @@ run variant.prm 1 "2D quadrilaterals, full space, zone 3"
 check_exact stress 1e-7 "2D quadrilaterals, full space, zone 3" 3
 grep -q "Contact zones: 2" out.txt || fail "zone 3: the header does not say 2 zones"
 
-echo "The two columns (two contact zones) are exact in 7 variants (quadrilaterals, triangles, hexahedra, both back ends, 1 and 2 ranks, plane strain, an adaptive mesh, zones numbered 1 and 3)."
+echo "The two columns (two contact zones) are exact in 8 variants (quadrilaterals, triangles, hexahedra, both back ends, 1 and 2 ranks, plane strain, adaptive meshes, a moving support, zones numbered 1 and 3)."

@@ -16,7 +16,10 @@ Hertz's curve (there the finite block is the modelling error). The
 numerical contact radius is the zero of the pressure along the x axis
 extrapolated from the last two nodes in contact with the Hertz shape (p^2
 linear in x^2); the numerical peak pressure is that of the node at the
-contact point. Prints the markdown tables of doc/benchmarks.md; --figure
+contact point. The L2 error of all nodal pressures against Hertz's profile
+p0 sqrt(1 - r^2/a^2) for the computed force (lumped weights) is the
+measure that converges. Prints the markdown tables of doc/benchmarks.md;
+--figure
 FILE draws the force-indentation curves and the errors against the mesh
 size and the run time (the program's wall clock). --check (the ctest):
 N = 12 and 16 on both cell types, bounds on the errors, the error in p0
@@ -100,7 +103,17 @@ def analyse(output):
     a_hertz = (3 * force * R / (4 * E_STAR)) ** (1 / 3)
     p0_hertz = 3 * force / (2 * math.pi * a_hertz ** 2)
     p0 = axis[0][1]
+    # The pressure of every node against Hertz's profile for the computed
+    # force, p0 sqrt(1 - r^2/a^2), in the norm of the lumped weights.
+    difference = norm = 0.0
+    for r in rows:
+        radius2 = float(r["x"]) ** 2 + float(r["z"]) ** 2
+        exact = p0_hertz * math.sqrt(max(0.0, 1 - radius2 / a_hertz ** 2))
+        weight = float(r["weight"])
+        difference += weight * (float(r["contact_pressure"]) - exact) ** 2
+        norm += weight * exact ** 2
     return {"F": force, "F Hertz": hertz_force(D), "curve": curve, "a": a,
+            "L2 error": math.sqrt(difference / norm),
             "a Hertz": a_hertz, "p0": p0, "p0 Hertz": p0_hertz,
             "nodes": sum(1 for r in rows if float(r["contact_pressure"]) > 0),
             "a error": abs(a - a_hertz) / a_hertz,
@@ -145,6 +158,19 @@ def main():
                       cells, r["N"], r["nodes"], r["F"], r["F Hertz"],
                       r["F error"], r["a"], r["a Hertz"], r["a error"],
                       r["p0"], r["p0 Hertz"], r["p0 error"], r["wall"]))
+    print()
+    print("| cells | N | L2 error of the pressure | observed order |")
+    print("| --- | --- | --- | --- |")
+    for cells, results in runs.items():
+        for i, r in enumerate(results):
+            order = ""
+            if i > 0:
+                order = "%.2f" % (
+                    math.log(results[i - 1]["L2 error"] / r["L2 error"])
+                    / math.log(r["N"] / results[i - 1]["N"]))
+            print("| %s | %d | %.3e | %s |" % (cells, r["N"], r["L2 error"],
+                                              order))
+    print()
     for cells, results in runs.items():
         for i in range(1, len(results)):
             print("%s, observed order in h (h ~ 1/N), N = %d -> %d: a %.2f, "

@@ -10,7 +10,9 @@ of the half model's top,
 The numerical half-width is the zero of the pressure extrapolated from the
 last two nodes in contact with the Hertz shape (p^2 linear in x^2), not the
 last node in contact (whose error is a cell); the numerical peak pressure is
-the pressure of the node at x = 0. Prints the markdown table of
+the pressure of the node at x = 0. The L2 error of all nodal pressures
+against Hertz's profile p0 sqrt(1 - x^2/a^2) for the computed load (lumped
+weights) is printed with its observed order. Prints the markdown table of
 doc/benchmarks.md and, with --figure FILE, draws the errors against the
 mesh size and against the run time (the program's own wall clock: mesh,
 set-up with the factorisation, one step at the full load; not the start of
@@ -98,7 +100,15 @@ def analyse(output, model):
     e_star = E if model == "plane stress" else E / (1 - NU ** 2)
     a_exact = math.sqrt(4 * load * R / (math.pi * e_star))
     p0_exact = 2 * load / (math.pi * a_exact)
+    # All nodal pressures against Hertz's profile p0 sqrt(1 - x^2/a^2) for
+    # the computed load, in the norm of the lumped weights.
+    difference = norm = 0.0
+    for x, p, w in rows:
+        exact = p0_exact * math.sqrt(max(0.0, 1 - x ** 2 / a_exact ** 2))
+        difference += w * (p - exact) ** 2
+        norm += w * exact ** 2
     return {"P": load, "a": a, "a exact": a_exact, "p0": nodes[0][1],
+            "L2 error": math.sqrt(difference / norm),
             "p0 exact": p0_exact, "nodes": k + 1, "profile": rows,
             "a error": abs(a - a_exact) / a_exact,
             "p0 error": abs(nodes[0][1] - p0_exact) / p0_exact}
@@ -153,6 +163,19 @@ def main():
                                        r["a"], r["a exact"], r["a error"],
                                        r["p0"], r["p0 exact"], r["p0 error"],
                                        r["wall"]))
+    print()
+    print("| model | N | L2 error of the pressure against Hertz | observed "
+          "order |")
+    print("| --- | --- | --- | --- |")
+    for model, results in runs.items():
+        for i, r in enumerate(results):
+            order = ("%.2f" % math.log(results[i - 1]["L2 error"]
+                                       / r["L2 error"], r["N"]
+                                       / results[i - 1]["N"])
+                     if i > 0 else "")
+            print("| %s | %d | %.3e | %s |" % (model, r["N"], r["L2 error"],
+                                              order))
+    print()
     for model, results in runs.items():
         for i in range(1, len(results)):
             print("%s, observed order N = %d -> %d: a %.2f, p0 %.2f" % (

@@ -18,16 +18,20 @@ materials: physical group 10 "stiff" below y = 1/2, 20 "soft" above (the
 material ids of the parameter file). Boundary lines: 1 x = 0, 2 x = 1,
 3 y = 0 (the support), 4 y = 1 (the top); parameters/two_layer_column.prm.
 
-two_columns_{quadrilateral,triangle}_N.msh, two_columns_hexahedron_N.msh:
+two_columns_{quadrilateral,triangle}_N.msh,
+two_columns_{hexahedron,tetrahedron}_N.msh:
 two unit columns side by side, [0, 1] and [2, 3] in x, 0 <= y <= 1 (and
 0 <= z <= 1 in 3D), not connected, N cells along each edge (triangles: each
-square cut by its diagonal from (x_i, y_j) to (x_i+1, y_j+1)). Boundary
+square cut by its diagonal from (x_i, y_j) to (x_i+1, y_j+1); tetrahedra:
+each cube cut into the six around its diagonal from its lowest to its
+highest corner). Boundary
 tags: 1 the sides x = 0 and x = 2, 2 the sides x = 1 and x = 3, 6 the sides
 z = 0 and 7 z = 1 (3D), 3 the bottom of the first column, 5 the bottom of
 the second, 4 both tops; parameters/two_columns.prm (contact zones).
 
 Run from anywhere: python3 meshes/make_example_meshes.py
 """
+import itertools
 import math
 import os
 
@@ -75,6 +79,13 @@ def two_layer_column(n):
                      tags, [(10, "stiff"), (20, "soft")])
 
 
+def permutation_sign(order):
+    """+1 for an even permutation of (0, 1, 2), -1 for an odd one: the sign
+    of the volume of Kuhn's tetrahedron along that order of the axes."""
+    inversions = sum(1 for a in range(3) for b in range(a + 1, 3) if order[a] > order[b])
+    return -1 if inversions % 2 else 1
+
+
 def two_columns(n, dim, simplex=False):
     """The mesh of the two columns (see the top of the file)."""
     nz = n if dim == 3 else 0
@@ -106,12 +117,30 @@ def two_columns(n, dim, simplex=False):
                             others = [a for a in range(3) if a != axis]
                             ijk[axis], ijk[others[0]], ijk[others[1]] = fixed, p + dp, q + dq
                             corners.append(v(*ijk))
-                        boundary.append((3, tag) + tuple(corners))
+                        if simplex:
+                            # Kuhn's diagonal of the face: lowest to highest corner.
+                            boundary += [(2, tag, corners[0], corners[1], corners[2]),
+                                         (2, tag, corners[0], corners[2], corners[3])]
+                        else:
+                            boundary.append((3, tag) + tuple(corners))
             for k in range(n):
                 for j in range(n):
                     for i in range(n):
-                        cells.append((5, 10, v(i, j, k), v(i + 1, j, k), v(i + 1, j + 1, k), v(i, j + 1, k),
-                                      v(i, j, k + 1), v(i + 1, j, k + 1), v(i + 1, j + 1, k + 1), v(i, j + 1, k + 1)))
+                        if not simplex:
+                            cells.append((5, 10, v(i, j, k), v(i + 1, j, k), v(i + 1, j + 1, k), v(i, j + 1, k),
+                                          v(i, j, k + 1), v(i + 1, j, k + 1), v(i + 1, j + 1, k + 1),
+                                          v(i, j + 1, k + 1)))
+                            continue
+                        # Kuhn's six tetrahedra around the diagonal from the lowest
+                        # to the highest corner, positively oriented.
+                        for order in itertools.permutations(range(3)):
+                            step, path = [0, 0, 0], [(i, j, k)]
+                            for axis in order:
+                                step[axis] = 1
+                                path.append((i + step[0], j + step[1], k + step[2]))
+                            if permutation_sign(order) < 0:
+                                path[1], path[2] = path[2], path[1]
+                            cells.append((4, 10) + tuple(v(*corner) for corner in path))
     names = [(1, "left_sides"), (2, "right_sides"), (3, "support_1"), (4, "tops"), (5, "support_2")]
     if dim == 3:
         names += [(6, "front_sides"), (7, "back_sides")]
@@ -126,6 +155,6 @@ if __name__ == "__main__":
     with open(os.path.join(folder, "two_layer_column_4.msh"), "w") as f:
         f.write(two_layer_column(4))
     for name, dim, simplex, n in (("quadrilateral", 2, False, 4), ("triangle", 2, True, 4),
-                                  ("hexahedron", 3, False, 2)):
+                                  ("hexahedron", 3, False, 2), ("tetrahedron", 3, True, 2)):
         with open(os.path.join(folder, "two_columns_%s_%d.msh" % (name, n)), "w") as f:
             f.write(two_columns(n, dim, simplex))

@@ -13,7 +13,8 @@
 # force p1 + p2, the reaction of the tops -(p1 + p2), and in every profile
 # the pressure of every node of its zone (the profile's zone column), in
 # each variant: quadrilaterals (condensed), triangles (full space,
-# 2 ranks), hexahedra (both back ends, 1 and 2 ranks), plane strain, an
+# 2 ranks), hexahedra (both back ends, 2 ranks), tetrahedra (condensed),
+# plane strain, an
 # adaptive mesh (2 ranks), a moving support on an adaptive mesh (full
 # space, 2 ranks), and the second zone numbered 3.
 # With "quick" as second argument (the Debug build): two variants.
@@ -90,6 +91,9 @@ check_exact stress 1e-7 "2D triangles, full space, 2 ranks"
 variant two_columns_hexahedron_2.msh hypercube condensed | three_d > variant.prm
 run variant.prm 2 "3D hexahedra, condensed, 2 ranks"
 check_exact strain 1e-9 "3D hexahedra, condensed, 2 ranks"
+variant two_columns_tetrahedron_2.msh simplex condensed | three_d > variant.prm
+run variant.prm 1 "3D tetrahedra, condensed"
+check_exact strain 1e-9 "3D tetrahedra, condensed"
 variant two_columns_triangle_4.msh simplex condensed \
   | sed -e 's/^\(set Dimension = 2\)$/\1\nset Plane model = plane strain/' > variant.prm
 run variant.prm 1 "2D triangles, plane strain, condensed"
@@ -114,4 +118,4 @@ run variant.prm 1 "2D quadrilaterals, full space, zone 3"
 check_exact stress 1e-7 "2D quadrilaterals, full space, zone 3" 3
 grep -q "Contact zones: 2" out.txt || fail "zone 3: the header does not say 2 zones"
 
-echo "The two columns (two contact zones) are exact in 8 variants (quadrilaterals, triangles, hexahedra, both back ends, 1 and 2 ranks, plane strain, adaptive meshes, a moving support, zones numbered 1 and 3)."
+echo "The two columns (two contact zones) are exact in 9 variants (quadrilaterals, triangles, hexahedra, tetrahedra, both back ends, 1 and 2 ranks, plane strain, adaptive meshes, a moving support, zones numbered 1 and 3)."

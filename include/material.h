@@ -154,6 +154,8 @@ namespace ViscoContact
     bool                    plastic;
     bool                    plane_strain;
     SymmetricTensor<4, dim> stiffness;
+    // E^-1 (plane stress and 3D), for the error estimate's norm.
+    SymmetricTensor<4, dim> compliance;
     // Plane strain: the same material in 3D.
     std::shared_ptr<const PerzynaMaterial<3>> three_dimensional;
   };

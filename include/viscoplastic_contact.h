@@ -297,7 +297,7 @@ namespace ViscoContact
     // What update_stresses() does at every stress point of a step: which
     // update, whether the history of the next step and the error estimate
     // are computed, the two step lengths, the viscous parameter
-    // a = k_n/(2 lambda) of the implicit update, and E^-1 for the estimate.
+    // a = k_n/(2 lambda) of the implicit update.
     struct StressUpdateStep
     {
       bool   implicit;
@@ -305,9 +305,8 @@ namespace ViscoContact
       bool   estimate;
       double current_time_step;
       double next_time_step;
-      // Per material: a = k/(2 lambda) and E^-1.
-      std::vector<double>                  viscous_parameters;
-      std::vector<SymmetricTensor<4, dim>> compliances;
+      // Per material: a = k/(2 lambda).
+      std::vector<double> viscous_parameters;
     };
     StressUpdateStep
     stress_update_step(const double current_time_step,

@@ -45,6 +45,9 @@ namespace ViscoContact
                   * outer_product(unit_symmetric_tensor<dim>(),
                                   unit_symmetric_tensor<dim>())
                 + two_mu * identity_tensor<dim>();
+    // Inverted at the scale of E's largest eigenvalue.
+    const double modulus = largest_elastic_eigenvalue();
+    compliance           = invert(stiffness / modulus) / modulus;
   }
 
 
@@ -239,24 +242,17 @@ namespace ViscoContact
     return in_plane<dim>(sigma);
   }
 
-  // Isotropic E: (E^-1 tau, tau) = |dev tau|^2 / (2 mu) + (tr tau)^2 / (9
-  // kappa) in 3D; in 2D plane stress E^-1 of the 2D law.
+  // (E^-1 tau, tau) with the compliance of the constructor; in plane strain
+  // that of the 3D law on the embedded tensor.
   template <int dim>
   double
   PerzynaMaterial<dim>::complementary_energy(const SymmetricTensor<2, dim> &tau,
                                              const double tau_zz) const
   {
-    if (!plane_strain)
-      {
-        Assert(tau_zz == 0, ExcInternalError()); // sigma_zz = 0 or 3D
-        return (invert(stiffness) * tau) * tau;
-      }
-    const SymmetricTensor<2, 3> t = embed(tau, tau_zz);
-    const double                E = young_modulus, k = poisson_ratio;
-    const double two_mu = E / (1 + k), three_kappa = E / (1 - 2 * k);
-    const double volumetric = trace(t);
-    return deviator(t) * deviator(t) / two_mu
-           + volumetric * volumetric / (3 * three_kappa);
+    if (plane_strain)
+      return three_dimensional->complementary_energy(embed(tau, tau_zz), 0.);
+    Assert(tau_zz == 0, ExcInternalError()); // sigma_zz = 0 or 3D
+    return (compliance * tau) * tau;
   }
 
 

@@ -172,16 +172,10 @@ namespace ViscoContact
                           parameters.any_plasticity() && current_time_step > 0,
                           current_time_step,
                           next_time_step,
-                          {},
                           {}};
     for (const PerzynaMaterial<dim> &material : materials)
-      {
-        const double modulus = material.largest_elastic_eigenvalue();
-        step.viscous_parameters.push_back(current_time_step
-                                          / (2 * material.viscosity()));
-        step.compliances.push_back(
-          invert(material.elasticity_tensor() / modulus) / modulus);
-      }
+      step.viscous_parameters.push_back(current_time_step
+                                        / (2 * material.viscosity()));
     return step;
   }
 
@@ -306,18 +300,15 @@ namespace ViscoContact
     // the rate kept for the next step's estimate.
     if (step.estimate)
       {
-        const auto energy
-          = [&](const SymmetricTensor<2, dim> &tau, const double tau_zz) {
-              return material.is_plane_strain()
-                       ? material.complementary_energy(tau, tau_zz)
-                       : (step.compliances[m] * tau) * tau;
-            };
         const double JxW = stress_point_JxW[std::size_t(k) * n_q + q];
-        estimate_sums[1] += energy(state.stress, zz.stress_zz) * JxW;
+        estimate_sums[1]
+          += material.complementary_energy(state.stress, zz.stress_zz) * JxW;
         if (plastic)
           {
             estimate_sums[0]
-              += energy(rate - state.rate, rate_zz - zz.rate_zz) * JxW;
+              += material.complementary_energy(rate - state.rate,
+                                               rate_zz - zz.rate_zz)
+                 * JxW;
             estimate_sums[2] += material.yield_stress()
                                 * material.yield_stress()
                                 / material.largest_elastic_eigenvalue() * JxW;

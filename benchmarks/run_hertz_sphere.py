@@ -43,15 +43,14 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.join(HERE, "..")
+sys.path.insert(0, os.path.join(TOP, "scripts"))
+sys.path.insert(0, os.path.join(TOP, "meshes"))
+from vc_scripts import set_prm_entries  # noqa: E402
+from make_hertz_sphere_meshes import hertz_sphere_block  # noqa: E402
 E, NU, R, D = 1000.0, 0.3, 1.0, 0.01
 E_STAR = E / (1 - NU ** 2)
 # The bounds of --check on its coarse meshes (N = 12, 16), with a margin.
 BOUNDS = {"a": 0.12, "p0": 0.06, "F": 0.2}
-
-
-def set_entry(text, entry, value):
-    return re.sub(r"(?m)^(\s*set %s\s*=)[^#\n]*" % re.escape(entry),
-                  r"\g<1> %s " % value, text)
 
 
 def hertz_force(d):
@@ -59,19 +58,17 @@ def hertz_force(d):
 
 
 def run(executable, n, cells, ranks, folder):
-    sys.path.insert(0, os.path.join(TOP, "meshes"))
-    from make_hertz_sphere_meshes import hertz_sphere_block
     mesh = os.path.join(folder, "hertz_sphere.msh")
     with open(mesh, "w") as f:
         f.write(hertz_sphere_block(n, cells == "tetrahedron"))
     with open(os.path.join(TOP, "parameters", "hertz_sphere.prm")) as f:
-        text = f.read()
-    text = set_entry(text, "Mesh file", mesh)
-    text = set_entry(text, "Cell type",
-                     "simplex" if cells == "tetrahedron" else "hypercube")
-    text = set_entry(text, "Output directory", os.path.join(folder, "output"))
-    text = set_entry(text, "Profile times", 1)
-    text = set_entry(text, "Write vtu", "false")
+        text = set_prm_entries(f.read(), {
+            (("Geometry",), "Mesh file"): mesh,
+            (("Geometry",), "Cell type"):
+                "simplex" if cells == "tetrahedron" else "hypercube",
+            (("Output",), "Output directory"): os.path.join(folder, "output"),
+            (("Output",), "Profile times"): "1",
+            (("Output",), "Write vtu"): "false"})
     prm = os.path.join(folder, "hertz.prm")
     with open(prm, "w") as f:
         f.write(text)

@@ -26,44 +26,43 @@ import argparse
 import csv
 import glob
 import os
-import re
-import subprocess
 import sys
-import tempfile
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-TOP = os.path.join(HERE, "..")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                "..", "scripts"))
+from vc_scripts import (REPO_ROOT, run_in_temporary_directory,  # noqa: E402
+                        set_prm_entries)
+
 DEPTH = 0.02
 TIMES = (0.1, 1.0, 10.0, 100.0, 1000.0)
 
 
-def set_entry(text, entry, value):
-    return re.sub(r"(?m)^(\s*set %s\s*=)[^#\n]*" % re.escape(entry),
-                  r"\g<1> %s " % value, text)
-
-
-def run(executable, loading_time, folder, plastic=True, coarse=False):
-    with open(os.path.join(TOP, "parameters", "indentation.prm")) as f:
+def run(executable, loading_time, plastic=True, coarse=False):
+    with open(os.path.join(REPO_ROOT, "parameters", "indentation.prm")) as f:
         text = f.read()
     T = loading_time
-    text = set_entry(text, "Initial gap",
-                     "x^2 - %g * min(t / %r, 2 - t / %r)" % (DEPTH, T, T))
-    text = set_entry(text, "End time", repr(2 * T))
-    text = set_entry(text, "Time step", repr(2 * T / 40))
-    text = set_entry(text, "Profile times", repr(2 * T))
-    text = set_entry(text, "Write vtu", "false")
-    text = set_entry(text, "Output directory", os.path.join(folder, "output"))
+    entries = {
+        (("Contact",), "Initial gap"):
+            "x^2 - %g * min(t / %r, 2 - t / %r)" % (DEPTH, T, T),
+        (("Time",), "End time"): repr(2 * T),
+        (("Time",), "Time step"): repr(2 * T / 40),
+        (("Output",), "Profile times"): repr(2 * T),
+        (("Output",), "Write vtu"): "false",
+        (("Output",), "Output directory"): "output",
+    }
     if not plastic:
-        text = set_entry(text, "Plasticity", "false")
+        entries[(("Material",), "Plasticity")] = "false"
     if coarse:
-        text = set_entry(text, "Subdivisions", 16)
-    prm = os.path.join(folder, "indentation.prm")
-    with open(prm, "w") as f:
-        f.write(text)
-    result = subprocess.run([executable, prm], capture_output=True, text=True)
-    if result.returncode != 0:
-        sys.exit("The run with T = %g failed:\n%s" % (T, result.stderr))
-    output = os.path.join(folder, "output")
+        entries[(("Geometry",), "Subdivisions")] = "16"
+    try:
+        with run_in_temporary_directory(
+                executable, set_prm_entries(text, entries)) as (folder, _, _):
+            return analyse(os.path.join(folder, "output"), T)
+    except RuntimeError as error:
+        sys.exit("The run with T = %g failed:\n%s" % (T, error))
+
+
+def analyse(output, T):
     with open(os.path.join(output, "time_series.csv")) as f:
         series = list(csv.DictReader(f))
     s = [float(r["time"]) / T for r in series]
@@ -81,15 +80,12 @@ def run(executable, loading_time, folder, plastic=True, coarse=False):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--executable", default=os.path.join(
-        TOP, "build", "viscoplastic_contact"))
+        REPO_ROOT, "build", "viscoplastic_contact"))
     parser.add_argument("--figure")
     parser.add_argument("--check", action="store_true")
     arguments = parser.parse_args()
-    runs = []
-    for T in TIMES:
-        with tempfile.TemporaryDirectory() as folder:
-            runs.append(run(arguments.executable, T, folder,
-                            coarse=arguments.check))
+    executable = os.path.abspath(arguments.executable)
+    runs = [run(executable, T, coarse=arguments.check) for T in TIMES]
     print("| T | T / relaxation time | peak force F | change | imprint | change "
           "| ratio of changes (F, imprint) |")
     print("| --- " * 7 + "|")
@@ -161,9 +157,7 @@ def main():
             sys.exit("No residual imprint: %g." % runs[-1]["imprint"])
         elastic = []
         for T in (TIMES[0], TIMES[-1]):
-            with tempfile.TemporaryDirectory() as folder:
-                elastic.append(run(arguments.executable, T, folder,
-                                   plastic=False, coarse=True))
+            elastic.append(run(executable, T, plastic=False, coarse=True))
         for a, b in zip(elastic[0]["force"], elastic[1]["force"]):
             if abs(a - b) > 1e-9 * max(abs(a), 1e-12) + 1e-12:
                 sys.exit("The elastic force history depends on T: %.12g, "

@@ -47,6 +47,17 @@ namespace ViscoContact
         return s.str();
       }
 
+      // A list of ids as the parameter file writes it: "1, 2, 3".
+      template <typename Id>
+      std::string
+      id_list(const std::vector<Id> &ids)
+      {
+        std::string text;
+        for (const auto id : ids)
+          text += (text.empty() ? "" : ", ") + std::to_string(id);
+        return text;
+      }
+
       // The entries of a numbered list ("Prescribed displacement N", "Surface
       // load N") that name boundary ids, with their numbers N.
       template <typename Entry>
@@ -1556,13 +1567,10 @@ namespace ViscoContact
         for (const auto id : material->material_ids)
           {
             const auto [it, inserted] = owner.emplace(id, name);
-            std::string value;
-            for (const auto i : material->material_ids)
-              value += (value.empty() ? "" : ", ") + std::to_string(i);
             require(inserted,
                     name,
                     "Material ids",
-                    value,
+                    id_list(material->material_ids),
                     "ids that no other material names (" + std::to_string(id)
                       + " is also in subsection <" + it->second + ">)");
           }
@@ -1596,9 +1604,6 @@ namespace ViscoContact
       const auto claim_exclusively
         = [&](const std::vector<types::boundary_id> &ids,
               const std::string                     &subsection) {
-            std::string value;
-            for (const auto id : ids)
-              value += (value.empty() ? "" : ", ") + std::to_string(id);
             for (const auto id : ids)
               {
                 const auto [it, inserted]
@@ -1608,7 +1613,7 @@ namespace ViscoContact
                 require(inserted,
                         subsection,
                         "Boundary ids",
-                        value,
+                        id_list(ids),
                         "ids that no other entry names (" + std::to_string(id)
                           + " is also in " + it->second + ")");
               }

@@ -30,13 +30,6 @@ source "$here/robustness/helpers.sh"
 executable=$1 quick=${2:-}
 parameters=$here/../parameters
 
-# run PRM RANKS NAME: the run, into results/.
-run() {
-  rm -rf results
-  "$here/run_mpi.sh" "$2" "$executable" "$1" > out.txt 2> err.txt \
-    || fail "$3: the run failed: $(cat err.txt)"
-}
-
 # check_elastic AREA TOLERANCE NAME [OFFSET]: p = 10 min(t, 2 - t) - OFFSET
 check_elastic() {
   local offset=${4:-0}
@@ -95,10 +88,10 @@ variant() { # PRM CELL_TYPE METHOD > variant.prm
 
 if [ "$quick" = quick ]; then
   variant "$parameters/patch_test.prm" simplex condensed | set_entry Subdivisions 3 > variant.prm
-  run variant.prm 1 "2D simplex, condensed"
+  run_scene variant.prm 1 "2D simplex, condensed"
   check_elastic 2 1e-9 "2D simplex, condensed"
   variant "$parameters/patch_test_3d.prm" hypercube "full space" | set_entry Subdivisions 2 > variant.prm
-  run variant.prm 1 "3D hypercube, full space"
+  run_scene variant.prm 1 "3D hypercube, full space"
   check_elastic 3 1e-7 "3D hypercube, full space"
   echo "The patch test is exact on triangles (condensed) and hexahedra (full space)."
   exit 0
@@ -113,7 +106,7 @@ for dim in 2 3; do
       tolerance=1e-9
       [ "$method" = condensed ] || tolerance=1e-7
       variant "$prm" $cell "$method" | set_entry Subdivisions 3 > variant.prm
-      run variant.prm 1 "${dim}D $cell, $method"
+      run_scene variant.prm 1 "${dim}D $cell, $method"
       check_elastic $area $tolerance "${dim}D $cell, $method"
       n=$((n + 1))
     done
@@ -121,10 +114,10 @@ for dim in 2 3; do
 done
 
 variant "$parameters/patch_test.prm" hypercube "full space" > variant.prm
-run variant.prm 2 "2D hypercube, full space, 2 ranks"
+run_scene variant.prm 2 "2D hypercube, full space, 2 ranks"
 check_elastic 2 1e-7 "2D hypercube, full space, 2 ranks"
 variant "$parameters/patch_test_3d.prm" simplex condensed | set_entry Subdivisions 3 > variant.prm
-run variant.prm 2 "3D simplex, condensed, 2 ranks"
+run_scene variant.prm 2 "3D simplex, condensed, 2 ranks"
 check_elastic 3 1e-9 "3D simplex, condensed, 2 ranks"
 
 # The support 0.002 below the block (Initial gap, along the direction
@@ -132,11 +125,11 @@ check_elastic 3 1e-9 "3D simplex, condensed, 2 ranks"
 # support moving up instead (a gap 0.002 - D(t)): the same pressures.
 gap() { sed -e "s/^\(subsection Contact\)$/\1\n  set Initial gap = $1\n  set Gap direction = $2/"; }
 variant "$parameters/patch_test.prm" simplex condensed | gap 0.002 "0, -1" > variant.prm
-run variant.prm 1 "2D simplex, support at a distance"
+run_scene variant.prm 1 "2D simplex, support at a distance"
 check_elastic 2 1e-9 "2D simplex, support at a distance" 2
 variant "$parameters/patch_test_3d.prm" hypercube "full space" | set_entry Subdivisions 2 \
   | gap "0.002 - 0.01 * min(t, 2 - t)" "0, 0, -1" | set_entry Displacement 0 > variant.prm
-run variant.prm 1 "3D hexahedra, moving support"
+run_scene variant.prm 1 "3D hexahedra, moving support"
 check_elastic 3 1e-7 "3D hexahedra, moving support" 2
 
 # Hanging nodes (Contact refinement levels) on the roller, the support and
@@ -146,7 +139,7 @@ variant "$parameters/patch_test.prm" hypercube condensed | set_entry Subdivision
   | sed -e 's/^\(subsection Geometry\)$/\1\n  set Contact refinement levels = 2/' \
         -e '0,/^  end$/s//  end\n  subsection Prescribed displacement 2\n    set Boundary ids = 1\n    set Components = x\n    set Displacement = 0.003 * min(t, 2 - t) * x\n  end/' \
   > variant.prm
-run variant.prm 1 "2D quadrilaterals, hanging nodes, two prescribed parts"
+run_scene variant.prm 1 "2D quadrilaterals, hanging nodes, two prescribed parts"
 check_elastic 2 1e-9 "2D quadrilaterals, hanging nodes, two prescribed parts"
 awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
   { r = $col["reaction_prescribed_2_x"]; if (r > 1e-9 || r < -1e-9) { print "reaction of the right side " r; exit 1 } }' \
@@ -156,16 +149,16 @@ awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
 # E = 1000 (1 - 0.3^2) = 910.
 variant "$parameters/patch_test.prm" hypercube condensed | set_entry "Young's modulus" 910 \
   | sed -e 's/^\(set Dimension = 2\)$/\1\nset Plane model = plane strain/' > variant.prm
-run variant.prm 1 "2D quadrilaterals, plane strain"
+run_scene variant.prm 1 "2D quadrilaterals, plane strain"
 check_elastic 2 1e-9 "2D quadrilaterals, plane strain"
 
 variant "$parameters/patch_test.prm" hypercube condensed \
   | set_entry Plasticity true > variant.prm
-run variant.prm 1 "2D hypercube, explicit plasticity"
+run_scene variant.prm 1 "2D hypercube, explicit plasticity"
 check_uniform 2 "2D hypercube, explicit plasticity"
 variant "$parameters/patch_test_3d.prm" simplex "full space" | set_entry Subdivisions 3 \
   | set_entry Plasticity true | sed -e 's/^\(subsection Time\)$/\1\n  set Stress update = implicit/' > variant.prm
-run variant.prm 1 "3D simplex, implicit plasticity"
+run_scene variant.prm 1 "3D simplex, implicit plasticity"
 check_uniform 3 "3D simplex, implicit plasticity"
 
 echo "The patch test is exact in $((n + 6)) elastic variants (both back ends, all cell types, 1 and 2 ranks, a support at a distance and a moving one, hanging nodes on prescribed parts, plane strain) and uniform with plasticity."

@@ -22,12 +22,6 @@ source "$here/robustness/helpers.sh"
 executable=$1
 parameters=$here/../parameters
 
-run() { # PRM RANKS NAME: the run, into results/
-  rm -rf results
-  "$here/run_mpi.sh" "$2" "$executable" "$1" > out.txt 2> err.txt \
-    || fail "$3: the run failed: $(cat err.txt)"
-}
-
 # check COLUMN SLOPE TOLERANCE NAME: the column is SLOPE t in every step.
 check() {
   awk -F, -v column="$1" -v slope="$2" -v tol="$3" -v name="$4" '
@@ -51,12 +45,12 @@ loads() { # DIM > PRM
     | set_entry "Output directory" results
 }
 loads 2 < "$parameters/patch_test.prm" | set_entry "Cell type" simplex > variant.prm
-run variant.prm 1 "2D triangles, condensed"
+run_scene variant.prm 1 "2D triangles, condensed"
 check reaction_clamped_x -0.5 1e-9 "2D triangles, condensed"
 check reaction_clamped_y 6 1e-9 "2D triangles, condensed"
 loads 3 < "$parameters/patch_test_3d.prm" | set_entry "Cell type" hypercube \
   | set_entry Method "full space" | set_entry Subdivisions 2 > variant.prm
-run variant.prm 2 "3D hexahedra, full space, 2 ranks"
+run_scene variant.prm 2 "3D hexahedra, full space, 2 ranks"
 check reaction_clamped_x -0.75 1e-7 "3D hexahedra, full space, 2 ranks"
 check reaction_clamped_z 9 1e-7 "3D hexahedra, full space, 2 ranks"
 
@@ -67,7 +61,7 @@ sed -e 's/^\( *set Clamped boundary ids *=\).*/\1 2/' \
     -e 's|^\( *set Mesh file *=\).*|\1 '"$here"'/../meshes/hertz_cylinder_16.msh|' \
     -e 's/^\(subsection Loads\)$/\1\n  subsection Surface load 1\n    set Boundary ids = 3\n    set Value = 2 * t\n  end/' \
     "$parameters/hertz_cylinder.prm" | set_entry "Output directory" results > variant.prm
-run variant.prm 1 "2D quadrilaterals, pressure on an arc"
+run_scene variant.prm 1 "2D quadrilaterals, pressure on an arc"
 check reaction_clamped_y -2 1e-9 "2D quadrilaterals, pressure on an arc"
 
 echo "Surface loads: the reactions balance a pressure and a traction on the block (2D triangles, 3D hexahedra on 2 ranks) and a pressure on a curved arc."

@@ -26,12 +26,6 @@ executable=$1 quick=${2:-}
 prm=$here/../parameters/two_columns.prm
 meshes=$here/../meshes
 
-run() { # PRM RANKS NAME: the run, into results/
-  rm -rf results
-  "$here/run_mpi.sh" "$2" "$executable" "$1" > out.txt 2> err.txt \
-    || fail "$3: the run failed: $(cat err.txt)"
-}
-
 # check_exact MODEL TOLERANCE NAME [ZONE [SPEED]]: the closed forms in
 # every step and profile; MODEL is "stress" (2D plane stress) or "strain"
 # (3D, plane strain); ZONE the number of the second zone (2); SPEED the
@@ -75,10 +69,10 @@ three_d() {
 }
 
 variant two_columns_quadrilateral_4.msh hypercube condensed > variant.prm
-run variant.prm 1 "2D quadrilaterals, condensed"
+run_scene variant.prm 1 "2D quadrilaterals, condensed"
 check_exact stress 1e-9 "2D quadrilaterals, condensed"
 variant two_columns_hexahedron_2.msh hypercube "full space" | three_d > variant.prm
-run variant.prm 2 "3D hexahedra, full space, 2 ranks"
+run_scene variant.prm 2 "3D hexahedra, full space, 2 ranks"
 check_exact strain 1e-7 "3D hexahedra, full space, 2 ranks"
 if [ "$quick" = quick ]; then
   echo "The two columns are exact on quadrilaterals (condensed) and hexahedra (full space, 2 ranks)."
@@ -86,35 +80,35 @@ if [ "$quick" = quick ]; then
 fi
 
 variant two_columns_triangle_4.msh simplex "full space" > variant.prm
-run variant.prm 2 "2D triangles, full space, 2 ranks"
+run_scene variant.prm 2 "2D triangles, full space, 2 ranks"
 check_exact stress 1e-7 "2D triangles, full space, 2 ranks"
 variant two_columns_hexahedron_2.msh hypercube condensed | three_d > variant.prm
-run variant.prm 2 "3D hexahedra, condensed, 2 ranks"
+run_scene variant.prm 2 "3D hexahedra, condensed, 2 ranks"
 check_exact strain 1e-9 "3D hexahedra, condensed, 2 ranks"
 variant two_columns_tetrahedron_2.msh simplex condensed | three_d > variant.prm
-run variant.prm 1 "3D tetrahedra, condensed"
+run_scene variant.prm 1 "3D tetrahedra, condensed"
 check_exact strain 1e-9 "3D tetrahedra, condensed"
 variant two_columns_triangle_4.msh simplex condensed \
   | sed -e 's/^\(set Dimension = 2\)$/\1\nset Plane model = plane strain/' > variant.prm
-run variant.prm 1 "2D triangles, plane strain, condensed"
+run_scene variant.prm 1 "2D triangles, plane strain, condensed"
 check_exact strain 1e-9 "2D triangles, plane strain, condensed"
 # An adaptive mesh: refined and coarsened cells, hanging nodes; the state
 # stays exact.
 variant two_columns_quadrilateral_4.msh hypercube condensed \
   | sed -e 's/^\(subsection Output\)$/subsection Mesh adaptation\n  set Adaptive refinement = true\n  set Refinement interval = 1\n  set Refine fraction = 0.5\nend\n\n\1/' > variant.prm
-run variant.prm 2 "2D quadrilaterals, adaptive mesh, 2 ranks"
+run_scene variant.prm 2 "2D quadrilaterals, adaptive mesh, 2 ranks"
 check_exact stress 1e-7 "2D quadrilaterals, adaptive mesh, 2 ranks"
 # A moving support (s = 0.002 - 0.004 t: it rises into the second column)
 # on an adaptive mesh, on the full space back end.
 variant two_columns_quadrilateral_4.msh hypercube "full space" \
   | set_entry "Initial gap" "0.002 - 0.004 * t" \
   | sed -e 's/^\(subsection Output\)$/subsection Mesh adaptation\n  set Adaptive refinement = true\n  set Refinement interval = 2\n  set Refine fraction = 0.5\nend\n\n\1/' > variant.prm
-run variant.prm 2 "2D quadrilaterals, moving support, adaptive mesh, full space, 2 ranks"
+run_scene variant.prm 2 "2D quadrilaterals, moving support, adaptive mesh, full space, 2 ranks"
 check_exact stress 1e-7 "2D quadrilaterals, moving support, adaptive mesh, full space, 2 ranks" 2 0.004
 # The zones are named by their numbers, which need not follow each other.
 variant two_columns_quadrilateral_4.msh hypercube "full space" \
   | sed -e 's/^subsection Contact zone 2 /subsection Contact zone 3 /' > variant.prm
-run variant.prm 1 "2D quadrilaterals, full space, zone 3"
+run_scene variant.prm 1 "2D quadrilaterals, full space, zone 3"
 check_exact stress 1e-7 "2D quadrilaterals, full space, zone 3" 3
 grep -q "Contact zones: 2" out.txt || fail "zone 3: the header does not say 2 zones"
 

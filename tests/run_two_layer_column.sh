@@ -28,12 +28,6 @@ source "$here/robustness/helpers.sh"
 executable=$1 quick=${2:-}
 prm=$here/../parameters/two_layer_column.prm
 
-run() { # PRM RANKS NAME: the run, into results/
-  rm -rf results
-  "$here/run_mpi.sh" "$2" "$executable" "$1" > out.txt 2> err.txt \
-    || fail "$3: the run failed: $(cat err.txt)"
-}
-
 # check_exact MODEL TOLERANCE NAME: the closed form in every step and
 # profile; MODEL is "stress" (2D plane stress) or "strain" (3D, plane strain).
 check_exact() {
@@ -86,10 +80,10 @@ three_d() {
 }
 
 variant simplex condensed > variant.prm
-run variant.prm 1 "2D triangles, condensed"
+run_scene variant.prm 1 "2D triangles, condensed"
 check_exact stress 1e-9 "2D triangles, condensed"
 variant hypercube "full space" | three_d | set_entry Subdivisions 2 > variant.prm
-run variant.prm 1 "3D hexahedra, full space"
+run_scene variant.prm 1 "3D hexahedra, full space"
 check_exact strain 1e-7 "3D hexahedra, full space"
 if [ "$quick" = quick ]; then
   echo "The two-layer column is exact on triangles (condensed) and hexahedra (full space)."
@@ -97,39 +91,39 @@ if [ "$quick" = quick ]; then
 fi
 
 variant hypercube "full space" | set_entry "Global refinements" 1 > variant.prm
-run variant.prm 2 "2D quadrilaterals, full space, refined, 2 ranks"
+run_scene variant.prm 2 "2D quadrilaterals, full space, refined, 2 ranks"
 check_exact stress 1e-7 "2D quadrilaterals, full space, refined, 2 ranks"
 # Adaptive meshes: the cells refined and coarsened during the run keep
 # their material (the interface stays a mesh line, hanging nodes on it).
 variant hypercube condensed | plastic_soft_layer \
   | sed -e 's/^\(subsection Output\)$/subsection Mesh adaptation\n  set Adaptive refinement = true\n  set Refinement interval = 1\n  set Refine fraction = 0.5\nend\n\n\1/' \
         -e 's/^\(set Dimension = 2\)$/\1\nset Plane model = plane strain/' > variant.prm
-run variant.prm 2 "2D quadrilaterals, plane strain, adaptive mesh, 2 ranks"
+run_scene variant.prm 2 "2D quadrilaterals, plane strain, adaptive mesh, 2 ranks"
 check_uniform "2D quadrilaterals, plane strain, adaptive mesh, 2 ranks"
 variant simplex condensed | three_d | set_entry Subdivisions 2 > variant.prm
-run variant.prm 1 "3D tetrahedra, condensed"
+run_scene variant.prm 1 "3D tetrahedra, condensed"
 check_exact strain 1e-9 "3D tetrahedra, condensed"
 # Plane strain: the modulus of uniaxial strain is that of 3D.
 variant simplex "full space" | sed -e 's/^\(set Dimension = 2\)$/\1\nset Plane model = plane strain/' > variant.prm
-run variant.prm 1 "2D triangles, plane strain, full space"
+run_scene variant.prm 1 "2D triangles, plane strain, full space"
 check_exact strain 1e-7 "2D triangles, plane strain, full space"
 variant hypercube condensed | set_entry "Material id function" "" \
   | sed -e "s|^\(subsection Geometry\)$|\1\n  set Mesh file = $here/../meshes/two_layer_column_4.msh|" \
   | set_entry "Boundary ids" 4 | set_entry "Contact boundary ids" 3 \
   | set_entry "Symmetry boundary ids" "1, 2" \
   | sed -e '0,/Material ids .*/s//Material ids = 10/' -e 's/Material ids *= 2$/Material ids = 20/' > variant.prm
-run variant.prm 1 "2D Gmsh mesh, condensed"
+run_scene variant.prm 1 "2D Gmsh mesh, condensed"
 check_exact stress 1e-9 "2D Gmsh mesh, condensed"
 grep -q "Model: elastic (2 materials" out.txt || fail "Gmsh mesh: not two materials: $(grep Model: out.txt)"
 
 variant hypercube condensed | plastic_soft_layer > variant.prm
-run variant.prm 1 "2D quadrilaterals, viscoplastic soft layer, explicit"
+run_scene variant.prm 1 "2D quadrilaterals, viscoplastic soft layer, explicit"
 check_uniform "2D quadrilaterals, viscoplastic soft layer, explicit"
 grep -q "Model: viscoplastic (2 materials, 1 viscoplastic)" out.txt \
   || fail "viscoplastic soft layer: $(grep Model: out.txt)"
 variant simplex "full space" | three_d | set_entry Subdivisions 2 | plastic_soft_layer \
   | sed -e 's/^\(subsection Time\)$/\1\n  set Stress update = implicit/' > variant.prm
-run variant.prm 1 "3D tetrahedra, viscoplastic soft layer, implicit"
+run_scene variant.prm 1 "3D tetrahedra, viscoplastic soft layer, implicit"
 check_uniform "3D tetrahedra, viscoplastic soft layer, implicit"
 
 echo "The two-layer column is exact in 6 elastic variants (all cell types, both back ends, 1 and 2 ranks, regions of a function and of a Gmsh mesh, plane strain) and uniform with a viscoplastic layer."

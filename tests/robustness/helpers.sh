@@ -3,12 +3,20 @@
 #   base        the small scene they vary (robustness/small.prm);
 #   fail TEXT   prints TEXT and fails the test;
 #   set_entry ENTRY VALUE < PRM > PRM2   the scene with one entry changed;
+#   run_scene PRM RANKS NAME     runs the program (uses $executable) on PRM
+#                                into results/ (removed first), output in
+#                                out.txt and err.txt; fails naming NAME.
 #   wait_for_step N OUTPUT PID   waits (up to 30 s) until the run PID has
 #                                printed step N into OUTPUT; fails if not.
 base=$here/robustness/small.prm
 fail() { echo "$*"; exit 1; }
 set_entry() {
   sed -e "s|^\( *set $1 *=\).*|\1 $2|"
+}
+run_scene() {
+  rm -rf results
+  "$here/run_mpi.sh" "$2" "$executable" "$1" > out.txt 2> err.txt \
+    || fail "$3: the run failed: $(cat err.txt)"
 }
 wait_for_step() {
   local i

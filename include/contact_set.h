@@ -72,7 +72,10 @@ namespace ViscoContact
   public:
     struct NodeGeometry
     {
-      Point<dim>                               location;
+      Point<dim> location;
+      // The node's row n_i of N on its dofs, r_i = n_i . u: the normal (or
+      // the zone's direction) without the constrained components, of
+      // length 1 except on an oblique plane of symmetry (find_nodes()).
       Tensor<1, dim>                           normal;
       std::array<types::global_dof_index, dim> dofs;
       // The same dofs as indices into the local storage of the

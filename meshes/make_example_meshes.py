@@ -29,6 +29,14 @@ tags: 1 the sides x = 0 and x = 2, 2 the sides x = 1 and x = 3, 6 the sides
 z = 0 and 7 z = 1 (3D), 3 the bottom of the first column, 5 the bottom of
 the second, 4 both tops; parameters/two_columns.prm (contact zones).
 
+tilted_block_{quadrilateral,triangle}_N.msh,
+tilted_block_{hexahedron,tetrahedron}_N.msh: the first of the two columns
+alone, rotated about the origin by 30 degrees about z and then, in 3D, by
+20 degrees about x (x = R X, R in rotation()), so that no face is parallel
+to a coordinate plane; the same tags (without 5). The tilted patch tests
+(parameters/tilted_patch_test*.prm) put their planes of symmetry and the
+support on these oblique faces.
+
 Run from anywhere: python3 meshes/make_example_meshes.py
 """
 import itertools
@@ -86,14 +94,33 @@ def permutation_sign(order):
     return -1 if inversions % 2 else 1
 
 
-def two_columns(n, dim, simplex=False):
-    """The mesh of the two columns (see the top of the file)."""
+def rotation(dim):
+    """The rotation of the tilted blocks: by 30 degrees about z, then in 3D
+    by 20 degrees about x, so that no face is parallel to a coordinate
+    plane. Rows of the matrix R, x = R X."""
+    c, s = math.cos(ANGLE), math.sin(ANGLE)
+    if dim == 2:
+        return ((c, -s, 0.0), (s, c, 0.0), (0.0, 0.0, 1.0))
+    a, b = math.cos(math.radians(20.0)), math.sin(math.radians(20.0))
+    return ((c, -s, 0.0), (a * s, a * c, -b), (b * s, b * c, a))
+
+
+def columns(n, dim, simplex=False, count=2, rotate=None):
+    """Unit columns side by side, [2 b, 2 b + 1] in x for b < count, rotated
+    by the matrix rotate (rows) if given (see the top of the file)."""
     nz = n if dim == 3 else 0
     index = lambda b, i, j, k: ((b * (nz + 1) + k) * (n + 1) + j) * (n + 1) + i + 1
-    nodes = [(index(b, i, j, k), 2 * b + i / n, j / n, k / n if dim == 3 else 0.0)
-             for b in range(2) for k in range(nz + 1) for j in range(n + 1) for i in range(n + 1)]
+    nodes = []
+    for b in range(count):
+        for k in range(nz + 1):
+            for j in range(n + 1):
+                for i in range(n + 1):
+                    point = (2 * b + i / n, j / n, k / n if dim == 3 else 0.0)
+                    if rotate:
+                        point = tuple(sum(r * p for r, p in zip(row, point)) for row in rotate)
+                    nodes.append((index(b, i, j, k),) + point)
     boundary, cells = [], []
-    for b in range(2):
+    for b in range(count):
         bottom = 3 if b == 0 else 5
         if dim == 2:
             v = lambda i, j: index(b, i, j, 0)
@@ -141,7 +168,9 @@ def two_columns(n, dim, simplex=False):
                             if permutation_sign(order) < 0:
                                 path[1], path[2] = path[2], path[1]
                             cells.append((4, 10) + tuple(v(*corner) for corner in path))
-    names = [(1, "left_sides"), (2, "right_sides"), (3, "support_1"), (4, "tops"), (5, "support_2")]
+    names = [(1, "left_sides"), (2, "right_sides"), (3, "support_1"), (4, "tops")]
+    if count > 1:
+        names.append((5, "support_2"))
     if dim == 3:
         names += [(6, "front_sides"), (7, "back_sides")]
     return gmsh_elements_text(nodes, boundary, cells, names, [(10, "columns")])
@@ -157,4 +186,6 @@ if __name__ == "__main__":
     for name, dim, simplex, n in (("quadrilateral", 2, False, 4), ("triangle", 2, True, 4),
                                   ("hexahedron", 3, False, 2), ("tetrahedron", 3, True, 2)):
         with open(os.path.join(folder, "two_columns_%s_%d.msh" % (name, n)), "w") as f:
-            f.write(two_columns(n, dim, simplex))
+            f.write(columns(n, dim, simplex))
+        with open(os.path.join(folder, "tilted_block_%s_%d.msh" % (name, n)), "w") as f:
+            f.write(columns(n, dim, simplex, count=1, rotate=rotation(dim)))

@@ -12,7 +12,11 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/partitioner.h>
 
+#include <deal.II/dofs/dof_tools.h>
+
 #include <deal.II/fe/fe_values.h>
+
+#include <deal.II/lac/full_matrix.h>
 
 #include "contact_set.h"
 
@@ -180,8 +184,16 @@ namespace ViscoContact
                             contact_ids,
                             weights,
                             weighted_normals);
+    // Only the hanging vertices pass their values on: an oblique plane of
+    // symmetry also constrains a component, by the other components of the
+    // same vertex, which keeps its weight and normal.
+    IndexSet relevant_dofs;
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
+    AffineConstraints<double> hanging_constraints(relevant_dofs);
+    DoFTools::make_hanging_node_constraints(dof_handler, hanging_constraints);
+    hanging_constraints.close();
     for (VectorType *vector : {&weights, &weighted_normals})
-      pass_on_hanging_values(*vector, constraints, layout);
+      pass_on_hanging_values(*vector, hanging_constraints, layout);
 
     gaps.clear();
     find_nodes(zones,
@@ -253,46 +265,86 @@ namespace ViscoContact
   //
   // The direction of a contact node whose other components are constrained
   // (a node where the contact zone meets a roller, a plane of symmetry or a
-  // part whose tangential displacement is prescribed): the weighted normal
-  // without its constrained components, normalised, so that r = u . nu
-  // involves free dofs only and the contact force acts on them. A node
-  // whose constraint couples components (an oblique plane of symmetry) is
-  // refused, naming its location; one whose normal lies in its constrained
-  // components gets the zero vector (it is not a contact node).
+  // part whose tangential displacement is prescribed). The node's
+  // displacement lies in the span of the columns of C, u_node = C u_free,
+  // u_free its unconstrained dofs (on a plane x_k = const, C drops
+  // component k; on an oblique plane, the constrained component is a
+  // combination of the others, setup.cc). Its direction nu is projected
+  // onto that span and normalised, as the mirror image of the body would
+  // make it (the weighted normal of a vertex on a plane of symmetry sees
+  // only one side), and the node's vector is n = C^T nu on the free dofs:
+  // then r = nu . u_node = n . u_free exactly, and n is the row of N (the
+  // contact force n z acts on the free dofs). n has length 1 except where
+  // the constraint couples components (an oblique plane). A vertex whose
+  // direction lies in its constrained components gets the zero vector (it
+  // is not a contact node, like a clamped corner); one constrained to
+  // another vertex's dofs is refused, naming its location.
   template <int dim>
   Tensor<1, dim>
   free_direction(const typename ContactSet<dim>::NodeGeometry &node,
                  const AffineConstraints<double>              &constraints)
   {
-    Tensor<1, dim>     direction = node.normal;
-    const double       length    = node.normal.norm();
-    std::ostringstream where;
-    where << node.location;
+    const double length = node.normal.norm();
+    // C: column f for free component f; constrained rows from their lines.
+    // Coupling weights at rounding level (the edge of two planes of
+    // symmetry along a coordinate axis) couple nothing.
+    FullMatrix<double> C(dim, dim);
+    std::vector<bool>  free(dim, true);
     for (unsigned int c = 0; c < dim; ++c)
-      if (constraints.is_constrained(node.dofs[c]))
-        {
-          // Coupling weights at rounding level (the edge of two planes of
-          // symmetry along a coordinate axis) couple nothing.
-          const auto *entries
-            = constraints.get_constraint_entries(node.dofs[c]);
-          bool coupled = false;
-          if (entries != nullptr)
-            for (const auto &entry : *entries)
-              coupled = coupled || std::abs(entry.second) > 1e-10;
-          AssertThrow(!coupled,
-                      ExcMessage("The contact node at (" + where.str()
-                                 + ") lies on a plane of symmetry that is not "
-                                   "parallel to a coordinate plane; accepted: "
-                                   "contact zones that meet planes of symmetry "
-                                   "x = const, y = const or z = const."));
-          direction[c] = 0;
-        }
+      free[c] = !constraints.is_constrained(node.dofs[c]);
+    for (unsigned int c = 0; c < dim; ++c)
+      if (free[c])
+        C(c, c) = 1;
+      else if (const auto *entries
+               = constraints.get_constraint_entries(node.dofs[c]))
+        for (const auto &[dof, weight] : *entries)
+          {
+            if (std::abs(weight) <= 1e-10)
+              continue;
+            const auto own = std::find(node.dofs.begin(), node.dofs.end(), dof);
+            const unsigned int f = own - node.dofs.begin();
+            std::ostringstream where;
+            where << node.location;
+            AssertThrow(own != node.dofs.end() && free[f],
+                        ExcMessage("The contact node at (" + where.str()
+                                   + ") is constrained to the displacement "
+                                     "of other nodes; accepted: contact "
+                                     "nodes that are free, clamped or on "
+                                     "planes of symmetry."));
+            C(c, f) = weight;
+          }
+    // nu projected onto the span of C: C (C^T C)^+ C^T nu, with the
+    // constrained components' empty columns left out of the inverse.
+    Tensor<1, dim> n; // C^T nu
+    for (unsigned int f = 0; f < dim; ++f)
+      for (unsigned int c = 0; c < dim; ++c)
+        n[f] += C(c, f) * node.normal[c];
+    FullMatrix<double> gram(dim, dim); // C^T C, identity in constrained ones
+    for (unsigned int f = 0; f < dim; ++f)
+      for (unsigned int g = 0; g < dim; ++g)
+        if (free[f] && free[g])
+          for (unsigned int c = 0; c < dim; ++c)
+            gram(f, g) += C(c, f) * C(c, g);
+        else
+          gram(f, g) = (f == g);
+    gram.gauss_jordan();
+    Tensor<1, dim> coefficients, direction;
+    for (unsigned int f = 0; f < dim; ++f)
+      for (unsigned int g = 0; g < dim; ++g)
+        coefficients[f] += gram(f, g) * n[g];
+    for (unsigned int c = 0; c < dim; ++c)
+      for (unsigned int f = 0; f < dim; ++f)
+        direction[c] += C(c, f) * coefficients[f];
     // Nothing left (the node where the contact zone meets a part that
-    // prescribes its normal component): not a contact node, like a clamped
-    // corner.
+    // prescribes its normal component): not a contact node.
     if (direction.norm() <= 1e-3 * length)
       return Tensor<1, dim>();
-    return direction / direction.norm();
+    direction /= direction.norm();
+    Tensor<1, dim> free_vector; // C^T direction
+    for (unsigned int f = 0; f < dim; ++f)
+      for (unsigned int c = 0; c < dim; ++c)
+        free_vector[f] += C(c, f) * direction[c];
+    return free_vector;
   }
 
 

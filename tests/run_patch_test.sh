@@ -17,6 +17,10 @@
 #  - with hanging nodes on the roller, the support and a second prescribed
 #    part (the right side, given the exact u_x = nu D x / H): the same, and
 #    no reaction on the right side;
+#  - on the tilted block (parameters/tilted_patch_test*.prm: the block
+#    rotated so that its rollers and the support are oblique, the contact
+#    nodes on the rollers constrained to move in them), on all four cell
+#    types, both back ends, 1 and 2 ranks: the same;
 #  - in plane strain (E = 910, so that E / (1 - nu^2) = 1000): the same;
 #  - with plasticity (explicit and implicit update): the state is still
 #    uniform and uniaxial, so every node of a profile has the same pressure
@@ -30,17 +34,23 @@ source "$here/robustness/helpers.sh"
 executable=$1 quick=${2:-}
 parameters=$here/../parameters
 
-# check_elastic AREA TOLERANCE NAME [OFFSET]: p = 10 min(t, 2 - t) - OFFSET
+# check_elastic AREA TOLERANCE NAME [OFFSET [UP]]: p = 10 min(t, 2 - t) -
+# OFFSET, the top's reaction -p AREA UP (UP the support's inner normal,
+# "x y" or "x y z"; default the y axis with AREA 2, the z axis with AREA 3).
 check_elastic() {
-  local offset=${4:-0}
-  awk -F, -v area="$1" -v tol="$2" -v name="$3" -v offset="$offset" '
+  local offset=${4:-0} up=${5:-}
+  [ -n "$up" ] || { up="0 1"; [ "$1" = 3 ] && up="0 0 1"; }
+  awk -F, -v area="$1" -v tol="$2" -v name="$3" -v offset="$offset" -v up="$up" '
     function near(a, b) { d = a - b; if (d < 0) d = -d
                           m = b < 0 ? -b : b; return d <= tol * (m > 1 ? m : 1) }
     NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i
-              top = col["reaction_prescribed_1_" (area == 2 ? "y" : "z")]; next }
+              dim = split(up, direction, " "); next }
     { t = $col["time"]; p = 10 * (t < 2 - t ? t : 2 - t) - offset
+      top = 0
+      for (c = 1; c <= dim; ++c)
+        top += direction[c] * $col["reaction_prescribed_1_" substr("xyz", c, 1)]
       if (!near($col["total_contact_force"], p * area) || !near($col["contact_area"], area) \
-          || !near($col["peak_pressure"], p) || !near($top, -p * area) || $col["no_contact_nodes"] != 0) {
+          || !near($col["peak_pressure"], p) || !near(top, -p * area) || $col["no_contact_nodes"] != 0) {
         print name ": at t = " t " force " $col["total_contact_force"] ", area " $col["contact_area"] \
               ", peak " $col["peak_pressure"] ", reaction of the top " $top "; expected p = " p ", force " p * area
         exit 1 } }' results/time_series.csv || exit 1
@@ -145,6 +155,28 @@ awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
   { r = $col["reaction_prescribed_2_x"]; if (r > 1e-9 || r < -1e-9) { print "reaction of the right side " r; exit 1 } }' \
   results/time_series.csv || fail "2D quadrilaterals, hanging nodes: the right side carries a force."
 
+# The tilted block (parameters/tilted_patch_test*.prm): oblique rollers and
+# an oblique support, the contact nodes on a roller constrained to move in
+# it (along the edge of the two planes in 3D). The same pressures on every
+# cell type, both back ends, 1 and 2 ranks; UP = e_Y of the meshes' rotation.
+up2="-0.5 0.8660254037844387" up3="-0.5 0.8137976813493738 0.29619813272602386"
+tilted() { # PRM MESH CELL_TYPE METHOD > variant.prm
+  sed -e "s|\.\./meshes/tilted_block_[a-z]*_\([0-9]\)|$here/../meshes/tilted_block_$2_\1|" "$1" \
+    | set_entry "Cell type" "$3" | set_entry Method "$4" | set_entry "Output directory" results
+}
+for variant in "quadrilateral hypercube condensed 1" "triangle simplex full_space 2" \
+               "hexahedron hypercube full_space 1" "hexahedron hypercube condensed 2" \
+               "tetrahedron simplex condensed 1" "tetrahedron simplex full_space 2"; do
+  set -- $variant
+  prm=$parameters/tilted_patch_test.prm up=$up2
+  case $1 in hexahedron|tetrahedron) prm=$parameters/tilted_patch_test_3d.prm up=$up3 ;; esac
+  tolerance=1e-9
+  [ "$3" = condensed ] || tolerance=1e-7
+  tilted "$prm" $1 $2 "${3/_/ }" > variant.prm
+  run_scene variant.prm $4 "tilted block, $1, ${3/_/ }, $4 rank(s)"
+  check_elastic 1 $tolerance "tilted block, $1, ${3/_/ }, $4 rank(s)" 0 "$up"
+done
+
 # Plane strain: p = E D / ((1 - nu^2) H), the same pressures with
 # E = 1000 (1 - 0.3^2) = 910.
 variant "$parameters/patch_test.prm" hypercube condensed | set_entry "Young's modulus" 910 \
@@ -161,4 +193,4 @@ variant "$parameters/patch_test_3d.prm" simplex "full space" | set_entry Subdivi
 run_scene variant.prm 1 "3D simplex, implicit plasticity"
 check_uniform 3 "3D simplex, implicit plasticity"
 
-echo "The patch test is exact in $((n + 6)) elastic variants (both back ends, all cell types, 1 and 2 ranks, a support at a distance and a moving one, hanging nodes on prescribed parts, plane strain) and uniform with plasticity."
+echo "The patch test is exact in $((n + 12)) elastic variants (both back ends, all cell types, 1 and 2 ranks, a support at a distance and a moving one, hanging nodes on prescribed parts, a tilted block on oblique rollers, plane strain) and uniform with plasticity."

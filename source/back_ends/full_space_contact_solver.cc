@@ -61,7 +61,9 @@ namespace ViscoContact
   // symmetric when A is, and positive definite as long as the uniqueness
   // condition (doc/model.md, section 4) holds: CG then; GMRES for the
   // implicit update's unsymmetric tangent. The forces at the fixed nodes are
-  // read off the residual, z_i = nu_i . (b - A u)_i.
+  // read off the residual, z_i = nu_i . (b - A u)_i. Here nu_i is the node's
+  // row n_i of N; on an oblique plane of symmetry |n_i| != 1, so the
+  // projections and u_0 divide by |n_i|^2 (doc/model.md, section 2).
   //
   // Why this form: the sloped pieces only add a rank-one term per node and
   // the vertical pieces only remove one direction per node, so neither the
@@ -492,6 +494,16 @@ namespace ViscoContact
   // solver.
   namespace
   {
+    // n_i / |n_i|: the node's vector n_i (r_i = n_i . u) has length 1
+    // except where an oblique plane of symmetry couples its components
+    // (ContactSet::find_nodes()); projections need the unit vector.
+    template <int dim>
+    Tensor<1, dim>
+    unit_normal(const ContactSet<dim> &contact, const unsigned int i)
+    {
+      return contact.node(i).normal / contact.node(i).normal.norm();
+    }
+
     // The local row of component c of contact node i.
     template <int dim>
     int
@@ -561,7 +573,7 @@ namespace ViscoContact
           for (unsigned int c = 0; c < dim; ++c)
             {
               owned_normal[node_row(matrix, contact, i, c)]
-                = contact.node(i).normal[c];
+                = unit_normal(contact, i)[c];
               owned_node[node_row(matrix, contact, i, c)]
                 = static_cast<double>(contact.first_global_index() + i + 1);
             }
@@ -662,11 +674,12 @@ namespace ViscoContact
     for (unsigned int i = 0; i < contact.size(); ++i)
       if (std::isinf(stiffness[i]))
         {
-          const auto  &node = contact.node(i);
-          int          n[dim];
-          double      *values[dim];
-          int         *columns[dim];
-          unsigned int components[dim] = {}, n_components = 0;
+          const auto          &node   = contact.node(i);
+          const Tensor<1, dim> normal = unit_normal(contact, i);
+          int                  n[dim];
+          double              *values[dim];
+          int                 *columns[dim];
+          unsigned int         components[dim] = {}, n_components = 0;
           for (unsigned int c = 0; c < dim; ++c)
             if (node.normal[c] != 0)
               components[n_components++] = c;
@@ -690,17 +703,17 @@ namespace ViscoContact
             {
               double sum = 0;
               for (unsigned int m = 0; m < n_components; ++m)
-                sum += node.normal[components[m]] * values[components[m]][e];
+                sum += normal[components[m]] * values[components[m]][e];
               for (unsigned int m = 0; m < n_components; ++m)
-                values[components[m]][e] -= sum * node.normal[components[m]];
+                values[components[m]][e] -= sum * normal[components[m]];
             }
-          // d_i nu_i nu_i^T, d_i = nu_i^T A_ii nu_i, back on the diagonal.
+          // d_i nu_i nu_i^T, d_i = nu_i^T A_ii nu_i, back on the diagonal
+          // (add_to_block() adds multiples of n_i n_i^T).
           double d = 0;
           for (unsigned int c = 0; c < dim; ++c)
             for (unsigned int e = 0; e < dim; ++e)
-              d += node.normal[c] * A->el(node.dofs[c], node.dofs[e])
-                   * node.normal[e];
-          add_to_block(matrix, contact, i, d);
+              d += normal[c] * A->el(node.dofs[c], node.dofs[e]) * normal[e];
+          add_to_block(matrix, contact, i, d / node.normal.norm_square());
         }
   }
 
@@ -722,14 +735,15 @@ namespace ViscoContact
       if (std::isinf(stiffness[i]))
         for (int mode = 0; mode < contact_modes->NumVectors(); ++mode)
           {
-            double normal_part = 0;
+            const Tensor<1, dim> normal      = unit_normal(contact, i);
+            double               normal_part = 0;
             for (unsigned int c = 0; c < dim; ++c)
               normal_part
-                += contact.node(i).normal[c]
+                += normal[c]
                    * (*contact_modes)[mode][node_row(matrix, contact, i, c)];
             for (unsigned int c = 0; c < dim; ++c)
               (*contact_modes)[mode][node_row(matrix, contact, i, c)]
-                -= normal_part * contact.node(i).normal[c];
+                -= normal_part * normal[c];
           }
   }
 
@@ -973,7 +987,10 @@ namespace ViscoContact
         // r = nu.u - s with the obstacle's gap s: a vertical piece fixes
         // nu.u = beta + s, a sloped one has the intercept o - slope s in nu.u.
         if (piece.vertical)
-          contact.add_normal(u0, i, piece.r_lower + contact.gap(i));
+          contact.add_normal(u0,
+                             i,
+                             (piece.r_lower + contact.gap(i))
+                               / contact.node(i).normal.norm_square());
         else
           {
             contact.add_normal(step_rhs,
@@ -990,9 +1007,9 @@ namespace ViscoContact
 
   // @sect4{FullSpaceContactSolver::remove_fixed_normals}
   //
-  // P v: remove the normal component at every fixed node. nu_i is a unit
-  // vector, so this is the orthogonal projection I - nu_i nu_i^T on the
-  // node's dofs and the identity elsewhere.
+  // P v: remove the normal component at every fixed node, the orthogonal
+  // projection I - n_i n_i^T / |n_i|^2 on the node's dofs and the identity
+  // elsewhere.
   template <int dim>
   void
   FullSpaceContactSolver<dim>::remove_fixed_normals(
@@ -1002,7 +1019,10 @@ namespace ViscoContact
   {
     for (unsigned int i = 0; i < contact.size(); ++i)
       if (fixed[i])
-        contact.add_normal(v, i, -contact.normal_component(v, i));
+        contact.add_normal(v,
+                           i,
+                           -contact.normal_component(v, i)
+                             / contact.node(i).normal.norm_square());
   }
 
 
@@ -1031,7 +1051,10 @@ namespace ViscoContact
         remove_fixed_normals(contact, fixed, dst);
         for (unsigned int i = 0; i < contact.size(); ++i)
           if (fixed[i])
-            contact.add_normal(dst, i, contact.normal_component(src, i));
+            contact.add_normal(dst,
+                               i,
+                               contact.normal_component(src, i)
+                                 / contact.node(i).normal.norm_square());
       };
   }
 
@@ -1108,6 +1131,7 @@ namespace ViscoContact
         contact.r[i] = contact.normal_component(u, i) - contact.gap(i);
         contact.z[i] = (piece.vertical
                           ? contact.normal_component(residual, i)
+                              / contact.node(i).normal.norm_square()
                           : contact.weight(i)
                               * (piece.intercept + piece.slope * contact.r[i]));
       }

@@ -688,8 +688,9 @@ namespace ViscoContact
     // u_k = 0 on a plane x_k = const); on two planes in 3D (an edge) u is
     // along the edge t = n_1 x n_2; on more (2D corners, 3D vertices) u = 0.
     // Components constrained already (hanging nodes, Dirichlet parts) keep
-    // their constraints. Only the owner of a vertex, which sees all of the
-    // cells around it, makes its lines (another rank may not see every
+    // their constraints; on one plane the largest free component takes the
+    // plane's constraint instead. Only the owner of a vertex, which sees all of
+    // the cells around it, makes its lines (another rank may not see every
     // plane there); make_consistent_in_parallel() gives them to the ranks
     // that have the vertex as a ghost.
     template <int dim>
@@ -744,10 +745,18 @@ namespace ViscoContact
             continue;
           if (planes.size() == 1)
             {
-              const Tensor<1, dim> &n = planes[0];
-              const unsigned int    k = largest(n);
-              if (constraints.is_constrained(dofs[k]))
+              // A component prescribed already stays prescribed: the plane
+              // constrains the free component with the largest |n_k| in
+              // terms of the others (close() resolves the prescribed ones'
+              // values into it). None free with n_k != 0: u.n is held.
+              Tensor<1, dim> n = planes[0];
+              for (unsigned int c = 0; c < dim; ++c)
+                if (constraints.is_constrained(dofs[c]))
+                  n[c] = 0;
+              const unsigned int k = largest(n);
+              if (n[k] == 0)
                 continue;
+              n = planes[0];
               constraints.add_line(dofs[k]);
               for (unsigned int j = 0; j < dim; ++j)
                 if (j != k && n[j] != 0)

@@ -23,12 +23,23 @@ measure that converges. Prints the markdown tables of doc/benchmarks.md;
 FILE draws the force-indentation curves and the errors against the mesh
 size and the run time (the program's wall clock). --check (the ctest):
 N = 12 and 16 on both cell types, bounds on the errors, the error in p0
-falling, and 2-rank runs on N = 8 (full space back end) equal to the
-1-rank ones (condensed) to 1e-6.
+falling, the L2 error of the pressure on hexahedra N = 8, 16, 24 falling
+with an observed order of at least 0.8 in each refinement, and 2-rank
+runs on N = 8 (full space back end) equal to the 1-rank ones (condensed)
+to 1e-6.
+
+--cost N,M,... --methods "full space,condensed" --ranks 1: the cost of the
+moving obstacle on hexahedra at N cells per edge (N = 68: 985k dofs), from
+the program's own cost report: active-set iterations and Krylov iterations
+per step, the time of a step against one elastic solve with the operator
+of the step (no contact, the same preconditioner, from a zero start), how
+often the back end set up its operator, peak memory. Prints a markdown
+table (doc/benchmarks.md, "Cost of a moving-obstacle step").
 
     benchmarks/run_hertz_sphere.py [--executable build/viscoplastic_contact]
         [--meshes 8,16,24,32] [--cells hexahedron,tetrahedron]
         [--figure doc/figures/hertz_sphere.png] [--check]
+        [--cost 68 [--methods "full space,condensed"] [--ranks 1]]
 """
 
 import argparse
@@ -57,18 +68,22 @@ def hertz_force(d):
     return 4.0 / 3.0 * E_STAR * math.sqrt(R) * d ** 1.5
 
 
-def run(executable, n, cells, ranks, folder):
+def run(executable, n, cells, ranks, folder, method=None, report=None):
+    """Runs the scene on N, returns the output folder and the wall time;
+    report (a dict) receives the program's standard output."""
     mesh = os.path.join(folder, "hertz_sphere.msh")
     with open(mesh, "w") as f:
         f.write(hertz_sphere_block(n, cells == "tetrahedron"))
+    entries = {(("Geometry",), "Mesh file"): mesh,
+               (("Geometry",), "Cell type"):
+                   "simplex" if cells == "tetrahedron" else "hypercube",
+               (("Output",), "Output directory"): os.path.join(folder, "output"),
+               (("Output",), "Profile times"): "1",
+               (("Output",), "Write vtu"): "false"}
+    if method:
+        entries[(("Linear solver",), "Method")] = method
     with open(os.path.join(TOP, "parameters", "hertz_sphere.prm")) as f:
-        text = set_prm_entries(f.read(), {
-            (("Geometry",), "Mesh file"): mesh,
-            (("Geometry",), "Cell type"):
-                "simplex" if cells == "tetrahedron" else "hypercube",
-            (("Output",), "Output directory"): os.path.join(folder, "output"),
-            (("Output",), "Profile times"): "1",
-            (("Output",), "Write vtu"): "false"})
+        text = set_prm_entries(f.read(), entries)
     prm = os.path.join(folder, "hertz.prm")
     with open(prm, "w") as f:
         f.write(text)
@@ -80,6 +95,8 @@ def run(executable, n, cells, ranks, folder):
                  % (cells, n, ranks, result.stderr))
     loop = re.search(r"Total wallclock time elapsed since start *\| *([0-9.eE+-]+)s",
                      result.stdout)
+    if report is not None:
+        report["stdout"] = result.stdout
     return os.path.join(folder, "output"), float(loop.group(1)) if loop else 0.
 
 
@@ -118,6 +135,58 @@ def analyse(output):
             "F error": abs(force - hertz_force(D)) / hertz_force(D)}
 
 
+def cost(executable, n, method, ranks):
+    """The cost of the moving-obstacle steps on hexahedra, N cells per edge,
+    from the program's report (see the top of the file)."""
+    report = {}
+    with tempfile.TemporaryDirectory() as folder:
+        output, wall = run(executable, n, "hexahedron", ranks, folder, method,
+                           report)
+        with open(os.path.join(output, "time_series.csv")) as f:
+            series = list(csv.DictReader(f))
+        result = analyse(output)
+    text = report["stdout"]
+
+    def find(pattern):
+        match = re.search(pattern, text)
+        if not match:
+            sys.exit("No '%s' in the report of N = %d, %s." % (pattern, n, method))
+        return match.group(1)
+    steps = len(series)
+    return {
+        "N": n, "method": method, "ranks": ranks, "wall": wall,
+        "dofs": int(find(r"Hex cells, (\d+) displacement dofs")),
+        "contact nodes": int(find(r"dofs, (\d+) contact nodes")),
+        "in contact": result["nodes"], "F error": result["F error"],
+        "iterations": [int(r["active_set_iterations"]) for r in series],
+        "krylov": [int(r["krylov_iterations"]) for r in series],
+        "step": float(find(r"average time step \(without output\): ([0-9.eE+-]+) ms")),
+        "solve": float(find(r"one solve with the step operator, no contact: "
+                            r"([0-9.eE+-]+) ms")),
+        "solve krylov": int(find(r"no contact: [0-9.eE+-]+ ms \((\d+) Krylov")),
+        "ratio": float(find(r"ratio step / solve: ([0-9.eE+-]+)")),
+        "setups": int(find(r"set up by the back end (\d+)x")),
+        "memory": float(find(r"peak memory \(sum over ranks\): ([0-9.eE+-]+) MB")),
+        "steps": steps}
+
+
+def print_cost(results):
+    print("| back end | ranks | N | dofs | contact nodes (in contact) | active-set "
+          "iterations per step | Krylov iterations per step (one elastic "
+          "solve) | step [s] | elastic solve [s] | step / solve | operator "
+          "set-ups in the run | peak memory [GB] | run [s] |")
+    print("| --- " * 13 + "|")
+    for r in results:
+        print("| %s | %d | %d | %d | %d (%d) | %s | %s (%d) | %.2f | %.2f | %.2f "
+              "| %d | %.1f | %.0f |" % (
+                  r["method"], r["ranks"], r["N"], r["dofs"],
+                  r["contact nodes"], r["in contact"],
+                  ", ".join(str(i) for i in r["iterations"]),
+                  ", ".join(str(i) for i in r["krylov"]), r["solve krylov"],
+                  r["step"] / 1000, r["solve"] / 1000, r["ratio"],
+                  r["setups"], r["memory"] / 1000, r["wall"]))
+
+
 def run_all(executable, meshes, cell_types, ranks):
     runs = {}
     for cells in cell_types:
@@ -139,7 +208,20 @@ def main():
     parser.add_argument("--cells", default="hexahedron,tetrahedron")
     parser.add_argument("--figure")
     parser.add_argument("--check", action="store_true")
+    parser.add_argument("--cost")
+    parser.add_argument("--methods", default="full space,condensed")
+    parser.add_argument("--ranks", type=int, default=1)
     arguments = parser.parse_args()
+    if arguments.cost:
+        results = []
+        for n in arguments.cost.split(","):
+            for method in arguments.methods.split(","):
+                results.append(cost(arguments.executable, int(n), method,
+                                    arguments.ranks))
+                print_cost(results[-1:])
+        print()
+        print_cost(results)
+        return
     meshes = [12, 16] if arguments.check else [
         int(n) for n in arguments.meshes.split(",")]
     cell_types = arguments.cells.split(",")
@@ -225,6 +307,18 @@ def main():
             if results[1]["p0 error"] >= results[0]["p0 error"]:
                 sys.exit("%s: the error in p0 does not fall from N = 12 to "
                          "16." % cells)
+        # The L2 error of the pressure profile on hexahedra: at least order
+        # 0.8 in h from N = 8 to 16 and from 16 to 24 (observed: 1.06, 1.65).
+        ladder = run_all(arguments.executable, [8, 16, 24], ["hexahedron"],
+                         1)["hexahedron"]
+        for coarse, fine in zip(ladder, ladder[1:]):
+            order = (math.log(coarse["L2 error"] / fine["L2 error"])
+                     / math.log(fine["N"] / coarse["N"]))
+            if order < 0.8:
+                sys.exit("hexahedron: the L2 error of the pressure falls with "
+                         "order %.2f from N = %d to %d (%.3e, %.3e), below "
+                         "0.8." % (order, coarse["N"], fine["N"],
+                                   coarse["L2 error"], fine["L2 error"]))
         # Two ranks (the full space back end) against one (condensed).
         serial = run_all(arguments.executable, [8], cell_types, 1)
         parallel = run_all(arguments.executable, [8], cell_types, 2)
@@ -239,7 +333,8 @@ def main():
                          % (cells, one["p0"], two["p0"]))
         print("Hertz sphere (%s): a, p0 and F(d) within %.0f%%, %.0f%% and "
               "%.0f%% of the closed form on N = 12, 16, the error in p0 "
-              "falling; 2 ranks agree with 1." % (
+              "falling, the L2 error of the pressure on hexahedra of order "
+              "0.8 or more on N = 8, 16, 24; 2 ranks agree with 1." % (
                   ", ".join(cell_types), 100 * BOUNDS["a"],
                   100 * BOUNDS["p0"], 100 * BOUNDS["F"]))
 

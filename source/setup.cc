@@ -496,12 +496,21 @@ namespace ViscoContact
     // The uniqueness margin needs products with the compliance S, i.e. the back
     // end for K; Check uniqueness = false skips it. It is collective: every
     // rank takes part in the Lanczos iteration and prints (on rank 0) the same
-    // number.
-    if (contact_enabled && parameters.check_uniqueness)
+    // number. A law that does not soften (the rigid limit, a monotone layer)
+    // needs no margin: K is positive definite, so the step problem has one
+    // solution, and the Lanczos iteration (one solve with K per product on
+    // the full space back end) would cost more than the run's first steps.
+    if (!contact_enabled || !parameters.check_uniqueness)
+      return;
+    const double softening = contact_set.laws().steepest_softening();
+    if (softening <= 0)
+      pcout << "Uniqueness: the contact law"
+            << (contact_zones.size() > 1 ? "s do" : " does")
+            << " not soften, so the step problem has one solution\n";
+    else
       {
         TimerOutput::Scope t(computing_timer, "Setup: uniqueness margin");
         const double       eigenvalue = smallest_uniqueness_eigenvalue();
-        const double       softening  = contact_set.laws().steepest_softening();
         pcout << "Uniqueness: smallest eigenvalue of (stiffness, lumped "
                  "normal boundary mass) = "
               << eigenvalue << ", steepest softening of the contact law"

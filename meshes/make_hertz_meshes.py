@@ -17,6 +17,14 @@ file):
   2  the top y = 1 (its displacement is prescribed)
   3  the arc (contact with the plane y = 0)
 
+quarter_disk(n, fitted=a) (not shipped; benchmarks/run_hertz_cylinder.py
+--fitted A): the same patch with a grading fitted to a contact half-width
+a: the first n/4 arc nodes lie at x = a k / (n/4), uniformly, the last of
+them at x = a, and beyond it the spacing grows quadratically to the 45
+degree point; the vertical coordinate is graded alike. The meshes of n and
+2n are nested, and the contact edge sits at the same node for every n, so
+that the error at the square-root edge falls regularly.
+
 Run from anywhere: python3 meshes/make_hertz_meshes.py
 """
 import math
@@ -45,9 +53,26 @@ def point(xi, eta):
                  for c in range(2))
 
 
-def quarter_disk(n):
+def fitted_grading(n, a):
+    """The Coons coordinates xi_0..xi_n of the arc nodes: x = a k / m for
+    k <= m = n / 4, then xi quadratic in k up to xi_n = 1 with the spacing
+    of the uniform part at k = m."""
+    m = n // 4
+    xi = [math.asin(a * k / m / R) / (math.pi / 4) for k in range(m + 1)]
+    h = xi[m] - xi[m - 1]
+    c = 1 - xi[m] - h * (n - m)
+    if c < 0:
+        raise ValueError("a = %g is too large for the fitted grading" % a)
+    for k in range(m + 1, n + 1):
+        s = (k - m) / (n - m)
+        xi.append(xi[m] + h * (n - m) * s + c * s * s)
+    return xi
+
+
+def quarter_disk(n, fitted=None):
     index = lambda i, j: j * (n + 1) + i + 1
-    graded = [(k / n) ** 2 for k in range(n + 1)]
+    graded = (fitted_grading(n, fitted) if fitted
+              else [(k / n) ** 2 for k in range(n + 1)])
     nodes = []
     for j in range(n + 1):
         for i in range(n + 1):

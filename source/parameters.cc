@@ -1603,7 +1603,8 @@ namespace ViscoContact
       // refused if an earlier entry names it.
       const auto claim_exclusively
         = [&](const std::vector<types::boundary_id> &ids,
-              const std::string                     &subsection) {
+              const std::string                     &subsection,
+              const std::string                     &accepted) {
             for (const auto id : ids)
               {
                 const auto [it, inserted]
@@ -1614,17 +1615,34 @@ namespace ViscoContact
                         subsection,
                         "Boundary ids",
                         id_list(ids),
-                        "ids that no other entry names (" + std::to_string(id)
-                          + " is also in " + it->second + ")");
+                        accepted + " (" + std::to_string(id) + " is also in "
+                          + it->second + ")");
               }
           };
       for (const ContactZone &zone : used_contact_zones())
         if (zone.subsection != "Contact")
-          claim_exclusively(zone.boundary_ids, zone.subsection);
+          claim_exclusively(zone.boundary_ids,
+                            zone.subsection,
+                            "ids that no other entry names");
+      // A load may act on a roller or plane of symmetry (its tangential
+      // part does work) and on a part whose displacement is prescribed in
+      // some components only (a top pressed down by a prescribed u_y and
+      // pushed sideways by a traction): the constrained components take no
+      // load, and the reactions count the load's part on them. Not on a
+      // part with every component prescribed, where it would do nothing.
+      for (const auto id : symmetry_ids)
+        owner.erase(id);
+      for (const auto &[number, entry] : used_prescribed_displacements())
+        if (entry->components.size() < dimension)
+          for (const auto id : entry->boundary_ids)
+            owner.erase(id);
       for (const auto &[number, load] : used_surface_loads())
         {
           claim_exclusively(load->boundary_ids,
-                            "Loads/Surface load " + std::to_string(number));
+                            "Loads/Surface load " + std::to_string(number),
+                            "ids that no other entry names, except Symmetry "
+                            "boundary ids and parts of a Prescribed "
+                            "displacement that leaves a component free");
           load->check_parameters(number, dimension);
         }
     }

@@ -14,7 +14,10 @@
 #    faces): on the quarter arc from (0, 0) to (1, 1) the outward normals
 #    integrate to (1, -1), so the load is 2 t (-1, 1); its x part is held by
 #    the roller at x = 0 too, so the y part of the top's reaction, -2 t, is
-#    compared.
+#    compared;
+#  - loads on parts that are not free (a top with a prescribed u_x pressed
+#    by a pressure, a pressure on a roller): the uniaxial stress of the
+#    block, exact (below).
 #   run_surface_loads.sh EXECUTABLE
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
@@ -64,4 +67,31 @@ sed -e 's/^\( *set Clamped boundary ids *=\).*/\1 2/' \
 run_scene variant.prm 1 "2D quadrilaterals, pressure on an arc"
 check reaction_clamped_y -2 1e-9 "2D quadrilaterals, pressure on an arc"
 
-echo "Surface loads: the reactions balance a pressure and a traction on the block (2D triangles, 3D hexahedra on 2 ranks) and a pressure on a curved arc."
+# Loads on parts that are not free: the block held at its bottom by u_y = 0
+# (Prescribed displacement 1), a roller at x = 0, its top given u_x = nu p x
+# / E (Prescribed displacement 2, component x only) and pressed by the
+# pressure p = 3 t (Surface load 1 on the same top), and a pressure 7 t on
+# the roller (Surface load 2, which the roller takes whole). Uniaxial stress
+# sigma_yy = -p, exact: the bottom's reaction is 2 p = 6 t, the largest von
+# Mises stress p, and the top's x reaction is no shear but the roller's
+# pressure on the half face at the corner (0, 1), whose x component the
+# top prescribes: -7 t h / 2 = -7 t / 16 (h = 1/8).
+partly_prescribed() {
+  set_entry "Contact boundary ids" "" | set_entry "Boundary ids" 2 | set_entry Displacement 0 \
+    | sed -e 's/^\(subsection Boundary\)$/\1\n  subsection Prescribed displacement 2\n    set Boundary ids = 3\n    set Components = x\n    set Displacement = 0.0009 * t * x\n  end/' \
+          -e 's/^\(subsection Loads\)$/\1\n  subsection Surface load 1\n    set Boundary ids = 3\n    set Value = 3 * t\n  end\n  subsection Surface load 2\n    set Boundary ids = 0\n    set Value = 7 * t\n  end/' \
+    | set_entry "Output directory" results
+}
+for variant in "simplex condensed 1" "hypercube full_space 2"; do
+  set -- $variant
+  partly_prescribed < "$parameters/patch_test.prm" | set_entry "Cell type" $1 \
+    | set_entry Method "${2/_/ }" > variant.prm
+  tolerance=1e-9
+  [ $2 = condensed ] || tolerance=1e-7
+  run_scene variant.prm $3 "loads on a prescribed top and a roller, $1, ${2/_/ }"
+  check reaction_prescribed_1_y 6 $tolerance "loads on a prescribed top and a roller, $1"
+  check reaction_prescribed_2_x -0.4375 $tolerance "loads on a prescribed top and a roller, $1"
+  check max_von_mises 3 $tolerance "loads on a prescribed top and a roller, $1"
+done
+
+echo "Surface loads: the reactions balance a pressure and a traction on the block (2D triangles, 3D hexahedra on 2 ranks), a pressure on a curved arc, and loads on a partly prescribed top and on a roller."

@@ -88,7 +88,8 @@ namespace ViscoContact
     };
 
     // A vertex on the boundary parts of several zones belongs to the first
-    // of them.
+    // of them. constraints are all of the displacement's, hanging_constraints
+    // those of the hanging nodes alone.
     void
     setup(const std::vector<ContactZoneDescription<dim>> &zones,
           const Mapping<dim>                             &mapping,
@@ -96,6 +97,7 @@ namespace ViscoContact
           const DoFHandler<dim>                          &scalar_dof_handler,
           const Quadrature<dim - 1>                      &face_quadrature,
           const AffineConstraints<double>                &constraints,
+          const AffineConstraints<double>                &hanging_constraints,
           const VectorType                               &layout);
 
     // The obstacle: s_i = gap(x_i, time) at every node, gap the function of

@@ -195,6 +195,18 @@ namespace ViscoContact
     count_numbered_subsections(const std::string &parameter_file,
                                const std::string &name);
 
+    // A list of ids (boundary or material ids, any container) as the
+    // parameter file writes it, "1, 2, 3": how the messages quote them.
+    template <typename Ids>
+    std::string
+    id_list(const Ids &ids)
+    {
+      std::string text;
+      for (const auto id : ids)
+        text += (text.empty() ? "" : ", ") + std::to_string(id);
+      return text;
+    }
+
     // The material of the cells with the given material ids: subsection
     // "Material" (whose empty list means every cell of a mesh with one
     // material id) and the numbered "Material N", N >= 2 (empty: not used).

@@ -12,8 +12,6 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/partitioner.h>
 
-#include <deal.II/dofs/dof_tools.h>
-
 #include <deal.II/fe/fe_values.h>
 
 #include <deal.II/lac/full_matrix.h>
@@ -158,6 +156,7 @@ namespace ViscoContact
                          const DoFHandler<dim>           &scalar_dof_handler,
                          const Quadrature<dim - 1>       &face_quadrature,
                          const AffineConstraints<double> &constraints,
+                         const AffineConstraints<double> &hanging_constraints,
                          const VectorType                &layout)
   {
     // The lumped weights and weighted normals of all vertices of Gamma_3 (of
@@ -187,11 +186,6 @@ namespace ViscoContact
     // Only the hanging vertices pass their values on: an oblique plane of
     // symmetry also constrains a component, by the other components of the
     // same vertex, which keeps its weight and normal.
-    IndexSet relevant_dofs;
-    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
-    AffineConstraints<double> hanging_constraints(relevant_dofs);
-    DoFTools::make_hanging_node_constraints(dof_handler, hanging_constraints);
-    hanging_constraints.close();
     for (VectorType *vector : {&weights, &weighted_normals})
       pass_on_hanging_values(*vector, hanging_constraints, layout);
 

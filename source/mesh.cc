@@ -57,17 +57,6 @@ namespace ViscoContact
       return std::set<Id>(ids.begin(), ids.end());
     }
 
-    // The ids as "1, 2, 5".
-    template <typename Id>
-    std::string
-    list_ids(const std::set<Id> &ids)
-    {
-      std::string list;
-      for (const auto id : ids)
-        list += (list.empty() ? "" : ", ") + std::to_string(id);
-      return list;
-    }
-
     // The Material id function at the centre of every cell of the coarse
     // mesh. Children inherit their parent's id when a cell is refined, also
     // when p4est rebuilds a repartitioned mesh from the coarse one, so the
@@ -708,7 +697,7 @@ namespace ViscoContact
 
     // The message lists the ids that are there, and where they come from.
     const std::string accepted
-      = "ids of this mesh: " + list_ids(present)
+      = "ids of this mesh: " + Parameters::id_list(present)
         + (parameters.mesh_file.empty()
              ? " (the generated box: 0/1 at x = 0/L1, 2/3 at y = 0/L2, "
                "4/5 at z = 0/L3)"
@@ -763,7 +752,7 @@ namespace ViscoContact
     const std::set<types::material_id> present
       = union_over_ranks(local_ids, communicator);
     const std::string source
-      = "the material ids of this mesh: " + list_ids(present)
+      = "the material ids of this mesh: " + Parameters::id_list(present)
         + (!parameters.material_id_function.empty()
              ? " (the values of <Material id function> in subsection "
                "<Geometry>)"
@@ -806,8 +795,8 @@ namespace ViscoContact
                             std::inserter(missing, missing.end()));
         AssertThrow(missing.empty(),
                     ExcMessage("The mesh has cells of material id "
-                               + list_ids(missing) + " that no material names ("
-                               + source
+                               + Parameters::id_list(missing)
+                               + " that no material names (" + source
                                + "); name each in <Material ids> of "
                                  "subsection <Material> or of a subsection "
                                  "<Material N> (N = 2, 3, ...)."));

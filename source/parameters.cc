@@ -47,17 +47,6 @@ namespace ViscoContact
         return s.str();
       }
 
-      // A list of ids as the parameter file writes it: "1, 2, 3".
-      template <typename Id>
-      std::string
-      id_list(const std::vector<Id> &ids)
-      {
-        std::string text;
-        for (const auto id : ids)
-          text += (text.empty() ? "" : ", ") + std::to_string(id);
-        return text;
-      }
-
       // The entries of a numbered list ("Prescribed displacement N", "Surface
       // load N") that name boundary ids, with their numbers N.
       template <typename Entry>

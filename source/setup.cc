@@ -339,6 +339,7 @@ namespace ViscoContact
                       scalar_dof_handler,
                       face_quadrature,
                       constraints,
+                      hanging_node_constraints,
                       solution);
     set_gaps(schedule.current_time());
     contact_set.set_operator(stiffness_matrix);
@@ -758,14 +759,14 @@ namespace ViscoContact
               // constrains the free component with the largest |n_k| in
               // terms of the others (close() resolves the prescribed ones'
               // values into it). None free with n_k != 0: u.n is held.
-              Tensor<1, dim> n = planes[0];
+              const Tensor<1, dim> &n         = planes[0];
+              Tensor<1, dim>        free_part = n;
               for (unsigned int c = 0; c < dim; ++c)
                 if (constraints.is_constrained(dofs[c]))
-                  n[c] = 0;
-              const unsigned int k = largest(n);
-              if (n[k] == 0)
+                  free_part[c] = 0;
+              const unsigned int k = largest(free_part);
+              if (free_part[k] == 0)
                 continue;
-              n = planes[0];
               constraints.add_line(dofs[k]);
               for (unsigned int j = 0; j < dim; ++j)
                 if (j != k && n[j] != 0)

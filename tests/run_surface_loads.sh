@@ -16,8 +16,8 @@
 #    the roller at x = 0 too, so the y part of the top's reaction, -2 t, is
 #    compared;
 #  - loads on parts that are not free (a top with a prescribed u_x pressed
-#    by a pressure, a pressure on a roller): the uniaxial stress of the
-#    block, exact (below).
+#    by a pressure, a pressure on a roller), and an oblique roller meeting
+#    a part that prescribes one component: uniaxial stress, exact (below).
 #   run_surface_loads.sh EXECUTABLE
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
@@ -93,5 +93,22 @@ for variant in "simplex condensed 1" "hypercube full_space 2"; do
   check reaction_prescribed_2_x -0.4375 $tolerance "loads on a prescribed top and a roller, $1"
   check max_von_mises 3 $tolerance "loads on a prescribed top and a roller, $1"
 done
+
+# An oblique roller that meets a part prescribing the component it would
+# constrain: the tilted block of parameters/tilted_patch_test.prm without
+# contact, the roller X = 0, its bottom given u_x of the exact state only
+# (Prescribed displacement 1, component x), a pressure p = 3 t on its side
+# X = 1. Uniaxial stress along e_X, u = -(p/E) X e_X + nu (p/E) Y e_Y: the
+# roller carries p, also at the corner (0, 0), where it must constrain u_y
+# since u_x is prescribed; the largest von Mises stress is p (1e-9).
+# (The file's Displacement continues on a second line, which goes.)
+sed -e "s|\.\./meshes/|$here/../meshes/|" -e '/^ *set Displacement/{n;d}' \
+    "$parameters/tilted_patch_test.prm" \
+  | set_entry "Contact boundary ids" "" | set_entry "Boundary ids" 3 | set_entry Components x \
+  | set_entry Displacement "-0.003 * t * (x * cos(pi/6) + y * sin(pi/6)) * cos(pi/6)" \
+  | sed -e 's/^\(subsection Loads\)$/\1\n  subsection Surface load 1\n    set Boundary ids = 2\n    set Value = 3 * t\n  end/' \
+  | set_entry "Output directory" results > variant.prm
+run_scene variant.prm 1 "oblique roller meeting a prescribed part"
+check max_von_mises 3 1e-9 "oblique roller meeting a prescribed part"
 
 echo "Surface loads: the reactions balance a pressure and a traction on the block (2D triangles, 3D hexahedra on 2 ranks), a pressure on a curved arc, and loads on a partly prescribed top and on a roller."

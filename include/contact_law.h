@@ -100,6 +100,37 @@ namespace ViscoContact
     double                       gap_value;
   };
 
+  // @sect3{The tangential law of a contact zone}
+  //
+  // Friction acts on the slip increment of a time step, s - s_{n-1} (the
+  // tangential displacement since the last accepted step), with exact stick:
+  // a sticking node has no slip increment and a tangential force of at most
+  // the bound g, a slipping node carries the force g along its slip
+  // (doc/model.md, section 7). Tresca: g = w_i times the zone's Slip bound at
+  // the node, on every node of the zone whether it touches or not (the given
+  // friction of the variational literature, a convex term); Coulomb:
+  // g = mu z_i with the node's normal force z_i of the step.
+  enum class TangentialLaw
+  {
+    frictionless,
+    tresca,
+    coulomb
+  };
+
+  struct FrictionLaw
+  {
+    TangentialLaw type        = TangentialLaw::frictionless;
+    double        coefficient = 0; // mu, Coulomb only
+
+    bool
+    has_friction() const
+    {
+      return type != TangentialLaw::frictionless;
+    }
+  };
+
+
+
   // @sect3{The laws of several contact zones}
   //
   // Each contact zone has its own law. The active-set method and the back

@@ -6,6 +6,7 @@
 #include "contact_law.h"
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -45,10 +46,13 @@ namespace ViscoContact
   {
     struct IterationRecord
     {
-      unsigned int changed_nodes;
+      unsigned int changed_nodes; // moved to another piece or stick/slip
       unsigned int rigid_nodes;
       double       linear_residual;
       unsigned int inner_iterations;
+      // Slipping nodes whose slip direction turned by more than the
+      // friction tolerance (3D).
+      unsigned int adjusted_nodes = 0;
     };
 
     bool                         converged = false;
@@ -69,9 +73,47 @@ namespace ViscoContact
     describe() const;
   };
 
+  // One direction of a node's equations for fixed pieces and friction
+  // states, in the node's frame (its normal, then its tangential
+  // directions; ContactSet::frame_row() gives their rows in the dofs). The
+  // directions of a node are orthonormal, and the first is the normal.
+  // Along a fixed direction a the displacement a . y is prescribed (value)
+  // and the force along it is unknown; along a free one the force is
+  // value + stiffness a . y + coupling z, z the node's normal force (the
+  // coupling is mu along a Coulomb node's slip direction). Here y is the
+  // node's displacement in the frame (y_0 = u.nu, before the gap is
+  // subtracted).
+  struct NodeDirection
+  {
+    std::array<double, 3> frame     = {{0, 0, 0}};
+    bool                  fixed     = false;
+    double                value     = 0;
+    double                stiffness = 0;
+    double                coupling  = 0;
+  };
+
+  struct NodeDirections
+  {
+    unsigned int                 size = 0;
+    std::array<NodeDirection, 3> direction;
+  };
+
   class ContactNodes
   {
   public:
+    // The tangential displacement and force of a node in its frame (up to
+    // two tangential directions).
+    using Tangential = std::array<double, 2>;
+
+    // The stick/slip state of a node of a frictional zone: free (a zero
+    // bound: Coulomb out of contact), stick, or slip.
+    enum FrictionState : unsigned int
+    {
+      free_tangential = 0,
+      stick           = 1,
+      slip            = 2
+    };
+
     // The laws of the contact zones, and the zone and the lumped weight of
     // every locally owned contact node; every node starts at r = z = 0 (on
     // the piece of that state once the parameters c are set).
@@ -79,6 +121,16 @@ namespace ViscoContact
     reinit(const ContactLaws               &laws,
            const std::vector<unsigned int> &zones,
            const std::vector<double>       &weights);
+
+    // Friction: the tangential law of every zone, the number of tangential
+    // directions of every node (0 in a frictionless zone, fewer than dim - 1
+    // where a plane of symmetry takes one) and the Tresca bound g_i of every
+    // node (a nodal force; ignored elsewhere). Every frictional node starts
+    // stuck, with no slip since the start.
+    void
+    set_friction(const std::vector<FrictionLaw>  &zone_laws,
+                 const std::vector<unsigned int> &tangential_directions,
+                 const std::vector<double>       &tresca_bounds);
 
     // The parameter c_i of the update rule, one per node: it must exceed
     // the steepest softening of the law, so that q = p + c r increases
@@ -89,10 +141,37 @@ namespace ViscoContact
 
     // One step of the update rule on this rank: every node to the piece
     // q_i names (ContactLaw::next_piece keeps a node within rounding of its
-    // piece). Returns the number of nodes that moved and of nodes on the
-    // rigid piece afterwards.
-    std::array<unsigned int, 2>
+    // piece), every frictional node to stick or slip (update_friction()).
+    // Returns the number of nodes that moved (to another piece, or between
+    // stick and slip), of nodes on the rigid piece afterwards, and of
+    // slipping nodes whose bound or direction changed.
+    std::array<unsigned int, 3>
     update_pieces();
+
+    // The equations of node i for its piece and friction state (gap: the
+    // node's obstacle gap s_i), and the solution of the back end stored
+    // back: the displacement a . y along every direction and, for the fixed
+    // ones, the force (the free ones' force follows from their law). Sets
+    // r, z, s and t of the node.
+    NodeDirections
+    directions(const unsigned int i, const double gap) const;
+    void
+    store_solution(const unsigned int    i,
+                   const double          gap,
+                   const NodeDirections &directions,
+                   const double         *displacements,
+                   const double         *fixed_forces);
+
+    // After an accepted step, with the tangential displacements of its
+    // final u (from the caller): the slip of the next step is measured from
+    // them, and a slipping node's bound and direction are those of its
+    // forces. After a new mesh or a restored checkpoint: the tangential
+    // displacements s of u are the reference, the forces t as given.
+    void
+    accept_slip(const std::vector<Tangential> &tangential_displacements);
+    void
+    reset_slip(const std::vector<Tangential> &tangential_displacements,
+               const std::vector<Tangential> &tangential_forces);
 
     // The iteration: solve_for_pieces(accuracy) solves the linear problem
     // of the current pieces to the given relative accuracy and writes r and
@@ -105,11 +184,15 @@ namespace ViscoContact
           const double                                    tolerance,
           const MPI_Comm                                  communicator);
 
-    // The pieces and the last (r, z): what a retried time step restores.
+    // The pieces, the last (r, z) and the friction state: what a retried
+    // time step restores.
     struct State
     {
       std::vector<unsigned int> pieces;
       std::vector<double>       r, z;
+      std::vector<Tangential>   s, t, slip_reference, slip_direction, last_slip;
+      std::vector<unsigned int> friction_states;
+      std::vector<double>       bounds, transverse_stiffness;
     };
     State
     state() const;
@@ -136,6 +219,31 @@ namespace ViscoContact
 
     // r_i = u.nu and z_i, written by the back end of the current solve.
     std::vector<double> r, z;
+    // The tangential displacement s_i and force t_i of the frictional nodes
+    // in their frames (the force the foundation exerts is -t_i, as it is
+    // -z_i along the normal).
+    std::vector<Tangential> s, t;
+
+    // Friction: whether any zone has it, the tangential directions of node
+    // i, its state, the slip increment of the step in its frame, and the
+    // bound of its last update.
+    bool
+    has_friction() const;
+    unsigned int
+    n_tangential(const unsigned int i) const;
+    FrictionState
+    friction_state(const unsigned int i) const;
+    // For a restored checkpoint (ignored at frictionless nodes).
+    void
+    set_friction_state(const unsigned int i, const FrictionState state);
+    // The slip increment of the last accepted step, s_n - s_{n-1}.
+    Tangential
+    step_slip(const unsigned int i) const;
+    double
+    slip_bound(const unsigned int i) const;
+    // The friction states over all ranks: stick, slip.
+    std::array<unsigned int, 2>
+    count_friction_states(const MPI_Comm communicator) const;
 
     // 2 at the rigid limit (u.nu = g), 1 in normal-compliance contact
     // (penetrating the layer, or pressed by it), 0 out of contact.
@@ -170,6 +278,24 @@ namespace ViscoContact
     std::vector<double>       w, c;
     std::vector<unsigned int> node_pieces;
     bool                      placed = false;
+
+    // Friction, per zone and per node (see set_friction(), update_friction()).
+    std::vector<FrictionLaw>  zone_friction;
+    std::vector<unsigned int> tangential_directions;
+    std::vector<double>       tresca_bound;
+    std::vector<Tangential>   slip_reference, slip_direction, last_slip;
+    std::vector<unsigned int> friction_states;
+    std::vector<double>       bounds, transverse_stiffness;
+    double                    friction_tolerance = 1e-7;
+
+    // The stick/slip update of one frictional node: returns whether its
+    // state changed, and whether its bound or direction did.
+    std::array<bool, 2>
+    update_friction(const unsigned int i);
+    // A hash of the pieces and friction states of all ranks' nodes
+    // (collective), by which solve() recognises a cycle.
+    std::uint64_t
+    active_set_signature(const MPI_Comm communicator) const;
   };
 } // namespace ViscoContact
 

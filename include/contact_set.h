@@ -45,7 +45,8 @@ namespace ViscoContact
   // subsection Contact, N for Contact zone N) and the subsection of the
   // parameter file that defines it (for outputs and messages), its law, its
   // boundary parts, and the direction in which its nodes meet the obstacle
-  // (from the body into it; none: each node's outward normal).
+  // (from the body into it; none: each node's outward normal), and its
+  // tangential law.
   template <int dim>
   struct ContactZoneDescription
   {
@@ -54,6 +55,7 @@ namespace ViscoContact
     ContactLaw                      law;
     std::vector<types::boundary_id> boundary_ids;
     std::optional<Tensor<1, dim>>   direction;
+    FrictionLaw                     friction = {};
   };
 
   // @sect3{The contact set}
@@ -85,6 +87,13 @@ namespace ViscoContact
       types::global_dof_index scalar_dof;
       // The contact zone (index into the zones of setup()).
       unsigned int zone;
+      // In a frictional zone: the tangential directions tau_j (unit vectors
+      // of space, orthogonal to the normal) and their rows t_j on the dofs,
+      // s_j = t_j . u (C^T tau_j where a plane of symmetry constrains the
+      // node, find_nodes()); none in a frictionless zone.
+      unsigned int                        n_tangents = 0;
+      std::array<Tensor<1, dim>, dim - 1> tangents;
+      std::array<Tensor<1, dim>, dim - 1> tangent_rows;
     };
 
     // A vertex on the boundary parts of several zones belongs to the first
@@ -110,6 +119,40 @@ namespace ViscoContact
     set_gaps(const std::vector<Function<dim> *> &zone_gaps, const double time);
     double
     gap(const unsigned int i) const;
+
+    // The Tresca bounds g_i = w_i g(x_i) of the nodes of zones with Tresca
+    // friction (zone_bounds: the Slip bound of each zone, nullptr for the
+    // others). Returns the message naming the entry if a value is negative
+    // or not finite (else empty); not collective.
+    std::string
+    set_slip_bounds(const std::vector<const Function<dim> *> &zone_bounds);
+
+    // The row of node i's frame direction a on its dofs:
+    // a_0 n_i + sum_j a_j t_ij.
+    Tensor<1, dim>
+    frame_row(const unsigned int i, const std::array<double, 3> &a) const;
+    // row . u_i and v_i += value row, on the locally owned entries.
+    double
+    row_component(const VectorType     &u,
+                  const unsigned int    i,
+                  const Tensor<1, dim> &row) const;
+    void
+    add_row(VectorType           &v,
+            const unsigned int    i,
+            const Tensor<1, dim> &row,
+            const double          value) const;
+    // The tangential displacements s_ij = t_ij . u of every node (zero
+    // where the zone is frictionless).
+    std::vector<Tangential>
+    tangential_displacements(const VectorType &u) const;
+    // A vector of space from the tangential components of node i in its
+    // frame, sum_j x_j tau_ij.
+    Tensor<1, dim>
+    tangential_vector(const unsigned int i, const Tangential &x) const;
+    // Over all ranks: sum_i t_i (as vectors of space) over the nodes of each
+    // zone, the tangential force the body exerts on the obstacle.
+    std::vector<Tensor<1, dim>>
+    zone_tangential_forces(const MPI_Comm communicator) const;
 
     // The active-set parameter of every node from the operator A of the
     // step problem: c_i = max(nu^T A_ii nu / w_i, 2 * steepest softening),
@@ -151,6 +194,14 @@ namespace ViscoContact
                        VectorType &compliance_pressure,
                        VectorType &foundation_pressure,
                        VectorType &contact_status) const;
+    // The friction fields, likewise: the tangential traction t / w and the
+    // slip increment of the last step as vectors (in the displacement
+    // layout), and the friction state (0 free or frictionless, 1 stick,
+    // 2 slip; scalar layout).
+    void
+    fill_friction_fields(VectorType &tangential_traction,
+                         VectorType &slip,
+                         VectorType &friction_state) const;
 
   private:
     // The contact nodes of this rank into geometry, in the order the zones
@@ -160,8 +211,10 @@ namespace ViscoContact
     // zone and its direction: the zone's or the weighted normal, without
     // the components that are constrained, normalised. A vertex whose
     // direction lies in its constrained components (a clamped corner, a
-    // hanging node) is not a contact node.
-    void
+    // hanging node) is not a contact node. Returns the message for a
+    // frictional node on an oblique plane of symmetry (else empty); not
+    // collective.
+    std::string
     find_nodes(const std::vector<ContactZoneDescription<dim>> &zones,
                const DoFHandler<dim>                          &dof_handler,
                const DoFHandler<dim>             &scalar_dof_handler,
@@ -173,6 +226,7 @@ namespace ViscoContact
     std::vector<std::string>  zone_subsections;
     std::vector<unsigned int> zone_numbers;
     std::vector<double>       gaps; // empty: no obstacle gap (s = 0)
+    std::vector<FrictionLaw>  zone_friction;
     types::global_dof_index   n_global     = 0;
     types::global_dof_index   first_global = 0;
     MPI_Comm                  communicator = MPI_COMM_SELF;

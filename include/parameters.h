@@ -56,6 +56,13 @@ namespace ViscoContact
       five_tetrahedra
     };
 
+    enum class TangentialLawType
+    {
+      frictionless,
+      tresca,
+      coulomb
+    };
+
     enum class ContactLawType
     {
       nonmonotone,
@@ -283,6 +290,11 @@ namespace ViscoContact
       // The obstacle: the gap s(x, t) along the direction d (doc/model.md).
       std::string initial_gap   = "0";
       std::string gap_direction = "normal";
+      // Friction (doc/model.md, section 7): the law, Tresca's bound g(x),
+      // Coulomb's coefficient mu.
+      TangentialLawType tangential_law       = TangentialLawType::frictionless;
+      std::string       slip_bound           = "0";
+      double            friction_coefficient = 0;
 
       void
       add_parameters(ParameterHandler  &prm,

@@ -446,11 +446,9 @@ namespace ViscoContact
     // The header of a checkpoint file (the same on every rank; rank 0's is
     // written) and the records of the locally owned cells.
     ByteWriter
-    checkpoint_header(const double wall_time,
-                      const bool   has_back_end_state) const;
+    checkpoint_header(const double wall_time) const;
     std::vector<char>
-    checkpoint_cell_records(
-      const std::optional<std::vector<double>> &back_end_state) const;
+    checkpoint_cell_records() const;
     // A scheduler's signal received on any rank: all ranks stop after this
     // step, with a checkpoint of it (unless one was just written).
     void
@@ -463,7 +461,6 @@ namespace ViscoContact
     struct CheckpointFlags
     {
       bool has_step_start;
-      bool has_back_end_state;
     };
     CheckpointFlags
     read_checkpoint_header(ByteReader &header, const unsigned int step);
@@ -472,13 +469,14 @@ namespace ViscoContact
     std::pair<double, double>
     continue_schedule_after_checkpoint();
     // The values a checkpoint stores at the dofs of every cell besides u
-    // (restored into solution): the contact state, the start of the step
-    // and the nodes' history.
+    // (restored into solution): the contact state, the start of the step,
+    // the nodes' history and their friction state.
     struct CellRecordVectors
     {
       VectorType contact_state;
       VectorType start_displacement;
       VectorType node_history;
+      VectorType friction_state;
     };
     // The records of this rank's share of the file sent to the owners of
     // their cells and restored on the owned dofs and stress points; false on
@@ -721,12 +719,16 @@ namespace ViscoContact
     // normals), nullptr where it is zero (the nodes keep s = 0).
     std::vector<ContactZoneDescription<dim>>          contact_zones;
     std::vector<std::unique_ptr<FunctionParser<dim>>> zone_gap_functions;
+    // Tresca's Slip bound of each zone (nullptr in the others).
+    std::vector<std::unique_ptr<FunctionParser<dim>>> zone_slip_bounds;
     bool                                              has_gap = false;
     bool gap_depends_on_time                                  = false;
     std::vector<Function<dim> *>
     zone_gaps() const;
     std::vector<unsigned int>
     contact_zone_numbers() const;
+    std::vector<unsigned int>
+    frictional_zone_numbers() const;
     // The gaps of the contact nodes at the given time (collective: a value
     // that is not finite stops all ranks, naming the entry).
     void

@@ -89,6 +89,39 @@ def quarter_disk(n, fitted=None):
     return gmsh_text(nodes, lines, quads, [(1, "symmetry"), (2, "top"), (3, "contact")])
 
 
+def half_disk(n, fitted=None):
+    """The whole lower half of the cylinder, -1 <= x <= 1 (for loads that
+    break the symmetry, benchmarks/run_cattaneo_mindlin.py): the quarter
+    disk of quarter_disk(n, fitted) and its mirror image x -> -x, sharing
+    the nodes on x = 0. Physical groups: 2 the top y = 1, 3 the arc."""
+    index = lambda i, j: j * (n + 1) + i + 1
+    mirrored = lambda i, j: index(i, j) if i == 0 else (n + 1) ** 2 + j * n + i
+    graded = (fitted_grading(n, fitted) if fitted
+              else [(k / n) ** 2 for k in range(n + 1)])
+    nodes = []
+    for j in range(n + 1):
+        for i in range(n + 1):
+            x, y = point(graded[i], graded[j])
+            nodes.append((index(i, j), x, y))
+    for j in range(n + 1):
+        for i in range(1, n + 1):
+            x, y = point(graded[i], graded[j])
+            nodes.append((mirrored(i, j), -x, y))
+    lines = []
+    for number in (index, mirrored):
+        for k in range(n):
+            lines.append((2, number(k, n), number(k + 1, n)))      # y = 1
+            lines.append((3, number(k, 0), number(k + 1, 0)))      # arc
+            lines.append((3, number(n, k), number(n, k + 1)))      # arc
+    quads = [(index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1))
+             for j in range(n) for i in range(n)]
+    # The mirror image reverses the orientation: list its nodes clockwise
+    # in the mirrored numbering, which is counterclockwise in the plane.
+    quads += [(mirrored(i, j), mirrored(i, j + 1), mirrored(i + 1, j + 1),
+               mirrored(i + 1, j)) for j in range(n) for i in range(n)]
+    return gmsh_text(nodes, lines, quads, [(2, "top"), (3, "contact")])
+
+
 if __name__ == "__main__":
     folder = os.path.dirname(os.path.abspath(__file__))
     for n in (16, 32, 64):

@@ -19,8 +19,9 @@ namespace ViscoContact
 {
   // @sect4{ViscoplasticContact::checkpoint_record_size}
   //
-  // The four vectors of write_checkpoint() at the cell's dofs (u, the contact
-  // state, u_{n-1}, the nodes' history), then the stress points;
+  // The five vectors of write_checkpoint() at the cell's dofs (u, the contact
+  // state, u_{n-1}, the nodes' history, their friction state), then the
+  // stress points;
   // QuadraturePointHistory holds only doubles, so the payload after the key
   // is a whole number of doubles.
   template <int dim>
@@ -29,7 +30,7 @@ namespace ViscoContact
   {
     static_assert(sizeof(QuadraturePointHistory<dim>) % sizeof(double) == 0);
     return sizeof(CellId::binary_type)
-           + 4 * fe->n_dofs_per_cell() * sizeof(double)
+           + 5 * fe->n_dofs_per_cell() * sizeof(double)
            + stress_quadrature.size() * sizeof(QuadraturePointHistory<dim>);
   }
 
@@ -48,9 +49,10 @@ namespace ViscoContact
   // that its iterations are those of the uninterrupted run), the start of
   // step n (u_{n-1}, and z_{n-1} at the x-dof of a contact node: what the
   // predicted start of the next step extrapolates from; zero if there is
-  // none) with the back end's value per contact node at its y-dof
-  // (ContactSolver::checkpoint_state()), and the state of every stress point
-  // (sigma_n, the history of the next step, the plastic multiplier).
+  // none), the friction state of a contact node (its stick/slip state at
+  // the x-dof, its tangential force t at the other dofs; zero without
+  // friction), and the state of every stress point (sigma_n, the history of
+  // the next step, the plastic multiplier).
   //
   // Storing values per cell means that a dof shared by several cells is stored
   // several times. In exchange, everything a cell needs travels with the cell's
@@ -69,16 +71,8 @@ namespace ViscoContact
     output_folder->create_folder(checkpoint_folder);
     output_folder->record_files({checkpoint_name(step), checkpoint_info});
 
-    // Whether the back end has a state of its own (the same on every rank).
-    // The implicit update sets up a new operator in every Newton iteration,
-    // so nothing the back end built lives on into the next step.
-    const std::optional<std::vector<double>> back_end_state
-      = contact_enabled && !implicit_update()
-          ? contact_solver->checkpoint_state()
-          : std::nullopt;
-    const ByteWriter header
-      = checkpoint_header(wall_time, back_end_state.has_value());
-    const std::vector<char> records = checkpoint_cell_records(back_end_state);
+    const ByteWriter        header      = checkpoint_header(wall_time);
+    const std::vector<char> records     = checkpoint_cell_records();
     const std::size_t       record_size = checkpoint_record_size();
 
     // Collective: the file is complete (written and renamed, the rename on
@@ -110,9 +104,7 @@ namespace ViscoContact
   // @sect4{ViscoplasticContact::checkpoint_header}
   template <int dim>
   ByteWriter
-  ViscoplasticContact<dim>::checkpoint_header(
-    const double wall_time,
-    const bool   has_back_end_state) const
+  ViscoplasticContact<dim>::checkpoint_header(const double wall_time) const
   {
     // The header: what identifies the file (version, dim, step), the schedule
     // (with the step controller's state), the run's wall time and compute time
@@ -139,7 +131,6 @@ namespace ViscoContact
     // Whether there is a start of the step to predict from, and whether the
     // back end has a state of its own (both the same on every rank).
     header.write<std::uint32_t>(previous_step_start.has_value());
-    header.write<std::uint32_t>(has_back_end_state);
     return header;
   }
 
@@ -148,8 +139,7 @@ namespace ViscoContact
   // @sect4{ViscoplasticContact::checkpoint_cell_records}
   template <int dim>
   std::vector<char>
-  ViscoplasticContact<dim>::checkpoint_cell_records(
-    const std::optional<std::vector<double>> &back_end_state) const
+  ViscoplasticContact<dim>::checkpoint_cell_records() const
   {
     // The contact state as a displacement-sized vector: each owned contact node
     // writes into the owned entries of its own dofs. The ghost import then
@@ -167,10 +157,12 @@ namespace ViscoContact
         }
     contact_state.update_ghost_values();
     // The start of step n in the same form: u_{n-1}, and per contact node
-    // z_{n-1} at its x-dof and the back end's value at its y-dof.
-    VectorType start_displacement(solution), node_history(solution);
+    // z_{n-1} at its x-dof; and the friction state.
+    VectorType start_displacement(solution), node_history(solution),
+      friction_state(solution);
     start_displacement = 0;
     node_history       = 0;
+    friction_state     = 0;
     if (previous_step_start)
       start_displacement = previous_step_start->displacement;
     for (unsigned int i = 0; i < contact_set.size() && contact_enabled; ++i)
@@ -179,11 +171,13 @@ namespace ViscoContact
         if (previous_step_start)
           node_history.local_element(dofs[0])
             = previous_step_start->contact_forces[i];
-        if (back_end_state)
-          node_history.local_element(dofs[1]) = (*back_end_state)[i];
+        friction_state.local_element(dofs[0]) = contact_set.friction_state(i);
+        for (unsigned int j = 0; j < contact_set.n_tangential(i); ++j)
+          friction_state.local_element(dofs[1 + j]) = contact_set.t[i][j];
       }
     start_displacement.update_ghost_values();
     node_history.update_ghost_values();
+    friction_state.update_ghost_values();
 
     // A record: the cell id in binary form, the dofs_per_cell values of u, of
     // the contact state, of u_{n-1} and of the nodes' history, in the cell's
@@ -206,8 +200,12 @@ namespace ViscoContact
         std::memcpy(out, &key, sizeof(Key));
         out += sizeof(Key);
         owned_cells[k]->get_dof_indices(dof_indices);
-        for (const VectorType *vector : std::array<const VectorType *, 4>{
-               {&solution, &contact_state, &start_displacement, &node_history}})
+        for (const VectorType *vector :
+             std::array<const VectorType *, 5>{{&solution,
+                                                &contact_state,
+                                                &start_displacement,
+                                                &node_history,
+                                                &friction_state}})
           for (const types::global_dof_index dof : dof_indices)
             {
               const double value = (*vector)(dof);
@@ -273,7 +271,7 @@ namespace ViscoContact
     // The state of every owned cell; the decision is reduced over the ranks,
     // so that all throw if any cell was not found. Then the ghosts of u are
     // imported, as the stress update and the output expect.
-    CellRecordVectors vectors{solution, solution, solution};
+    CellRecordVectors vectors{solution, solution, solution, solution};
     const bool        complete = restore_cell_records(share, vectors);
     header.check(Utilities::MPI::min(complete ? 1 : 0, mpi_communicator) == 1);
     solution.update_ghost_values();
@@ -329,8 +327,7 @@ namespace ViscoContact
         times_and_names.emplace_back(time, header.read_string());
       }
     CheckpointFlags flags;
-    flags.has_step_start     = header.read<std::uint32_t>() == 1;
-    flags.has_back_end_state = header.read<std::uint32_t>() == 1;
+    flags.has_step_start = header.read<std::uint32_t>() == 1;
     return flags;
   }
 
@@ -415,10 +412,11 @@ namespace ViscoContact
     const auto found
       = MPITools::exchange_records(records, requests, mpi_communicator);
 
-    VectorType *const targets[4] = {&solution,
+    VectorType *const targets[5] = {&solution,
                                     &vectors.contact_state,
                                     &vectors.start_displacement,
-                                    &vectors.node_history};
+                                    &vectors.node_history,
+                                    &vectors.friction_state};
     for (VectorType *target : targets)
       *target = 0;
     std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
@@ -436,12 +434,12 @@ namespace ViscoContact
         owned_cells[k]->get_dof_indices(dof_indices);
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
           if (locally_owned_dofs.is_element(dof_indices[i]))
-            for (unsigned int v = 0; v < 4; ++v)
+            for (unsigned int v = 0; v < 5; ++v)
               (*targets[v])(dof_indices[i]) = values[v * dofs_per_cell + i];
         // The stress-point records go back to their place k * n_q + q, byte for
         // byte.
         std::memcpy(&quadrature_point_history[std::size_t(k) * n_q],
-                    values.data() + 4 * dofs_per_cell,
+                    values.data() + 5 * dofs_per_cell,
                     n_q * sizeof(QuadraturePointHistory<dim>));
       }
     return complete;
@@ -464,7 +462,10 @@ namespace ViscoContact
     const CellRecordVectors &vectors,
     const ByteReader        &header)
   {
-    bool pieces_valid = true;
+    bool                                  pieces_valid = true;
+    std::vector<ContactNodes::Tangential> tangential_forces(
+      contact_set.size(),
+      ContactNodes::Tangential{{0, 0}});
     for (unsigned int i = 0; i < contact_set.size(); ++i)
       {
         const auto  &dofs  = contact_set.node(i).local_dofs;
@@ -479,9 +480,27 @@ namespace ViscoContact
             continue;
           }
         contact_set.set_piece(i, static_cast<unsigned int>(piece + 0.5));
-        contact_set.z[i] = vectors.contact_state.local_element(dofs[1]);
-        contact_set.r[i] = contact_set.normal_component(solution, i);
+        contact_set.z[i]   = vectors.contact_state.local_element(dofs[1]);
+        contact_set.r[i]   = contact_set.normal_component(solution, i);
+        const double state = vectors.friction_state.local_element(dofs[0]);
+        if (!(state >= 0 && state <= 2))
+          {
+            pieces_valid = false;
+            continue;
+          }
+        contact_set.set_friction_state(i,
+                                       static_cast<ContactNodes::FrictionState>(
+                                         static_cast<unsigned int>(state
+                                                                   + 0.5)));
+        for (unsigned int j = 0; j < contact_set.n_tangential(i); ++j)
+          tangential_forces[i][j]
+            = vectors.friction_state.local_element(dofs[1 + j]);
       }
+    // The slip of the next step is measured from the restored displacement;
+    // a slipping node's bound and direction follow from its forces, as in
+    // the interrupted run (ContactNodes::accept_slip()).
+    contact_set.reset_slip(contact_set.tangential_displacements(solution),
+                           tangential_forces);
     header.check(Utilities::MPI::min(pieces_valid ? 1 : 0, mpi_communicator)
                  == 1);
   }
@@ -499,12 +518,6 @@ namespace ViscoContact
     const CellRecordVectors &vectors,
     const CheckpointFlags   &flags)
   {
-    std::vector<double> back_end_state;
-    for (unsigned int i = 0; i < contact_set.size() && contact_enabled; ++i)
-      back_end_state.push_back(
-        vectors.node_history.local_element(contact_set.node(i).local_dofs[1]));
-    if (flags.has_back_end_state && contact_enabled)
-      contact_solver->restore_checkpoint_state(contact_set, back_end_state);
     if (flags.has_step_start)
       {
         previous_step_start.emplace();

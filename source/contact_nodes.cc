@@ -14,7 +14,9 @@
 #include "contact_nodes.h"
 
 #include <cmath>
+#include <cstdint>
 #include <iomanip>
+#include <map>
 #include <sstream>
 
 namespace ViscoContact
@@ -74,8 +76,13 @@ namespace ViscoContact
     for (unsigned int i = 0; i < history.size(); ++i)
       out << "    iteration " << i + 1 << ": " << history[i].changed_nodes
           << " nodes changed their piece, " << history[i].rigid_nodes
-          << " nodes at the rigid limit, linear residual "
-          << std::setprecision(3) << history[i].linear_residual
+          << " nodes at the rigid limit, "
+          << (history[i].adjusted_nodes > 0
+                ? std::to_string(history[i].adjusted_nodes)
+                    + " slipping nodes turned their slip direction, "
+                : std::string())
+          << "linear residual " << std::setprecision(3)
+          << history[i].linear_residual
           << (history[i].inner_iterations > 0
                 ? " after " + std::to_string(history[i].inner_iterations)
                     + " Krylov iterations"
@@ -105,6 +112,42 @@ namespace ViscoContact
     z.assign(w.size(), 0.);
     node_pieces.assign(w.size(), 0);
     placed = false;
+    set_friction(std::vector<FrictionLaw>(laws.n_zones()),
+                 std::vector<unsigned int>(w.size(), 0),
+                 std::vector<double>(w.size(), 0.));
+  }
+
+
+
+  // @sect4{ContactNodes::set_friction}
+  //
+  // Every frictional node starts stuck with no slip: the first solve of a
+  // run then holds the contact zone tangentially, so that a body held
+  // sideways by friction alone has a nonsingular first problem.
+  void
+  ContactNodes::set_friction(
+    const std::vector<FrictionLaw>  &zone_laws,
+    const std::vector<unsigned int> &tangential_directions_of_nodes,
+    const std::vector<double>       &tresca_bounds)
+  {
+    AssertDimension(zone_laws.size(), contact_laws.n_zones());
+    AssertDimension(tangential_directions_of_nodes.size(), size());
+    AssertDimension(tresca_bounds.size(), size());
+    zone_friction         = zone_laws;
+    tangential_directions = tangential_directions_of_nodes;
+    tresca_bound          = tresca_bounds;
+    const Tangential zero = {{0, 0}};
+    s.assign(size(), zero);
+    t.assign(size(), zero);
+    slip_reference.assign(size(), zero);
+    slip_direction.assign(size(), zero);
+    last_slip.assign(size(), zero);
+    friction_states.assign(size(), free_tangential);
+    bounds.assign(size(), 0.);
+    transverse_stiffness.assign(size(), 0.);
+    for (unsigned int i = 0; i < size(); ++i)
+      if (tangential_directions[i] > 0)
+        friction_states[i] = stick;
   }
 
 
@@ -143,10 +186,10 @@ namespace ViscoContact
   // The update rule at every node of this rank: q_i = z_i / w_i + c_i r_i
   // from the last solve names the next piece (ContactLaw::next_piece). The
   // counts are this rank's only; ContactNodes::solve() sums them.
-  std::array<unsigned int, 2>
+  std::array<unsigned int, 3>
   ContactNodes::update_pieces()
   {
-    unsigned int changed = 0, rigid = 0;
+    unsigned int changed = 0, rigid = 0, adjusted = 0;
     for (unsigned int i = 0; i < size(); ++i)
       {
         const unsigned int next
@@ -164,7 +207,269 @@ namespace ViscoContact
         if (current_piece(i).rigid)
           ++rigid;
       }
-    return {{changed, rigid}};
+    // Friction after the normal law: Coulomb's bound takes the normal force
+    // of the same solve.
+    for (unsigned int i = 0; i < size(); ++i)
+      {
+        const std::array<bool, 2> moved = update_friction(i);
+        changed += moved[0];
+        adjusted += moved[1];
+      }
+    return {{changed, rigid, adjusted}};
+  }
+
+
+
+  // @sect4{ContactNodes::update_friction}
+  //
+  // The stick/slip rule of the semismooth Newton method for friction
+  // (doc/model.md, section 7), in nodal forces: with the slip increment
+  // ds = s - s_{n-1} and the tangential force t of the last solve,
+  // q = t + c w ds names the state. |q| <= g: stick (then ds = 0 and t = q);
+  // |q| > g: slip along d = q / |q| with the force g d. A zero bound leaves
+  // the node free. As for the pieces, a node within rounding of its
+  // threshold keeps its state.
+  //
+  // In 3D the direction of slip is an unknown too: the Newton linearisation
+  // of t = g q / |q| adds a stiffness k_e = c w gamma / (1 - gamma),
+  // gamma = g / |q|, across the slip direction (zero at convergence, where
+  // ds is along d), capped at 100 c w where gamma is close to 1; changes of
+  // the direction are reported as adjustments until they fall below the
+  // friction tolerance. Coulomb's bound mu z is not frozen: the step
+  // problem couples a slipping node's tangential force to its normal force
+  // of the same solve (directions()), the Newton linearisation of
+  // t = mu z d, so the bound needs no fixed point.
+  std::array<bool, 2>
+  ContactNodes::update_friction(const unsigned int i)
+  {
+    const unsigned int k = tangential_directions[i];
+    if (k == 0)
+      return {{false, false}};
+    const FrictionLaw &law    = zone_friction[node_zones[i]];
+    const double       g      = (law.type == TangentialLaw::tresca
+                                   ? tresca_bound[i]
+                                   : law.coefficient * std::max(z[i], 0.));
+    Tangential         q      = {{0, 0}};
+    double             q_norm = 0;
+    for (unsigned int j = 0; j < k; ++j)
+      {
+        q[j] = t[i][j] + c[i] * w[i] * (s[i][j] - slip_reference[i][j]);
+        q_norm += q[j] * q[j];
+      }
+    q_norm = std::sqrt(q_norm);
+
+    const unsigned int old      = friction_states[i];
+    const double       rounding = 1e-9;
+    unsigned int       next     = (q_norm <= g ? stick : slip);
+    if (g <= 0)
+      next = free_tangential;
+    else if (old == stick && q_norm <= g * (1 + rounding))
+      next = stick;
+    else if (old == slip && q_norm >= g * (1 - rounding))
+      next = slip;
+    // A slipping node whose q has turned against its slip direction goes
+    // through stick instead of reversing: the Newton step overshot (the
+    // solve with the force along d moved the node the other way), and
+    // reversing would only overshoot back (a cycle of two iterations,
+    // seen on a nearly incompressible Hertz cylinder). Stuck, the node's
+    // next force is its reaction, which names the direction.
+    if (old == slip && next == slip)
+      {
+        double turn = 0;
+        for (unsigned int j = 0; j < k; ++j)
+          turn += q[j] * slip_direction[i][j];
+        if (turn < 0)
+          next = stick;
+      }
+
+
+    bool adjusted = false;
+    if (next == slip)
+      {
+        Tangential d      = {{0, 0}};
+        double     change = 0;
+        for (unsigned int j = 0; j < k; ++j)
+          {
+            d[j] = q[j] / q_norm;
+            change
+              += (d[j] - slip_direction[i][j]) * (d[j] - slip_direction[i][j]);
+          }
+        adjusted = (old == slip && std::sqrt(change) > friction_tolerance);
+        slip_direction[i]  = d;
+        const double gamma = g / q_norm;
+        transverse_stiffness[i]
+          = (k == 2 ? c[i] * w[i]
+                        * (gamma >= 100. / 101. ? 100. : gamma / (1 - gamma))
+                    : 0.);
+      }
+    bounds[i]          = g;
+    friction_states[i] = next;
+    return {{next != old, adjusted}};
+  }
+
+
+
+  // @sect4{ContactNodes::directions}
+  //
+  // The node's equations as directions of its frame: the normal one fixed on
+  // a vertical piece (u.nu = beta + gap) or free with the force
+  // w (o + s (u.nu - gap)); the tangential ones fixed at the last step's
+  // tangential displacement when the node sticks, free with no force when
+  // the bound is zero, and, when it slips, free along the slip direction d
+  // with the force g (Tresca) or mu z (Coulomb, coupled to the normal force
+  // z of the same solve) and (in 3D) free across it with the stiffness k_e
+  // against the slip increment.
+  NodeDirections
+  ContactNodes::directions(const unsigned int i, const double gap) const
+  {
+    NodeDirections         result;
+    const ContactLawPiece &piece  = current_piece(i);
+    NodeDirection         &normal = result.direction[0];
+    normal.frame                  = {{1, 0, 0}};
+    if (piece.vertical)
+      {
+        normal.fixed = true;
+        normal.value = piece.r_lower + gap;
+      }
+    else
+      {
+        normal.value     = w[i] * (piece.intercept - piece.slope * gap);
+        normal.stiffness = w[i] * piece.slope;
+      }
+    result.size          = 1 + tangential_directions[i];
+    const unsigned int k = tangential_directions[i];
+    if (k == 0)
+      return result;
+    if (friction_states[i] != slip)
+      {
+        for (unsigned int j = 0; j < k; ++j)
+          {
+            NodeDirection &tangential = result.direction[1 + j];
+            tangential.frame[1 + j]   = 1;
+            tangential.fixed          = (friction_states[i] == stick);
+            tangential.value
+              = (friction_states[i] == stick ? slip_reference[i][j] : 0.);
+          }
+        return result;
+      }
+    const Tangential  &d     = slip_direction[i];
+    const FrictionLaw &law   = zone_friction[node_zones[i]];
+    NodeDirection     &along = result.direction[1];
+    along.frame              = {{0, d[0], d[1]}};
+    if (law.type == TangentialLaw::coulomb)
+      along.coupling = law.coefficient;
+    else
+      along.value = bounds[i];
+    if (k == 2)
+      {
+        NodeDirection &across = result.direction[2];
+        across.frame          = {{0, -d[1], d[0]}};
+        across.stiffness      = transverse_stiffness[i];
+        across.value          = -transverse_stiffness[i]
+                       * (across.frame[1] * slip_reference[i][0]
+                          + across.frame[2] * slip_reference[i][1]);
+      }
+    return result;
+  }
+
+
+
+  // @sect4{ContactNodes::store_solution}
+  //
+  // The back end's solution in the node's frame: y = sum_k a_k y_k and the
+  // force sum_k a_k f_k, f_k from the law of a free direction or from the
+  // back end for a fixed one. The normal comes first, since the coupled
+  // directions need its force.
+  void
+  ContactNodes::store_solution(const unsigned int    i,
+                               const double          gap,
+                               const NodeDirections &node_directions,
+                               const double         *displacements,
+                               const double         *fixed_forces)
+  {
+    std::array<double, 3> y = {{0, 0, 0}}, force = {{0, 0, 0}};
+    double                normal_force = 0;
+    for (unsigned int k = 0; k < node_directions.size; ++k)
+      {
+        const NodeDirection &direction = node_directions.direction[k];
+        const double         f
+          = (direction.fixed
+               ? fixed_forces[k]
+               : direction.value + direction.stiffness * displacements[k]
+                   + direction.coupling * normal_force);
+        if (k == 0)
+          normal_force = f;
+        for (unsigned int e = 0; e < 3; ++e)
+          {
+            y[e] += direction.frame[e] * displacements[k];
+            force[e] += direction.frame[e] * f;
+          }
+      }
+    r[i] = y[0] - gap;
+    z[i] = force[0];
+    for (unsigned int j = 0; j < tangential_directions[i]; ++j)
+      {
+        s[i][j] = y[1 + j];
+        t[i][j] = force[1 + j];
+      }
+  }
+
+
+
+  // @sect4{ContactNodes::accept_slip and reset_slip}
+  //
+  // The slip of the next step starts from the final displacement of this
+  // one (taken from u, not from the last solve's s, which the condensed
+  // back end computes otherwise, to rounding). A slipping node's bound and
+  // direction are set from its normal and tangential force (the values of
+  // its last update, to rounding), so that a run resumed from a
+  // checkpoint, which stores u and the forces, continues with the same
+  // numbers.
+  void
+  ContactNodes::accept_slip(
+    const std::vector<Tangential> &tangential_displacements)
+  {
+    AssertDimension(tangential_displacements.size(), size());
+    for (unsigned int i = 0; i < size(); ++i)
+      {
+        const unsigned int k = tangential_directions[i];
+        if (k == 0)
+          continue;
+        s[i] = tangential_displacements[i];
+        for (unsigned int j = 0; j < k; ++j)
+          last_slip[i][j] = s[i][j] - slip_reference[i][j];
+        slip_reference[i] = s[i];
+        if (friction_states[i] != slip)
+          continue;
+        const FrictionLaw &law = zone_friction[node_zones[i]];
+        bounds[i]              = (law.type == TangentialLaw::tresca
+                                    ? tresca_bound[i]
+                                    : law.coefficient * std::max(z[i], 0.));
+        const double norm = std::sqrt(t[i][0] * t[i][0] + t[i][1] * t[i][1]);
+        if (norm == 0)
+          continue;
+        for (unsigned int j = 0; j < k; ++j)
+          slip_direction[i][j] = t[i][j] / norm;
+        const double gamma = bounds[i] / norm;
+        transverse_stiffness[i]
+          = (k == 2 ? c[i] * w[i]
+                        * (gamma >= 100. / 101. ? 100. : gamma / (1 - gamma))
+                    : 0.);
+      }
+  }
+
+
+
+  void
+  ContactNodes::reset_slip(
+    const std::vector<Tangential> &tangential_displacements,
+    const std::vector<Tangential> &tangential_forces)
+  {
+    AssertDimension(tangential_displacements.size(), size());
+    AssertDimension(tangential_forces.size(), size());
+    t              = tangential_forces;
+    slip_reference = tangential_displacements;
+    accept_slip(tangential_displacements);
   }
 
 
@@ -203,6 +508,10 @@ namespace ViscoContact
     ActiveSetResult result;
     const double    early_tolerance = std::max(std::sqrt(tolerance), tolerance);
     bool            pieces_settled  = false;
+    // The fixed point on Coulomb's bound and on the slip directions stops
+    // when they change by less than this (relative).
+    friction_tolerance = std::max(1e-2 * std::sqrt(tolerance), tolerance);
+    std::map<std::uint64_t, unsigned int> sets_seen;
     for (unsigned int iteration = 0; iteration < max_iterations; ++iteration)
       {
         // The linear problem of the current pieces. A failed solve (a Krylov
@@ -218,7 +527,7 @@ namespace ViscoContact
           }
         // Every node moves (or stays), and all ranks learn how many moved
         // and how many are at the rigid limit.
-        std::array<unsigned int, 2> moved
+        std::array<unsigned int, 3> moved
           = sum_over_ranks(update_pieces(), communicator);
         // An early solve that moved no node: the pieces have settled, so the
         // same linear problem is solved on to the full tolerance (from the
@@ -238,15 +547,40 @@ namespace ViscoContact
             report.inner_iterations += refined.inner_iterations;
             moved = sum_over_ranks(update_pieces(), communicator);
           }
-        result.history.push_back(
-          {moved[0], moved[1], report.residual, report.inner_iterations});
+        result.history.push_back({moved[0],
+                                  moved[1],
+                                  report.residual,
+                                  report.inner_iterations,
+                                  moved[2]});
         // Converged: the pieces the last solve used are the ones the nodes
-        // sit on now, so (r, z) lies on the graph of the law at every node.
-        // The residual is a global norm, the same on every rank.
-        if (moved[0] == 0 && report.residual <= tolerance)
+        // sit on now, so (r, z) lies on the graph of the law at every node,
+        // and no slipping node's bound or direction has changed. The
+        // residual is a global norm, the same on every rank.
+        if (moved[0] == 0 && moved[2] == 0 && report.residual <= tolerance)
           {
             result.converged = true;
             return result;
+          }
+        // A cycle: the same pieces and stick/slip states as two iterations
+        // before, seen for the third time (with exact solves the iteration
+        // would repeat them forever).
+        if (moved[0] > 0)
+          {
+            const unsigned int seen
+              = ++sets_seen[active_set_signature(communicator)];
+            if (seen >= 3)
+              {
+                std::ostringstream reason;
+                reason << "The active-set iteration cycles: iteration "
+                       << result.history.size()
+                       << " returned to a set of pieces and stick/slip "
+                          "states it had reached twice before (a step too "
+                          "long for the change of the contact zone, or a "
+                          "law that softens more than the body carries, "
+                          "doc/model.md, section 4).";
+                result.failure = reason.str();
+                return result;
+              }
           }
         if (moved[0] == 0)
           pieces_settled = true;
@@ -260,6 +594,7 @@ namespace ViscoContact
             for (std::size_t j = n - 2; j < n; ++j)
               stagnant = stagnant && result.history[j].changed_nodes == 0
                          && result.history[j - 1].changed_nodes == 0
+                         && result.history[j].linear_residual > tolerance
                          && result.history[j].linear_residual
                               > 0.5 * result.history[j - 1].linear_residual;
             if (stagnant)
@@ -295,7 +630,17 @@ namespace ViscoContact
   ContactNodes::State
   ContactNodes::state() const
   {
-    return {node_pieces, r, z};
+    return {node_pieces,
+            r,
+            z,
+            s,
+            t,
+            slip_reference,
+            slip_direction,
+            last_slip,
+            friction_states,
+            bounds,
+            transverse_stiffness};
   }
 
 
@@ -304,9 +649,40 @@ namespace ViscoContact
   ContactNodes::set_state(const State &state)
   {
     AssertDimension(state.pieces.size(), size());
-    node_pieces = state.pieces;
-    r           = state.r;
-    z           = state.z;
+    node_pieces          = state.pieces;
+    r                    = state.r;
+    z                    = state.z;
+    s                    = state.s;
+    t                    = state.t;
+    slip_reference       = state.slip_reference;
+    slip_direction       = state.slip_direction;
+    last_slip            = state.last_slip;
+    friction_states      = state.friction_states;
+    bounds               = state.bounds;
+    transverse_stiffness = state.transverse_stiffness;
+  }
+
+
+
+  // @sect4{ContactNodes::active_set_signature}
+  //
+  // A hash of the pieces and stick/slip states of all nodes of all ranks
+  // (each rank's hash of its nodes, summed), to recognise a set the
+  // iteration has been at before. Collective.
+  std::uint64_t
+  ContactNodes::active_set_signature(const MPI_Comm communicator) const
+  {
+    std::uint64_t hash = 1469598103934665603ULL;
+    for (unsigned int i = 0; i < size(); ++i)
+      {
+        hash = (hash ^ node_pieces[i]) * 1099511628211ULL;
+        hash = (hash ^ friction_states[i]) * 1099511628211ULL;
+      }
+    std::uint64_t sum = 0;
+    const int     error
+      = MPI_Allreduce(&hash, &sum, 1, MPI_UINT64_T, MPI_SUM, communicator);
+    AssertThrowMPI(error);
+    return sum;
   }
 
 
@@ -378,6 +754,77 @@ namespace ViscoContact
   ContactNodes::pieces() const
   {
     return node_pieces;
+  }
+
+
+
+  // @sect4{Friction: access}
+  //
+  // Whether any zone has friction, and per node its tangential directions,
+  // state, slip increment of the step and bound.
+  bool
+  ContactNodes::has_friction() const
+  {
+    for (const FrictionLaw &law : zone_friction)
+      if (law.has_friction())
+        return true;
+    return false;
+  }
+
+
+
+  unsigned int
+  ContactNodes::n_tangential(const unsigned int i) const
+  {
+    return tangential_directions[i];
+  }
+
+
+
+  ContactNodes::FrictionState
+  ContactNodes::friction_state(const unsigned int i) const
+  {
+    return static_cast<FrictionState>(friction_states[i]);
+  }
+
+
+
+  void
+  ContactNodes::set_friction_state(const unsigned int  i,
+                                   const FrictionState state)
+  {
+    if (tangential_directions[i] > 0)
+      friction_states[i] = state;
+  }
+
+
+
+  ContactNodes::Tangential
+  ContactNodes::step_slip(const unsigned int i) const
+  {
+    return last_slip[i];
+  }
+
+
+
+  double
+  ContactNodes::slip_bound(const unsigned int i) const
+  {
+    return bounds[i];
+  }
+
+
+
+  std::array<unsigned int, 2>
+  ContactNodes::count_friction_states(const MPI_Comm communicator) const
+  {
+    std::array<unsigned int, 2> counts = {{0, 0}};
+    for (unsigned int i = 0; i < size(); ++i)
+      if (friction_states[i] == stick)
+        ++counts[0];
+      else if (friction_states[i] == slip)
+        ++counts[1];
+    return sum_over_ranks(counts, communicator);
   }
 
 

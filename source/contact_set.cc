@@ -17,6 +17,7 @@
 #include <deal.II/lac/full_matrix.h>
 
 #include "contact_set.h"
+#include "robustness/file_output.h"
 
 #include <algorithm>
 #include <cmath>
@@ -190,12 +191,13 @@ namespace ViscoContact
       pass_on_hanging_values(*vector, hanging_constraints, layout);
 
     gaps.clear();
-    find_nodes(zones,
-               dof_handler,
-               scalar_dof_handler,
-               constraints,
-               *layout.get_partitioner(),
-               weighted_normals);
+    const std::string problem = find_nodes(zones,
+                                           dof_handler,
+                                           scalar_dof_handler,
+                                           constraints,
+                                           *layout.get_partitioner(),
+                                           weighted_normals);
+    FileOutput::agree_on_problem(problem, communicator);
 
     // Along Gamma_3: the order of the contact profiles. The order is
     // lexicographic in the coordinates (x first), with a tolerance for
@@ -209,7 +211,9 @@ namespace ViscoContact
                     return a.location[d] < b.location[d];
                 return false;
               });
-    // The weight of a node sits at its x-dof; the nodes start at r = z = 0.
+    // The weight of a node sits at its x-dof; the nodes start at r = z = 0,
+    // stuck where the zone has friction, with a zero Tresca bound until
+    // set_slip_bounds().
     std::vector<double>       node_weights(geometry.size());
     std::vector<unsigned int> node_zones(geometry.size());
     for (unsigned int i = 0; i < geometry.size(); ++i)
@@ -218,6 +222,15 @@ namespace ViscoContact
         node_zones[i]   = geometry[i].zone;
       }
     reinit(ContactLaws(laws), node_zones, node_weights);
+    zone_friction.clear();
+    for (const ContactZoneDescription<dim> &zone : zones)
+      zone_friction.push_back(zone.friction);
+    std::vector<unsigned int> tangents(geometry.size());
+    for (unsigned int i = 0; i < geometry.size(); ++i)
+      tangents[i] = geometry[i].n_tangents;
+    set_friction(zone_friction,
+                 tangents,
+                 std::vector<double>(geometry.size(), 0.));
 
     // Numbering across ranks: rank p's nodes come after those of ranks
     // 0, ..., p - 1, which is how deal.II's Partitioner numbers a vector
@@ -273,12 +286,26 @@ namespace ViscoContact
   // direction lies in its constrained components gets the zero vector (it
   // is not a contact node, like a clamped corner); one constrained to
   // another vertex's dofs is refused, naming its location.
+  //
+  // The same construction gives the node's tangential frame: an
+  // orthonormal basis tau_j of the span of C orthogonal to nu (from the
+  // coordinate axes, dim - 1 directions on a free node, fewer where a
+  // plane of symmetry takes one), and its rows t_j = C^T tau_j.
   template <int dim>
-  Tensor<1, dim>
-  free_direction(const typename ContactSet<dim>::NodeGeometry &node,
-                 const AffineConstraints<double>              &constraints)
+  struct FreeFrame
   {
-    const double length = node.normal.norm();
+    Tensor<1, dim>                      normal_row;
+    unsigned int                        n_tangents = 0;
+    std::array<Tensor<1, dim>, dim - 1> tangent_rows, tangents;
+  };
+
+  template <int dim>
+  FreeFrame<dim>
+  free_frame(const typename ContactSet<dim>::NodeGeometry &node,
+             const AffineConstraints<double>              &constraints)
+  {
+    FreeFrame<dim> frame;
+    const double   length = node.normal.norm();
     // C: column f for free component f; constrained rows from their lines.
     // Coupling weights at rounding level (the edge of two planes of
     // symmetry along a coordinate axis) couple nothing.
@@ -332,13 +359,36 @@ namespace ViscoContact
     // Nothing left (the node where the contact zone meets a part that
     // prescribes its normal component): not a contact node.
     if (direction.norm() <= 1e-3 * length)
-      return Tensor<1, dim>();
+      return frame;
     direction /= direction.norm();
-    Tensor<1, dim> free_vector; // C^T direction
     for (unsigned int f = 0; f < dim; ++f)
       for (unsigned int c = 0; c < dim; ++c)
-        free_vector[f] += C(c, f) * direction[c];
-    return free_vector;
+        frame.normal_row[f] += C(c, f) * direction[c];
+    // The tangents: the columns of C (coordinate axes on a free node),
+    // orthogonalised against nu and each other.
+    std::vector<Tensor<1, dim>> basis{direction};
+    for (unsigned int f = 0; f < dim && frame.n_tangents < dim - 1; ++f)
+      {
+        if (!free[f])
+          continue;
+        Tensor<1, dim> column;
+        for (unsigned int c = 0; c < dim; ++c)
+          column[c] = C(c, f);
+        const double column_length = column.norm();
+        for (const Tensor<1, dim> &b : basis)
+          column -= (column * b) * b;
+        if (column.norm() <= 1e-6 * column_length)
+          continue;
+        column /= column.norm();
+        basis.push_back(column);
+        Tensor<1, dim> row; // C^T tau
+        for (unsigned int g = 0; g < dim; ++g)
+          for (unsigned int c = 0; c < dim; ++c)
+            row[g] += C(c, g) * column[c];
+        frame.tangents[frame.n_tangents]       = column;
+        frame.tangent_rows[frame.n_tangents++] = row;
+      }
+    return frame;
   }
 
 
@@ -352,7 +402,7 @@ namespace ViscoContact
   // their own (the corner of Gamma_3 on Gamma_1; hanging nodes, which the
   // refinement toward Gamma_3 in refine_mesh() keeps off it).
   template <int dim>
-  void
+  std::string
   ContactSet<dim>::find_nodes(
     const std::vector<ContactZoneDescription<dim>> &zones,
     const DoFHandler<dim>                          &dof_handler,
@@ -362,6 +412,7 @@ namespace ViscoContact
     const VectorType                               &weighted_normals)
   {
     geometry.clear();
+    std::string                       problem;
     std::set<types::global_dof_index> seen;
     // Every vertex of every contact face of the owned and ghost cells, once
     // (the set seen remembers the x-dofs taken), zone by zone: a vertex of
@@ -406,9 +457,49 @@ namespace ViscoContact
                   node.zone = zone;
                   if (zones[zone].direction)
                     node.normal = *zones[zone].direction;
-                  node.normal = free_direction<dim>(node, constraints);
+                  const FreeFrame<dim> frame
+                    = free_frame<dim>(node, constraints);
+                  node.normal = frame.normal_row;
                   if (node.normal.norm() == 0)
                     continue;
+                  // The tangential frame, in a frictional zone only. Its
+                  // rows must be orthonormal on the dofs (the back ends
+                  // couple a slipping node's tangential force to its normal
+                  // one along them), which an oblique plane of symmetry
+                  // breaks.
+                  if (zones[zone].friction.has_friction())
+                    {
+                      node.n_tangents   = frame.n_tangents;
+                      node.tangent_rows = frame.tangent_rows;
+                      node.tangents     = frame.tangents;
+                      double defect     = std::abs(node.normal.norm() - 1);
+                      for (unsigned int j = 0; j < node.n_tangents; ++j)
+                        {
+                          defect = std::max(
+                            {defect,
+                             std::abs(node.tangent_rows[j].norm() - 1),
+                             std::abs(node.tangent_rows[j] * node.normal)});
+                          for (unsigned int k = 0; k < j; ++k)
+                            defect = std::max(defect,
+                                              std::abs(node.tangent_rows[j]
+                                                       * node.tangent_rows[k]));
+                        }
+                      if (node.n_tangents > 0 && defect > 1e-10
+                          && problem.empty())
+                        {
+                          std::ostringstream message;
+                          message
+                            << "Invalid parameter <Tangential law> in "
+                               "subsection <"
+                            << zones[zone].subsection
+                            << ">: the contact node at (" << node.location
+                            << ") lies on an oblique plane of symmetry, "
+                               "where friction is not available; accepted: "
+                               "frictionless there, or planes of symmetry "
+                               "normal to a coordinate axis.";
+                          problem = message.str();
+                        }
+                    }
                   // The same vertex's dof in the scalar dof handler of the
                   // output fields, through the same cell of the common
                   // triangulation.
@@ -421,6 +512,7 @@ namespace ViscoContact
                     = scalar_cell->face(f)->vertex_dof_index(v, 0);
                   geometry.push_back(node);
                 }
+    return problem;
   }
 
 
@@ -540,7 +632,17 @@ namespace ViscoContact
           out << coordinates[d] << ',';
         out << "time,u_nu,compliance_pressure,foundation_pressure,"
                "contact_pressure,nodal_force,weight,status"
-            << (laws().n_zones() > 1 ? ",zone\n" : "\n");
+            << (laws().n_zones() > 1 ? ",zone" : "");
+        // With friction: the stick/slip state, the tangential traction t / w
+        // and the slip increment of the last step, as vectors of space.
+        if (has_friction())
+          {
+            out << ",friction_state";
+            for (const std::string field : {"tangential_traction_", "slip_"})
+              for (unsigned int d = 0; d < dim; ++d)
+                out << ',' << field << coordinates[d];
+          }
+        out << '\n';
       }
     // The foundation's pressure is what the layer does not carry.
     for (unsigned int i = 0; i < size(); ++i)
@@ -553,6 +655,17 @@ namespace ViscoContact
             << status(i);
         if (laws().n_zones() > 1)
           out << ',' << zone_numbers[zone(i)];
+        if (has_friction())
+          {
+            const Tensor<1, dim> traction
+              = tangential_vector(i, t[i]) / weight(i);
+            const Tensor<1, dim> slip = tangential_vector(i, step_slip(i));
+            out << ',' << friction_state(i);
+            for (unsigned int d = 0; d < dim; ++d)
+              out << ',' << traction[d];
+            for (unsigned int d = 0; d < dim; ++d)
+              out << ',' << slip[d];
+          }
         out << '\n';
       }
     return out.str();
@@ -586,6 +699,126 @@ namespace ViscoContact
           = contact_pressure(i) - compliance_pressure(i);
         contact_status_field(dof) = status(i);
       }
+  }
+
+
+
+  template <int dim>
+  void
+  ContactSet<dim>::fill_friction_fields(VectorType &tangential_traction,
+                                        VectorType &slip,
+                                        VectorType &friction_state_field) const
+  {
+    for (VectorType *field :
+         {&tangential_traction, &slip, &friction_state_field})
+      *field = 0;
+    for (unsigned int i = 0; i < size(); ++i)
+      {
+        const Tensor<1, dim> traction = tangential_vector(i, t[i]) / weight(i);
+        const Tensor<1, dim> step     = tangential_vector(i, step_slip(i));
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            tangential_traction(geometry[i].dofs[c]) = traction[c];
+            slip(geometry[i].dofs[c])                = step[c];
+          }
+        friction_state_field(geometry[i].scalar_dof) = friction_state(i);
+      }
+  }
+
+
+
+  // @sect4{ContactSet::frame_row, row_component and add_row}
+  //
+  // The rows of a node's frame directions on its dofs, and the two
+  // operations that connect them to the displacement vectors (on the owned
+  // entries; no communication).
+  template <int dim>
+  Tensor<1, dim>
+  ContactSet<dim>::frame_row(const unsigned int           i,
+                             const std::array<double, 3> &a) const
+  {
+    Tensor<1, dim> row = a[0] * geometry[i].normal;
+    for (unsigned int j = 0; j < geometry[i].n_tangents; ++j)
+      row += a[1 + j] * geometry[i].tangent_rows[j];
+    return row;
+  }
+
+
+
+  template <int dim>
+  double
+  ContactSet<dim>::row_component(const VectorType     &u,
+                                 const unsigned int    i,
+                                 const Tensor<1, dim> &row) const
+  {
+    double value = 0;
+    for (unsigned int c = 0; c < dim; ++c)
+      value += row[c] * u.local_element(geometry[i].local_dofs[c]);
+    return value;
+  }
+
+
+
+  template <int dim>
+  void
+  ContactSet<dim>::add_row(VectorType           &v,
+                           const unsigned int    i,
+                           const Tensor<1, dim> &row,
+                           const double          value) const
+  {
+    for (unsigned int c = 0; c < dim; ++c)
+      v.local_element(geometry[i].local_dofs[c]) += value * row[c];
+  }
+
+
+
+  // @sect4{ContactSet: tangential quantities}
+  template <int dim>
+  std::vector<ContactNodes::Tangential>
+  ContactSet<dim>::tangential_displacements(const VectorType &u) const
+  {
+    std::vector<Tangential> result(size(), Tangential{{0, 0}});
+    for (unsigned int i = 0; i < size(); ++i)
+      for (unsigned int j = 0; j < geometry[i].n_tangents; ++j)
+        result[i][j] = row_component(u, i, geometry[i].tangent_rows[j]);
+    return result;
+  }
+
+
+
+  template <int dim>
+  Tensor<1, dim>
+  ContactSet<dim>::tangential_vector(const unsigned int i,
+                                     const Tangential  &x) const
+  {
+    Tensor<1, dim> vector;
+    for (unsigned int j = 0; j < geometry[i].n_tangents; ++j)
+      vector += x[j] * geometry[i].tangents[j];
+    return vector;
+  }
+
+
+
+  template <int dim>
+  std::vector<Tensor<1, dim>>
+  ContactSet<dim>::zone_tangential_forces(const MPI_Comm communicator) const
+  {
+    std::vector<double> sums(laws().n_zones() * dim, 0.);
+    for (unsigned int i = 0; i < size(); ++i)
+      {
+        const Tensor<1, dim> force = tangential_vector(i, t[i]);
+        for (unsigned int c = 0; c < dim; ++c)
+          sums[zone(i) * dim + c] += force[c];
+      }
+    const std::vector<double> local = sums;
+    Utilities::MPI::sum(ArrayView<const double>(local.data(), local.size()),
+                        communicator,
+                        ArrayView<double>(sums.data(), sums.size()));
+    std::vector<Tensor<1, dim>> forces(laws().n_zones());
+    for (unsigned int zone = 0; zone < forces.size(); ++zone)
+      for (unsigned int c = 0; c < dim; ++c)
+        forces[zone][c] = sums[zone * dim + c];
+    return forces;
   }
 
 
@@ -644,6 +877,44 @@ namespace ViscoContact
   ContactSet<dim>::gap(const unsigned int i) const
   {
     return gaps.empty() ? 0. : gaps[i];
+  }
+
+
+
+  // @sect4{ContactSet::set_slip_bounds}
+  //
+  // g_i = w_i g(x_i) at the nodes of the Tresca zones: the bound is a
+  // traction, the node's share of it a force.
+  template <int dim>
+  std::string
+  ContactSet<dim>::set_slip_bounds(
+    const std::vector<const Function<dim> *> &zone_bounds)
+  {
+    AssertDimension(zone_bounds.size(), zone_subsections.size());
+    std::vector<double>       bounds(size(), 0.);
+    std::vector<unsigned int> tangents(size());
+    for (unsigned int i = 0; i < size(); ++i)
+      {
+        tangents[i]                = geometry[i].n_tangents;
+        const Function<dim> *bound = zone_bounds[zone(i)];
+        if (bound == nullptr
+            || zone_friction[zone(i)].type != TangentialLaw::tresca)
+          continue;
+        const double value = bound->value(geometry[i].location);
+        if (!(value >= 0) || !std::isfinite(value))
+          {
+            std::ostringstream message;
+            message << "Invalid parameter <Slip bound> in subsection <"
+                    << zone_subsections[zone(i)] << ">: the bound is " << value
+                    << " at the contact node (" << geometry[i].location
+                    << "); accepted: expressions with a finite value >= 0 at "
+                       "every contact node.";
+            return message.str();
+          }
+        bounds[i] = weight(i) * value;
+      }
+    set_friction(zone_friction, tangents, bounds);
+    return "";
   }
 
 

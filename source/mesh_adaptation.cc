@@ -482,6 +482,11 @@ namespace ViscoContact
                 * new_pressure.local_element(contact_set.node(i).local_dofs[0]);
           }
         contact_set.update_pieces();
+        // Friction starts again from stick on the new mesh, its slip
+        // measured from the transferred displacement.
+        contact_set.reset_slip(
+          contact_set.tangential_displacements(solution),
+          std::vector<ContactNodes::Tangential>(contact_set.size(), {{0, 0}}));
       }
   }
 

@@ -37,7 +37,8 @@ namespace ViscoContact
     template <int dim>
     std::string
     time_series_header(const std::vector<unsigned int> &contact_zone_numbers,
-                       const std::vector<std::string>  &dirichlet_parts)
+                       const std::vector<std::string>  &dirichlet_parts,
+                       const std::vector<unsigned int> &frictional_zones)
     {
       std::string header
         = "step,time,active_set_iterations,unilateral_nodes,compliance_nodes,"
@@ -50,6 +51,14 @@ namespace ViscoContact
       for (const std::string &part : dirichlet_parts)
         for (unsigned int c = 0; c < dim; ++c)
           header += ",reaction_" + part + "_" + "xyz"[c];
+      // With friction: the sticking and slipping nodes, and per frictional
+      // zone the tangential force on it.
+      if (!frictional_zones.empty())
+        header += ",stick_nodes,slip_nodes";
+      for (const unsigned int number : frictional_zones)
+        for (unsigned int c = 0; c < dim; ++c)
+          header += ",tangential_force_zone_" + std::to_string(number) + "_"
+                    + "xyz"[c];
       return header + "\n";
     }
   } // namespace
@@ -211,15 +220,18 @@ namespace ViscoContact
                                  ? OutputFolder::Replace::own
                                  : OutputFolder::Replace::never);
         if (!parameters.resume)
-          output_folder->stage("time_series.csv",
-                               time_series_header<dim>(contact_zone_numbers(),
-                                                       dirichlet_part_names));
+          output_folder->stage(
+            "time_series.csv",
+            time_series_header<dim>(contact_zone_numbers(),
+                                    dirichlet_part_names,
+                                    frictional_zone_numbers()));
       }
     output_folder->commit();
     if (parameters.resume)
       truncate_time_series(*output_folder,
                            time_series_header<dim>(contact_zone_numbers(),
-                                                   dirichlet_part_names),
+                                                   dirichlet_part_names,
+                                                   frictional_zone_numbers()),
                            resume_step);
   }
 
@@ -234,6 +246,20 @@ namespace ViscoContact
     std::vector<unsigned int> numbers;
     for (const auto &zone : contact_zones)
       numbers.push_back(zone.number);
+    return numbers;
+  }
+
+
+
+  // Those of the zones with friction.
+  template <int dim>
+  std::vector<unsigned int>
+  ViscoplasticContact<dim>::frictional_zone_numbers() const
+  {
+    std::vector<unsigned int> numbers;
+    for (const auto &zone : contact_zones)
+      if (zone.friction.has_friction())
+        numbers.push_back(zone.number);
     return numbers;
   }
 
@@ -266,7 +292,14 @@ namespace ViscoContact
       = contact_enabled ? contact_set.zone_forces(mpi_communicator)
                         : std::vector<double>(contact_zones.size(), 0.);
     const std::vector<Tensor<1, dim>> reactions = reaction_forces(time);
-    std::string                       problem;
+    const bool friction = contact_enabled && contact_set.has_friction();
+    const std::array<unsigned int, 2> friction_counts
+      = friction ? contact_set.count_friction_states(mpi_communicator)
+                 : std::array<unsigned int, 2>{{0, 0}};
+    const std::vector<Tensor<1, dim>> tangential_forces
+      = friction ? contact_set.zone_tangential_forces(mpi_communicator)
+                 : std::vector<Tensor<1, dim>>();
+    std::string problem;
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
         std::ostringstream row;
@@ -289,6 +322,17 @@ namespace ViscoContact
           for (unsigned int c = 0; c < dim; ++c)
             row << ','
                 << (std::abs(reaction[c]) > 1e-12 * scale ? reaction[c] : 0.);
+        if (friction)
+          {
+            row << ',' << friction_counts[0] << ',' << friction_counts[1];
+            for (unsigned int zone = 0; zone < contact_zones.size(); ++zone)
+              if (contact_zones[zone].friction.has_friction())
+                for (unsigned int c = 0; c < dim; ++c)
+                  row << ','
+                      << (std::abs(tangential_forces[zone][c]) > 1e-12 * scale
+                            ? tangential_forces[zone][c]
+                            : 0.);
+          }
         row << '\n';
         problem = output_folder->append("time_series.csv", row.str());
       }
@@ -377,6 +421,23 @@ namespace ViscoContact
                                      contact_fields[3]);
     for (VectorType &field : contact_fields)
       field.update_ghost_values();
+    // With friction: the tangential traction and the slip of the last step
+    // as nodal vector fields (in the displacement's layout), and the
+    // stick/slip state.
+    const bool friction = contact_enabled && contact_set.has_friction();
+    VectorType tangential_traction, step_slip, friction_state;
+    if (friction)
+      {
+        tangential_traction.reinit(solution);
+        step_slip.reinit(solution);
+        friction_state.reinit(scalar_partitioner);
+        contact_set.fill_friction_fields(tangential_traction,
+                                         step_slip,
+                                         friction_state);
+        for (VectorType *field :
+             {&tangential_traction, &step_slip, &friction_state})
+          field->update_ghost_values();
+      }
 
     // The displacement is one vector field of dim components; the stress
     // components get names like stress_xy.
@@ -442,6 +503,24 @@ namespace ViscoContact
       data_out.add_data_vector(scalar_dof_handler,
                                contact_fields[i],
                                contact_names[i]);
+    if (friction)
+      {
+        for (const auto &[field, name] :
+             {std::pair<const VectorType *, std::string>{&tangential_traction,
+                                                         "tangential_traction"},
+              {&step_slip, "slip"}})
+          data_out.add_data_vector(
+            dof_handler,
+            *field,
+            std::vector<std::string>(dim, name),
+            std::vector<
+              DataComponentInterpretation::DataComponentInterpretation>(
+              dim,
+              DataComponentInterpretation::component_is_part_of_vector));
+        data_out.add_data_vector(scalar_dof_handler,
+                                 friction_state,
+                                 "friction_state");
+      }
     // The patches are placed with the mapping of the cell type, the one the
     // whole program uses.
     data_out.build_patches(mapping);

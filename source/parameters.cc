@@ -777,6 +777,29 @@ namespace ViscoContact
           "d: normal (each node's outward normal, the paper's model) or a "
           "vector of dim numbers, the direction from the body into the "
           "obstacle (minus the obstacle's normal), e.g. 0, -1.");
+        add_selection(
+          prm,
+          "Tangential law",
+          tangential_law,
+          {{"frictionless", TangentialLawType::frictionless},
+           {"Tresca", TangentialLawType::tresca},
+           {"Coulomb", TangentialLawType::coulomb}},
+          "Friction on the zone (doc/model.md, section 7), acting on the "
+          "slip of each time step with exact stick: frictionless (the "
+          "paper's model); Tresca: the tangential traction is at most Slip "
+          "bound, on every node of the zone; Coulomb: at most Friction "
+          "coefficient times the contact pressure.");
+        prm.add_parameter(
+          "Slip bound",
+          slip_bound,
+          "Tresca's bound g(x) >= 0 on the tangential traction [N/m^2 in "
+          "3D, N/m in 2D]: a muparser expression in x, y (, z) (and pi, L1, "
+          "L2 (, L3)), not in t.",
+          Patterns::Anything());
+        prm.add_parameter("Friction coefficient",
+                          friction_coefficient,
+                          "Coulomb's coefficient mu >= 0.",
+                          Patterns::Double());
       }
       prm.leave_subsection();
     }
@@ -801,6 +824,45 @@ namespace ViscoContact
                     gap_direction,
                     "normal, or " + std::to_string(dim)
                       + " numbers separated by ',' that are not all zero");
+          }
+        if (tangential_law != TangentialLawType::frictionless)
+          require(unilateral_constraint || normal_compliance,
+                  subsection,
+                  "Tangential law",
+                  prm.get("Tangential law"),
+                  "frictionless on a zone without a normal law (Unilateral "
+                  "constraint = false and Normal compliance = false)");
+        require(friction_coefficient >= 0
+                  && std::isfinite(friction_coefficient),
+                subsection,
+                "Friction coefficient",
+                to_string(friction_coefficient),
+                "a finite mu >= 0");
+        if (tangential_law == TangentialLawType::tresca)
+          {
+            static const std::regex t_variable(
+              "(^|[^A-Za-z0-9_])t($|[^A-Za-z0-9_])");
+            require(!std::regex_search(slip_bound, t_variable),
+                    subsection,
+                    "Slip bound",
+                    slip_bound,
+                    "an expression of the position x, y (, z) alone, not of "
+                    "the time t");
+            double constant  = 0;
+            bool   is_number = true;
+            try
+              {
+                constant = Utilities::string_to_double(slip_bound);
+              }
+            catch (...)
+              {
+                is_number = false;
+              }
+            require(!is_number || (constant >= 0 && std::isfinite(constant)),
+                    subsection,
+                    "Slip bound",
+                    slip_bound,
+                    "a finite bound g >= 0");
           }
         if (normal_compliance)
           require(gap > 0,
@@ -1811,6 +1873,24 @@ namespace ViscoContact
                 + std::to_string(n_steps));
     }
 
+    namespace
+    {
+      // Whether an expression is the number zero (an expression that only
+      // evaluates to zero counts as a value).
+      bool
+      is_zero_number(const std::string &expression)
+      {
+        try
+          {
+            return Utilities::string_to_double(expression) == 0;
+          }
+        catch (...)
+          {
+            return false;
+          }
+      }
+    } // namespace
+
     // Entries whose value the run would otherwise ignore without a word.
     void
     AllParameters::check_unused_entries(const ParameterHandler &prm) const
@@ -1830,6 +1910,23 @@ namespace ViscoContact
                     prm.get({zone.subsection}, entry),
                     "empty when Law = nonmonotone (it is used by Law = "
                     "piecewise linear only)");
+      // Likewise the entries of the tangential laws the zone does not have.
+      for (const ContactZone &zone : zones)
+        {
+          const auto law = zone.contact->tangential_law;
+          if (law != TangentialLawType::tresca)
+            require(is_zero_number(zone.contact->slip_bound),
+                    zone.subsection,
+                    "Slip bound",
+                    prm.get({zone.subsection}, "Slip bound"),
+                    "0 (the default) unless Tangential law = Tresca");
+          if (law != TangentialLawType::coulomb)
+            require(zone.contact->friction_coefficient == 0,
+                    zone.subsection,
+                    "Friction coefficient",
+                    prm.get({zone.subsection}, "Friction coefficient"),
+                    "0 (the default) unless Tangential law = Coulomb");
+        }
     }
 
     void

@@ -342,6 +342,13 @@ namespace ViscoContact
                       hanging_node_constraints,
                       solution);
     set_gaps(schedule.current_time());
+    // Tresca's bounds at the nodes (collective: a negative or infinite
+    // value stops all ranks, naming the entry).
+    std::vector<const Function<dim> *> slip_bounds;
+    for (const auto &bound : zone_slip_bounds)
+      slip_bounds.push_back(bound.get());
+    FileOutput::agree_on_problem(contact_set.set_slip_bounds(slip_bounds),
+                                 mpi_communicator);
     contact_set.set_operator(stiffness_matrix);
   }
 

@@ -59,6 +59,9 @@ namespace ViscoContact
     if (parameters.predicted_start && n > 1)
       previous_step_start
         = StepStart{std::move(start.solution), std::move(start.contact.z)};
+    // Friction: the next step's slip is measured from here.
+    if (contact_enabled && contact_set.has_friction())
+      contact_set.accept_slip(contact_set.tangential_displacements(solution));
     schedule.advance_time(proposed_step);
     if (schedule.is_adaptive() && explicit_history_update()
         && !schedule.is_at_end())

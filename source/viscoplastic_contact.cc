@@ -16,6 +16,7 @@
 #include "viscoplastic_contact.h"
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -211,8 +212,27 @@ namespace ViscoContact
             gap_depends_on_time
               = gap_depends_on_time || mentions_time(entries.initial_gap);
           }
+        // Friction: the law, and Tresca's bound as a function of position.
+        const std::map<Parameters::TangentialLawType, TangentialLaw> laws
+          = {{Parameters::TangentialLawType::frictionless,
+              TangentialLaw::frictionless},
+             {Parameters::TangentialLawType::tresca, TangentialLaw::tresca},
+             {Parameters::TangentialLawType::coulomb, TangentialLaw::coulomb}};
+        description.friction
+          = {laws.at(entries.tangential_law), entries.friction_coefficient};
+        std::unique_ptr<FunctionParser<dim>> slip_bound;
+        if (entries.tangential_law == Parameters::TangentialLawType::tresca)
+          {
+            slip_bound = std::make_unique<FunctionParser<dim>>(1);
+            initialize_load(*slip_bound,
+                            zone.subsection,
+                            "Slip bound",
+                            entries.slip_bound,
+                            parameters.lengths);
+          }
         contact_zones.push_back(std::move(description));
         zone_gap_functions.push_back(std::move(gap));
+        zone_slip_bounds.push_back(std::move(slip_bound));
       }
     // The Dirichlet parts: clamped first (u = 0), then the prescribed
     // displacements with their functions, in the order of

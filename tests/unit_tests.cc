@@ -641,6 +641,91 @@ namespace
 
 
 
+// The stick/slip rule of one frictional node on a rigid support (Signorini,
+// gap 0), w = 0.5, c = 100, with q = t + c w ds: the state it names, the
+// directions of its equations, and the forces store_solution() derives.
+TEST(Friction, StickSlipRuleOfOneNode)
+{
+  const ContactLaws signorini(ContactLaw({}, {0.}, {}, true, 0.));
+  ContactNodes      nodes;
+  nodes.reinit(signorini, {0}, {0.5});
+  nodes.set_friction({{TangentialLaw::coulomb, 0.3}}, {1}, {0.});
+  nodes.set_parameters({100.});
+  // Stuck at the start: the tangential direction is fixed at s_{n-1} = 0.
+  EXPECT_EQ(nodes.friction_state(0), ContactNodes::stick);
+  NodeDirections directions = nodes.directions(0, 0.);
+  ASSERT_EQ(directions.size, 2u);
+  EXPECT_TRUE(directions.direction[1].fixed);
+  EXPECT_EQ(directions.direction[1].value, 0.);
+
+  // z = 10, so g = 3: |q| = 2 sticks, |q| = 4 slips along +x.
+  nodes.z[0] = 10;
+  nodes.t[0] = {{2, 0}};
+  nodes.update_pieces();
+  EXPECT_EQ(nodes.friction_state(0), ContactNodes::stick);
+  nodes.t[0] = {{4, 0}};
+  EXPECT_EQ(nodes.update_pieces()[0], 1u);
+  EXPECT_EQ(nodes.friction_state(0), ContactNodes::slip);
+  EXPECT_NEAR(nodes.slip_bound(0), 3., 1e-15);
+
+  // Slipping, the force along d is coupled to the normal force: mu z.
+  directions = nodes.directions(0, 0.);
+  EXPECT_FALSE(directions.direction[1].fixed);
+  EXPECT_EQ(directions.direction[1].frame[1], 1.);
+  EXPECT_EQ(directions.direction[1].coupling, 0.3);
+  const double displacements[2] = {0., 0.01}, forces[2] = {10., 0.};
+  nodes.store_solution(0, 0., directions, displacements, forces);
+  EXPECT_NEAR(nodes.t[0][0], 3., 1e-15);
+  EXPECT_NEAR(nodes.s[0][0], 0.01, 1e-15);
+  // q = 3 + 100 * 0.5 * 0.01 = 3.5 keeps it slipping, unchanged.
+  EXPECT_EQ(nodes.update_pieces()[0], 0u);
+  EXPECT_EQ(nodes.friction_state(0), ContactNodes::slip);
+
+  // A q that turns against the slip goes through stick, not to a reversed
+  // slip; a zero normal force leaves the node free.
+  // q = 3 + 50 (-0.2) = -7.
+  nodes.s[0] = {{-0.2, 0}};
+  nodes.update_pieces();
+  EXPECT_EQ(nodes.friction_state(0), ContactNodes::stick);
+  nodes.z[0] = 0;
+  nodes.update_pieces();
+  EXPECT_EQ(nodes.friction_state(0), ContactNodes::free_tangential);
+  EXPECT_FALSE(nodes.directions(0, 0.).direction[1].fixed);
+}
+
+
+
+// In 3D a slipping node gets the Newton stiffness across its slip
+// direction: Tresca bound g = 1, q = (3, 4), gamma = g / |q| = 0.2,
+// k = c w gamma / (1 - gamma) = 100 * 0.5 * 0.25.
+TEST(Friction, TransverseStiffnessOfA3DSlip)
+{
+  const ContactLaws signorini(ContactLaw({}, {0.}, {}, true, 0.));
+  ContactNodes      nodes;
+  nodes.reinit(signorini, {0}, {0.5});
+  nodes.set_friction({{TangentialLaw::tresca, 0.}}, {2}, {1.});
+  nodes.set_parameters({100.});
+  nodes.z[0] = 10;
+  nodes.t[0] = {{3, 4}};
+  nodes.update_pieces();
+  ASSERT_EQ(nodes.friction_state(0), ContactNodes::slip);
+  const NodeDirections directions = nodes.directions(0, 0.);
+  ASSERT_EQ(directions.size, 3u);
+  const NodeDirection &along  = directions.direction[1],
+                      &across = directions.direction[2];
+  EXPECT_NEAR(along.frame[1], 0.6, 1e-15);
+  EXPECT_NEAR(along.frame[2], 0.8, 1e-15);
+  EXPECT_EQ(along.value, 1.);
+  EXPECT_EQ(along.coupling, 0.);
+  EXPECT_NEAR(across.frame[1] * along.frame[1]
+                + across.frame[2] * along.frame[2],
+              0.,
+              1e-15);
+  EXPECT_NEAR(across.stiffness, 12.5, 1e-12);
+}
+
+
+
 // A diagonal compliance decouples the nodes: every node has a closed-form
 // answer. Five nodes cover the four pieces.
 TEST(ActiveSetSolver, DecoupledNodesMatchClosedForm)

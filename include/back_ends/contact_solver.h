@@ -132,27 +132,12 @@ namespace ViscoContact
                      Vector<double>        &y)
       = 0;
 
-    // What a checkpoint must keep of the back end for a resumed run to
-    // repeat the uninterrupted one: one value per contact node of this rank,
-    // or nothing (the same answer on every rank). The full space back end
-    // gives the normal stiffness its AMG of the step operator was built for
-    // (infinite at fixed nodes), since that AMG is rebuilt only when enough
-    // nodes have changed; restore_checkpoint_state() builds it again.
-    virtual std::optional<std::vector<double>>
-    checkpoint_state() const
-    {
-      return std::nullopt;
-    }
-    virtual void
-    restore_checkpoint_state(const ContactSet<dim> &,
-                             const std::vector<double> &)
-    {}
-
     // After a checkpoint: forget what the back end keeps from earlier solves
     // of the run and a checkpoint does not store (the condensed back end's
-    // dense factorisation, corrected for the rows that changed since), so
-    // that the run goes on with the arithmetic of a run resumed from that
-    // checkpoint, bit for bit.
+    // dense factorisation, corrected for the rows that changed since; the
+    // full space back end's AMG of an earlier step operator), so that the
+    // run goes on with the arithmetic of a run resumed from that checkpoint,
+    // bit for bit.
     virtual void
     forget_kept_state()
     {}

@@ -48,7 +48,7 @@ namespace ViscoContact
   // The version of the file layout, the first value of every header: a
   // resumed run refuses a checkpoint of another version rather than misread
   // it. Bumped whenever the layout of the files changes.
-  constexpr std::uint32_t checkpoint_version = 5;
+  constexpr std::uint32_t checkpoint_version = 6;
 
   // The header's bytes, built and read in memory. Only trivially copyable
   // values are written, byte for byte in the machine's representation (vectors

@@ -95,6 +95,14 @@ namespace ViscoContact
   // solves in blocks of 64 right-hand sides, and a step costs two solves:
   // A^{-1} b before the active-set iteration and A^{-1} N^T z after it.
   //
+  // With friction the contact nodes of frictional zones add their
+  // tangential rows t_j to N (dim rows per node, ContactSet::frame_row()):
+  // S is the compliance of all rows, and the dense problem of the pieces and
+  // friction states (solve_frictional()) is factorised afresh in every
+  // active-set iteration, (m dim)^3 / 3 operations: its rows change with the
+  // slip directions, which the row updates of CondensedContactSystem do not
+  // follow.
+  //
   // For the explicit stress update the operator is the elastic K for the
   // whole run, so this set-up is paid once; for the implicit update it is
   // paid again in every Newton iteration, with the new tangent.
@@ -151,6 +159,27 @@ namespace ViscoContact
     compliance_from_last_block(const ContactSet<dim> &contact);
     FullMatrix<double>
     compliance_by_solves(const ContactSet<dim> &contact);
+    // The dense problem of the pieces and friction states of all nodes,
+    // factorised and solved; writes the nodes' solutions and returns the
+    // backward error of the dense solve.
+    double
+    solve_frictional(ContactSet<dim> &contact);
+
+    // Row j of node i's frame (0: the normal).
+    static Tensor<1, dim>
+    frame_row(const ContactSet<dim> &contact,
+              const unsigned int     i,
+              const unsigned int     j);
+    // The frame rows of this rank's node i in the global numbering of rows.
+    unsigned int
+    first_row(const ContactSet<dim> &contact, const unsigned int i) const;
+
+    // Whether any zone has friction (then S and d cover the tangential rows
+    // too and solve_frictional() solves), and the first global row of every
+    // node (the rows of the nodes, rank by rank, node by node) and the
+    // total.
+    bool                      friction = false;
+    std::vector<unsigned int> row_start;
 
     const MPI_Comm         communicator;
     SparseDirectSolver     factorization;
@@ -171,9 +200,12 @@ namespace ViscoContact
     // Without it: A^{-1} b of the current step problem.
     VectorType free_displacement;
 
-    // The free normal displacements d, and the normal displacements r and
-    // forces z of all contact nodes.
+    // The free displacements d along the rows (normal ones less the gap
+    // without friction), and the normal displacements r and forces z of all
+    // contact nodes (with friction: the forces along all rows).
     Vector<double> d, r_all, z_all;
+    // With friction: S, kept for the dense problems.
+    FullMatrix<double> frictional_compliance;
   };
 
 
@@ -222,23 +254,41 @@ namespace ViscoContact
                                             const bool             symmetric,
                                             const ContactSet<dim> &contact)
   {
-    // The contact dofs: a component whose normal entry is zero does not
-    // enter N, so an axis-aligned contact boundary needs one dof per node.
+    // The rows of every node (the normal, and the tangents in a frictional
+    // zone), numbered across ranks.
+    friction = contact.has_friction();
+    std::vector<unsigned int> own_rows(contact.size());
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      own_rows[i] = 1 + contact.n_tangential(i);
+    const std::vector<unsigned int> all_rows
+      = gather_on_all_ranks(own_rows, communicator);
+    row_start.assign(all_rows.size() + 1, 0);
+    for (unsigned int n = 0; n < all_rows.size(); ++n)
+      row_start[n + 1] = row_start[n] + all_rows[n];
+
+    // The contact dofs: a component in which no row of the node has an
+    // entry does not enter N, so an axis-aligned frictionless contact
+    // boundary needs one dof per node.
     contact_dofs.clear();
     contact_dof_node.clear();
     for (unsigned int i = 0; i < contact.size(); ++i)
       for (unsigned int c = 0; c < dim; ++c)
-        if (contact.node(i).normal[c] != 0.)
-          {
-            contact_dofs.push_back(contact.node(i).local_dofs[c]);
-            contact_dof_node.emplace_back(i, c);
-          }
+        {
+          bool used = false;
+          for (unsigned int j = 0; j < own_rows[i]; ++j)
+            used = used || frame_row(contact, i, j)[c] != 0.;
+          if (used)
+            {
+              contact_dofs.push_back(contact.node(i).local_dofs[c]);
+              contact_dof_node.emplace_back(i, c);
+            }
+        }
 
     // A new operator replaces the old factorisation (the implicit update
     // calls this once per Newton iteration).
     factorization.factorize(A, symmetric, contact_dofs);
     ++this->counts.operator_setups;
-    const unsigned int m = contact.n_global_nodes();
+    const unsigned int m = row_start.back();
     if (m == 0) // no contact: the factorisation is all there is to do
       return;
 
@@ -253,6 +303,11 @@ namespace ViscoContact
         for (unsigned int j = 0; j < i; ++j)
           S(i, j) = S(j, i) = 0.5 * (S(i, j) + S(j, i));
 
+    if (friction)
+      {
+        frictional_compliance = std::move(S);
+        return;
+      }
     // The dense problem also needs the weights w_i of all nodes. reinit()
     // discards the dense LU factorisation of the previous S, so the next
     // solve_for_pieces() factorises the dense matrix of the new S.
@@ -278,13 +333,15 @@ namespace ViscoContact
   CondensedContactSolver<dim>::compliance_from_last_block(
     const ContactSet<dim> &contact)
   {
-    const unsigned int               m     = contact.size();
+    const unsigned int               m     = row_start.back();
     const std::vector<unsigned int> &order = factorization.last_block_order();
     normal_responses.reinit(order.size(), m);
     for (unsigned int k = 0; k < order.size(); ++k)
       {
         const auto [node, component] = contact_dof_node[order[k]];
-        normal_responses(k, node)    = contact.node(node).normal[component];
+        for (unsigned int j = 0; j < row_start[node + 1] - row_start[node]; ++j)
+          normal_responses(k, row_start[node] + j)
+            = frame_row(contact, node, j)[component];
       }
     factorization.last_block_factor().solve(normal_responses);
     LAPACKFullMatrix<double> S(m, m);
@@ -315,9 +372,9 @@ namespace ViscoContact
     // The sizes involved: n_local displacement entries on this rank, m_local
     // contact nodes on this rank, m contact nodes in all.
     const unsigned int n_local = free_displacement.locally_owned_size();
-    const unsigned int m_local = contact.size();
-    const unsigned int m       = contact.n_global_nodes();
-    const types::global_dof_index first = contact.first_global_index();
+    const unsigned int m       = row_start.back();
+    const unsigned int first   = first_row(contact, 0);
+    const unsigned int m_local = first_row(contact, contact.size()) - first;
 
     // Row i of own_rows is row first + i of S, the row of this rank's i-th
     // node; the columns are filled block by block below.
@@ -333,12 +390,15 @@ namespace ViscoContact
         // nodes are all outside the block contributes zero columns but still
         // takes part in the collective solve.
         columns.assign(std::size_t(n_local) * n_columns, 0.);
-        for (unsigned int i = 0; i < m_local; ++i)
-          if (first + i >= first_column && first + i < first_column + n_columns)
-            for (unsigned int c = 0; c < dim; ++c)
-              columns[std::size_t(first + i - first_column) * n_local
-                      + contact.node(i).local_dofs[c]]
-                = contact.node(i).normal[c];
+        for (unsigned int i = 0; i < contact.size(); ++i)
+          for (unsigned int row = first_row(contact, i);
+               row < first_row(contact, i + 1);
+               ++row)
+            if (row >= first_column && row < first_column + n_columns)
+              for (unsigned int c = 0; c < dim; ++c)
+                columns[std::size_t(row - first_column) * n_local
+                        + contact.node(i).local_dofs[c]]
+                  = frame_row(contact, i, row - first_row(contact, i))[c];
         // One collective solve overwrites the columns with A^{-1} N^T e_j.
         factorization.solve(columns, n_columns);
         this->counts.solves += n_columns;
@@ -348,11 +408,14 @@ namespace ViscoContact
         for (unsigned int j = 0; j < n_columns; ++j)
           {
             const double *response = &columns[std::size_t(j) * n_local];
-            for (unsigned int i = 0; i < m_local; ++i)
-              for (unsigned int c = 0; c < dim; ++c)
-                own_rows[std::size_t(i) * m + first_column + j]
-                  += contact.node(i).normal[c]
-                     * response[contact.node(i).local_dofs[c]];
+            for (unsigned int i = 0; i < contact.size(); ++i)
+              for (unsigned int row = first_row(contact, i);
+                   row < first_row(contact, i + 1);
+                   ++row)
+                for (unsigned int c = 0; c < dim; ++c)
+                  own_rows[std::size_t(row - first) * m + first_column + j]
+                    += frame_row(contact, i, row - first_row(contact, i))[c]
+                       * response[contact.node(i).local_dofs[c]];
           }
       }
 
@@ -388,17 +451,20 @@ namespace ViscoContact
     if (factorization.has_last_block())
       {
         factorization.forward_solve(b, forward_last);
-        d.reinit(contact.size());
+        d.reinit(row_start.back());
         if (contact.size() > 0)
           normal_responses.Tvmult(d, forward_last);
-        for (unsigned int i = 0; i < contact.size(); ++i)
+        for (unsigned int i = 0; i < contact.size() && !friction; ++i)
           d[i] -= contact.gap(i);
         return;
       }
     factorization.solve(free_displacement, b);
-    std::vector<double> own(contact.size());
+    std::vector<double> own;
     for (unsigned int i = 0; i < contact.size(); ++i)
-      own[i] = contact.normal_component(free_displacement, i) - contact.gap(i);
+      for (unsigned int j = 0; j < 1 + contact.n_tangential(i); ++j)
+        own.push_back(
+          contact.row_component(free_displacement, i, frame_row(contact, i, j))
+          - (friction || j > 0 ? 0. : contact.gap(i)));
     const std::vector<double> all = gather_on_all_ranks(own, communicator);
     d.reinit(all.size());
     std::copy(all.begin(), all.end(), d.begin());
@@ -424,6 +490,12 @@ namespace ViscoContact
                                                 VectorType &,
                                                 const double)
   {
+    if (friction)
+      {
+        LinearSolveReport report;
+        report.residual = solve_frictional(contact);
+        return report;
+      }
     // The dense problem couples all nodes, so every rank needs the pieces of
     // all of them. Every rank then solves the same problem and finds the
     // same r and z: this replicated arithmetic is what keeps the ranks'
@@ -441,6 +513,147 @@ namespace ViscoContact
         contact.z[i] = z_all[first + i];
       }
     return report;
+  }
+
+
+
+  // @sect4{CondensedContactSolver::solve_frictional}
+  //
+  // With friction every node has one equation per row of its frame, along
+  // its directions a_k (ContactNodes::directions()): with y = d - S f the
+  // displacements and f the forces along the rows (f_i0 the normal force),
+  //   fixed:  a_k . y_i = beta_k, i.e. -a_k . (S f)_i = beta_k - a_k . d_i;
+  //   free:   a_k . f_i = value_k + k_k a_k . y_i + c_k f_i0, i.e.
+  //           a_k . f_i - c_k f_i0 + k_k a_k . (S f)_i
+  //             = value_k + k_k a_k . d_i.
+  // The matrix of these rows is unsymmetric (a slipping node's force is
+  // known along its direction), and every rank factorises the same one by
+  // LU, from the directions of all nodes gathered on every rank.
+  template <int dim>
+  double
+  CondensedContactSolver<dim>::solve_frictional(ContactSet<dim> &contact)
+  {
+    // Per node: the number of directions, then per direction its frame
+    // vector, whether it is fixed, its value, its stiffness and its
+    // coupling.
+    constexpr unsigned int record = 1 + 3 * 7;
+    std::vector<double>    own;
+    own.reserve(record * contact.size());
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      {
+        const NodeDirections directions = contact.directions(i, contact.gap(i));
+        own.push_back(directions.size);
+        for (const NodeDirection &direction : directions.direction)
+          {
+            own.insert(own.end(),
+                       direction.frame.begin(),
+                       direction.frame.end());
+            own.push_back(direction.fixed ? 1. : 0.);
+            own.push_back(direction.value);
+            own.push_back(direction.stiffness);
+            own.push_back(direction.coupling);
+          }
+      }
+    const std::vector<double> all = gather_on_all_ranks(own, communicator);
+
+    const unsigned int        m = row_start.back();
+    const FullMatrix<double> &S = frictional_compliance;
+    FullMatrix<double>        M(m, m);
+    Vector<double>            h(m);
+    for (unsigned int n = 0; n + 1 < row_start.size(); ++n)
+      {
+        const unsigned int base = row_start[n];
+        const double      *node = &all[std::size_t(n) * record];
+        for (unsigned int k = 0; k < static_cast<unsigned int>(node[0]); ++k)
+          {
+            const double      *a         = node + 1 + 7 * k;
+            const bool         fixed     = (a[3] == 1.);
+            const double       value     = a[4];
+            const double       stiffness = a[5];
+            const double       coupling  = a[6];
+            const unsigned int row       = base + k;
+            double             a_d       = 0;
+            for (unsigned int r = 0; r < row_start[n + 1] - base; ++r)
+              a_d += a[r] * d[base + r];
+            const double scale = (fixed ? -1. : stiffness);
+            for (unsigned int r = 0; r < row_start[n + 1] - base; ++r)
+              if (a[r] != 0 && scale != 0)
+                for (unsigned int column = 0; column < m; ++column)
+                  M(row, column) += scale * a[r] * S(base + r, column);
+            if (fixed)
+              h[row] = value - a_d;
+            else
+              {
+                for (unsigned int r = 0; r < row_start[n + 1] - base; ++r)
+                  M(row, base + r) += a[r];
+                M(row, base) -= coupling;
+                h[row] = value + stiffness * a_d;
+              }
+          }
+      }
+    LAPACKFullMatrix<double> lu(m, m);
+    lu = M;
+    lu.compute_lu_factorization();
+    Vector<double> f(h);
+    lu.solve(f);
+    // The backward error of the dense solve, which ContactNodes::solve()
+    // compares with the Tolerance.
+    Vector<double> defect(m);
+    M.vmult(defect, f);
+    defect -= h;
+    const double error
+      = defect.linfty_norm()
+        / std::max(M.linfty_norm() * f.linfty_norm() + h.linfty_norm(), 1e-300);
+
+    // y = d - S f, and every own node's displacements along its directions
+    // and forces along the fixed ones.
+    Vector<double> y(d), Sf(m);
+    S.vmult(Sf, f);
+    y -= Sf;
+    const unsigned int first_node = contact.first_global_index();
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      {
+        const NodeDirections directions = contact.directions(i, contact.gap(i));
+        const unsigned int   base       = row_start[first_node + i];
+        std::array<double, 3> displacements = {{0, 0, 0}}, forces = {{0, 0, 0}};
+        for (unsigned int k = 0; k < directions.size; ++k)
+          for (unsigned int r = 0; r < directions.size; ++r)
+            {
+              displacements[k]
+                += directions.direction[k].frame[r] * y[base + r];
+              forces[k] += directions.direction[k].frame[r] * f[base + r];
+            }
+        contact.store_solution(i,
+                               contact.gap(i),
+                               directions,
+                               displacements.data(),
+                               forces.data());
+      }
+    z_all = f;
+    return error;
+  }
+
+
+
+  // @sect4{CondensedContactSolver::frame_row and first_row}
+  template <int dim>
+  Tensor<1, dim>
+  CondensedContactSolver<dim>::frame_row(const ContactSet<dim> &contact,
+                                         const unsigned int     i,
+                                         const unsigned int     j)
+  {
+    return (j == 0 ? contact.node(i).normal
+                   : contact.node(i).tangent_rows[j - 1]);
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  CondensedContactSolver<dim>::first_row(const ContactSet<dim> &contact,
+                                         const unsigned int     i) const
+  {
+    return row_start[contact.first_global_index() + i];
   }
 
 
@@ -475,7 +688,16 @@ namespace ViscoContact
     VectorType forces(free_displacement), response(free_displacement);
     forces = 0;
     for (unsigned int i = 0; i < contact.size(); ++i)
-      contact.add_normal(forces, i, contact.z[i]);
+      if (friction)
+        for (unsigned int row = first_row(contact, i);
+             row < first_row(contact, i + 1);
+             ++row)
+          contact.add_row(forces,
+                          i,
+                          frame_row(contact, i, row - first_row(contact, i)),
+                          z_all[row]);
+      else
+        contact.add_normal(forces, i, contact.z[i]);
     factorization.solve(response, forces);
     ++this->counts.solves;
     u -= response;
@@ -533,14 +755,16 @@ namespace ViscoContact
     const std::vector<double> x_all
       = gather_on_all_ranks(std::vector<double>(x.begin(), x.end()),
                             communicator);
-    const FullMatrix<double>     &S     = condensed_system.compliance();
+    const FullMatrix<double> &S
+      = (friction ? frictional_compliance : condensed_system.compliance());
     const types::global_dof_index first = contact.first_global_index();
     // Only the rows of this rank's nodes are formed: the entries of y that
-    // belong to other ranks are computed there.
+    // belong to other ranks are computed there. With friction, the normal
+    // rows of S.
     y.reinit(contact.size());
     for (unsigned int i = 0; i < contact.size(); ++i)
       for (unsigned int j = 0; j < x_all.size(); ++j)
-        y[i] += S(first + i, j) * x_all[j];
+        y[i] += S(row_start[first + i], row_start[j]) * x_all[j];
   }
 
 

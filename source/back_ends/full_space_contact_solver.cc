@@ -17,6 +17,7 @@
 #include <deal.II/fe/fe.h>
 #include <deal.II/fe/fe_values_extractors.h>
 
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
@@ -44,29 +45,31 @@ namespace ViscoContact
 {
   // @sect3{The full space back end}
   //
-  // For fixed pieces, a node on a sloped piece (slope s, intercept o)
-  // carries the force w (o + s u.nu), a node on a vertical piece at r = beta
-  // has u.nu = beta. With u = u_0 + y, u_0 = beta nu at the fixed nodes, y
-  // solves
-  //   (P (A + sum_i w_i s_i nu_i nu_i^T) P + (I - P)) y
-  //     = P (b - sum_i w_i o_i nu_i - A u_0),
-  // P the orthogonal projection that removes the normal component at the
-  // fixed nodes (a constraint among the components of a node, for any
-  // normal). The operator is applied around A, which never changes within a
-  // step problem; the preconditioner P M^{-1} P + (I - P) uses an AMG cycle
-  // of the step operator (its matrix with the fixed nodes' normal
-  // directions removed, rebuilt when enough nodes have changed,
-  // update_contact_amg()) or the factorisation
-  // M^{-1} of A built by set_operator(). Both are
-  // symmetric when A is, and positive definite as long as the uniqueness
-  // condition (doc/model.md, section 4) holds: CG then; GMRES for the
-  // implicit update's unsymmetric tangent. The forces at the fixed nodes are
-  // read off the residual, z_i = nu_i . (b - A u)_i. Here nu_i is the node's
-  // row n_i of N; on an oblique plane of symmetry |n_i| != 1, so the
-  // projections and u_0 divide by |n_i|^2 (doc/model.md, section 2).
+  // For fixed pieces and friction states, every contact node has up to dim
+  // orthonormal directions a in its frame (ContactNodes::directions(), with
+  // rows v on its dofs, ContactSet::frame_row()): along a fixed one the
+  // displacement v . u = beta is prescribed (a vertical piece of the normal
+  // law, a sticking tangential direction), along a free one the force is
+  // f + k v . u (a sloped piece: f = w o, k = w s; a slipping direction:
+  // f = g). With u = u_0 + y, u_0 the least-norm displacement with the
+  // prescribed values, y solves
+  //   (P (A + sum k v v^T) P + (I - P)) y = P (b - sum f v - A u_0),
+  // P the orthogonal projection that removes the fixed rows of every node
+  // (a constraint among the components of a node, for any directions). The
+  // operator is applied around A, which never changes within a step problem;
+  // the preconditioner P M^{-1} P + (I - P) uses an AMG cycle of the step
+  // operator (its matrix with the fixed nodes' normal directions removed,
+  // rebuilt when enough nodes have changed, update_contact_amg()) or the
+  // factorisation M^{-1} of A built by set_operator(). Both are symmetric when
+  // A is, and positive definite as long as the uniqueness condition
+  // (doc/model.md, section 4) holds: CG then; GMRES for the implicit update's
+  // unsymmetric tangent. The forces along the fixed rows R of a node are read
+  // off the residual, (R R^T)^{-1} R (b - A u)_i; on an oblique plane of
+  // symmetry the rows are not unit vectors (|n_i| != 1), which R R^T accounts
+  // for (doc/model.md, section 2).
   //
-  // Why this form: the sloped pieces only add a rank-one term per node and
-  // the vertical pieces only remove one direction per node, so neither the
+  // Why this form: the sloped pieces only add a rank-one term per direction
+  // and the fixed directions only remove directions per node, so neither the
   // matrix A nor its preconditioner has to be rebuilt when a node changes
   // its piece. The contact terms are applied on the fly, and the block I - P
   // keeps the operator nonsingular while leaving the removed components of y
@@ -106,14 +109,27 @@ namespace ViscoContact
                         const ContactSet<dim> &contact) override;
     void
     finish(const ContactSet<dim> &contact, VectorType &u) override;
-    std::optional<std::vector<double>>
-    checkpoint_state() const override;
+    // After a checkpoint: the AMG of the step operator is built anew at the
+    // next solve, as a resumed run builds it.
     void
-    restore_checkpoint_state(const ContactSet<dim>     &contact,
-                             const std::vector<double> &state) override;
+    forget_kept_state() override;
 
   private:
     using Apply = std::function<void(VectorType &, const VectorType &)>;
+
+    // What one node contributes for the current pieces and friction states:
+    // its directions, their rows on the dofs, and for its fixed rows R an
+    // orthonormal basis (what P removes) and (R R^T)^{-1} (for u_0 and the
+    // forces along them).
+    struct NodeTerms
+    {
+      NodeDirections                           directions;
+      std::array<Tensor<1, dim>, dim>          rows;
+      unsigned int                             n_fixed = 0;
+      std::array<unsigned int, dim>            fixed_directions;
+      std::array<Tensor<1, dim>, dim>          fixed_basis;
+      std::array<std::array<double, dim>, dim> gram_inverse;
+    };
 
     // The six (three in 2D) rigid-body modes at the locally owned rows.
     void
@@ -122,81 +138,88 @@ namespace ViscoContact
     build_amg(const Epetra_CrsMatrix            &matrix,
               const Epetra_MultiVector          &null_space,
               TrilinosWrappers::PreconditionAMG &amg);
-    // The AMG of the step operator of the current pieces, rebuilt when
-    // enough nodes have changed their stiffness since it was last built.
+    // The AMG of the step operator of the current terms, rebuilt when
+    // enough nodes have changed their fixed directions since it was last
+    // built.
     void
-    update_contact_amg(const ContactSet<dim>     &contact,
-                       const std::vector<double> &stiffness);
-    // Whether the AMG built last still serves these stiffnesses: at most 1%
-    // of the contact nodes (over all ranks) fixed or free since. Collective.
+    update_contact_amg(const ContactSet<dim> &contact);
+    // Whether the AMG built last still serves the current terms: at most 1%
+    // of the contact nodes (over all ranks) with another number of fixed
+    // directions since. Collective.
     bool
-    contact_amg_fits(const ContactSet<dim>     &contact,
-                     const std::vector<double> &stiffness) const;
-    // The matrix of the step operator of these stiffnesses, the fixed
-    // nodes' normal directions removed, into contact_matrix (after
-    // releasing the AMG built on the previous one).
+    contact_amg_fits(const ContactSet<dim> &contact) const;
+    // The matrix of the step operator of the current terms, the fixed rows
+    // removed, into contact_matrix (after releasing the AMG built on the
+    // previous one).
     void
-    assemble_contact_matrix(const ContactSet<dim>     &contact,
-                            const std::vector<double> &stiffness);
-    // The last step of that matrix: the rows of the fixed nodes lose their
-    // normal part, which comes back on their diagonal blocks.
+    assemble_contact_matrix(const ContactSet<dim> &contact);
+    // The last step of that matrix: the rows of the nodes lose their fixed
+    // directions, which come back on their diagonal blocks.
     void
-    project_fixed_rows(Epetra_CrsMatrix          &matrix,
-                       const ContactSet<dim>     &contact,
-                       const std::vector<double> &stiffness) const;
-    // The rigid-body modes without their normal components at the fixed
-    // nodes, into contact_modes.
+    project_fixed_rows(Epetra_CrsMatrix      &matrix,
+                       const ContactSet<dim> &contact) const;
+    // The rigid-body modes without their fixed components, into
+    // contact_modes.
     void
-    project_rigid_body_modes(const ContactSet<dim>     &contact,
-                             const std::vector<double> &stiffness);
+    project_rigid_body_modes(const ContactSet<dim> &contact);
 
-    // What the pieces of this rank's nodes add to the step problem: which
-    // nodes are fixed, the normal stiffness of the others, the prescribed
-    // displacement u0 and the loads, into step_rhs.
+    // The terms of this rank's nodes for their pieces and friction states
+    // (into terms), the prescribed displacement u0 and the loads, into
+    // step_rhs.
     void
-    collect_piece_terms(const ContactSet<dim> &contact,
-                        std::vector<bool>     &fixed,
-                        std::vector<double>   &normal_stiffness,
-                        VectorType            &u0,
-                        VectorType            &step_rhs) const;
-    // P v: v without its normal components at the fixed nodes.
+    collect_node_terms(const ContactSet<dim> &contact,
+                       VectorType            &u0,
+                       VectorType            &step_rhs);
+    // P v: v without its fixed rows at every node.
     void
-    remove_fixed_normals(const ContactSet<dim>   &contact,
-                         const std::vector<bool> &fixed,
-                         VectorType              &v) const;
+    remove_fixed_rows(const ContactSet<dim> &contact, VectorType &v) const;
     // v -> P inner(P v) + (I - P) v, with the work vector projected_src.
     // The function refers to all arguments but inner, which it copies.
     Apply
-    projected(const Apply             &inner,
-              VectorType              &projected_src,
-              const ContactSet<dim>   &contact,
-              const std::vector<bool> &fixed) const;
-    // v -> (A + sum_i w_i s_i nu_i nu_i^T) v; refers to its arguments.
+    projected(const Apply           &inner,
+              VectorType            &projected_src,
+              const ContactSet<dim> &contact) const;
+    // v -> (A + sum k v v^T) v over the free directions; refers to its
+    // arguments.
     Apply
-    step_operator(const ContactSet<dim>     &contact,
-                  const std::vector<double> &normal_stiffness) const;
+    step_operator(const ContactSet<dim> &contact) const;
     // The factorisation of A, or the AMG of the step operator of these
-    // pieces, updated here (collective).
+    // terms, updated here (collective).
     Apply
-    step_preconditioner(const ContactSet<dim>     &contact,
-                        const std::vector<bool>   &fixed,
-                        const std::vector<double> &normal_stiffness);
-    // r_i and z_i of every node from the solution u and the residual
-    // b - A u.
+    step_preconditioner(const ContactSet<dim> &contact);
+    // The displacement along every direction, and the force along the
+    // fixed ones, from the solution u and the residual b - A u.
     void
     read_off_contact(ContactSet<dim>  &contact,
                      const VectorType &u,
                      const VectorType &residual) const;
     // Solves op y = rhs from the initial y with the preconditioner prec:
-    // CG or GMRES to the relative accuracy (Tolerance unless the active-set
-    // iteration asks for less) times reference_norm.
+    // CG (symmetric_operator) or GMRES to the relative accuracy (Tolerance
+    // unless the active-set iteration asks for less) times reference_norm.
     LinearSolveReport
     krylov_solve(const Apply      &op,
                  const Apply      &prec,
                  VectorType       &y,
                  const VectorType &rhs,
                  const double      reference_norm,
-                 const double      accuracy);
+                 const double      accuracy,
+                 const bool        symmetric_operator);
+    // Whether a node of this rank has a direction coupled to its normal
+    // force (a slipping Coulomb node), and the coupled directions k of node
+    // i whose normal is fixed.
+    bool
+    has_coupling() const;
+    template <typename Function>
+    void
+    for_each_coupled_fixed_normal(const unsigned int i, const Function &f) const
+    {
+      if (!terms[i].directions.direction[0].fixed)
+        return;
+      for (unsigned int k = 1; k < terms[i].directions.size; ++k)
+        if (!terms[i].directions.direction[k].fixed
+            && terms[i].directions.direction[k].coupling != 0)
+          f(k);
+    }
 
     // Preconditioner (subsection Linear solver), Tolerance (subsection
     // Active set solver), and what the AMG needs to build the rigid-body
@@ -223,15 +246,18 @@ namespace ViscoContact
     // set_operator(): one of A alone, for the solves without contact, and
     // one of the step operator of the pieces the nodes were on when it was
     // built (update_contact_amg()), held in contact_matrix with its near-null
-    // space contact_modes. contact_amg_stiffness keeps the normal stiffness
-    // of this rank's nodes it was built for (infinite at fixed nodes), to
-    // tell how many nodes have changed since.
+    // space contact_modes. contact_amg_fixed keeps the number of fixed
+    // directions of this rank's nodes it was built for, to tell how many
+    // nodes have changed since.
     TrilinosWrappers::PreconditionAMG   operator_amg, contact_amg;
     bool                                operator_amg_built = false;
     bool                                contact_amg_built  = false;
     std::unique_ptr<Epetra_CrsMatrix>   contact_matrix;
     std::unique_ptr<Epetra_MultiVector> contact_modes;
-    std::vector<double>                 contact_amg_stiffness;
+    std::vector<unsigned int>           contact_amg_fixed;
+
+    // The terms of this rank's nodes in the current solve.
+    std::vector<NodeTerms> terms;
 
     // Work vectors of the projected operator and preconditioner, which the
     // Krylov method applies once per iteration each: allocated once here
@@ -417,48 +443,51 @@ namespace ViscoContact
 
   // @sect4{FullSpaceContactSolver::update_contact_amg}
   //
-  // The step operator differs from A by the normal stiffness of the nodes on
-  // sloped pieces and, above all, by the nodes on vertical pieces, whose
-  // normal displacement is fixed. A preconditioner of A alone treats those
-  // as free: with a few hundred fixed nodes, CG needs about twice as many
-  // iterations per digit as for A (measured in doc/performance.md). So the
-  // AMG is built for the matrix of the projected operator itself,
-  //   P (A + sum_i w_i s_i nu_i nu_i^T) P + sum_{i fixed} d_i nu_i nu_i^T,
-  // d_i = nu_i^T A_ii nu_i: at a fixed node the normal direction is removed
-  // from its rows and columns, as a Dirichlet condition would be, and comes
-  // back only on the node's own diagonal block, with the node's stiffness as
-  // scale. Its near-null space is P applied to the rigid-body modes, which
-  // the constrained operator no longer has in its null space. (Earlier, a
-  // penalty 1000 nu^T A_ii nu at the fixed nodes with the unprojected modes
-  // took 30% more CG iterations on tetrahedra: the coarse spaces carried the
-  // fixed normal components, and the AMG settings had to differ on
-  // simplices; doc/performance.md.) Every change touches only entries in
-  // the pattern of A: the node's dim x dim blocks, and the columns of its
-  // dofs.
+  // The step operator differs from A by the stiffness of the free
+  // directions (sloped pieces, a slipping node's transverse stiffness) and,
+  // above all, by the fixed directions (the normal of a node on a vertical
+  // piece, the tangents of a sticking node). A preconditioner of A alone
+  // treats those as free: with a few hundred fixed nodes, CG needs about
+  // twice as many iterations per digit as for A (measured in
+  // doc/performance.md). So the AMG is built for the matrix of the
+  // projected operator itself,
+  //   P (A + sum k v v^T) P + sum_{fixed q} d_q q q^T,
+  // d_q = q^T A_ii q, q the orthonormal basis of a node's fixed rows: at a
+  // node its fixed directions are removed from its rows and columns, as a
+  // Dirichlet condition would be, and come back only on the node's own
+  // diagonal block, with the node's stiffness as scale. Its near-null space
+  // is P applied to the rigid-body modes, which the constrained operator no
+  // longer has in its null space. (Earlier, a penalty 1000 nu^T A_ii nu at
+  // the fixed nodes with the unprojected modes took 30% more CG iterations
+  // on tetrahedra: the coarse spaces carried the fixed normal components,
+  // and the AMG settings had to differ on simplices; doc/performance.md.)
+  // Every change touches only entries in the pattern of A: the node's
+  // dim x dim blocks, and the columns of its dofs.
   //
   // Building an AMG costs about 20 CG iterations, so it is not rebuilt for
   // every set of pieces: only when more than 1% of the contact nodes (over
-  // all ranks) have become fixed or free since it was built (a changed slope
-  // matters little, a fixed node much: the slopes are small against the
-  // stiffness of the body, measured in doc/performance.md).
-  // Within a time step few nodes move, so most steps reuse the AMG of the
-  // previous one, while a cold start, where most nodes move, rebuilds it
-  // as the pieces change. contact_amg_fits() decides, then
-  // assemble_contact_matrix() and project_rigid_body_modes() give the AMG
-  // its matrix and near-null space.
+  // all ranks) have changed their number of fixed directions since it was
+  // built (a changed slope or slip direction matters little, a fixed
+  // direction much: the slopes are small against the stiffness of the
+  // body, measured in doc/performance.md). Within a time step few nodes
+  // move, so most steps reuse the AMG of the previous one, while a cold
+  // start, where most nodes move, rebuilds it as the pieces change.
+  // contact_amg_fits() decides, then assemble_contact_matrix() and
+  // project_rigid_body_modes() give the AMG its matrix and near-null space.
   template <int dim>
   void
   FullSpaceContactSolver<dim>::update_contact_amg(
-    const ContactSet<dim>     &contact,
-    const std::vector<double> &stiffness)
+    const ContactSet<dim> &contact)
   {
-    if (contact_amg_fits(contact, stiffness))
+    if (contact_amg_fits(contact))
       return;
-    assemble_contact_matrix(contact, stiffness);
-    project_rigid_body_modes(contact, stiffness);
+    assemble_contact_matrix(contact);
+    project_rigid_body_modes(contact);
     build_amg(*contact_matrix, *contact_modes, contact_amg);
-    contact_amg_stiffness = stiffness;
-    contact_amg_built     = true;
+    contact_amg_fixed.resize(contact.size());
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      contact_amg_fixed[i] = terms[i].n_fixed;
+    contact_amg_built = true;
     ++this->counts.operator_setups;
   }
 
@@ -466,22 +495,36 @@ namespace ViscoContact
 
   // @sect4{FullSpaceContactSolver::contact_amg_fits}
   //
-  // A node has changed if it has become fixed (infinite stiffness) or free
-  // since the AMG was built; a changed slope does not count. Every rank
-  // takes part in the sum, whether an AMG has been built or not.
+  // A node has changed if its number of fixed directions has (it became
+  // fixed or free along the normal, it started or stopped sticking); a
+  // changed slope does not count. Every rank takes part in the sum, whether
+  // an AMG has been built or not.
   template <int dim>
   bool
   FullSpaceContactSolver<dim>::contact_amg_fits(
-    const ContactSet<dim>     &contact,
-    const std::vector<double> &stiffness) const
+    const ContactSet<dim> &contact) const
   {
     unsigned int changed = 0;
     if (contact_amg_built)
       for (unsigned int i = 0; i < contact.size(); ++i)
-        changed
-          += (std::isinf(stiffness[i]) != std::isinf(contact_amg_stiffness[i]));
+        changed += (terms[i].n_fixed != contact_amg_fixed[i]);
     changed = Utilities::MPI::sum(changed, communicator);
     return contact_amg_built && changed <= 0.01 * contact.n_global_nodes();
+  }
+
+
+
+  // @sect4{FullSpaceContactSolver::forget_kept_state}
+  //
+  // Which AMG a solve uses depends on the pieces it was built for, not only
+  // on the current ones. A resumed run builds its AMG for the pieces of its
+  // first solve; after a checkpoint this run does the same, so that both go
+  // on with the same preconditioner and the same iterates.
+  template <int dim>
+  void
+  FullSpaceContactSolver<dim>::forget_kept_state()
+  {
+    contact_amg_built = false;
   }
 
 
@@ -494,16 +537,6 @@ namespace ViscoContact
   // solver.
   namespace
   {
-    // n_i / |n_i|: the node's vector n_i (r_i = n_i . u) has length 1
-    // except where an oblique plane of symmetry couples its components
-    // (ContactSet::find_nodes()); projections need the unit vector.
-    template <int dim>
-    Tensor<1, dim>
-    unit_normal(const ContactSet<dim> &contact, const unsigned int i)
-    {
-      return contact.node(i).normal / contact.node(i).normal.norm();
-    }
-
     // The local row of component c of contact node i.
     template <int dim>
     int
@@ -516,14 +549,15 @@ namespace ViscoContact
         static_cast<long long>(contact.node(i).dofs[c]));
     }
 
-    // k nu_i nu_i^T into the diagonal block of node i, in the components
-    // the normal has (a constrained component has none, and its row no
-    // entries but the diagonal).
+    // k v v^T into the diagonal block of node i, in the components v has
+    // (a constrained component has none, and its row no entries but the
+    // diagonal).
     template <int dim>
     void
     add_to_block(Epetra_CrsMatrix      &matrix,
                  const ContactSet<dim> &contact,
                  const unsigned int     i,
+                 const Tensor<1, dim>  &v,
                  const double           k)
     {
       const auto  &node = contact.node(i);
@@ -531,7 +565,7 @@ namespace ViscoContact
       double       values[dim];
       unsigned int components[dim], n = 0;
       for (unsigned int d = 0; d < dim; ++d)
-        if (node.normal[d] != 0)
+        if (v[d] != 0)
           {
             components[n] = d;
             columns[n++]
@@ -540,8 +574,7 @@ namespace ViscoContact
       for (unsigned int m = 0; m < n; ++m)
         {
           for (unsigned int e = 0; e < n; ++e)
-            values[e]
-              = k * node.normal[components[m]] * node.normal[components[e]];
+            values[e] = k * v[components[m]] * v[components[e]];
           const int error = matrix.SumIntoMyValues(
             node_row(matrix, contact, i, components[m]),
             n,
@@ -551,53 +584,54 @@ namespace ViscoContact
         }
     }
 
-    // The columns of the fixed nodes (infinite stiffness): mark their dofs
-    // with their normal component and the node (its global number + 1)
-    // and bring the marks to the columns of this rank's rows, fixed nodes
-    // of other ranks included. The marks are written at row indices:
-    // deal.II builds square matrices with the same map for rows and
-    // domain.
-    template <int dim>
+    // The columns of the fixed directions: for basis vector b of every node
+    // with a fixed direction, mark its dofs with that vector's component and
+    // the node (its global number + 1), and bring the marks to the columns
+    // of this rank's rows, fixed nodes of other ranks included. The marks
+    // are written at row indices: deal.II builds square matrices with the
+    // same map for rows and domain.
+    template <int dim, typename Terms>
     void
-    mark_fixed_columns(const Epetra_CrsMatrix    &matrix,
-                       const ContactSet<dim>     &contact,
-                       const std::vector<double> &stiffness,
-                       Epetra_Vector             &column_normal,
-                       Epetra_Vector             &column_node)
+    mark_fixed_columns(const Epetra_CrsMatrix   &matrix,
+                       const ContactSet<dim>    &contact,
+                       const std::vector<Terms> &terms,
+                       const unsigned int        b,
+                       Epetra_Vector            &column_direction,
+                       Epetra_Vector            &column_node)
     {
       Assert(matrix.RowMap().SameAs(matrix.DomainMap()), ExcInternalError());
-      Epetra_Vector owned_normal(matrix.DomainMap()),
+      Epetra_Vector owned_direction(matrix.DomainMap()),
         owned_node(matrix.DomainMap());
       for (unsigned int i = 0; i < contact.size(); ++i)
-        if (std::isinf(stiffness[i]))
+        if (terms[i].n_fixed > b)
           for (unsigned int c = 0; c < dim; ++c)
             {
-              owned_normal[node_row(matrix, contact, i, c)]
-                = unit_normal(contact, i)[c];
+              owned_direction[node_row(matrix, contact, i, c)]
+                = terms[i].fixed_basis[b][c];
               owned_node[node_row(matrix, contact, i, c)]
                 = static_cast<double>(contact.first_global_index() + i + 1);
             }
       if (matrix.Importer() != nullptr)
         {
-          column_normal.Import(owned_normal, *matrix.Importer(), Insert);
+          column_direction.Import(owned_direction, *matrix.Importer(), Insert);
           column_node.Import(owned_node, *matrix.Importer(), Insert);
         }
       else // the columns are the owned dofs, in the same order
         {
-          column_normal = owned_normal;
-          column_node   = owned_node;
+          column_direction = owned_direction;
+          column_node      = owned_node;
         }
     }
 
-    // M P, row by row: in the columns of each fixed node j (as marked by
-    // mark_fixed_columns()), the row's entries a lose their normal part,
-    // a -= (a . nu_j) nu_j.
+    // M P, row by row: in the columns of each marked node j (as marked by
+    // mark_fixed_columns()), the row's entries a lose their part along the
+    // node's marked direction q_j, a -= (a . q_j) q_j.
     void
     project_fixed_columns(Epetra_CrsMatrix    &matrix,
-                          const Epetra_Vector &column_normal,
+                          const Epetra_Vector &column_direction,
                           const Epetra_Vector &column_node)
     {
-      std::vector<std::pair<double, double>> node_sums; // (node, a . nu_j)
+      std::vector<std::pair<double, double>> node_sums; // (node, a . q_j)
       for (int row = 0; row < matrix.NumMyRows(); ++row)
         {
           int     n;
@@ -614,12 +648,12 @@ namespace ViscoContact
                                  [j](const auto &s) { return s.first == j; });
                 if (sum == node_sums.end())
                   sum = node_sums.insert(node_sums.end(), {j, 0.});
-                sum->second += values[e] * column_normal[columns[e]];
+                sum->second += values[e] * column_direction[columns[e]];
               }
           for (const auto &[j, sum] : node_sums)
             for (int e = 0; e < n; ++e)
               if (column_node[columns[e]] == j)
-                values[e] -= sum * column_normal[columns[e]];
+                values[e] -= sum * column_direction[columns[e]];
         }
     }
   } // namespace
@@ -628,15 +662,15 @@ namespace ViscoContact
 
   // @sect4{FullSpaceContactSolver::assemble_contact_matrix}
   //
-  // A copy of A, the normal stiffness of the nodes on sloped pieces added
-  // to their diagonal blocks, then P M P for the fixed nodes: the columns
-  // (M P, project_fixed_columns()), then the rows (P (M P),
-  // project_fixed_rows()).
+  // A copy of A, the stiffness of the free directions added to their
+  // nodes' diagonal blocks, then P M P for the fixed directions: the
+  // columns (M P, project_fixed_columns(), one basis vector of the nodes at
+  // a time: the basis of a node is orthonormal, so its projections commute),
+  // then the rows (P (M P), project_fixed_rows()).
   template <int dim>
   void
   FullSpaceContactSolver<dim>::assemble_contact_matrix(
-    const ContactSet<dim>     &contact,
-    const std::vector<double> &stiffness)
+    const ContactSet<dim> &contact)
   {
     // The AMG keeps a reference to its matrix: release it before the matrix
     // is replaced.
@@ -644,77 +678,111 @@ namespace ViscoContact
     contact_matrix = std::make_unique<Epetra_CrsMatrix>(A->trilinos_matrix());
     Epetra_CrsMatrix &matrix = *contact_matrix;
     for (unsigned int i = 0; i < contact.size(); ++i)
-      if (stiffness[i] != 0 && !std::isinf(stiffness[i]))
-        add_to_block(matrix, contact, i, stiffness[i]);
+      for (unsigned int k = 0; k < terms[i].directions.size; ++k)
+        {
+          const NodeDirection &direction = terms[i].directions.direction[k];
+          if (!direction.fixed && direction.stiffness != 0)
+            add_to_block(matrix,
+                         contact,
+                         i,
+                         terms[i].rows[k],
+                         direction.stiffness);
+        }
 
-    Epetra_Vector column_normal(matrix.ColMap()), column_node(matrix.ColMap());
-    mark_fixed_columns(matrix, contact, stiffness, column_normal, column_node);
-    project_fixed_columns(matrix, column_normal, column_node);
-    project_fixed_rows(matrix, contact, stiffness);
+    unsigned int most_fixed = 0;
+    for (const NodeTerms &node : terms)
+      most_fixed = std::max(most_fixed, node.n_fixed);
+    most_fixed = Utilities::MPI::max(most_fixed, communicator);
+    Epetra_Vector column_direction(matrix.ColMap()),
+      column_node(matrix.ColMap());
+    for (unsigned int b = 0; b < most_fixed; ++b)
+      {
+        mark_fixed_columns(matrix,
+                           contact,
+                           terms,
+                           b,
+                           column_direction,
+                           column_node);
+        project_fixed_columns(matrix, column_direction, column_node);
+      }
+    project_fixed_rows(matrix, contact);
   }
 
 
 
   // @sect4{FullSpaceContactSolver::project_fixed_rows}
   //
-  // P (M P): the rows of each fixed node lose their normal part column by
-  // column. Only the rows of the components the normal has take part (a
-  // component constrained by a roller or symmetry plane has none, and its
-  // row only its diagonal); these rows have the same columns (the
+  // P (M P): the rows of each node lose their fixed directions column by
+  // column. Only the rows of the components the directions have take part
+  // (a component constrained by a roller or symmetry plane has none, and
+  // its row only its diagonal); these rows have the same columns (the
   // vector-valued element couples all components of neighbouring
-  // vertices), which is checked. Then d_i nu_i nu_i^T, d_i = nu_i^T A_ii
-  // nu_i, goes back on the node's diagonal block.
+  // vertices), which is checked. Then d_q q q^T, d_q = q^T A_ii q, goes back
+  // on the node's diagonal block for every basis vector q.
   template <int dim>
   void
   FullSpaceContactSolver<dim>::project_fixed_rows(
-    Epetra_CrsMatrix          &matrix,
-    const ContactSet<dim>     &contact,
-    const std::vector<double> &stiffness) const
+    Epetra_CrsMatrix      &matrix,
+    const ContactSet<dim> &contact) const
   {
     for (unsigned int i = 0; i < contact.size(); ++i)
-      if (std::isinf(stiffness[i]))
-        {
-          const auto          &node   = contact.node(i);
-          const Tensor<1, dim> normal = unit_normal(contact, i);
-          int                  n[dim];
-          double              *values[dim];
-          int                 *columns[dim];
-          unsigned int         components[dim] = {}, n_components = 0;
-          for (unsigned int c = 0; c < dim; ++c)
-            if (node.normal[c] != 0)
+      {
+        const NodeTerms &node_terms = terms[i];
+        if (node_terms.n_fixed == 0)
+          continue;
+        const auto  &node = contact.node(i);
+        int          n[dim];
+        double      *values[dim];
+        int         *columns[dim];
+        unsigned int components[dim] = {}, n_components = 0;
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            bool used = false;
+            for (unsigned int b = 0; b < node_terms.n_fixed; ++b)
+              used = used || node_terms.fixed_basis[b][c] != 0;
+            if (used)
               components[n_components++] = c;
-          const unsigned int first = components[0];
-          for (unsigned int m = 0; m < n_components; ++m)
-            {
-              const unsigned int c = components[m];
-              matrix.ExtractMyRowView(node_row(matrix, contact, i, c),
-                                      n[c],
-                                      values[c],
-                                      columns[c]);
-              AssertThrow(n[c] == n[first]
-                            && std::equal(columns[c],
-                                          columns[c] + n[c],
-                                          columns[first]),
-                          ExcMessage("The rows of a contact node's "
-                                     "components do not have the same "
-                                     "columns."));
-            }
-          for (int e = 0; e < n[first]; ++e)
-            {
-              double sum = 0;
-              for (unsigned int m = 0; m < n_components; ++m)
-                sum += normal[components[m]] * values[components[m]][e];
-              for (unsigned int m = 0; m < n_components; ++m)
-                values[components[m]][e] -= sum * normal[components[m]];
-            }
-          // d_i nu_i nu_i^T, d_i = nu_i^T A_ii nu_i, back on the diagonal
-          // (add_to_block() adds multiples of n_i n_i^T).
-          double d = 0;
-          for (unsigned int c = 0; c < dim; ++c)
-            for (unsigned int e = 0; e < dim; ++e)
-              d += normal[c] * A->el(node.dofs[c], node.dofs[e]) * normal[e];
-          add_to_block(matrix, contact, i, d / node.normal.norm_square());
-        }
+          }
+        const unsigned int first = components[0];
+        for (unsigned int m = 0; m < n_components; ++m)
+          {
+            const unsigned int c = components[m];
+            matrix.ExtractMyRowView(node_row(matrix, contact, i, c),
+                                    n[c],
+                                    values[c],
+                                    columns[c]);
+            AssertThrow(n[c] == n[first]
+                          && std::equal(columns[c],
+                                        columns[c] + n[c],
+                                        columns[first]),
+                        ExcMessage("The rows of a contact node's "
+                                   "components do not have the same "
+                                   "columns."));
+          }
+        for (unsigned int b = 0; b < node_terms.n_fixed; ++b)
+          {
+            const Tensor<1, dim> &q = node_terms.fixed_basis[b];
+            for (int e = 0; e < n[first]; ++e)
+              {
+                double sum = 0;
+                for (unsigned int m = 0; m < n_components; ++m)
+                  sum += q[components[m]] * values[components[m]][e];
+                for (unsigned int m = 0; m < n_components; ++m)
+                  values[components[m]][e] -= sum * q[components[m]];
+              }
+          }
+        // d_q q q^T, d_q = q^T A_ii q, back on the diagonal.
+        for (unsigned int b = 0; b < node_terms.n_fixed; ++b)
+          {
+            const Tensor<1, dim> &q = node_terms.fixed_basis[b];
+            double                d = 0;
+            for (unsigned int c = 0; c < dim; ++c)
+              for (unsigned int e = 0; e < dim; ++e)
+                if (q[c] != 0 && q[e] != 0)
+                  d += q[c] * A->el(node.dofs[c], node.dofs[e]) * q[e];
+            add_to_block(matrix, contact, i, q, d);
+          }
+      }
   }
 
 
@@ -722,62 +790,27 @@ namespace ViscoContact
   // @sect4{FullSpaceContactSolver::project_rigid_body_modes}
   //
   // The near-null space of the constrained operator: the rigid-body modes
-  // without their normal components at the fixed nodes.
+  // without their fixed components at the nodes.
   template <int dim>
   void
   FullSpaceContactSolver<dim>::project_rigid_body_modes(
-    const ContactSet<dim>     &contact,
-    const std::vector<double> &stiffness)
+    const ContactSet<dim> &contact)
   {
     const Epetra_CrsMatrix &matrix = *contact_matrix;
     contact_modes = std::make_unique<Epetra_MultiVector>(*rigid_body_modes);
     for (unsigned int i = 0; i < contact.size(); ++i)
-      if (std::isinf(stiffness[i]))
+      for (unsigned int b = 0; b < terms[i].n_fixed; ++b)
         for (int mode = 0; mode < contact_modes->NumVectors(); ++mode)
           {
-            const Tensor<1, dim> normal      = unit_normal(contact, i);
-            double               normal_part = 0;
+            const Tensor<1, dim> &q    = terms[i].fixed_basis[b];
+            double                part = 0;
             for (unsigned int c = 0; c < dim; ++c)
-              normal_part
-                += normal[c]
-                   * (*contact_modes)[mode][node_row(matrix, contact, i, c)];
+              part += q[c]
+                      * (*contact_modes)[mode][node_row(matrix, contact, i, c)];
             for (unsigned int c = 0; c < dim; ++c)
               (*contact_modes)[mode][node_row(matrix, contact, i, c)]
-                -= normal_part * normal[c];
+                -= part * q[c];
           }
-  }
-
-
-
-  // @sect4{FullSpaceContactSolver::checkpoint_state}
-  //
-  // Which AMG the next solve would use depends on the pieces it was built
-  // for, not only on the current ones; a resumed run that built it for its
-  // first pieces would precondition differently and end within Tolerance of
-  // the uninterrupted run, not equal to it. So the stiffness it was built for
-  // goes into the checkpoint, and the resumed run builds the same AMG.
-  template <int dim>
-  std::optional<std::vector<double>>
-  FullSpaceContactSolver<dim>::checkpoint_state() const
-  {
-    if (!contact_amg_built)
-      return std::nullopt;
-    return contact_amg_stiffness;
-  }
-
-
-
-  template <int dim>
-  void
-  FullSpaceContactSolver<dim>::restore_checkpoint_state(
-    const ContactSet<dim>     &contact,
-    const std::vector<double> &state)
-  {
-    // A run resumed with Preconditioner = direct uses no AMG.
-    if (factorization)
-      return;
-    contact_amg_built = false;
-    update_contact_amg(contact, state);
   }
 
 
@@ -818,7 +851,8 @@ namespace ViscoContact
                                             VectorType       &y,
                                             const VectorType &rhs,
                                             const double      reference_norm,
-                                            const double      accuracy)
+                                            const double      accuracy,
+                                            const bool symmetric_operator)
   {
     // The operators of the Krylov methods: what deal.II's solvers call.
     struct Operator
@@ -845,7 +879,7 @@ namespace ViscoContact
     SolverControl control(10000, accuracy * std::max(reference_norm, 1e-300));
     try
       {
-        if (symmetric)
+        if (symmetric_operator)
           SolverCG<VectorType>(control).solve(Operator{op},
                                               y,
                                               rhs,
@@ -864,9 +898,9 @@ namespace ViscoContact
         // operator that is not positive definite, or a tolerance that
         // rounding does not allow.
         std::ostringstream reason;
-        reason << (symmetric ? "CG" : "GMRES") << " did not converge in "
-               << failure.last_step << " iterations (residual "
-               << failure.last_residual
+        reason << (symmetric_operator ? "CG" : "GMRES")
+               << " did not converge in " << failure.last_step
+               << " iterations (residual " << failure.last_residual
                << "): the step problem on the current pieces is not positive "
                   "definite (the contact law softens more than the body can "
                   "carry, doc/model.md, section 4), or <Tolerance> = "
@@ -890,12 +924,12 @@ namespace ViscoContact
   // @sect4{FullSpaceContactSolver::solve_for_pieces}
   //
   // One active-set iteration's linear solve, in four steps: collect what the
-  // pieces of this rank's nodes contribute (the prescribed normal
-  // displacements u_0, the loads -w o nu and the normal stiffnesses w s,
-  // collect_piece_terms()); set up the projected operator and
+  // pieces and friction states of this rank's nodes contribute (the
+  // prescribed displacements u_0, the loads and stiffnesses of the free
+  // directions, collect_node_terms()); set up the projected operator and
   // preconditioner as functions (projected(), step_operator(),
-  // step_preconditioner()); solve for y from the previous iterate; read r
-  // and z off the solution (read_off_contact()).
+  // step_preconditioner()); solve for y from the previous iterate; read the
+  // nodes' displacements and forces off the solution (read_off_contact()).
   //
   // Everything node-wise touches only locally owned entries (a node's dofs
   // belong to its owner), so no communication happens outside the matrix
@@ -906,54 +940,66 @@ namespace ViscoContact
                                                 VectorType      &u,
                                                 const double     accuracy)
   {
-    const unsigned int  m = contact.size();
-    std::vector<bool>   fixed(m);
-    std::vector<double> normal_stiffness(m, 0.);
-    VectorType          u0, A_u0, step_rhs(b);
+    VectorType u0, A_u0, step_rhs(b);
     u0.reinit(b);         // zero
     A_u0.reinit(b, true); // overwritten by the products below
-    collect_piece_terms(contact, fixed, normal_stiffness, u0, step_rhs);
-    // step_rhs = b - sum_i w_i o_i nu_i - A u_0: the prescribed part of u
-    // moves to the right-hand side.
+    collect_node_terms(contact, u0, step_rhs);
+    // step_rhs = b - sum f v - A u_0: the prescribed part of u moves to the
+    // right-hand side.
     A->vmult(A_u0, u0);
-    // The scale of the tolerance: the largest of the loads b, of the pieces'
+    // The scale of the tolerance: the largest of the loads b, of the nodes'
     // loads and of A u_0. A body loaded through the obstacle alone (an
     // indenter moving in, with no other load) has b = 0, and its load is
     // the normal displacement the obstacle prescribes at the fixed nodes.
-    VectorType piece_loads(step_rhs);
-    piece_loads -= b;
-    const double piece_load_norm = piece_loads.l2_norm();
+    VectorType node_loads(step_rhs);
+    node_loads -= b;
+    const double node_load_norm = node_loads.l2_norm();
     const double reference_norm
-      = std::max({b_norm, piece_load_norm, A_u0.l2_norm()});
+      = std::max({b_norm, node_load_norm, A_u0.l2_norm()});
     step_rhs -= A_u0;
+    // A coupled direction of a node whose normal is fixed: its force is
+    // coupling times the normal force z = n.(b - A u)_i / |n|^2, so its
+    // equation becomes (A u)_d - coupling n.(A u)_i / |n|^2 = b_d - value
+    // - coupling n.b_i / |n|^2 (the other loads of the node are orthogonal
+    // to n).
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      for_each_coupled_fixed_normal(i, [&](const unsigned int k) {
+        const Tensor<1, dim> &n = terms[i].rows[0];
+        contact.add_row(step_rhs,
+                        i,
+                        terms[i].rows[k],
+                        -terms[i].directions.direction[k].coupling
+                          * contact.row_component(step_rhs, i, n)
+                          / n.norm_square());
+      });
 
-    const Apply preconditioner
-      = step_preconditioner(contact, fixed, normal_stiffness);
+    const Apply preconditioner = step_preconditioner(contact);
     // With a projected right-hand side and start, every Krylov iterate keeps
-    // zero normal components at the fixed nodes.
-    remove_fixed_normals(contact, fixed, step_rhs);
+    // zero fixed components.
+    remove_fixed_rows(contact, step_rhs);
     // The warm start: the previous iterate, constraints removed.
-    remove_fixed_normals(contact, fixed, u);
+    remove_fixed_rows(contact, u);
+    // A Coulomb node that slips couples its tangential force to its normal
+    // one: the operator is then unsymmetric on every rank (GMRES).
+    const bool coupled
+      = Utilities::MPI::max(has_coupling() ? 1 : 0, communicator) == 1;
     const LinearSolveReport report = krylov_solve(
-      projected(step_operator(contact, normal_stiffness),
-                operator_scratch,
-                contact,
-                fixed),
-      projected(preconditioner, preconditioner_scratch, contact, fixed),
+      projected(step_operator(contact), operator_scratch, contact),
+      projected(preconditioner, preconditioner_scratch, contact),
       u,
       step_rhs,
       reference_norm,
-      accuracy);
-    // u = u_0 + y: now u.nu_i = beta at the fixed nodes.
+      accuracy,
+      symmetric && !coupled);
+    // u = u_0 + y: now u has the prescribed values along the fixed rows.
     u += u0;
-    // A failed solve leaves r and z as they were; ContactNodes::solve()
+    // A failed solve leaves the nodes as they were; ContactNodes::solve()
     // stops on the report.
     if (!report.converged)
       return report;
 
-    // The residual b - A u equals N^T z: at node i its normal component is
-    // the force z_i (the contact force of node i acts on that node's dofs
-    // only).
+    // The residual b - A u equals the nodes' forces, sum over directions of
+    // force times row (a contact force acts on its node's dofs only).
     VectorType &residual = A_u0; // its value is no longer needed
     A->vmult(residual, u);
     residual.sadd(-1., 1., b);
@@ -963,66 +1009,111 @@ namespace ViscoContact
 
 
 
-  // @sect4{FullSpaceContactSolver::collect_piece_terms}
+  // @sect4{FullSpaceContactSolver::collect_node_terms}
   //
-  // Split the nodes by their pieces. A vertical piece (a jump of the law,
-  // or the rigid foundation) fixes the normal displacement to
-  // beta = r_lower: the node is fixed, u_0 gets beta nu_i. A sloped piece
-  // adds the load -w_i o_i nu_i to the right-hand side and the normal
-  // stiffness w_i s_i to the operator (zero on a flat piece, whose force
-  // w_i o_i is then known).
+  // Per node: its directions and their rows; the fixed rows R with their
+  // prescribed values beta give u_0 = R^T (R R^T)^{-1} beta on the node's
+  // dofs (for a single unit row, beta v) and an orthonormal basis of their
+  // span (Gram-Schmidt), which P removes; a free direction adds its load
+  // -f v to the right-hand side (its stiffness goes into step_operator()).
   template <int dim>
   void
-  FullSpaceContactSolver<dim>::collect_piece_terms(
+  FullSpaceContactSolver<dim>::collect_node_terms(
     const ContactSet<dim> &contact,
-    std::vector<bool>     &fixed,
-    std::vector<double>   &normal_stiffness,
     VectorType            &u0,
-    VectorType            &step_rhs) const
+    VectorType            &step_rhs)
   {
+    terms.resize(contact.size());
     for (unsigned int i = 0; i < contact.size(); ++i)
       {
-        const ContactLawPiece &piece = contact.current_piece(i);
-        fixed[i]                     = piece.vertical;
-        // r = nu.u - s with the obstacle's gap s: a vertical piece fixes
-        // nu.u = beta + s, a sloped one has the intercept o - slope s in nu.u.
-        if (piece.vertical)
-          contact.add_normal(u0,
-                             i,
-                             (piece.r_lower + contact.gap(i))
-                               / contact.node(i).normal.norm_square());
-        else
+        NodeTerms &node = terms[i];
+        node.directions = contact.directions(i, contact.gap(i));
+        node.n_fixed    = 0;
+        std::array<double, dim> values;
+        for (unsigned int k = 0; k < node.directions.size; ++k)
           {
-            contact.add_normal(step_rhs,
-                               i,
-                               -contact.weight(i)
-                                 * (piece.intercept
-                                    - piece.slope * contact.gap(i)));
-            normal_stiffness[i] = contact.weight(i) * piece.slope;
+            const NodeDirection &direction = node.directions.direction[k];
+            node.rows[k] = contact.frame_row(i, direction.frame);
+            if (direction.fixed)
+              {
+                values[node.n_fixed]                  = direction.value;
+                node.fixed_directions[node.n_fixed++] = k;
+              }
+            else
+              {
+                // A coupled direction with a free normal: coupling times
+                // the normal's load too.
+                const NodeDirection &normal = node.directions.direction[0];
+                const double         load
+                  = direction.value
+                    + (normal.fixed ? 0. : direction.coupling * normal.value);
+                if (load != 0)
+                  contact.add_row(step_rhs, i, node.rows[k], -load);
+              }
+          }
+        if (node.n_fixed == 0)
+          continue;
+        // (R R^T)^{-1}, and the orthonormal basis.
+        FullMatrix<double> gram(node.n_fixed, node.n_fixed);
+        for (unsigned int a = 0; a < node.n_fixed; ++a)
+          for (unsigned int c = 0; c < node.n_fixed; ++c)
+            gram(a, c) = node.rows[node.fixed_directions[a]]
+                         * node.rows[node.fixed_directions[c]];
+        gram.gauss_jordan();
+        for (unsigned int a = 0; a < node.n_fixed; ++a)
+          {
+            for (unsigned int c = 0; c < node.n_fixed; ++c)
+              node.gram_inverse[a][c] = gram(a, c);
+            Tensor<1, dim> q = node.rows[node.fixed_directions[a]];
+            for (unsigned int c = 0; c < a; ++c)
+              q -= (q * node.fixed_basis[c]) * node.fixed_basis[c];
+            node.fixed_basis[a] = q / q.norm();
+          }
+        for (unsigned int a = 0; a < node.n_fixed; ++a)
+          {
+            double coefficient = 0;
+            for (unsigned int c = 0; c < node.n_fixed; ++c)
+              coefficient += node.gram_inverse[a][c] * values[c];
+            contact.add_row(u0,
+                            i,
+                            node.rows[node.fixed_directions[a]],
+                            coefficient);
           }
       }
   }
 
 
 
-  // @sect4{FullSpaceContactSolver::remove_fixed_normals}
+  template <int dim>
+  bool
+  FullSpaceContactSolver<dim>::has_coupling() const
+  {
+    for (const NodeTerms &node : terms)
+      for (unsigned int k = 1; k < node.directions.size; ++k)
+        if (!node.directions.direction[k].fixed
+            && node.directions.direction[k].coupling != 0)
+          return true;
+    return false;
+  }
+
+
+
+  // @sect4{FullSpaceContactSolver::remove_fixed_rows}
   //
-  // P v: remove the normal component at every fixed node, the orthogonal
-  // projection I - n_i n_i^T / |n_i|^2 on the node's dofs and the identity
+  // P v: remove the fixed rows at every node, v -= (q . v) q for every
+  // vector q of the node's orthonormal basis of them, and the identity
   // elsewhere.
   template <int dim>
   void
-  FullSpaceContactSolver<dim>::remove_fixed_normals(
-    const ContactSet<dim>   &contact,
-    const std::vector<bool> &fixed,
-    VectorType              &v) const
+  FullSpaceContactSolver<dim>::remove_fixed_rows(const ContactSet<dim> &contact,
+                                                 VectorType            &v) const
   {
     for (unsigned int i = 0; i < contact.size(); ++i)
-      if (fixed[i])
-        contact.add_normal(v,
-                           i,
-                           -contact.normal_component(v, i)
-                             / contact.node(i).normal.norm_square());
+      for (unsigned int a = 0; a < terms[i].n_fixed; ++a)
+        {
+          const Tensor<1, dim> &q = terms[i].fixed_basis[a];
+          contact.add_row(v, i, q, -contact.row_component(v, i, q));
+        }
   }
 
 
@@ -1030,55 +1121,79 @@ namespace ViscoContact
   // @sect4{FullSpaceContactSolver::projected}
   //
   // v -> P inner(P v) + (I - P) v, for the operator and the preconditioner
-  // alike, with projected_src as work vector. The last term puts the
-  // normal components of v at the fixed nodes back unchanged, which keeps
-  // the operator nonsingular; P and I - P are symmetric, so the result is
-  // symmetric whenever inner is. The function keeps references to its
-  // arguments except inner, which it copies.
+  // alike, with projected_src as work vector. The last term puts the fixed
+  // components of v back unchanged, which keeps the operator nonsingular;
+  // P and I - P are symmetric, so the result is symmetric whenever inner
+  // is. The function keeps references to its arguments except inner, which
+  // it copies.
   template <int dim>
   typename FullSpaceContactSolver<dim>::Apply
-  FullSpaceContactSolver<dim>::projected(const Apply             &inner,
-                                         VectorType              &projected_src,
-                                         const ContactSet<dim>   &contact,
-                                         const std::vector<bool> &fixed) const
+  FullSpaceContactSolver<dim>::projected(const Apply           &inner,
+                                         VectorType            &projected_src,
+                                         const ContactSet<dim> &contact) const
   {
-    return
-      [this, inner, &projected_src, &contact, &fixed](VectorType       &dst,
-                                                      const VectorType &src) {
-        projected_src = src;
-        remove_fixed_normals(contact, fixed, projected_src);
-        inner(dst, projected_src);
-        remove_fixed_normals(contact, fixed, dst);
-        for (unsigned int i = 0; i < contact.size(); ++i)
-          if (fixed[i])
-            contact.add_normal(dst,
-                               i,
-                               contact.normal_component(src, i)
-                                 / contact.node(i).normal.norm_square());
-      };
+    return [this, inner, &projected_src, &contact](VectorType       &dst,
+                                                   const VectorType &src) {
+      projected_src = src;
+      remove_fixed_rows(contact, projected_src);
+      inner(dst, projected_src);
+      remove_fixed_rows(contact, dst);
+      for (unsigned int i = 0; i < contact.size(); ++i)
+        for (unsigned int a = 0; a < terms[i].n_fixed; ++a)
+          {
+            const Tensor<1, dim> &q = terms[i].fixed_basis[a];
+            contact.add_row(dst, i, q, contact.row_component(src, i, q));
+          }
+    };
   }
 
 
 
   // @sect4{FullSpaceContactSolver::step_operator}
   //
-  // A + sum_i w_i s_i nu_i nu_i^T, applied without forming it: the matrix
-  // A stays that of set_operator() for every set of pieces.
+  // A + sum k v v^T over the free directions with a stiffness, applied
+  // without forming it: the matrix A stays that of set_operator() for every
+  // set of pieces.
   template <int dim>
   typename FullSpaceContactSolver<dim>::Apply
   FullSpaceContactSolver<dim>::step_operator(
-    const ContactSet<dim>     &contact,
-    const std::vector<double> &normal_stiffness) const
+    const ContactSet<dim> &contact) const
   {
-    return [this, &contact, &normal_stiffness](VectorType       &dst,
-                                               const VectorType &src) {
+    return [this, &contact](VectorType &dst, const VectorType &src) {
       A->vmult(dst, src);
+      // The coupled directions (collect_node_terms(), solve_for_pieces()):
+      // -coupling n.(A src)_i / |n|^2 where the normal is fixed, coupling
+      // times the normal stiffness times n.src where it is free.
       for (unsigned int i = 0; i < contact.size(); ++i)
-        if (normal_stiffness[i] != 0)
-          contact.add_normal(dst,
-                             i,
-                             normal_stiffness[i]
-                               * contact.normal_component(src, i));
+        for (unsigned int k = 1; k < terms[i].directions.size; ++k)
+          {
+            const NodeDirection &normal    = terms[i].directions.direction[0];
+            const NodeDirection &direction = terms[i].directions.direction[k];
+            if (direction.fixed || direction.coupling == 0)
+              continue;
+            const Tensor<1, dim> &n = terms[i].rows[0];
+            const double          normal_force
+              = (normal.fixed
+                   ? -contact.row_component(dst, i, n) / n.norm_square()
+                   : normal.stiffness * contact.row_component(src, i, n));
+            contact.add_row(dst,
+                            i,
+                            terms[i].rows[k],
+                            direction.coupling * normal_force);
+          }
+      for (unsigned int i = 0; i < contact.size(); ++i)
+        for (unsigned int k = 0; k < terms[i].directions.size; ++k)
+          {
+            const NodeDirection &direction = terms[i].directions.direction[k];
+            if (!direction.fixed && direction.stiffness != 0)
+              contact.add_row(dst,
+                              i,
+                              terms[i].rows[k],
+                              direction.stiffness
+                                * contact.row_component(src,
+                                                        i,
+                                                        terms[i].rows[k]));
+          }
     };
   }
 
@@ -1087,25 +1202,18 @@ namespace ViscoContact
   // @sect4{FullSpaceContactSolver::step_preconditioner}
   //
   // The preconditioner: the factorisation of A, or the AMG of the step
-  // operator of (nearly) these pieces, the fixed nodes marked by an
-  // infinite stiffness (update_contact_amg() removes their normal
-  // directions). Collective when it updates the AMG.
+  // operator of (nearly) these terms (update_contact_amg() removes the
+  // fixed directions). Collective when it updates the AMG.
   template <int dim>
   typename FullSpaceContactSolver<dim>::Apply
   FullSpaceContactSolver<dim>::step_preconditioner(
-    const ContactSet<dim>     &contact,
-    const std::vector<bool>   &fixed,
-    const std::vector<double> &normal_stiffness)
+    const ContactSet<dim> &contact)
   {
     if (factorization)
       return [this](VectorType &dst, const VectorType &src) {
         factorization->solve(dst, src);
       };
-    std::vector<double> stiffness = normal_stiffness;
-    for (unsigned int i = 0; i < contact.size(); ++i)
-      if (fixed[i])
-        stiffness[i] = std::numeric_limits<double>::infinity();
-    update_contact_amg(contact, stiffness);
+    update_contact_amg(contact);
     return [this](VectorType &dst, const VectorType &src) {
       contact_amg.vmult(dst, src);
     };
@@ -1115,9 +1223,9 @@ namespace ViscoContact
 
   // @sect4{FullSpaceContactSolver::read_off_contact}
   //
-  // r_i = nu_i . u_i at every node. At a fixed node the force is read off
-  // the residual; on a sloped piece the law gives it exactly,
-  // z_i = w_i (o_i + s_i r_i).
+  // The displacement v . u along every direction; along the fixed rows R the
+  // forces (R R^T)^{-1} R (b - A u)_i from the residual (the free
+  // directions' forces follow from their law, ContactNodes::store_solution).
   template <int dim>
   void
   FullSpaceContactSolver<dim>::read_off_contact(
@@ -1127,13 +1235,26 @@ namespace ViscoContact
   {
     for (unsigned int i = 0; i < contact.size(); ++i)
       {
-        const ContactLawPiece &piece = contact.current_piece(i);
-        contact.r[i] = contact.normal_component(u, i) - contact.gap(i);
-        contact.z[i] = (piece.vertical
-                          ? contact.normal_component(residual, i)
-                              / contact.node(i).normal.norm_square()
-                          : contact.weight(i)
-                              * (piece.intercept + piece.slope * contact.r[i]));
+        const NodeTerms      &node          = terms[i];
+        std::array<double, 3> displacements = {{0, 0, 0}}, forces = {{0, 0, 0}};
+        for (unsigned int k = 0; k < node.directions.size; ++k)
+          displacements[k] = contact.row_component(u, i, node.rows[k]);
+        for (unsigned int a = 0; a < node.n_fixed; ++a)
+          {
+            double force = 0;
+            for (unsigned int c = 0; c < node.n_fixed; ++c)
+              force
+                += node.gram_inverse[a][c]
+                   * contact.row_component(residual,
+                                           i,
+                                           node.rows[node.fixed_directions[c]]);
+            forces[node.fixed_directions[a]] = force;
+          }
+        contact.store_solution(i,
+                               contact.gap(i),
+                               node.directions,
+                               displacements.data(),
+                               forces.data());
       }
   }
 
@@ -1180,7 +1301,7 @@ namespace ViscoContact
         };
       }
     u = 0;
-    return krylov_solve(op, prec, u, rhs, rhs.l2_norm(), tolerance);
+    return krylov_solve(op, prec, u, rhs, rhs.l2_norm(), tolerance, symmetric);
   }
 
 

@@ -1,0 +1,101 @@
+#!/usr/bin/python3
+"""What friction costs: the 3D sliding block (parameters/sliding_block_3d.prm,
+hexahedra, Subdivisions N) with Coulomb friction against the same scene
+frictionless, in pairs run one after the other (the machine is shared and
+noisy: only ratios measured side by side mean anything).
+
+For each N and back end it prints the time per step of the time loop
+(without output, the program's own measurement), the active-set
+iterations and the Krylov iterations per step of both, and the median
+over the pairs of the ratio frictional / frictionless. The frictionless
+block slides on the support without resistance; its top, held in all
+components, keeps it in place, so both scenes have the same operator, the
+same mesh and the same steps.
+
+    benchmarks/run_friction_cost.py [--executable build/viscoplastic_contact]
+        [--meshes 8,16,24] [--pairs 3] [--methods "full space,condensed"]
+"""
+
+import argparse
+import csv
+import os
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOP = os.path.join(HERE, "..")
+
+
+def set_entry(text, entry, value):
+    return re.sub(r"(?m)^(\s*set %s\s*=)[^#\n]*" % re.escape(entry),
+                  r"\g<1> %s " % value, text)
+
+
+def run(executable, n, method, law, folder):
+    with open(os.path.join(TOP, "parameters", "sliding_block_3d.prm")) as f:
+        text = f.read()
+    for entry, value in (("Subdivisions", n), ("Method", method),
+                         ("Tangential law", law),
+                         ("Output directory", os.path.join(folder, law)),
+                         ("Write vtu", "false"), ("Profile times", "")):
+        text = set_entry(text, entry, value)
+    prm = os.path.join(folder, "%s.prm" % law)
+    with open(prm, "w") as f:
+        f.write(text)
+    result = subprocess.run([executable, prm], capture_output=True, text=True)
+    if result.returncode != 0:
+        sys.exit("The %s run on N = %d (%s) failed:\n%s"
+                 % (law, n, method, result.stderr))
+    loop = float(re.search(r"time loop \(without output\): *([0-9.eE+-]+) s",
+                           result.stdout).group(1))
+    with open(os.path.join(folder, law, "time_series.csv")) as f:
+        steps = list(csv.DictReader(f))
+    dofs = int(re.search(r"([0-9]+) displacement dofs", result.stdout).group(1)) \
+        if re.search(r"([0-9]+) displacement dofs", result.stdout) else 0
+    return {"time per step": loop / len(steps), "dofs": dofs,
+            "iterations": sum(int(s["active_set_iterations"])
+                              for s in steps) / len(steps),
+            "krylov": sum(int(s["krylov_iterations"])
+                          for s in steps) / len(steps)}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--executable", default=os.path.join(
+        TOP, "build", "viscoplastic_contact"))
+    parser.add_argument("--meshes", default="8,16,24")
+    parser.add_argument("--pairs", type=int, default=3)
+    parser.add_argument("--methods", default="full space,condensed")
+    arguments = parser.parse_args()
+    print("| back end | N | dofs | time per step: frictionless, Coulomb | "
+          "active-set iterations per step | Krylov iterations per step | "
+          "ratio Coulomb / frictionless (median of %d pairs) |"
+          % arguments.pairs)
+    print("| --- | --- | --- | --- | --- | --- | --- |")
+    for method in arguments.methods.split(","):
+        for n in (int(v) for v in arguments.meshes.split(",")):
+            ratios, pairs = [], []
+            with tempfile.TemporaryDirectory() as folder:
+                for _ in range(arguments.pairs):
+                    plain = run(arguments.executable, n, method,
+                                "frictionless", folder)
+                    coulomb = run(arguments.executable, n, method, "Coulomb",
+                                  folder)
+                    ratios.append(coulomb["time per step"]
+                                  / plain["time per step"])
+                    pairs.append((plain, coulomb))
+            plain, coulomb = pairs[len(pairs) // 2]
+            print("| %s | %d | %d | %.3g s, %.3g s | %.2f, %.2f | %.1f, %.1f "
+                  "| %.2f |" % (method, n, plain["dofs"],
+                                plain["time per step"],
+                                coulomb["time per step"], plain["iterations"],
+                                coulomb["iterations"], plain["krylov"],
+                                coulomb["krylov"], statistics.median(ratios)))
+            sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    main()

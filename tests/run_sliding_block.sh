@@ -1,0 +1,86 @@
+#!/bin/bash
+# A block sliding on a rigid support (parameters/sliding_block.prm,
+# sliding_block_3d.prm): pressed down with N = 20 by its top, then moved
+# sideways by its top. Checked in every step and at every node:
+#  - the tangential force F on the support balances the top's reaction
+#    (relative 1e-9 with the condensed back end, 1e-7 with the full space
+#    back end's Krylov tolerance), F = 0 while the block is only pressed,
+#    N = 20 t, and F never exceeds the bound (mu N, or Slip bound times the
+#    width);
+#  - the first tangential step sticks at every node; at t = 2 every node
+#    slips, F equals the bound to round-off (1e-10), and each node's slip
+#    in the step is the top's increment 0.0025 along x (on tetrahedra, an
+#    asymmetric mesh, the stick phase leaves a small lateral stress that
+#    the sliding steps relax geometrically: at t = 2 |F| is within 1e-6 of
+#    the bound and the slip within 1% of 0.0025);
+#  - the two back ends give the same profile (1e-7 of the pressure);
+# Coulomb and Tresca, quadrilaterals and triangles, hexahedra and
+# tetrahedra, condensed and full space, 1 and 2 ranks.
+#   run_sliding_block.sh EXECUTABLE
+set -u
+here=$(cd "$(dirname "$0")" && pwd)
+source "$here/robustness/helpers.sh"
+executable=$1
+
+# tresca_bound LAW: with Tresca, Slip bound = 2.5 instead of the
+# coefficient.
+tresca_bound() {
+  if [ "$1" = Tresca ]; then sed "s/set Friction coefficient *=.*/set Slip bound = 2.5/"; else cat; fi
+}
+
+# check NAME LAW DIM TOLERANCE BOUND_TOLERANCE SLIP_TOLERANCE
+check() {
+  awk -F, -v name="$1" -v law="$2" -v tol="$4" -v bound_tol="$5" '
+    function abs(a) { return a < 0 ? -a : a }
+    NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+    { t = $col["time"]; N = $col["total_contact_force"]; F = $col["tangential_force_zone_1_x"]
+      G = sqrt(F * F + $col["tangential_force_zone_1_y"] ^ 2)
+      R = $col["reaction_prescribed_1_x"]
+      bound = (law == "Coulomb" ? 0.3 * N : 5)
+      if (abs(F - R) > tol * (abs(F) > 1 ? abs(F) : 1)) {
+        print name ": at t = " t " the tangential force " F " does not balance the reaction " R; exit 1 }
+      if (F > bound * (1 + 1e-9)) { print name ": at t = " t " the force " F " exceeds the bound " bound; exit 1 }
+      if (t <= 1 + 1e-9 && (abs(F) > 1e-9 || abs(N - 20 * t) > 1e-9 * 20)) {
+        print name ": at t = " t " F = " F ", N = " N "; expected 0 and " 20 * t; exit 1 }
+      if (abs(t - 1.125) < 1e-9 && $col["slip_nodes"] != 0) {
+        print name ": " $col["slip_nodes"] " nodes slip in the first tangential step"; exit 1 }
+      last_F = G; last_bound = bound; last_stick = $col["stick_nodes"] }
+    END { if (last_stick != 0 || abs(last_F - last_bound) > bound_tol * last_bound) {
+            print name ": at t = 2 " last_stick " nodes stick and F = " last_F ", not the bound " last_bound; exit 1 } }' \
+    results/time_series.csv || exit 1
+  awk -F, -v name="$1" -v dim="$3" -v tol="$6" '
+    function abs(a) { return a < 0 ? -a : a }
+    NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+    { if ($col["friction_state"] != 2 || abs($col["slip_x"] - 0.0025) > tol * 0.0025 \
+          || (dim == 3 && abs($col["slip_y"]) > tol * 0.0025)) {
+        print name ": the node at x = " $col["x"] " has state " $col["friction_state"] " and slip " $col["slip_x"]; exit 1 } }' \
+    results/contact_profile_0016.csv || exit 1
+}
+
+for variant in "2 hypercube condensed 1 Coulomb" "2 hypercube full_space 2 Coulomb" \
+               "2 simplex full_space 2 Coulomb" "2 simplex condensed 2 Tresca" \
+               "2 hypercube full_space 1 Tresca" "3 hypercube condensed 1 Coulomb" \
+               "3 simplex full_space 2 Coulomb"; do
+  set -- $variant
+  name="sliding block ${1}D, $2, ${3/_/ }, $4 rank(s), $5"
+  prm=$here/../parameters/sliding_block.prm
+  [ $1 = 3 ] && prm=$here/../parameters/sliding_block_3d.prm
+  tolerance=1e-9 bound_tolerance=1e-10
+  [ $3 = full_space ] && tolerance=1e-7
+  slip_tolerance=$tolerance
+  [ $1$2 = 3simplex ] && bound_tolerance=1e-6 slip_tolerance=1e-2
+  set_entry "Cell type" $2 < "$prm" | set_entry Method "${3/_/ }" \
+    | set_entry "Tangential law" $5 | tresca_bound $5 \
+    | set_entry "Output directory" results > variant.prm
+  run_scene variant.prm $4 "$name"
+  check "$name" $5 $1 $tolerance $bound_tolerance $slip_tolerance
+  [ "$variant" = "2 hypercube condensed 1 Coulomb" ] && cp results/contact_profile_0016.csv condensed.csv
+  if [ "$variant" = "2 hypercube full_space 2 Coulomb" ]; then
+    paste -d, condensed.csv results/contact_profile_0016.csv | awk -F, -v name="$name" '
+      NR == 1 { n = NF / 2; for (i = 1; i <= n; ++i) col[$i] = i; next }
+      { for (f in col) if (f != "time") { a = $col[f]; b = $(col[f] + n); d = a - b; if (d < 0) d = -d
+          if (d > 1e-7 * 10) { print name ": " f " is " b ", the condensed back end has " a; exit 1 } } }' \
+      || exit 1
+  fi
+done
+echo "Sliding block: F balances the reaction, sticks below and equals the bound mu N or g W at full slip, slip 0.0025 per step (Coulomb, Tresca, 2D/3D, all cell types, both back ends, 1 and 2 ranks)."

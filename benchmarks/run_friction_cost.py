@@ -30,6 +30,11 @@ TOP = os.path.join(HERE, "..")
 
 
 def set_entry(text, entry, value):
+    """The entry replaced; Write vtu, which the shipped file leaves at its
+    default, added to subsection Output."""
+    if entry == "Write vtu" and "set Write vtu" not in text:
+        return text.replace("subsection Output\n",
+                            "subsection Output\n  set Write vtu = %s\n" % value)
     return re.sub(r"(?m)^(\s*set %s\s*=)[^#\n]*" % re.escape(entry),
                   r"\g<1> %s " % value, text)
 
@@ -39,7 +44,10 @@ def run(executable, n, method, law, folder):
         text = f.read()
     for entry, value in (("Subdivisions", n), ("Method", method),
                          ("Tangential law", law),
-                         ("Output directory", os.path.join(folder, law)),
+                         ("Friction coefficient",
+                          0.3 if law == "Coulomb" else 0),
+                         ("Output directory", os.path.join(
+                             folder, "%s_%d" % (law, len(os.listdir(folder))))),
                          ("Write vtu", "false"), ("Profile times", "")):
         text = set_entry(text, entry, value)
     prm = os.path.join(folder, "%s.prm" % law)
@@ -51,7 +59,8 @@ def run(executable, n, method, law, folder):
                  % (law, n, method, result.stderr))
     loop = float(re.search(r"time loop \(without output\): *([0-9.eE+-]+) s",
                            result.stdout).group(1))
-    with open(os.path.join(folder, law, "time_series.csv")) as f:
+    output = re.search(r"(?m)^\s*set Output directory\s*=\s*(\S+)", text).group(1)
+    with open(os.path.join(output, "time_series.csv")) as f:
         steps = list(csv.DictReader(f))
     dofs = int(re.search(r"([0-9]+) displacement dofs", result.stdout).group(1)) \
         if re.search(r"([0-9]+) displacement dofs", result.stdout) else 0

@@ -144,9 +144,11 @@ namespace ViscoContact
     // piece), every frictional node to stick or slip (update_friction()).
     // Returns the number of nodes that moved (to another piece, or between
     // stick and slip), of nodes on the rigid piece afterwards, and of
-    // slipping nodes whose bound or direction changed.
+    // slipping nodes whose slip direction turned. Without friction
+    // (with_friction = false: the predicted start of a step, whose slip is
+    // not predicted) the friction states stay as they are.
     std::array<unsigned int, 3>
-    update_pieces();
+    update_pieces(const bool with_friction = true);
 
     // The equations of node i for its piece and friction state (gap: the
     // node's obstacle gap s_i), and the solution of the back end stored

@@ -480,8 +480,9 @@ namespace ViscoContact
             continue;
           }
         contact_set.set_piece(i, static_cast<unsigned int>(piece + 0.5));
-        contact_set.z[i]   = vectors.contact_state.local_element(dofs[1]);
-        contact_set.r[i]   = contact_set.normal_component(solution, i);
+        contact_set.z[i] = vectors.contact_state.local_element(dofs[1]);
+        contact_set.r[i]
+          = contact_set.normal_component(solution, i) - contact_set.gap(i);
         const double state = vectors.friction_state.local_element(dofs[0]);
         if (!(state >= 0 && state <= 2))
           {

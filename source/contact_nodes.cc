@@ -187,7 +187,7 @@ namespace ViscoContact
   // from the last solve names the next piece (ContactLaw::next_piece). The
   // counts are this rank's only; ContactNodes::solve() sums them.
   std::array<unsigned int, 3>
-  ContactNodes::update_pieces()
+  ContactNodes::update_pieces(const bool with_friction)
   {
     unsigned int changed = 0, rigid = 0, adjusted = 0;
     for (unsigned int i = 0; i < size(); ++i)
@@ -209,7 +209,7 @@ namespace ViscoContact
       }
     // Friction after the normal law: Coulomb's bound takes the normal force
     // of the same solve.
-    for (unsigned int i = 0; i < size(); ++i)
+    for (unsigned int i = 0; i < size() && with_friction; ++i)
       {
         const std::array<bool, 2> moved = update_friction(i);
         changed += moved[0];

@@ -476,7 +476,8 @@ namespace ViscoContact
       {
         for (unsigned int i = 0; i < contact_set.size(); ++i)
           {
-            contact_set.r[i] = contact_set.normal_component(solution, i);
+            contact_set.r[i]
+              = contact_set.normal_component(solution, i) - contact_set.gap(i);
             contact_set.z[i]
               = contact_set.weight(i)
                 * new_pressure.local_element(contact_set.node(i).local_dofs[0]);

@@ -240,10 +240,14 @@ namespace ViscoContact
       = previous_step_start->contact_forces;
     for (unsigned int i = 0; i < contact_set.size(); ++i)
       {
-        contact_set.r[i] = contact_set.normal_component(solution, i);
+        contact_set.r[i]
+          = contact_set.normal_component(solution, i) - contact_set.gap(i);
         contact_set.z[i] += ratio * (contact_set.z[i] - earlier_forces[i]);
       }
-    contact_set.update_pieces();
+    // The slip of the step is not predicted: a node starts it in the
+    // stick/slip state it ended the last one in (with the extrapolated
+    // normal force, a node slipping at its bound would look stuck).
+    contact_set.update_pieces(/*with_friction=*/false);
   }
 
 

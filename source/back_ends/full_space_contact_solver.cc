@@ -43,6 +43,25 @@
 
 namespace ViscoContact
 {
+  namespace
+  {
+    // The fixed directions of a node that the AMG of the step operator
+    // removes: its normal when it is fixed (the first vector of the node's
+    // basis then), not the tangents of a sticking node. Stick and slip
+    // change from iteration to iteration at the edge of a stick zone, and
+    // an AMG rebuilt for each change cost more than it saved: the projected
+    // preconditioner P M^{-1} P keeps the tangents fixed anyway.
+    template <typename Terms>
+    unsigned int
+    amg_fixed(const Terms &node)
+    {
+      return node.directions.size > 0 && node.directions.direction[0].fixed ? 1
+                                                                            : 0;
+    }
+  } // namespace
+
+
+
   // @sect3{The full space back end}
   //
   // For fixed pieces and friction states, every contact node has up to dim
@@ -452,10 +471,11 @@ namespace ViscoContact
   // doc/performance.md). So the AMG is built for the matrix of the
   // projected operator itself,
   //   P (A + sum k v v^T) P + sum_{fixed q} d_q q q^T,
-  // d_q = q^T A_ii q, q the orthonormal basis of a node's fixed rows: at a
-  // node its fixed directions are removed from its rows and columns, as a
-  // Dirichlet condition would be, and come back only on the node's own
-  // diagonal block, with the node's stiffness as scale. Its near-null space
+  // d_q = q^T A_ii q, q the node's fixed normal (amg_fixed(): the tangents
+  // of a sticking node stay in the AMG's matrix): at a node its fixed
+  // normal is removed from its rows and columns, as a Dirichlet condition
+  // would be, and comes back only on the node's own diagonal block, with
+  // the node's stiffness as scale. Its near-null space
   // is P applied to the rigid-body modes, which the constrained operator no
   // longer has in its null space. (Earlier, a penalty 1000 nu^T A_ii nu at
   // the fixed nodes with the unprojected modes took 30% more CG iterations
@@ -466,10 +486,10 @@ namespace ViscoContact
   //
   // Building an AMG costs about 20 CG iterations, so it is not rebuilt for
   // every set of pieces: only when more than 1% of the contact nodes (over
-  // all ranks) have changed their number of fixed directions since it was
+  // all ranks) have become fixed or free along their normal since it was
   // built (a changed slope or slip direction matters little, a fixed
-  // direction much: the slopes are small against the stiffness of the
-  // body, measured in doc/performance.md). Within a time step few nodes
+  // normal much: the slopes are small against the stiffness of the body,
+  // measured in doc/performance.md). Within a time step few nodes
   // move, so most steps reuse the AMG of the previous one, while a cold
   // start, where most nodes move, rebuilds it as the pieces change.
   // contact_amg_fits() decides, then assemble_contact_matrix() and
@@ -486,7 +506,7 @@ namespace ViscoContact
     build_amg(*contact_matrix, *contact_modes, contact_amg);
     contact_amg_fixed.resize(contact.size());
     for (unsigned int i = 0; i < contact.size(); ++i)
-      contact_amg_fixed[i] = terms[i].n_fixed;
+      contact_amg_fixed[i] = amg_fixed(terms[i]);
     contact_amg_built = true;
     ++this->counts.operator_setups;
   }
@@ -495,10 +515,9 @@ namespace ViscoContact
 
   // @sect4{FullSpaceContactSolver::contact_amg_fits}
   //
-  // A node has changed if its number of fixed directions has (it became
-  // fixed or free along the normal, it started or stopped sticking); a
-  // changed slope does not count. Every rank takes part in the sum, whether
-  // an AMG has been built or not.
+  // A node has changed if it has become fixed or free along its normal
+  // (amg_fixed()); a changed slope or stick/slip state does not count. Every
+  // rank takes part in the sum, whether an AMG has been built or not.
   template <int dim>
   bool
   FullSpaceContactSolver<dim>::contact_amg_fits(
@@ -507,7 +526,7 @@ namespace ViscoContact
     unsigned int changed = 0;
     if (contact_amg_built)
       for (unsigned int i = 0; i < contact.size(); ++i)
-        changed += (terms[i].n_fixed != contact_amg_fixed[i]);
+        changed += (amg_fixed(terms[i]) != contact_amg_fixed[i]);
     changed = Utilities::MPI::sum(changed, communicator);
     return contact_amg_built && changed <= 0.01 * contact.n_global_nodes();
   }
@@ -603,7 +622,7 @@ namespace ViscoContact
       Epetra_Vector owned_direction(matrix.DomainMap()),
         owned_node(matrix.DomainMap());
       for (unsigned int i = 0; i < contact.size(); ++i)
-        if (terms[i].n_fixed > b)
+        if (amg_fixed(terms[i]) > b)
           for (unsigned int c = 0; c < dim; ++c)
             {
               owned_direction[node_row(matrix, contact, i, c)]
@@ -691,7 +710,7 @@ namespace ViscoContact
 
     unsigned int most_fixed = 0;
     for (const NodeTerms &node : terms)
-      most_fixed = std::max(most_fixed, node.n_fixed);
+      most_fixed = std::max(most_fixed, amg_fixed(node));
     most_fixed = Utilities::MPI::max(most_fixed, communicator);
     Epetra_Vector column_direction(matrix.ColMap()),
       column_node(matrix.ColMap());
@@ -728,7 +747,7 @@ namespace ViscoContact
     for (unsigned int i = 0; i < contact.size(); ++i)
       {
         const NodeTerms &node_terms = terms[i];
-        if (node_terms.n_fixed == 0)
+        if (amg_fixed(node_terms) == 0)
           continue;
         const auto  &node = contact.node(i);
         int          n[dim];
@@ -738,7 +757,7 @@ namespace ViscoContact
         for (unsigned int c = 0; c < dim; ++c)
           {
             bool used = false;
-            for (unsigned int b = 0; b < node_terms.n_fixed; ++b)
+            for (unsigned int b = 0; b < amg_fixed(node_terms); ++b)
               used = used || node_terms.fixed_basis[b][c] != 0;
             if (used)
               components[n_components++] = c;
@@ -759,7 +778,7 @@ namespace ViscoContact
                                    "components do not have the same "
                                    "columns."));
           }
-        for (unsigned int b = 0; b < node_terms.n_fixed; ++b)
+        for (unsigned int b = 0; b < amg_fixed(node_terms); ++b)
           {
             const Tensor<1, dim> &q = node_terms.fixed_basis[b];
             for (int e = 0; e < n[first]; ++e)
@@ -772,7 +791,7 @@ namespace ViscoContact
               }
           }
         // d_q q q^T, d_q = q^T A_ii q, back on the diagonal.
-        for (unsigned int b = 0; b < node_terms.n_fixed; ++b)
+        for (unsigned int b = 0; b < amg_fixed(node_terms); ++b)
           {
             const Tensor<1, dim> &q = node_terms.fixed_basis[b];
             double                d = 0;
@@ -799,7 +818,7 @@ namespace ViscoContact
     const Epetra_CrsMatrix &matrix = *contact_matrix;
     contact_modes = std::make_unique<Epetra_MultiVector>(*rigid_body_modes);
     for (unsigned int i = 0; i < contact.size(); ++i)
-      for (unsigned int b = 0; b < terms[i].n_fixed; ++b)
+      for (unsigned int b = 0; b < amg_fixed(terms[i]); ++b)
         for (int mode = 0; mode < contact_modes->NumVectors(); ++mode)
           {
             const Tensor<1, dim> &q    = terms[i].fixed_basis[b];

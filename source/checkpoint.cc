@@ -512,7 +512,8 @@ namespace ViscoContact
   //
   // The start of the checkpoint's step, for the prediction of the next one,
   // unless the interrupted run had none (its step was the first on its
-  // mesh); and the back end's state, from which it rebuilds what it had.
+  // mesh). The back ends keep nothing across a checkpoint
+  // (ContactSolver::forget_kept_state()).
   template <int dim>
   void
   ViscoplasticContact<dim>::restore_prediction_start(

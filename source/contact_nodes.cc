@@ -282,7 +282,6 @@ namespace ViscoContact
           next = stick;
       }
 
-
     bool adjusted = false;
     if (next == slip)
       {

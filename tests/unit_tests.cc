@@ -695,6 +695,33 @@ TEST(Friction, StickSlipRuleOfOneNode)
 
 
 
+// An iteration that returns to the same pieces stops with "cycles" in its
+// failure: a node on Signorini's law whose solve penetrates when it is free
+// and pulls when it is held (no solution of the linear problems is
+// consistent), instead of running to Maximum iterations.
+TEST(ActiveSetSolver, ReportsACycle)
+{
+  const ContactLaws signorini(ContactLaw({}, {0.}, {}, true, 0.));
+  ContactNodes      nodes;
+  nodes.reinit(signorini, {0}, {1.});
+  nodes.set_parameters({100.});
+  const ActiveSetResult result = nodes.solve(
+    [&](double) {
+      const bool held = nodes.current_piece(0).vertical;
+      nodes.r[0]      = held ? 0. : 1.;
+      nodes.z[0]      = held ? -1. : 0.;
+      return LinearSolveReport();
+    },
+    50,
+    1e-10,
+    MPI_COMM_SELF);
+  EXPECT_FALSE(result.converged);
+  EXPECT_NE(result.failure.find("cycles"), std::string::npos) << result.failure;
+  EXPECT_LT(result.iterations(), 10u);
+}
+
+
+
 // In 3D a slipping node gets the Newton stiffness across its slip
 // direction: Tresca bound g = 1, q = (3, 4), gamma = g / |q| = 0.2,
 // k = c w gamma / (1 - gamma) = 100 * 0.5 * 0.25.

@@ -153,6 +153,9 @@ namespace ViscoContact
     // zone, the tangential force the body exerts on the obstacle.
     std::vector<Tensor<1, dim>>
     zone_tangential_forces(const MPI_Comm communicator) const;
+    // The slip of the last step for the output: zero at a free node.
+    Tensor<1, dim>
+    output_slip(const unsigned int i) const;
 
     // The active-set parameter of every node from the operator A of the
     // step problem: c_i = max(nu^T A_ii nu / w_i, 2 * steepest softening),
@@ -195,9 +198,9 @@ namespace ViscoContact
                        VectorType &foundation_pressure,
                        VectorType &contact_status) const;
     // The friction fields, likewise: the tangential traction t / w and the
-    // slip increment of the last step as vectors (in the displacement
-    // layout), and the friction state (0 free or frictionless, 1 stick,
-    // 2 slip; scalar layout).
+    // slip increment of the last step (output_slip()) as vectors (in the
+    // displacement layout), and the friction state (0 free or frictionless,
+    // 1 stick, 2 slip; scalar layout).
     void
     fill_friction_fields(VectorType &tangential_traction,
                          VectorType &slip,

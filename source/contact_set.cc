@@ -659,7 +659,7 @@ namespace ViscoContact
           {
             const Tensor<1, dim> traction
               = tangential_vector(i, t[i]) / weight(i);
-            const Tensor<1, dim> slip = tangential_vector(i, step_slip(i));
+            const Tensor<1, dim> slip = output_slip(i);
             out << ',' << friction_state(i);
             for (unsigned int d = 0; d < dim; ++d)
               out << ',' << traction[d];
@@ -715,7 +715,7 @@ namespace ViscoContact
     for (unsigned int i = 0; i < size(); ++i)
       {
         const Tensor<1, dim> traction = tangential_vector(i, t[i]) / weight(i);
-        const Tensor<1, dim> step     = tangential_vector(i, step_slip(i));
+        const Tensor<1, dim> step     = output_slip(i);
         for (unsigned int c = 0; c < dim; ++c)
           {
             tangential_traction(geometry[i].dofs[c]) = traction[c];
@@ -768,6 +768,20 @@ namespace ViscoContact
   {
     for (unsigned int c = 0; c < dim; ++c)
       v.local_element(geometry[i].local_dofs[c]) += value * row[c];
+  }
+
+
+
+  // The slip of the last step as the output shows it: zero at a free node
+  // (out of contact under Coulomb's law), whose tangential motion is no
+  // slip against the obstacle.
+  template <int dim>
+  Tensor<1, dim>
+  ContactSet<dim>::output_slip(const unsigned int i) const
+  {
+    if (friction_state(i) == free_tangential)
+      return Tensor<1, dim>();
+    return tangential_vector(i, step_slip(i));
   }
 
 

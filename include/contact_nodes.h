@@ -30,7 +30,8 @@ namespace ViscoContact
   // solve met its tolerance.
   //
   // ContactNodes holds that state for the contact nodes this rank owns and
-  // runs the iteration; the back ends write r and z, nothing else.
+  // runs the iteration; the back ends write r and z (through
+  // store_solution() where a node has friction), nothing else.
 
   // What one linear solve for fixed pieces did.
   struct LinearSolveReport
@@ -294,6 +295,14 @@ namespace ViscoContact
     // state changed, and whether its bound or direction did.
     std::array<bool, 2>
     update_friction(const unsigned int i);
+    // Node i's bound now, and its slip direction q / |q| with the
+    // transverse stiffness for the bound g.
+    double
+    bound_of(const unsigned int i) const;
+    void
+    set_slip_direction(const unsigned int i,
+                       const Tangential  &q,
+                       const double       g);
     // A hash of the pieces and friction states of all ranks' nodes
     // (collective), by which solve() recognises a cycle.
     std::uint64_t

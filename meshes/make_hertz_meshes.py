@@ -69,15 +69,18 @@ def fitted_grading(n, a):
     return xi
 
 
-def quarter_disk(n, fitted=None):
-    index = lambda i, j: j * (n + 1) + i + 1
+def patch_nodes(n, fitted=None):
+    """The (N + 1)^2 nodes (i, j, x, y) of the quarter disk's patch, graded
+    as (i/N)^2 or fitted to the half-width fitted, row by row."""
     graded = (fitted_grading(n, fitted) if fitted
               else [(k / n) ** 2 for k in range(n + 1)])
-    nodes = []
-    for j in range(n + 1):
-        for i in range(n + 1):
-            x, y = point(graded[i], graded[j])
-            nodes.append((index(i, j), x, y))
+    return [(i, j) + point(graded[i], graded[j])
+            for j in range(n + 1) for i in range(n + 1)]
+
+
+def quarter_disk(n, fitted=None):
+    index = lambda i, j: j * (n + 1) + i + 1
+    nodes = [(index(i, j), x, y) for i, j, x, y in patch_nodes(n, fitted)]
     lines = []
     for k in range(n):
         lines.append((1, index(0, k), index(0, k + 1)))          # x = 0
@@ -96,17 +99,9 @@ def half_disk(n, fitted=None):
     the nodes on x = 0. Physical groups: 2 the top y = 1, 3 the arc."""
     index = lambda i, j: j * (n + 1) + i + 1
     mirrored = lambda i, j: index(i, j) if i == 0 else (n + 1) ** 2 + j * n + i
-    graded = (fitted_grading(n, fitted) if fitted
-              else [(k / n) ** 2 for k in range(n + 1)])
-    nodes = []
-    for j in range(n + 1):
-        for i in range(n + 1):
-            x, y = point(graded[i], graded[j])
-            nodes.append((index(i, j), x, y))
-    for j in range(n + 1):
-        for i in range(1, n + 1):
-            x, y = point(graded[i], graded[j])
-            nodes.append((mirrored(i, j), -x, y))
+    patch = patch_nodes(n, fitted)
+    nodes = ([(index(i, j), x, y) for i, j, x, y in patch]
+             + [(mirrored(i, j), -x, y) for i, j, x, y in patch if i > 0])
     lines = []
     for number in (index, mirrored):
         for k in range(n):

@@ -245,12 +245,9 @@ namespace ViscoContact
     const unsigned int k = tangential_directions[i];
     if (k == 0)
       return {{false, false}};
-    const FrictionLaw &law    = zone_friction[node_zones[i]];
-    const double       g      = (law.type == TangentialLaw::tresca
-                                   ? tresca_bound[i]
-                                   : law.coefficient * std::max(z[i], 0.));
-    Tangential         q      = {{0, 0}};
-    double             q_norm = 0;
+    const double g      = bound_of(i);
+    Tangential   q      = {{0, 0}};
+    double       q_norm = 0;
     for (unsigned int j = 0; j < k; ++j)
       {
         q[j] = t[i][j] + c[i] * w[i] * (s[i][j] - slip_reference[i][j]);
@@ -285,21 +282,13 @@ namespace ViscoContact
     bool adjusted = false;
     if (next == slip)
       {
-        Tangential d      = {{0, 0}};
-        double     change = 0;
+        const Tangential previous = slip_direction[i];
+        set_slip_direction(i, q, g);
+        double change = 0;
         for (unsigned int j = 0; j < k; ++j)
-          {
-            d[j] = q[j] / q_norm;
-            change
-              += (d[j] - slip_direction[i][j]) * (d[j] - slip_direction[i][j]);
-          }
+          change += (slip_direction[i][j] - previous[j])
+                    * (slip_direction[i][j] - previous[j]);
         adjusted = (old == slip && std::sqrt(change) > friction_tolerance);
-        slip_direction[i]  = d;
-        const double gamma = g / q_norm;
-        transverse_stiffness[i]
-          = (k == 2 ? c[i] * w[i]
-                        * (gamma >= 100. / 101. ? 100. : gamma / (1 - gamma))
-                    : 0.);
       }
     bounds[i]          = g;
     friction_states[i] = next;
@@ -440,21 +429,45 @@ namespace ViscoContact
         slip_reference[i] = s[i];
         if (friction_states[i] != slip)
           continue;
-        const FrictionLaw &law = zone_friction[node_zones[i]];
-        bounds[i]              = (law.type == TangentialLaw::tresca
-                                    ? tresca_bound[i]
-                                    : law.coefficient * std::max(z[i], 0.));
-        const double norm = std::sqrt(t[i][0] * t[i][0] + t[i][1] * t[i][1]);
-        if (norm == 0)
-          continue;
-        for (unsigned int j = 0; j < k; ++j)
-          slip_direction[i][j] = t[i][j] / norm;
-        const double gamma = bounds[i] / norm;
-        transverse_stiffness[i]
-          = (k == 2 ? c[i] * w[i]
-                        * (gamma >= 100. / 101. ? 100. : gamma / (1 - gamma))
-                    : 0.);
+        bounds[i] = bound_of(i);
+        if (t[i][0] != 0 || t[i][1] != 0)
+          set_slip_direction(i, t[i], bounds[i]);
       }
+  }
+
+
+
+  // @sect4{ContactNodes::bound_of and set_slip_direction}
+  //
+  // The bound g of node i now: Tresca's, or mu z with the last normal
+  // force. And the slip direction d = q / |q| of a slipping node with the
+  // transverse stiffness of the Newton linearisation (3D, update_friction()),
+  // k_e = c w gamma / (1 - gamma), gamma = g / |q|, capped at 100 c w.
+  double
+  ContactNodes::bound_of(const unsigned int i) const
+  {
+    const FrictionLaw &law = zone_friction[node_zones[i]];
+    return law.type == TangentialLaw::tresca
+             ? tresca_bound[i]
+             : law.coefficient * std::max(z[i], 0.);
+  }
+
+
+
+  void
+  ContactNodes::set_slip_direction(const unsigned int i,
+                                   const Tangential  &q,
+                                   const double       g)
+  {
+    const unsigned int k      = tangential_directions[i];
+    const double       q_norm = std::sqrt(q[0] * q[0] + q[1] * q[1]);
+    for (unsigned int j = 0; j < k; ++j)
+      slip_direction[i][j] = q[j] / q_norm;
+    const double gamma = g / q_norm;
+    transverse_stiffness[i]
+      = (k == 2
+           ? c[i] * w[i] * (gamma >= 100. / 101. ? 100. : gamma / (1 - gamma))
+           : 0.);
   }
 
 

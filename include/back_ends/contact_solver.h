@@ -34,9 +34,11 @@ namespace ViscoContact
   //  - set_operator(): factorise or precondition A (once per run for K, once
   //    per Newton iteration for a tangent);
   //  - set_right_hand_side(): the right-hand side b of a step problem;
-  //  - solve_for_pieces(): for the current pieces, write r = u.nu and the
-  //    nodal forces z of every contact node (and u, if the back end has it
-  //    anyway), to the accuracy the iteration asks for;
+  //  - solve_for_pieces(): for the current pieces and friction states,
+  //    hand each contact node's displacements along its directions and its
+  //    forces along the fixed ones to ContactNodes::store_solution(), which
+  //    sets r, z, s and t (and u, if the back end has it anyway), to the
+  //    accuracy the iteration asks for;
   //  - finish(): the displacement u of the final pieces;
   //  - solve_without_contact(), apply_compliance(): A^{-1} b for the cost
   //    measurements, and N A^{-1} N^T for the uniqueness margin.
@@ -95,9 +97,11 @@ namespace ViscoContact
     set_right_hand_side(const VectorType &b, const ContactSet<dim> &contact)
       = 0;
 
-    // For the current pieces of the contact nodes, write r_i = u.nu_i and
-    // the nodal forces z_i of this rank's nodes into contact.r and
-    // contact.z, with the relative accuracy the active-set iteration asks
+    // For the current pieces and friction states of the contact nodes
+    // (ContactNodes::directions()), the displacements and forces of this
+    // rank's nodes, through ContactNodes::store_solution() (without
+    // friction the condensed back end writes contact.r and contact.z
+    // directly), with the relative accuracy the active-set iteration asks
     // for (a Krylov method may stop there; a direct solve is exact anyway).
     // The report says whether the linear solve met it; if it did not, the
     // active-set iteration stops with the report's failure. u holds the

@@ -536,12 +536,14 @@ namespace ViscoContact
     // Per node: the number of directions, then per direction its frame
     // vector, whether it is fixed, its value, its stiffness and its
     // coupling.
-    constexpr unsigned int record = 1 + 3 * 7;
-    std::vector<double>    own;
+    constexpr unsigned int      record = 1 + 3 * 7;
+    std::vector<double>         own;
+    std::vector<NodeDirections> own_directions(contact.size());
     own.reserve(record * contact.size());
     for (unsigned int i = 0; i < contact.size(); ++i)
       {
-        const NodeDirections directions = contact.directions(i, contact.gap(i));
+        const NodeDirections &directions = own_directions[i]
+          = contact.directions(i, contact.gap(i));
         own.push_back(directions.size);
         for (const NodeDirection &direction : directions.direction)
           {
@@ -613,8 +615,8 @@ namespace ViscoContact
     const unsigned int first_node = contact.first_global_index();
     for (unsigned int i = 0; i < contact.size(); ++i)
       {
-        const NodeDirections directions = contact.directions(i, contact.gap(i));
-        const unsigned int   base       = row_start[first_node + i];
+        const NodeDirections &directions    = own_directions[i];
+        const unsigned int    base          = row_start[first_node + i];
         std::array<double, 3> displacements = {{0, 0, 0}}, forces = {{0, 0, 0}};
         for (unsigned int k = 0; k < directions.size; ++k)
           for (unsigned int r = 0; r < directions.size; ++r)

@@ -159,7 +159,7 @@ def parse_stdout(text):
     v = grab(r"ratio step / \(solve \+ stress update\):\s*(" + FLOAT + ")")
     if v is not None:
         res["ratio_step_to_solve_and_update"] = v
-    v = grab(r"peak memory \(sum over ranks\):\s*(" + FLOAT + r")\s*MB")
+    v = grab(r"peak memory over the run \[MB\]: sum over ranks (" + FLOAT + r")")
     if v is not None:
         res["peak_memory_mb"] = v
 

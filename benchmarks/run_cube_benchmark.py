@@ -82,7 +82,7 @@ def parse_output(text):
                                            + number, 1),
         "us_per_dof_step": (r"per dof and step: " + number + " us", 1),
         "time_loop": (r"time loop \(without output\): " + number + " s", 1),
-        "peak_memory_mb": (r"peak memory \(sum over ranks\): " + number + " MB", 1),
+        "peak_memory_mb": (r"peak memory over the run \[MB\]: sum over ranks " + number, 1),
         "final_l2_norm": (r"^Final displacement: l2 norm " + number, 1),
     }
     values = {}

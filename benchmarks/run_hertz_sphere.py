@@ -166,7 +166,7 @@ def cost(executable, n, method, ranks):
         "solve krylov": int(find(r"no contact: [0-9.eE+-]+ ms \((\d+) Krylov")),
         "ratio": float(find(r"ratio step / solve: ([0-9.eE+-]+)")),
         "setups": int(find(r"set up by the back end (\d+)x")),
-        "memory": float(find(r"peak memory \(sum over ranks\): ([0-9.eE+-]+) MB")),
+        "memory": float(find(r"peak memory over the run \[MB\]: sum over ranks ([0-9.eE+-]+)")),
         "steps": steps}
 
 

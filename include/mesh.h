@@ -22,7 +22,9 @@ namespace ViscoContact
   // (as in step-40): quadrilaterals and hexahedra live on p4est
   // (parallel::distributed::Triangulation), triangles and tetrahedra, which
   // p4est cannot hold, on a parallel::fullydistributed::Triangulation
-  // partitioned by METIS. create_distributed_mesh() builds it in stages:
+  // partitioned by METIS, which one rank per group of Mesh group size ranks
+  // (mesh_group_size()) builds whole and hands out in parts.
+  // create_distributed_mesh() builds it in stages:
   //  - create_coarse_mesh(): the generated box (simplices cut by the
   //    Simplex pattern) or a Gmsh file, with the boundary ids of subsection
   //    Boundary, on a serial Triangulation;
@@ -39,6 +41,13 @@ namespace ViscoContact
   create_distributed_mesh(const Parameters::AllParameters &parameters,
                           const MPI_Comm                   communicator,
                           const bool multigrid_hierarchy = false);
+
+  // The number of consecutive ranks that share one whole simplex mesh during
+  // set-up: one of them builds it and hands out the parts (mesh.cc).
+  // Collective.
+  unsigned int
+  mesh_group_size(const Parameters::AllParameters &parameters,
+                  const MPI_Comm                   communicator);
 
   template <int dim>
   void

@@ -144,6 +144,10 @@ namespace ViscoContact
       std::string  material_id_function;
       unsigned int global_refinements  = 0; // uniform, after generation/reading
       unsigned int contact_refinements = 0; // extra levels near Gamma_3
+      // Simplex meshes are built by one rank per group of this many
+      // consecutive ranks (0: the ranks of one compute node).
+      unsigned int mesh_group_size = 0;
+
 
       void
       add_parameters(ParameterHandler &prm);

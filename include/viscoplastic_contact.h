@@ -357,6 +357,10 @@ namespace ViscoContact
     check_output_directory();
     void
     check_memory_estimate() const;
+    // Collective: the peak memory of the ranks up to now, "over the run" or
+    // "after the mesh" (when).
+    void
+    print_peak_memory(const std::string &when) const;
     // The .vtu records of n_steps steps fit on the disk of the output folder
     // (a lower estimate of their size), or all ranks stop with the entries
     // that make them.

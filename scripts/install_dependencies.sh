@@ -13,7 +13,7 @@
 set -euo pipefail
 
 packages=(libdeal.ii-dev libsuitesparse-dev openmpi-bin libopenblas0-pthread cmake g++ make
-          numdiff libgtest-dev ccache
+          numdiff libgtest-dev ccache strace
           python3 python3-matplotlib python3-numpy python3-meshio)
 
 missing=()

@@ -12,7 +12,9 @@
 #include "convergence_study.h"
 #include "parameters.h"
 #include "robustness/file_output.h"
+#include "robustness/mpi_tools.h"
 #include "robustness/output_folder.h"
+
 #include "robustness/stop_signals.h"
 #include "viscoplastic_contact.h"
 
@@ -301,6 +303,19 @@ main(int argc, char **argv)
       // orderly end, with the status a shell gives a process killed by
       // the signal, so that job scripts see that the run is not complete.
       return 128 + stopped.signal;
+    }
+  catch (MPITools::ExcOnAllRanks &exc)
+    {
+      // An error that every rank has raised at the same point (a mesh that
+      // a group root could not build): reported once, and every rank ends
+      // in order.
+      if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+        {
+          std::ostringstream message;
+          exc.print_info(message);
+          report_error("\n" + message.str());
+        }
+      return 1;
     }
   catch (ExceptionBase &exc)
     {

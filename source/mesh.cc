@@ -24,6 +24,8 @@
 #include "loads.h"
 #include "mesh.h"
 #include "robustness/mesh_checks.h"
+#include "robustness/mpi_tools.h"
+
 
 #include <algorithm>
 #include <array>
@@ -531,6 +533,37 @@ namespace ViscoContact
 
 
 
+  // @sect4{mesh_group_size}
+  //
+  // Mesh group size, or (0) the ranks of the smallest compute node of the
+  // run (the ranks that share memory, MPI_Comm_split_type), at most all
+  // ranks. deal.II's groups are blocks of consecutive ranks, which are the
+  // ranks of one node when the MPI launcher places the ranks by node (its
+  // default); placed otherwise, a group spans nodes and nothing but the
+  // memory per node changes.
+  unsigned int
+  mesh_group_size(const Parameters::AllParameters &parameters,
+                  const MPI_Comm                   communicator)
+  {
+    unsigned int group_size = parameters.mesh_group_size;
+    if (group_size == 0)
+      {
+        MPI_Comm node_communicator;
+        MPI_Comm_split_type(communicator,
+                            MPI_COMM_TYPE_SHARED,
+                            0,
+                            MPI_INFO_NULL,
+                            &node_communicator);
+        group_size = Utilities::MPI::min(Utilities::MPI::n_mpi_processes(
+                                           node_communicator),
+                                         communicator);
+        MPI_Comm_free(&node_communicator);
+      }
+    return std::min(group_size, Utilities::MPI::n_mpi_processes(communicator));
+  }
+
+
+
   // @sect4{create_distributed_mesh}
   //
   // Hypercube meshes live on p4est: every rank holds the coarse mesh, p4est
@@ -541,17 +574,25 @@ namespace ViscoContact
   // same mesh.
   //
   // A simplex mesh is built and refined as a serial mesh, partitioned by
-  // METIS, and each rank keeps its part. A generated box of triangles is
+  // METIS, and each rank gets its part: one rank in every group of Mesh
+  // group size consecutive ranks (mesh_group_size()) builds the whole mesh
+  // and hands the members their parts, one at a time
+  // (create_description_from_triangulation_in_groups()), so that the
+  // members never hold it, and the whole mesh exists once per group (per
+  // compute node by default), during set-up only. Every group root builds
+  // the same mesh and the same partition (METIS is deterministic). Should a
+  // root fail to read or check the mesh, the members would wait for their
+  // parts forever: the roots build the mesh before the hand-out, and all
+  // ranks agree on a failure first (MPITools::agree_on_failure()), so that
+  // every rank stops with the message. A generated box of triangles is
   // also built from fewer coarse cells and refined, at most four times:
   // deal.II 9.4's fully distributed mesh takes time in its coarse cells (its
   // set-up sorts the cells with a search among the coarse cells in every
   // comparison) and in its levels (it rebuilds the id of every cell on
   // every level), and four refinements balance the two. (Measured at N =
   // 512, 524k triangles: the mesh takes 1.8 s with four, 2.1 s with all
-  // nine, 2.5 s with none.) The serial mesh exists on every rank during
-  // set-up only; for meshes beyond a few million cells,
-  // create_description_from_triangulation_in_groups() would build it once
-  // per node. On one rank both are the one-rank case of the same classes.
+  // nine, 2.5 s with none.) On one rank both kinds of mesh are the one-rank
+  // case of the same classes.
   template <int dim>
   std::unique_ptr<parallel::DistributedTriangulationBase<dim>>
   create_distributed_mesh(const Parameters::AllParameters &parameters,
@@ -561,23 +602,38 @@ namespace ViscoContact
     std::unique_ptr<parallel::DistributedTriangulationBase<dim>> mesh;
     if (parameters.cell_type == Parameters::CellType::simplex)
       {
-        // Simplices: build and refine the whole mesh serially, identically
-        // on every rank.
-        const auto [coarse_parameters, box_refinements]
-          = coarser_equivalent_box(parameters, 4);
+        // Simplices: the group roots build and refine the whole mesh
+        // serially and partition it into one part per rank (METIS sets the
+        // subdomain ids of the cells).
+        const unsigned int group_size
+          = mesh_group_size(parameters, communicator);
         Triangulation<dim> serial_mesh;
-        create_coarse_mesh(coarse_parameters, serial_mesh);
-        serial_mesh.refine_global(box_refinements);
-        refine_mesh(parameters, serial_mesh);
-        // Partition it into one part per rank (METIS sets the subdomain ids
-        // of the cells), and turn it into the description of this rank's
-        // part (its cells and a layer of ghosts), from which the fully
-        // distributed mesh is built.
-        GridTools::partition_triangulation(Utilities::MPI::n_mpi_processes(
-                                             communicator),
-                                           serial_mesh);
+        std::string        failure;
+        if (Utilities::MPI::this_mpi_process(communicator) % group_size == 0)
+          failure = MPITools::failure_of([&]() {
+            const auto [coarse_parameters, box_refinements]
+              = coarser_equivalent_box(parameters, 4);
+            create_coarse_mesh(coarse_parameters, serial_mesh);
+            serial_mesh.refine_global(box_refinements);
+            refine_mesh(parameters, serial_mesh);
+            GridTools::partition_triangulation(Utilities::MPI::n_mpi_processes(
+                                                 communicator),
+                                               serial_mesh);
+          });
+        MPITools::agree_on_failure(failure, communicator);
+        // The hand-out: each rank gets the description of its part (its
+        // cells and a layer of ghosts, with their ancestors), from which the
+        // fully distributed mesh is built. deal.II's function calls the
+        // generator and the partitioner on the roots: here they only hand
+        // over the mesh built above.
         const auto description = TriangulationDescription::Utilities::
-          create_description_from_triangulation(serial_mesh, communicator);
+          create_description_from_triangulation_in_groups<dim, dim>(
+            [&serial_mesh](Triangulation<dim> &mesh) {
+              mesh = std::move(serial_mesh);
+            },
+            [](Triangulation<dim> &, const MPI_Comm &, const unsigned int) {},
+            communicator,
+            group_size);
         auto distributed_mesh
           = std::make_unique<parallel::fullydistributed::Triangulation<dim>>(
             communicator);
@@ -592,7 +648,11 @@ namespace ViscoContact
         const auto [coarse_parameters, box_refinements]
           = coarser_equivalent_box(parameters, numbers::invalid_unsigned_int);
         Triangulation<dim> coarse_mesh;
-        create_coarse_mesh(coarse_parameters, coarse_mesh);
+        MPITools::agree_on_failure(MPITools::failure_of([&]() {
+                                     create_coarse_mesh(coarse_parameters,
+                                                        coarse_mesh);
+                                   }),
+                                   communicator);
         using DistributedMesh = parallel::distributed::Triangulation<dim>;
         auto distributed_mesh
           = multigrid_hierarchy

@@ -35,6 +35,8 @@
 #include <deal.II/numerics/error_estimator.h>
 
 #include "robustness/checkpoint_file.h"
+#include "robustness/mpi_tools.h"
+
 #include "stress_point_transfer.h"
 #include "viscoplastic_contact.h"
 
@@ -651,10 +653,14 @@ namespace ViscoContact
   // cell descends from one of its cells and coarsened where one of its cells
   // descends from a checkpoint cell, pass by pass (coarsening goes one level
   // per pass), until its active cells are those of the checkpoint; then
-  // everything is set up on it. The ids of all records are gathered on every
-  // rank: a few bytes per cell, for a mesh whose size Maximum cells bounds.
-  // Whether the mesh matches is checked by resume_from_checkpoint(), which must
-  // find every owned cell's record.
+  // everything is set up on it. No rank sees more than its share of the
+  // ids: each checkpoint cell and each of its ancestors is a record keyed by
+  // its id (payload 1 for the cell, 0 for an ancestor), and each rank asks
+  // for the ids of its own cells (MPITools::exchange_records(), as the
+  // records themselves are read): a cell found with payload 1 stays, one
+  // found as an ancestor is refined, one not found is coarsened. Whether the
+  // mesh matches is checked by resume_from_checkpoint(), which must find every
+  // owned cell's record.
   template <int dim>
   void
   ViscoplasticContact<dim>::restore_checkpoint_mesh()
@@ -675,35 +681,27 @@ namespace ViscoContact
                      size,
                      mpi_communicator);
 
-    // All ranks' keys, on every rank, sorted: the descendants of a cell
-    // follow it in the order of CellId.
-    std::vector<char> keys;
+    // The records of this rank's share: its cells, and their ancestors
+    // once each.
+    std::vector<MPITools::Record> records;
+    std::set<std::string>         ancestors;
     for (std::size_t r = 0; r < share.size() / size; ++r)
-      keys.insert(keys.end(),
-                  share.begin() + r * size,
-                  share.begin() + r * size + sizeof(Key));
-    const std::vector<int> counts
-      = Utilities::MPI::all_gather(mpi_communicator, int(keys.size()));
-    std::vector<int> offsets(counts.size(), 0);
-    for (unsigned int p = 1; p < counts.size(); ++p)
-      offsets[p] = offsets[p - 1] + counts[p - 1];
-    std::vector<char> all_keys(offsets.back() + counts.back());
-    MPI_Allgatherv(keys.data(),
-                   keys.size(),
-                   MPI_CHAR,
-                   all_keys.data(),
-                   counts.data(),
-                   offsets.data(),
-                   MPI_CHAR,
-                   mpi_communicator);
-    std::vector<CellId> targets;
-    for (std::size_t r = 0; r < all_keys.size() / sizeof(Key); ++r)
       {
         Key key;
-        std::memcpy(&key, all_keys.data() + r * sizeof(Key), sizeof(Key));
-        targets.emplace_back(key);
+        std::memcpy(&key, share.data() + r * size, sizeof(Key));
+        const CellId cell(key);
+        records.emplace_back(cell.to_string(), std::vector<double>{1.});
+        const auto path = cell.get_child_indices();
+        for (unsigned int level = 0; level < path.size(); ++level)
+          {
+            const std::string ancestor
+              = CellId(cell.get_coarse_cell_id(), level, path.data())
+                  .to_string();
+            if (ancestors.insert(ancestor).second)
+              records.emplace_back(ancestor, std::vector<double>{0.});
+          }
       }
-    std::sort(targets.begin(), targets.end());
+
 
     auto &mesh = dynamic_cast<parallel::distributed::Triangulation<dim> &>(
       *triangulation);
@@ -711,16 +709,27 @@ namespace ViscoContact
     // Maximum refinement level (and p4est's limit).
     for (unsigned int pass = 0; pass < 64; ++pass)
       {
+        std::vector<std::string> requests;
+        for (const auto &cell : mesh.active_cell_iterators())
+          if (cell->is_locally_owned())
+            requests.push_back(cell->id().to_string());
+        const auto found_records
+          = MPITools::exchange_records(records, requests, mpi_communicator);
         unsigned int marked = 0;
         for (const auto &cell : mesh.active_cell_iterators())
           if (cell->is_locally_owned())
             {
-              const CellId id = cell->id();
-              const auto   found
-                = std::lower_bound(targets.begin(), targets.end(), id);
-              if (found != targets.end() && *found == id)
+              const auto found = found_records.find(cell->id().to_string());
+              const bool is_checkpoint_cell
+                = found != found_records.end()
+                  && std::any_of(found->second.begin(),
+                                 found->second.end(),
+                                 [](const std::vector<double> &payload) {
+                                   return payload[0] == 1.;
+                                 });
+              if (is_checkpoint_cell)
                 continue;
-              if (found != targets.end() && id.is_ancestor_of(*found))
+              if (found != found_records.end())
                 cell->set_refine_flag();
               else if (cell->level() > 0)
                 cell->set_coarsen_flag();

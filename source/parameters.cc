@@ -225,6 +225,17 @@ namespace ViscoContact
           "nodes are constrained). An integer in [0, 20]; 0 for simplex "
           "cells.",
           Patterns::Integer(0, 20));
+        prm.add_parameter(
+          "Mesh group size",
+          mesh_group_size,
+          "Simplex meshes (generated or read) are built whole, refined and "
+          "partitioned by one rank in every group of this many consecutive "
+          "ranks, which hands each member its part: the other ranks never "
+          "hold or open the whole mesh. 0: the ranks of one compute node "
+          "(the smallest node of the run); 1: every rank builds the mesh "
+          "itself. A Gmsh file of hexahedra is read by every rank (p4est "
+          "needs its cells on every rank). An integer >= 0.",
+          Patterns::Integer(0));
       }
       prm.leave_subsection();
     }
@@ -1234,7 +1245,10 @@ namespace ViscoContact
         prm.add_parameter("Print timing summary",
                           print_timing_summary,
                           "Print the TimerOutput table and the cost ratios at "
-                          "the end of the run.",
+                          "the end of the run, and the wall time of the mesh "
+                          "and the peak memory of the ranks (the sum, the "
+                          "largest rank, group root and member) after each "
+                          "set-up phase and over the run.",
                           Patterns::Bool());
         prm.add_parameter("Verbose",
                           verbose,

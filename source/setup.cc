@@ -53,7 +53,18 @@ namespace ViscoContact
     Parameters::AllParameters first_mesh = parameters;
     if (parameters.initial_refinement == Parameters::InitialRefinement::global)
       first_mesh.global_refinements -= parameters.initial_cycles;
+    Timer timer;
     triangulation = create_distributed_mesh<dim>(first_mesh, mpi_communicator);
+    if (parameters.print_timing_summary)
+      {
+        pcout << "Mesh built in " << timer.wall_time() << " s";
+        if (parameters.cell_type == Parameters::CellType::simplex)
+          pcout << " (one rank in every "
+                << mesh_group_size(parameters, mpi_communicator)
+                << " builds the whole mesh and hands out the parts)";
+        pcout << std::endl;
+        print_peak_memory("after the mesh");
+      }
   }
 
 
@@ -82,11 +93,17 @@ namespace ViscoContact
     previous_step_start.reset();
     contact_solver.reset();
     setup_system();
+    if (parameters.print_timing_summary)
+      print_peak_memory("after the operator");
     setup_stress_points();
     setup_dirichlet_dofs();
     check_rigid_motions();
     setup_contact();
+    if (parameters.print_timing_summary)
+      print_peak_memory("after the stress points and contact nodes");
     setup_back_end();
+    if (parameters.print_timing_summary)
+      print_peak_memory("after the back end");
   }
 
 

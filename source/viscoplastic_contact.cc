@@ -10,6 +10,8 @@
 #include <deal.II/fe/fe_system.h>
 
 #include "loads.h"
+#include "mesh.h"
+#include "robustness/mesh_checks.h"
 #include "robustness/checkpoint_file.h"
 #include "robustness/stop_signals.h"
 #include "step_report.h"
@@ -327,34 +329,85 @@ namespace ViscoContact
 
   // @sect4{ViscoplasticContact::check_memory_estimate}
   //
-  // The size of a generated box follows from the parameters alone: (N 2^r +
-  // 1)^dim vertices for N Subdivisions and r Global refinements (plus a centre
-  // vertex per square for the crossed pattern), dim dofs per vertex. The
-  // memory per dof was measured on the benchmark scenes (peak resident memory
-  // of runs of 10^4 to 10^5 dofs on one rank, both back ends): about 2 kB per
-  // dof in 2D and 13 kB in 3D, where the direct factorisations fill in more,
-  // plus some 150 MB for the libraries. Both are lower estimates (the fill-in
-  // of a factorisation grows faster than the dofs), so a mesh is refused only
-  // if it certainly does not fit: if the estimate exceeds the physical memory
-  // of the ranks' nodes (MemTotal of /proc/meminfo, shared among the ranks of
-  // a node). A Gmsh mesh is only known once read; it is not estimated here.
+  // The size of the mesh follows from the parameters: the generated box has
+  // (N 2^r + 1)^dim vertices for N Subdivisions and r Global refinements
+  // (plus a centre vertex per square for the crossed pattern); a Gmsh file
+  // the node count at the head of its $Nodes section (read by rank 0, a few
+  // lines) times 2^(dim r), as uniform refinement multiplies the vertices by
+  // about 2^dim. dim dofs per vertex. Each rank needs about 150 MB for the
+  // libraries plus its share of the dofs times the memory per dof measured
+  // on the benchmark scenes (peak resident memory of runs of 10^4 to 10^5
+  // dofs per rank): about 2 kB per dof in 2D, and in 3D 13 kB on the
+  // condensed back end, whose factorisation fills in, and 6 kB on the full
+  // space back end (which Method = auto takes for large 3D meshes; 6 to 9
+  // kB on tetrahedra and hexahedra, doc/scaling.md). A group root of a
+  // simplex mesh (mesh.cc) holds the whole refined mesh during set-up
+  // besides: about 400 bytes per cell (390 to 420 measured by
+  // benchmarks/run_mesh_memory_scaling.py, doc/scaling.md). The estimates
+  // of the ranks of each compute node are summed and compared with the
+  // node's physical memory (MemTotal of /proc/meminfo). They are lower
+  // estimates (the fill-in of a factorisation grows faster than the dofs),
+  // so a mesh is refused only if it certainly does not fit.
   template <int dim>
   void
   ViscoplasticContact<dim>::check_memory_estimate() const
   {
-    if (!parameters.mesh_file.empty())
-      return;
-    const double edge
-      = parameters.subdivisions * std::pow(2., parameters.global_refinements);
-    double vertices = std::pow(edge + 1, dim);
-    if (parameters.cell_type == Parameters::CellType::simplex
-        && parameters.simplex_pattern == Parameters::SimplexPattern::crossed)
-      vertices += std::pow(edge, dim);
-    const double dofs  = dim * vertices;
-    const double bytes = 150e6 + dofs * (dim == 2 ? 2e3 : 13e3);
+    const bool simplex
+      = (parameters.cell_type == Parameters::CellType::simplex);
+    const double refinement_factor
+      = std::pow(2., dim * parameters.global_refinements);
+    double vertices = 0, cells = 0;
+    if (parameters.mesh_file.empty())
+      {
+        const double edge = parameters.subdivisions
+                            * std::pow(2., parameters.global_refinements);
+        vertices = std::pow(edge + 1, dim);
+        cells    = std::pow(edge, dim);
+        if (simplex)
+          switch (parameters.simplex_pattern)
+            {
+              case Parameters::SimplexPattern::crossed:
+                vertices += cells;
+                cells *= 4;
+                break;
+              case Parameters::SimplexPattern::five_tetrahedra:
+                cells *= 5;
+                break;
+              default:
+                cells *= (dim == 2 ? 2 : 6);
+            }
+      }
+    else
+      {
+        // Rank 0 is a group root: it opens the file anyway.
+        const double file_nodes = Utilities::MPI::broadcast(
+          mpi_communicator,
+          Utilities::MPI::this_mpi_process(mpi_communicator) == 0
+            ? gmsh_node_count(parameters.mesh_file)
+            : 0.);
+        vertices = file_nodes * refinement_factor;
+        // About 2 triangles or 5 tetrahedra per vertex in a fine mesh.
+        cells = vertices * (simplex ? (dim == 2 ? 2 : 5) : 1);
+      }
+    const double dofs = dim * vertices;
+    const double bytes_per_dof
+      = dim == 2                                             ? 2e3
+        : parameters.method == Parameters::Method::condensed ? 13e3
+                                                             : 6e3;
+    const double       bytes_per_mesh_cell = 400;
+    const unsigned int n_ranks
+      = Utilities::MPI::n_mpi_processes(mpi_communicator);
+    const bool group_root
+      = simplex
+        && Utilities::MPI::this_mpi_process(mpi_communicator)
+               % mesh_group_size(parameters, mpi_communicator)
+             == 0;
+    const double rank_bytes = 150e6 + dofs / n_ranks * bytes_per_dof;
+    const double root_bytes = cells * bytes_per_mesh_cell;
+    const double this_rank  = rank_bytes + (group_root ? root_bytes : 0.);
 
-    // The memory of this rank's node, shared by the ranks on it; summed over
-    // the ranks, the memory of all nodes of the run.
+    // The physical memory of this rank's node and the estimates of the ranks
+    // on it.
     double node_memory = 0;
     {
       std::ifstream meminfo("/proc/meminfo");
@@ -376,28 +429,39 @@ namespace ViscoContact
                         0,
                         MPI_INFO_NULL,
                         &node_communicator);
-    const unsigned int ranks_on_node
-      = Utilities::MPI::n_mpi_processes(node_communicator);
+    const double node_need = Utilities::MPI::sum(this_rank, node_communicator);
     MPI_Comm_free(&node_communicator);
-    const double available
-      = Utilities::MPI::sum(node_memory / ranks_on_node, mpi_communicator);
-    // Without /proc/meminfo (not Linux) the check is skipped.
-    if (available <= 0 || bytes <= available)
+    // The node that lacks most; without /proc/meminfo (not Linux) there is
+    // nothing to compare with.
+    const double shortfall
+      = Utilities::MPI::max(node_memory > 0 ? node_need - node_memory : -1.,
+                            mpi_communicator);
+    if (shortfall <= 0)
       return;
 
     std::ostringstream message;
-    message << std::setprecision(3) << "Invalid parameter <Subdivisions> in "
-            << "subsection <Geometry>: value <" << parameters.subdivisions
+    message << std::setprecision(3) << "Invalid parameter <"
+            << (parameters.mesh_file.empty() ? "Subdivisions" : "Mesh file")
+            << "> in subsection <Geometry>: value <"
+            << (parameters.mesh_file.empty()
+                  ? std::to_string(parameters.subdivisions)
+                  : parameters.mesh_file)
             << ">";
     if (parameters.global_refinements > 0)
       message << " with <Global refinements> = "
               << parameters.global_refinements;
     message << "; the mesh would have about " << dofs
-            << " displacement dofs and need at least " << bytes / 1e9
-            << " GB of memory, but the nodes of this run have "
-            << available / 1e9
-            << " GB; accepted: a mesh that fits (fewer Subdivisions or "
-               "Global refinements, or more nodes).";
+            << " displacement dofs and need at least " << rank_bytes / 1e9
+            << " GB of memory per rank (" << n_ranks
+            << (n_ranks == 1 ? " rank)" : " ranks)");
+    if (simplex)
+      message << ", and " << root_bytes / 1e9
+              << " GB more on each group root, which builds the whole mesh "
+                 "(<Mesh group size>)";
+    message << "; a compute node of this run lacks " << shortfall / 1e9
+            << " GB; accepted: a mesh that fits (fewer "
+            << (parameters.mesh_file.empty() ? "Subdivisions or " : "")
+            << "Global refinements, or more nodes).";
     AssertThrow(false, ExcMessage(message.str()));
   }
 

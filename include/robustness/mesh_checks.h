@@ -23,6 +23,11 @@ namespace ViscoContact
   // node).
   void
   check_gmsh_node_ids(const std::string &file);
+  // The number of nodes a Gmsh file declares at the head of its $Nodes
+  // section (0 if the file has none or cannot be read; the reader then says
+  // why): a few lines are read, for the memory estimate before a run.
+  double
+  gmsh_node_count(const std::string &file);
   template <int dim>
   void
   check_mesh_cells(const std::vector<Point<dim>>    &vertices,

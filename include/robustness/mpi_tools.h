@@ -1,9 +1,13 @@
 #ifndef viscoplastic_contact_mpi_tools_h
 #define viscoplastic_contact_mpi_tools_h
 
+#include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 
+
+#include <exception>
 #include <map>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,6 +37,59 @@ namespace ViscoContact
     exchange_records(const std::vector<Record>      &records,
                      const std::vector<std::string> &requests,
                      const MPI_Comm                  communicator);
+
+    // @sect4{Errors that all ranks agree on}
+    //
+    // Work that only some ranks do (a group root reading the mesh) may fail
+    // there while the others wait in a collective call. Such work is run
+    // through failure_of(), which turns an exception into its message, and
+    // agree_on_failure() then makes every rank throw ExcOnAllRanks with the
+    // message of the first failing rank: main() reports it once and all
+    // ranks end in order.
+    class ExcOnAllRanks : public ExceptionBase
+    {
+    public:
+      explicit ExcOnAllRanks(const std::string &message)
+        : message(message)
+      {}
+
+      void
+      print_info(std::ostream &out) const override
+      {
+        out << message;
+      }
+
+    private:
+      const std::string message;
+    };
+
+    // The message main() would print for the exception function() throws,
+    // or an empty string if it returns.
+    template <typename Function>
+    std::string
+    failure_of(const Function &function)
+    {
+      try
+        {
+          function();
+        }
+      catch (const ExceptionBase &exc)
+        {
+          std::ostringstream message;
+          exc.print_info(message);
+          return message.str();
+        }
+      catch (const std::exception &exc)
+        {
+          return std::string("    ") + exc.what() + "\n";
+        }
+      return "";
+    }
+
+    // Collective. If some rank's failure is not empty, every rank throws
+    // ExcOnAllRanks with that of the lowest such rank.
+    void
+    agree_on_failure(const std::string &failure, const MPI_Comm communicator);
   } // namespace MPITools
 } // namespace ViscoContact
 

@@ -127,6 +127,19 @@ namespace ViscoContact
         }
       return extent;
     }
+
+    // Reads a Gmsh file up to its "$Nodes" line; returns the format version
+    // of its $MeshFormat section (0 if none).
+    double
+    skip_to_gmsh_nodes(std::istream &in)
+    {
+      std::string token;
+      double      version = 0;
+      while (in >> token && token != "$Nodes")
+        if (token == "$MeshFormat")
+          in >> version;
+      return version;
+    }
   } // namespace
 
 
@@ -140,11 +153,7 @@ namespace ViscoContact
   check_gmsh_node_ids(const std::string &file)
   {
     std::ifstream in(file);
-    std::string   token;
-    double        version = 0;
-    while (in >> token && token != "$Nodes")
-      if (token == "$MeshFormat")
-        in >> version;
+    const double  version = skip_to_gmsh_nodes(in);
     if (!in)
       return; // the reader itself says what is missing
     std::set<long long> ids;
@@ -193,6 +202,25 @@ namespace ViscoContact
       ExcMessage(invalid_mesh(file) + "the node id " + std::to_string(duplicate)
                  + " is defined twice in its $Nodes section; "
                    "accepted: a mesh whose nodes have distinct ids."));
+  }
+
+
+
+  // @sect4{gmsh_node_count}
+  //
+  // Format 2: "$Nodes" then the count; format 4: "$Nodes" then
+  // "numEntityBlocks numNodes minTag maxTag".
+  double
+  gmsh_node_count(const std::string &file)
+  {
+    std::ifstream in(file);
+    const double  version = skip_to_gmsh_nodes(in);
+    double        blocks = 0, nodes = 0;
+    if (version < 4)
+      in >> nodes;
+    else
+      in >> blocks >> nodes;
+    return in ? nodes : 0;
   }
 
 

@@ -154,5 +154,25 @@ namespace ViscoContact
                        });
       return result;
     }
+
+
+
+    // @sect4{agree_on_failure}
+    //
+    // One reduction finds the lowest failing rank (or none), one broadcast
+    // sends its message.
+    void
+    agree_on_failure(const std::string &failure, const MPI_Comm communicator)
+    {
+      const unsigned int n_ranks
+        = Utilities::MPI::n_mpi_processes(communicator);
+      const unsigned int first_failing = Utilities::MPI::min(
+        failure.empty() ? n_ranks
+                        : Utilities::MPI::this_mpi_process(communicator),
+        communicator);
+      if (first_failing < n_ranks)
+        throw ExcOnAllRanks(
+          Utilities::MPI::broadcast(communicator, failure, first_failing));
+    }
   } // namespace MPITools
 } // namespace ViscoContact

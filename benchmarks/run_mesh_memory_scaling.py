@@ -19,9 +19,9 @@ generated box of the one-rank run on every rank count ("same mesh").
 
 It prints, per run, the peak resident memory (VmHWM) after the mesh and
 over the whole run, of the group roots and of the other ranks (the
-program's "peak memory" lines), the active-set iterations per step, the
-CG iterations per solve and the final displacement norms, and then the
-checks of doc/scaling.md: the members' peak within +8% of the one-rank
+program's "peak memory" lines of Print timing summary), the active-set
+iterations per step, the CG iterations per solve and the final
+displacement norms, and then the checks of doc/scaling.md: the members' peak within +8% of the one-rank
 figure, iteration counts within +-10% of one rank's, results identical
 across the rank counts (relative 1e-6).
 
@@ -210,10 +210,9 @@ def main():
                      "| %.2f | %.1f |"
                      % (label[r["variant"]], r["ranks"], r["n"],
                         r["cells"] / r["ranks"], r["dofs"] / r["ranks"],
-                        r["mesh_time"],
-                                 fmt(r["mesh_root"]), fmt(r["mesh_member"]),
-                                 fmt(r["run_root"]), fmt(r["run_member"]),
-                                 r["active_set"], r["cg"]))
+                        r["mesh_time"], fmt(r["mesh_root"]),
+                        fmt(r["mesh_member"]), fmt(r["run_root"]),
+                        fmt(r["run_member"]), r["active_set"], r["cg"]))
     # The checks, against the one-rank run of the same variant.
     checks = []
     for variant in ("groups", "gmsh", "every_rank"):

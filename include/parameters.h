@@ -148,7 +148,6 @@ namespace ViscoContact
       // consecutive ranks (0: the ranks of one compute node).
       unsigned int mesh_group_size = 0;
 
-
       void
       add_parameters(ParameterHandler &prm);
       void

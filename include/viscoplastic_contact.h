@@ -357,8 +357,8 @@ namespace ViscoContact
     check_output_directory();
     void
     check_memory_estimate() const;
-    // Collective: the peak memory of the ranks up to now, "over the run" or
-    // "after the mesh" (when).
+    // Collective: the peak memory of the ranks up to now; when names the
+    // moment ("after the mesh", ..., "over the run").
     void
     print_peak_memory(const std::string &when) const;
     // The .vtu records of n_steps steps fit on the disk of the output folder
@@ -527,8 +527,15 @@ namespace ViscoContact
     // Run control, console (pcout prints on rank 0 only) and timing.
     const Parameters::AllParameters parameters;
     const MPI_Comm                  mpi_communicator;
-    ConditionalOStream              pcout;
-    TimerOutput                     computing_timer;
+    // Whether this rank builds the whole mesh for its group (simplex
+    // meshes, mesh_group_size()).
+    const bool         mesh_group_root;
+    ConditionalOStream pcout;
+    TimerOutput        computing_timer;
+    // Whether the set-up's peak memory has been reported (the first set-up
+    // only; adaptive meshes set up again).
+    bool setup_memory_reported = false;
+
 
     // Mesh, finite elements, quadratures, degrees of freedom. The reference
     // cell (simplex or hypercube) decides the mapping, the element (P1 or Q1)

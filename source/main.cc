@@ -14,7 +14,6 @@
 #include "robustness/file_output.h"
 #include "robustness/mpi_tools.h"
 #include "robustness/output_folder.h"
-
 #include "robustness/stop_signals.h"
 #include "viscoplastic_contact.h"
 

@@ -26,7 +26,6 @@
 #include "robustness/mesh_checks.h"
 #include "robustness/mpi_tools.h"
 
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -535,12 +534,13 @@ namespace ViscoContact
 
   // @sect4{mesh_group_size}
   //
-  // Mesh group size, or (0) the ranks of the smallest compute node of the
+  // Mesh group size, or (0) the ranks of the largest compute node of the
   // run (the ranks that share memory, MPI_Comm_split_type), at most all
   // ranks. deal.II's groups are blocks of consecutive ranks, which are the
   // ranks of one node when the MPI launcher places the ranks by node (its
-  // default); placed otherwise, a group spans nodes and nothing but the
-  // memory per node changes.
+  // default; a last, partly filled node then gets a smaller group); placed
+  // otherwise, a group spans nodes and nothing but the memory per node
+  // changes.
   unsigned int
   mesh_group_size(const Parameters::AllParameters &parameters,
                   const MPI_Comm                   communicator)
@@ -554,7 +554,7 @@ namespace ViscoContact
                             0,
                             MPI_INFO_NULL,
                             &node_communicator);
-        group_size = Utilities::MPI::min(Utilities::MPI::n_mpi_processes(
+        group_size = Utilities::MPI::max(Utilities::MPI::n_mpi_processes(
                                            node_communicator),
                                          communicator);
         MPI_Comm_free(&node_communicator);
@@ -628,8 +628,8 @@ namespace ViscoContact
         // over the mesh built above.
         const auto description = TriangulationDescription::Utilities::
           create_description_from_triangulation_in_groups<dim, dim>(
-            [&serial_mesh](Triangulation<dim> &mesh) {
-              mesh = std::move(serial_mesh);
+            [&serial_mesh](Triangulation<dim> &root_mesh) {
+              root_mesh = std::move(serial_mesh);
             },
             [](Triangulation<dim> &, const MPI_Comm &, const unsigned int) {},
             communicator,

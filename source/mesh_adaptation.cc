@@ -36,7 +36,6 @@
 
 #include "robustness/checkpoint_file.h"
 #include "robustness/mpi_tools.h"
-
 #include "stress_point_transfer.h"
 #include "viscoplastic_contact.h"
 
@@ -653,14 +652,15 @@ namespace ViscoContact
   // cell descends from one of its cells and coarsened where one of its cells
   // descends from a checkpoint cell, pass by pass (coarsening goes one level
   // per pass), until its active cells are those of the checkpoint; then
-  // everything is set up on it. No rank sees more than its share of the
-  // ids: each checkpoint cell and each of its ancestors is a record keyed by
-  // its id (payload 1 for the cell, 0 for an ancestor), and each rank asks
-  // for the ids of its own cells (MPITools::exchange_records(), as the
-  // records themselves are read): a cell found with payload 1 stays, one
-  // found as an ancestor is refined, one not found is coarsened. Whether the
-  // mesh matches is checked by resume_from_checkpoint(), which must find every
-  // owned cell's record.
+  // everything is set up on it. No rank gathers all ids: each checkpoint cell
+  // and each of its ancestors is a record keyed by its id (payload 1 for the
+  // cell, 0 for an ancestor), and each rank asks for the ids of its own cells
+  // (MPITools::exchange_records(), as the records themselves are read; the
+  // rendezvous rank of a coarse cell gets its record from every rank that holds
+  // one of its descendants): a cell found with payload 1 stays, one found as an
+  // ancestor is refined, one not found is coarsened. Whether the mesh matches
+  // is checked by resume_from_checkpoint(), which must find every owned cell's
+  // record.
   template <int dim>
   void
   ViscoplasticContact<dim>::restore_checkpoint_mesh()
@@ -701,7 +701,6 @@ namespace ViscoContact
               records.emplace_back(ancestor, std::vector<double>{0.});
           }
       }
-
 
     auto &mesh = dynamic_cast<parallel::distributed::Triangulation<dim> &>(
       *triangulation);

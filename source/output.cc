@@ -13,10 +13,10 @@
 #include <deal.II/numerics/data_out.h>
 
 #include "back_ends/blas_threads.h"
+#include "mesh.h"
 #include "robustness/checkpoint_file.h"
 #include "robustness/file_output.h"
 #include "robustness/output_folder.h"
-#include "mesh.h"
 #include "viscoplastic_contact.h"
 
 #include <algorithm>
@@ -720,14 +720,10 @@ namespace ViscoContact
          << Utilities::MPI::max(peak, mpi_communicator);
     if (parameters.cell_type == Parameters::CellType::simplex)
       {
-        const bool group_root
-          = Utilities::MPI::this_mpi_process(mpi_communicator)
-              % mesh_group_size(parameters, mpi_communicator)
-            == 0;
         const double root_peak
-          = Utilities::MPI::max(group_root ? peak : 0., mpi_communicator);
+          = Utilities::MPI::max(mesh_group_root ? peak : 0., mpi_communicator);
         const double member_peak
-          = Utilities::MPI::max(group_root ? 0. : peak, mpi_communicator);
+          = Utilities::MPI::max(mesh_group_root ? 0. : peak, mpi_communicator);
         line << ", largest group root " << root_peak << ", largest member ";
         if (member_peak > 0)
           line << member_peak;
@@ -803,10 +799,9 @@ namespace ViscoContact
           << "x; external load assembled " << n_external_load_assemblies
           << "x\n"
           << "  back end: " << statistics.solves << " solves, "
-          << statistics.inner_iterations << " Krylov iterations\n";
-    pcout << "Final displacement: l2 norm " << l2_norm << ", max norm "
+          << statistics.inner_iterations << " Krylov iterations\n"
+          << "Final displacement: l2 norm " << l2_norm << ", max norm "
           << max_norm << '\n';
-
 
     // The peak memory before the cost measurement, whose extra solves may
     // build a preconditioner the run did not need.
@@ -868,7 +863,6 @@ namespace ViscoContact
     const double step_time
       = Utilities::MPI::max(time_loop_compute_time, mpi_communicator)
         / std::max<double>(1, schedule.step_number());
-
 
     // The threads of each rank: the stress update's and the solves', and
     // the BLAS's in the sparse factorisation (1 where the BLAS has none).

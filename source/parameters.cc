@@ -232,7 +232,7 @@ namespace ViscoContact
           "partitioned by one rank in every group of this many consecutive "
           "ranks, which hands each member its part: the other ranks never "
           "hold or open the whole mesh. 0: the ranks of one compute node "
-          "(the smallest node of the run); 1: every rank builds the mesh "
+          "(the largest node of the run); 1: every rank builds the mesh  "
           "itself. A Gmsh file of hexahedra is read by every rank (p4est "
           "needs its cells on every rank). An integer >= 0.",
           Patterns::Integer(0));

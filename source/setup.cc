@@ -57,10 +57,11 @@ namespace ViscoContact
     triangulation = create_distributed_mesh<dim>(first_mesh, mpi_communicator);
     if (parameters.print_timing_summary)
       {
+        const unsigned int group_size
+          = mesh_group_size(parameters, mpi_communicator);
         pcout << "Mesh built in " << timer.wall_time() << " s";
         if (parameters.cell_type == Parameters::CellType::simplex)
-          pcout << " (one rank in every "
-                << mesh_group_size(parameters, mpi_communicator)
+          pcout << " (one rank in every " << group_size
                 << " builds the whole mesh and hands out the parts)";
         pcout << std::endl;
         print_peak_memory("after the mesh");
@@ -92,17 +93,21 @@ namespace ViscoContact
   {
     previous_step_start.reset();
     contact_solver.reset();
+    // The peak memory after each phase, on the first set-up.
+    const bool report_memory
+      = parameters.print_timing_summary && !setup_memory_reported;
+    setup_memory_reported = true;
     setup_system();
-    if (parameters.print_timing_summary)
+    if (report_memory)
       print_peak_memory("after the operator");
     setup_stress_points();
     setup_dirichlet_dofs();
     check_rigid_motions();
     setup_contact();
-    if (parameters.print_timing_summary)
+    if (report_memory)
       print_peak_memory("after the stress points and contact nodes");
     setup_back_end();
-    if (parameters.print_timing_summary)
+    if (report_memory)
       print_peak_memory("after the back end");
   }
 

@@ -11,8 +11,8 @@
 
 #include "loads.h"
 #include "mesh.h"
-#include "robustness/mesh_checks.h"
 #include "robustness/checkpoint_file.h"
+#include "robustness/mesh_checks.h"
 #include "robustness/stop_signals.h"
 #include "step_report.h"
 #include "viscoplastic_contact.h"
@@ -109,6 +109,10 @@ namespace ViscoContact
     const MPI_Comm                   communicator)
     : parameters(parameters)
     , mpi_communicator(communicator)
+    , mesh_group_root(parameters.cell_type == Parameters::CellType::simplex
+                      && Utilities::MPI::this_mpi_process(communicator)
+                             % mesh_group_size(parameters, communicator)
+                           == 0)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
     , computing_timer(communicator,
                       pcout,
@@ -329,33 +333,35 @@ namespace ViscoContact
 
   // @sect4{ViscoplasticContact::check_memory_estimate}
   //
-  // The size of the mesh follows from the parameters: the generated box has
-  // (N 2^r + 1)^dim vertices for N Subdivisions and r Global refinements
-  // (plus a centre vertex per square for the crossed pattern); a Gmsh file
-  // the node count at the head of its $Nodes section (read by rank 0, a few
-  // lines) times 2^(dim r), as uniform refinement multiplies the vertices by
-  // about 2^dim. dim dofs per vertex. Each rank needs about 150 MB for the
-  // libraries plus its share of the dofs times the memory per dof measured
-  // on the benchmark scenes (peak resident memory of runs of 10^4 to 10^5
-  // dofs per rank): about 2 kB per dof in 2D, and in 3D 13 kB on the
-  // condensed back end, whose factorisation fills in, and 6 kB on the full
-  // space back end (which Method = auto takes for large 3D meshes; 6 to 9
-  // kB on tetrahedra and hexahedra, doc/scaling.md). A group root of a
-  // simplex mesh (mesh.cc) holds the whole refined mesh during set-up
-  // besides: about 400 bytes per cell (390 to 420 measured by
-  // benchmarks/run_mesh_memory_scaling.py, doc/scaling.md). The estimates
-  // of the ranks of each compute node are summed and compared with the
-  // node's physical memory (MemTotal of /proc/meminfo). They are lower
-  // estimates (the fill-in of a factorisation grows faster than the dofs),
-  // so a mesh is refused only if it certainly does not fit.
+  // A lower estimate of the memory a run needs on each compute node, so that
+  // a mesh is refused only if it certainly does not fit. The size of the
+  // mesh follows from the parameters: the generated box of N Subdivisions
+  // and r Global refinements has (N 2^r)^dim squares (cubes), each cut into
+  // the simplices of its pattern, and (N 2^r + 1)^dim vertices (the
+  // five-tetrahedra pattern has no more; crossed adds a centre per square).
+  // A Gmsh file is known by the node count V at the head of its $Nodes
+  // section (read by rank 0, a few lines): a mesh of V vertices has at least
+  // V - dim simplices or V / 2^(dim-1) - 1 hypercubes, refinement multiplies
+  // the cells by 2^dim per level, and a fine mesh has about 2 triangles, 6.5
+  // tetrahedra or 1 hypercube per vertex.
+  //
+  // Each rank needs about 150 MB for the libraries, and for the run its
+  // share of the dofs times the memory per dof measured on the benchmark
+  // scenes (peak resident memory of runs of 10^4 to 10^5 dofs per rank):
+  // about 2 kB per dof in 2D, and in 3D 13 kB on the condensed back end,
+  // whose factorisation fills in, and 6 kB on the full space back end (which
+  // Method = auto takes for large 3D meshes; doc/scaling.md). A group root of
+  // a simplex mesh (mesh.cc) holds the whole refined mesh during set-up,
+  // before the run's data exist: about 400 bytes per cell (405 to 444
+  // measured on tetrahedra, doc/scaling.md). The set-up and the run are
+  // summed over the ranks of each node apart, and the larger sum is
+  // compared with the node's physical memory (MemTotal of /proc/meminfo).
   template <int dim>
   void
   ViscoplasticContact<dim>::check_memory_estimate() const
   {
     const bool simplex
       = (parameters.cell_type == Parameters::CellType::simplex);
-    const double refinement_factor
-      = std::pow(2., dim * parameters.global_refinements);
     double vertices = 0, cells = 0;
     if (parameters.mesh_file.empty())
       {
@@ -380,34 +386,31 @@ namespace ViscoContact
     else
       {
         // Rank 0 is a group root: it opens the file anyway.
-        const double file_nodes = Utilities::MPI::broadcast(
+        const double file_vertices = Utilities::MPI::broadcast(
           mpi_communicator,
           Utilities::MPI::this_mpi_process(mpi_communicator) == 0
             ? gmsh_node_count(parameters.mesh_file)
             : 0.);
-        vertices = file_nodes * refinement_factor;
-        // About 2 triangles or 5 tetrahedra per vertex in a fine mesh.
-        cells = vertices * (simplex ? (dim == 2 ? 2 : 5) : 1);
+        const double file_cells = simplex
+                                    ? file_vertices - dim
+                                    : file_vertices / std::pow(2., dim - 1) - 1;
+        cells                   = std::max(0., file_cells)
+                * std::pow(2., dim * parameters.global_refinements);
+        vertices = cells / (simplex ? (dim == 2 ? 2 : 6.5) : 1);
       }
     const double dofs = dim * vertices;
     const double bytes_per_dof
       = dim == 2                                             ? 2e3
         : parameters.method == Parameters::Method::condensed ? 13e3
                                                              : 6e3;
-    const double       bytes_per_mesh_cell = 400;
     const unsigned int n_ranks
       = Utilities::MPI::n_mpi_processes(mpi_communicator);
-    const bool group_root
-      = simplex
-        && Utilities::MPI::this_mpi_process(mpi_communicator)
-               % mesh_group_size(parameters, mpi_communicator)
-             == 0;
-    const double rank_bytes = 150e6 + dofs / n_ranks * bytes_per_dof;
-    const double root_bytes = cells * bytes_per_mesh_cell;
-    const double this_rank  = rank_bytes + (group_root ? root_bytes : 0.);
+    const double libraries  = 150e6;
+    const double rank_bytes = libraries + dofs / n_ranks * bytes_per_dof;
+    const double root_bytes = libraries + cells * 400;
 
-    // The physical memory of this rank's node and the estimates of the ranks
-    // on it.
+    // The physical memory of this rank's node, and the set-up and run
+    // estimates of the ranks on it.
     double node_memory = 0;
     {
       std::ifstream meminfo("/proc/meminfo");
@@ -429,12 +432,17 @@ namespace ViscoContact
                         0,
                         MPI_INFO_NULL,
                         &node_communicator);
-    const double node_need = Utilities::MPI::sum(this_rank, node_communicator);
+    const double setup_need
+      = Utilities::MPI::sum(mesh_group_root ? root_bytes : libraries,
+                            node_communicator);
+    const double run_need = Utilities::MPI::sum(rank_bytes, node_communicator);
     MPI_Comm_free(&node_communicator);
     // The node that lacks most; without /proc/meminfo (not Linux) there is
     // nothing to compare with.
     const double shortfall
-      = Utilities::MPI::max(node_memory > 0 ? node_need - node_memory : -1.,
+      = Utilities::MPI::max(node_memory > 0
+                              ? std::max(setup_need, run_need) - node_memory
+                              : -1.,
                             mpi_communicator);
     if (shortfall <= 0)
       return;
@@ -456,7 +464,7 @@ namespace ViscoContact
             << (n_ranks == 1 ? " rank)" : " ranks)");
     if (simplex)
       message << ", and " << root_bytes / 1e9
-              << " GB more on each group root, which builds the whole mesh "
+              << " GB on each group root while it builds the whole mesh "
                  "(<Mesh group size>)";
     message << "; a compute node of this run lacks " << shortfall / 1e9
             << " GB; accepted: a mesh that fits (fewer "

@@ -19,12 +19,13 @@ source "$here/robustness/helpers.sh"
 executable=$1
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
-# same_results NAME: results/time_series.csv against one_rank.csv, without
-# the wall times and the Krylov iterations (which depend on the partition).
+# results_only FILE: a time_series.csv without the wall times and the
+# Krylov iterations (which depend on the partition).
 results_only() {
   awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) skip[i] = ($i == "wall_time" || $i == "krylov_iterations") }
            { line = ""; for (i = 1; i <= NF; ++i) if (!skip[i]) line = line $i ","; print line }' "$1"
 }
+# same_results NAME: results/time_series.csv against one_rank.csv.
 same_results() {
   results_only one_rank.csv > expected.csv
   results_only results/time_series.csv > obtained.csv

@@ -4,7 +4,6 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 
-
 #include <exception>
 #include <map>
 #include <sstream>

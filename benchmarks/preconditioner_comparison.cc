@@ -2,9 +2,9 @@
 // scene of the program, by CG to the scene's Tolerance, with each of several
 // preconditioners in turn: ML's smoothed aggregation (as the full space back
 // end configures it, and with other settings), hypre's BoomerAMG through
-// PETSc (with and without its options for systems of PDEs), and a
-// matrix-free geometric multigrid on the levels of the p4est hexahedral
-// mesh (as step-37, vector-valued). For each it
+// PETSc (with and without its options for systems of PDEs), and the
+// matrix-free back end's geometric multigrid (global coarsening of the
+// p4est hexahedral mesh, matrix_free_elasticity.h). For each it
 // reports the set-up time, the solve time, the CG iterations and the memory
 // the preconditioner took, and checks that every preconditioner gives the
 // same solution.
@@ -63,18 +63,7 @@
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 
-#include <deal.II/matrix_free/fe_evaluation.h>
-#include <deal.II/matrix_free/matrix_free.h>
-#include <deal.II/matrix_free/operators.h>
-#include <deal.II/matrix_free/tools.h>
 
-#include <deal.II/multigrid/mg_coarse.h>
-#include <deal.II/multigrid/mg_constrained_dofs.h>
-#include <deal.II/multigrid/mg_matrix.h>
-#include <deal.II/multigrid/mg_smoother.h>
-#include <deal.II/multigrid/mg_tools.h>
-#include <deal.II/multigrid/mg_transfer_matrix_free.h>
-#include <deal.II/multigrid/multigrid.h>
 
 #include <deal.II/numerics/vector_tools.h>
 
@@ -83,6 +72,7 @@
 #include "constraints.h"
 #include "elastic_operator.h"
 #include "loads.h"
+#include "back_ends/matrix_free_elasticity.h"
 #include "material.h"
 #include "mesh.h"
 #include "parameters.h"
@@ -174,93 +164,6 @@ namespace PreconditionerComparison
         }
     return v;
   }
-
-
-
-  // @sect3{The elastic operator without a matrix}
-  //
-  // For the geometric multigrid (variant "gmg") on hexahedra: K applied cell
-  // by cell as in step-37, but vector-valued (FEEvaluation with dim
-  // components) with the isotropic stress sigma = lambda tr(eps) I + 2 mu
-  // eps of the program's 3D material, at the 2^dim Gauss points the
-  // program assembles K with. The same class serves the finest level in
-  // double and the multigrid levels in float; the diagonal (for the
-  // Chebyshev smoother's Jacobi step) comes from MatrixFreeTools.
-  template <int dim, typename number>
-  class ElasticityOperator
-    : public MatrixFreeOperators::
-        Base<dim, LinearAlgebra::distributed::Vector<number>>
-  {
-  public:
-    using value_type = number;
-    using VectorT    = LinearAlgebra::distributed::Vector<number>;
-
-    void
-    set_material(const double lambda, const double mu)
-    {
-      lame_lambda = lambda;
-      lame_mu     = mu;
-    }
-
-    void
-    compute_diagonal() override
-    {
-      this->inverse_diagonal_entries
-        = std::make_shared<DiagonalMatrix<VectorT>>();
-      VectorT &inverse_diagonal = this->inverse_diagonal_entries->get_vector();
-      this->data->initialize_dof_vector(inverse_diagonal);
-      MatrixFreeTools::compute_diagonal(*this->data,
-                                        inverse_diagonal,
-                                        &ElasticityOperator::local_compute,
-                                        this);
-      this->set_constrained_entries_to_one(inverse_diagonal);
-      for (auto &d : inverse_diagonal)
-        d = (std::abs(d) > 1e-30 ? 1. / d : 1.);
-    }
-
-  private:
-    void
-    apply_add(VectorT &dst, const VectorT &src) const override
-    {
-      this->data->cell_loop(&ElasticityOperator::local_apply, this, dst, src);
-    }
-
-    void
-    local_apply(const MatrixFree<dim, number>               &data,
-                VectorT                                     &dst,
-                const VectorT                               &src,
-                const std::pair<unsigned int, unsigned int> &cells) const
-    {
-      FEEvaluation<dim, 1, 2, dim, number> phi(data);
-      for (unsigned int cell = cells.first; cell < cells.second; ++cell)
-        {
-          phi.reinit(cell);
-          phi.read_dof_values(src);
-          local_compute(phi);
-          phi.distribute_local_to_global(dst);
-        }
-    }
-
-    void
-    local_compute(FEEvaluation<dim, 1, 2, dim, number> &phi) const
-    {
-      phi.evaluate(EvaluationFlags::gradients);
-      for (const unsigned int q : phi.quadrature_point_indices())
-        {
-          SymmetricTensor<2, dim, VectorizedArray<number>> sigma
-            = phi.get_symmetric_gradient(q);
-          const VectorizedArray<number> lambda_trace
-            = number(lame_lambda) * trace(sigma);
-          sigma *= number(2 * lame_mu);
-          for (unsigned int d = 0; d < dim; ++d)
-            sigma[d][d] += lambda_trace;
-          phi.submit_symmetric_gradient(sigma, q);
-        }
-      phi.integrate(EvaluationFlags::gradients);
-    }
-
-    double lame_lambda = 0, lame_mu = 0;
-  };
 
 
 
@@ -432,7 +335,7 @@ namespace PreconditionerComparison
                                         parameters.viscosity,
                                         parameters.yield_stress);
     // K as the program assembles it; b by the loop below.
-    assemble_elastic_operator(
+    assemble_elastic_operator<dim>(
       mapping,
       dof_handler,
       stress_quadrature,
@@ -880,160 +783,79 @@ namespace PreconditionerComparison
 
   // @sect4{ElasticProblem::solve_with_gmg}
   //
-  // Geometric multigrid on the levels of the p4est mesh, matrix-free, as in
-  // step-37: the operator of every level applied cell by cell in float, a
-  // Chebyshev smoother around the Jacobi step on every level but the
-  // coarsest, where a Chebyshev iteration of the degree that reduces the
-  // error by 1e3 acts as the coarse solver (the coarse mesh has m^dim cells,
-  // m = N / 2^j), and the transfer between levels by the finite element's
-  // embedding. CG runs on the matrix-free operator of the finest level in
-  // double (outer=mf) or on the assembled K (outer=matrix). The keys:
+  // The matrix-free back end's operator and multigrid
+  // (matrix_free_elasticity.h): K applied cell by cell, a V-cycle on the
+  // meshes of global coarsening with Chebyshev smoothing and ML's AMG on
+  // the coarse mesh. CG runs on the matrix-free operator (outer=mf) or on
+  // the assembled K (outer=matrix). The keys:
   //  - degree: the Chebyshev degree of the smoother (4);
   //  - range: its smoothing range, the part of the spectrum it damps (15);
   //  - outer: mf or matrix (mf).
-  // Hexahedra only, and not with hanging nodes (Contact refinement levels =
-  // 0): the levels need no interface matrices then.
+  // Hexahedra only.
   template <int dim>
   typename ElasticProblem<dim>::Result
   ElasticProblem<dim>::solve_with_gmg(const Variant &variant, VectorType &u)
   {
-    AssertThrow(!reference_cell.is_simplex()
-                  && parameters.contact_refinements == 0
-                  && parameters.mesh_file.empty(),
-                ExcMessage("gmg: uniformly refined hexahedral boxes only"));
-    using LevelVector   = LinearAlgebra::distributed::Vector<float>;
-    using LevelOperator = ElasticityOperator<dim, float>;
-    using SmootherType  = PreconditionChebyshev<LevelOperator, LevelVector>;
-    const double E = parameters.young_modulus, k = parameters.poisson_ratio;
-    const double lambda = E * k / ((1 + k) * (1 - 2 * k)),
-                 mu     = E / (2 * (1 + k));
-    AssertThrow(dim == 3, ExcMessage("gmg: the 3D material only"));
+    AssertThrow(!reference_cell.is_simplex(),
+                ExcMessage("gmg: hexahedra only"));
+    const PerzynaMaterial<dim> material(parameters.young_modulus,
+                                        parameters.poisson_ratio,
+                                        parameters.viscosity,
+                                        parameters.yield_stress);
+    ElasticOperatorData<dim>   data{
+      mapping,
+      dof_handler,
+      constraints,
+      [&](const types::material_id) -> const SymmetricTensor<4, dim>   &{
+        return material.elasticity_tensor();
+      },
+      [&](const DoFHandler<dim>     &level_dofs,
+          const IndexSet            &relevant,
+          AffineConstraints<double> &level_constraints) {
+        make_displacement_constraints(mapping,
+                                      level_dofs,
+                                      {DirichletPart{parameters.clamped_ids,
+                                                     {}}},
+                                      {},
+                                      relevant,
+                                      level_constraints);
+      }};
+    data.smoother_degree = std::stoi(variant.get("degree", "4"));
+    data.smoothing_range = std::stod(variant.get("range", "15"));
 
     Result       result;
     const double before = resident_mb();
     Timer        timer;
-    // The finest level's operator.
-    const std::set<types::boundary_id> clamped(parameters.clamped_ids.begin(),
-                                               parameters.clamped_ids.end());
-    ElasticityOperator<dim, double>    fine_operator;
-    {
-      typename MatrixFree<dim, double>::AdditionalData data;
-      data.tasks_parallel_scheme
-        = MatrixFree<dim, double>::AdditionalData::none;
-      data.mapping_update_flags = update_gradients | update_JxW_values;
-      auto matrix_free          = std::make_shared<MatrixFree<dim, double>>();
-      matrix_free->reinit(mapping,
-                          dof_handler,
-                          constraints,
-                          QGauss<1>(2),
-                          data);
-      fine_operator.initialize(matrix_free);
-      fine_operator.set_material(lambda, mu);
-    }
-    // The levels: dofs, the clamped dofs of each level, operators.
-    dof_handler.distribute_mg_dofs();
-    MGConstrainedDoFs mg_constrained_dofs;
-    mg_constrained_dofs.initialize(dof_handler);
-    mg_constrained_dofs.make_zero_boundary_constraints(dof_handler, clamped);
-    const unsigned int           n_levels = triangulation->n_global_levels();
-    MGLevelObject<LevelOperator> level_operators(0, n_levels - 1);
-    for (unsigned int level = 0; level < n_levels; ++level)
-      {
-        IndexSet relevant;
-        DoFTools::extract_locally_relevant_level_dofs(dof_handler,
-                                                      level,
-                                                      relevant);
-        AffineConstraints<double> level_constraints;
-        level_constraints.reinit(relevant);
-        level_constraints.add_lines(
-          mg_constrained_dofs.get_boundary_indices(level));
-        level_constraints.close();
-        typename MatrixFree<dim, float>::AdditionalData data;
-        data.tasks_parallel_scheme
-          = MatrixFree<dim, float>::AdditionalData::none;
-        data.mapping_update_flags = update_gradients | update_JxW_values;
-        data.mg_level             = level;
-        auto matrix_free          = std::make_shared<MatrixFree<dim, float>>();
-        matrix_free->reinit(mapping,
-                            dof_handler,
-                            level_constraints,
-                            QGauss<1>(2),
-                            data);
-        level_operators[level].initialize(matrix_free,
-                                          mg_constrained_dofs,
-                                          level);
-        level_operators[level].set_material(lambda, mu);
-        level_operators[level].compute_diagonal();
-      }
-    MGTransferMatrixFree<dim, float> transfer(mg_constrained_dofs);
-    transfer.build(dof_handler);
-
-    MGLevelObject<typename SmootherType::AdditionalData> smoother_data(0,
-                                                                       n_levels
-                                                                         - 1);
-    for (unsigned int level = 0; level < n_levels; ++level)
-      {
-        if (level > 0)
-          {
-            smoother_data[level].smoothing_range
-              = std::stod(variant.get("range", "15"));
-            smoother_data[level].degree = std::stoi(variant.get("degree", "4"));
-            smoother_data[level].eig_cg_n_iterations = 10;
-          }
-        else
-          {
-            smoother_data[0].smoothing_range = 1e-3;
-            smoother_data[0].degree          = numbers::invalid_unsigned_int;
-            smoother_data[0].eig_cg_n_iterations = level_operators[0].m();
-          }
-        smoother_data[level].preconditioner
-          = level_operators[level].get_matrix_diagonal_inverse();
-      }
-    mg::SmootherRelaxation<SmootherType, LevelVector> smoother;
-    smoother.initialize(level_operators, smoother_data);
-    MGCoarseGridApplySmoother<LevelVector> coarse;
-    coarse.initialize(smoother);
-    mg::Matrix<LevelVector> level_matrix(level_operators);
-    Multigrid<LevelVector>  mg(level_matrix,
-                              coarse,
-                              transfer,
-                              smoother,
-                              smoother);
-    PreconditionMG<dim, LevelVector, MGTransferMatrixFree<dim, float>>
-      preconditioner(dof_handler, mg, transfer);
-    // The Chebyshev smoothers estimate their eigenvalues at the first
-    // application; one V-cycle here puts that into the set-up.
-    VectorType x, y;
-    fine_operator.initialize_dof_vector(x);
-    fine_operator.initialize_dof_vector(y);
-    x = 1.;
-    preconditioner.vmult(y, x);
+    // The set-up ends with one V-cycle, in which the Chebyshev smoothers
+    // estimate their eigenvalues.
+    const MatrixFreeElasticity<dim> gmg(data, b);
     result.setup_time = timer.wall_time();
     result.memory     = resident_mb() - before;
+    struct Operator
+    {
+      std::function<void(VectorType &, const VectorType &)> apply;
+      void
+      vmult(VectorType &dst, const VectorType &src) const
+      {
+        apply(dst, src);
+      }
+    };
+    const Operator mf{
+      [&](VectorType &dst, const VectorType &src) { gmg.vmult(dst, src); }};
+    const Operator preconditioner{[&](VectorType &dst, const VectorType &src) {
+      gmg.precondition(dst, src);
+    }};
 
-    VectorType rhs, solution;
-    fine_operator.initialize_dof_vector(rhs);
-    fine_operator.initialize_dof_vector(solution);
-    rhs.copy_locally_owned_data_from(b);
+    VectorType solution(b);
+    solution = 0;
     SolverControl control(10000, parameters.tolerance * b.l2_norm());
     timer.restart();
     try
       {
         if (variant.get("outer", "mf") == "matrix")
-          {
-            VectorType matrix_solution(b);
-            matrix_solution = 0;
-            SolverCG<VectorType>(control).solve(K,
-                                                matrix_solution,
-                                                b,
-                                                preconditioner);
-            solution.copy_locally_owned_data_from(matrix_solution);
-          }
+          SolverCG<VectorType>(control).solve(K, solution, b, preconditioner);
         else
-          SolverCG<VectorType>(control).solve(fine_operator,
-                                              solution,
-                                              rhs,
-                                              preconditioner);
+          SolverCG<VectorType>(control).solve(mf, solution, b, preconditioner);
       }
     catch (const SolverControl::NoConvergence &)
       {
@@ -1042,21 +864,22 @@ namespace PreconditionerComparison
     result.solve_time = timer.wall_time();
     result.iterations = control.last_step();
     {
-      Timer product_timer;
+      VectorType y(b);
+      Timer      product_timer;
       for (unsigned int i = 0; i < 5; ++i)
-        fine_operator.vmult(y, rhs);
+        gmg.vmult(y, b);
       const double product = product_timer.wall_time() / 5;
       product_timer.restart();
       for (unsigned int i = 0; i < 5; ++i)
-        preconditioner.vmult(y, rhs);
+        gmg.precondition(y, b);
       result.note = "K " + std::to_string(1e3 * product) + " ms, cycle "
                     + std::to_string(1e3 * product_timer.wall_time() / 5)
                     + " ms";
     }
-    u = 0;
-    u.copy_locally_owned_data_from(solution);
+    u = solution;
     return result;
   }
+
 
 
   // @sect4{ElasticProblem::run}

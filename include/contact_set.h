@@ -164,6 +164,10 @@ namespace ViscoContact
     // the matrix). One formula for every back end.
     void
     set_operator(const MatrixType &A);
+    // The same from the blocks A_ii of this rank's nodes, for an operator
+    // without a matrix.
+    void
+    set_operator(const std::vector<Tensor<2, dim>> &node_blocks);
 
     const NodeGeometry &
     node(const unsigned int i) const;

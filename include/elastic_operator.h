@@ -11,7 +11,9 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 
+#include <array>
 #include <functional>
+#include <vector>
 
 namespace ViscoContact
 {
@@ -36,6 +38,20 @@ namespace ViscoContact
                             const ElasticityOfCell<dim>     &elasticity,
                             const AffineConstraints<double> &constraints,
                             TrilinosWrappers::SparseMatrix  &matrix);
+
+  // Without a matrix: the dim x dim blocks K_ii of the given vertices (the
+  // dofs of each, by component), from the cells around them, owned and
+  // ghost (all of a locally owned vertex's cells are one or the other).
+  // These are K's blocks where no hanging node depends on the vertex; the
+  // contact set only scales its parameters by them.
+  template <int dim>
+  std::vector<Tensor<2, dim>>
+  elastic_node_blocks(
+    const Mapping<dim>                                          &mapping,
+    const DoFHandler<dim>                                       &dof_handler,
+    const Quadrature<dim>                                       &quadrature,
+    const ElasticityOfCell<dim>                                 &elasticity,
+    const std::vector<std::array<types::global_dof_index, dim>> &node_dofs);
 } // namespace ViscoContact
 
 #endif

@@ -104,7 +104,8 @@ namespace ViscoContact
     {
       automatic,
       condensed,
-      full_space
+      full_space,
+      matrix_free
     };
 
     enum class Preconditioner
@@ -507,6 +508,9 @@ namespace ViscoContact
       check_study_entries() const;
       void
       check_mesh_adaptation_entries() const;
+      // Method = matrix free: hypercube cells, the explicit update.
+      void
+      check_method_entries() const;
       void
       check_schedule_size(const ParameterHandler &prm) const;
       void

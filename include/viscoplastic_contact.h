@@ -30,6 +30,7 @@
 #include "constraints.h"
 #include "contact_nodes.h"
 #include "contact_set.h"
+#include "elastic_operator.h"
 #include "material.h"
 #include "parameters.h"
 #include "robustness/checkpoint_file.h"
@@ -147,6 +148,16 @@ namespace ViscoContact
     setup_system();
     void
     assemble_elastic_operator();
+    // Method = matrix free: no matrix of K is assembled; the back end
+    // applies it cell by cell.
+    bool
+    matrix_free() const
+    {
+      return parameters.method == Parameters::Method::matrix_free;
+    }
+    // The elasticity tensor of a cell's material.
+    ElasticityOfCell<dim>
+    cell_elasticity() const;
     void
     setup_stress_points();
     void

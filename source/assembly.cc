@@ -12,6 +12,7 @@
 #include "viscoplastic_contact.h"
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <sstream>
 
@@ -111,6 +112,66 @@ namespace ViscoContact
                                                  matrix);
         }
     matrix.compress(VectorOperation::add);
+  }
+
+
+
+  // @sect4{elastic_node_blocks}
+  //
+  // The cell matrices of the cells around the vertices, restricted to the
+  // pairs of dofs of one vertex.
+  template <int dim>
+  std::vector<Tensor<2, dim>>
+  elastic_node_blocks(
+    const Mapping<dim>                                          &mapping,
+    const DoFHandler<dim>                                       &dof_handler,
+    const Quadrature<dim>                                       &quadrature,
+    const ElasticityOfCell<dim>                                 &elasticity,
+    const std::vector<std::array<types::global_dof_index, dim>> &node_dofs)
+  {
+    std::vector<Tensor<2, dim>> blocks(node_dofs.size());
+    // Which node and component a dof is.
+    std::map<types::global_dof_index, std::pair<unsigned int, unsigned int>>
+      node_of_dof;
+    for (unsigned int i = 0; i < node_dofs.size(); ++i)
+      for (unsigned int c = 0; c < dim; ++c)
+        node_of_dof[node_dofs[i][c]] = {i, c};
+    FEValues<dim>                    fe_values(mapping,
+                            dof_handler.get_fe(),
+                            quadrature,
+                            update_gradients | update_JxW_values);
+    const FEValuesExtractors::Vector displacement(0);
+    const unsigned int dofs_per_cell = dof_handler.get_fe().n_dofs_per_cell();
+    std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (!cell->is_artificial())
+        {
+          cell->get_dof_indices(dof_indices);
+          std::vector<std::pair<unsigned int, decltype(node_of_dof.begin())>>
+            local;
+          for (unsigned int k = 0; k < dofs_per_cell; ++k)
+            if (const auto entry = node_of_dof.find(dof_indices[k]);
+                entry != node_of_dof.end())
+              local.emplace_back(k, entry);
+          if (local.empty())
+            continue;
+          const SymmetricTensor<4, dim> &E = elasticity(cell);
+          fe_values.reinit(cell);
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            for (const auto &[k, row] : local)
+              {
+                const SymmetricTensor<2, dim> stress
+                  = E * fe_values[displacement].symmetric_gradient(k, q)
+                    * fe_values.JxW(q);
+                for (const auto &[l, column] : local)
+                  if (column->second.first == row->second.first)
+                    blocks[row->second.first][row->second.second]
+                          [column->second.second]
+                      += stress
+                         * fe_values[displacement].symmetric_gradient(l, q);
+              }
+        }
+    return blocks;
   }
 
 
@@ -611,6 +672,20 @@ namespace ViscoContact
                             const ElasticityOfCell<3> &,
                             const AffineConstraints<double> &,
                             TrilinosWrappers::SparseMatrix &);
+  template std::vector<Tensor<2, 2>>
+  elastic_node_blocks<2>(
+    const Mapping<2> &,
+    const DoFHandler<2> &,
+    const Quadrature<2> &,
+    const ElasticityOfCell<2> &,
+    const std::vector<std::array<types::global_dof_index, 2>> &);
+  template std::vector<Tensor<2, 3>>
+  elastic_node_blocks<3>(
+    const Mapping<3> &,
+    const DoFHandler<3> &,
+    const Quadrature<3> &,
+    const ElasticityOfCell<3> &,
+    const std::vector<std::array<types::global_dof_index, 3>> &);
   template class ViscoplasticContact<2>;
   template class ViscoplasticContact<3>;
 } // namespace ViscoContact

@@ -528,16 +528,26 @@ namespace ViscoContact
   void
   ContactSet<dim>::set_operator(const MatrixType &A)
   {
+    std::vector<Tensor<2, dim>> node_blocks(size());
+    for (unsigned int i = 0; i < size(); ++i)
+      for (unsigned int a = 0; a < dim; ++a)
+        for (unsigned int b = 0; b < dim; ++b)
+          node_blocks[i][a][b] = A.el(geometry[i].dofs[a], geometry[i].dofs[b]);
+    set_operator(node_blocks);
+  }
+
+
+
+  template <int dim>
+  void
+  ContactSet<dim>::set_operator(const std::vector<Tensor<2, dim>> &node_blocks)
+  {
     std::vector<double> c(size());
     for (unsigned int i = 0; i < size(); ++i)
       {
         const double softening = laws().zone_law(zone(i)).steepest_softening();
         const NodeGeometry &n  = geometry[i];
-        double              normal_stiffness = 0;
-        for (unsigned int a = 0; a < dim; ++a)
-          for (unsigned int b = 0; b < dim; ++b)
-            normal_stiffness
-              += n.normal[a] * n.normal[b] * A.el(n.dofs[a], n.dofs[b]);
+        const double normal_stiffness = n.normal * (node_blocks[i] * n.normal);
         // The factor 2 keeps the growth of q along the softest piece at
         // least c_i / 2, even where the node's own stiffness is small.
         c[i] = std::max(normal_stiffness / weight(i), 2 * softening);

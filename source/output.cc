@@ -838,7 +838,7 @@ namespace ViscoContact
     VectorType load(external_load);
     const bool holding_load = (load.l2_norm() == 0);
     if (holding_load)
-      stiffness_matrix.vmult(load, solution);
+      contact_solver->apply_operator(load, solution);
     // One solve first, untimed: it builds the preconditioner of the operator
     // where the back end has none yet (the AMG of K alone), a set-up that is
     // not part of a solve.

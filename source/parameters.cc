@@ -1154,7 +1154,8 @@ namespace ViscoContact
           method,
           {{"auto", Method::automatic},
            {"condensed", Method::condensed},
-           {"full space", Method::full_space}},
+           {"full space", Method::full_space},
+           {"matrix free", Method::matrix_free}},
           "How a time step's linear contact problem is solved (doc/model.md, "
           "section 2). condensed: the operator is factorised (Direct solver) "
           "and the active set works on the contact nodes alone through the "
@@ -1165,7 +1166,12 @@ namespace ViscoContact
           "full space: the active set in "
           "the full space, CG (GMRES for the implicit update's tangent) "
           "preconditioned by the Preconditioner of the operator; scales to "
-          "large 3D meshes and many ranks. auto: condensed on one rank when "
+          "large 3D meshes and many ranks. matrix free: the full space "
+          "back end without any matrix of the mesh, the operator applied "
+          "cell by cell and preconditioned by geometric multigrid on the "
+          "meshes of global coarsening (the least memory per unknown; "
+          "hypercube cells and the explicit stress update). auto: condensed "
+          "on one rank when "
           "the contact surface and the mesh are small enough (printed at "
           "start-up with the reason), full space otherwise.");
         add_selection(
@@ -1542,6 +1548,7 @@ namespace ViscoContact
       Output::check_parameters(prm);
       check_study_entries();
       check_mesh_adaptation_entries();
+      check_method_entries();
       check_schedule_size(prm);
       check_unused_entries(prm);
     }
@@ -1750,6 +1757,33 @@ namespace ViscoContact
                 "a pattern that gives nested meshes (/) when a convergence "
                 "study runs");
     }
+
+    void
+    AllParameters::check_method_entries() const
+    {
+      // The matrix-free operator evaluates tensor-product elements
+      // (deal.II 9.4 has no multigrid hierarchy for simplex meshes), and it
+      // is the elastic K: the implicit update's tangent changes in every
+      // Newton iteration and is assembled.
+      if (method != Method::matrix_free)
+        return;
+      require(cell_type == CellType::hypercube,
+              "Linear solver",
+              "Method",
+              "matrix free",
+              "auto, condensed or full space when Cell type = simplex "
+              "(subsection <Geometry>): the matrix-free back end's multigrid "
+              "needs hypercube cells");
+      require(stress_update == StressUpdate::explicit_euler,
+              "Linear solver",
+              "Method",
+              "matrix free",
+              "auto, condensed or full space when Stress update = implicit "
+              "(subsection <Time>): the implicit update's tangent is "
+              "assembled in every Newton iteration");
+    }
+
+
 
     void
     AllParameters::check_mesh_adaptation_entries() const

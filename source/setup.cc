@@ -169,27 +169,31 @@ namespace ViscoContact
       // A rank's cells also couple ghost dofs; distribute_sparsity_pattern()
       // sends those rows to the ranks that own them, so that each rank ends
       // with the complete rows of its owned dofs, which is how the Trilinos
-      // matrices are partitioned.
-      DynamicSparsityPattern dsp(locally_relevant_dofs);
-      DoFTools::make_sparsity_pattern(dof_handler,
-                                      dsp,
-                                      constraints,
-                                      /*keep_constrained_dofs=*/false);
-      SparsityTools::distribute_sparsity_pattern(dsp,
-                                                 locally_owned_dofs,
-                                                 mpi_communicator,
-                                                 locally_relevant_dofs);
-      stiffness_matrix.reinit(locally_owned_dofs,
-                              locally_owned_dofs,
-                              dsp,
-                              mpi_communicator);
-      // The tangent of the implicit update has the same couplings as K; the
-      // explicit update never needs it.
-      if (implicit_update())
-        tangent_matrix.reinit(locally_owned_dofs,
-                              locally_owned_dofs,
-                              dsp,
-                              mpi_communicator);
+      // matrices are partitioned. Without a matrix (Method = matrix free) there
+      // is nothing to lay out.
+      if (!matrix_free())
+        {
+          DynamicSparsityPattern dsp(locally_relevant_dofs);
+          DoFTools::make_sparsity_pattern(dof_handler,
+                                          dsp,
+                                          constraints,
+                                          /*keep_constrained_dofs=*/false);
+          SparsityTools::distribute_sparsity_pattern(dsp,
+                                                     locally_owned_dofs,
+                                                     mpi_communicator,
+                                                     locally_relevant_dofs);
+          stiffness_matrix.reinit(locally_owned_dofs,
+                                  locally_owned_dofs,
+                                  dsp,
+                                  mpi_communicator);
+          // The tangent of the implicit update has the same couplings as K;
+          // the explicit update never needs it.
+          if (implicit_update())
+            tangent_matrix.reinit(locally_owned_dofs,
+                                  locally_owned_dofs,
+                                  dsp,
+                                  mpi_communicator);
+        }
 
       // All displacement-sized vectors share one partition: owned entries and
       // the ghosts of the locally relevant dofs. Sharing one partitioner also
@@ -204,7 +208,8 @@ namespace ViscoContact
         vector->reinit(solution);
       solution.update_ghost_values(); // u_0 = 0, readable at the ghosts
     }
-    assemble_elastic_operator();
+    if (!matrix_free())
+      assemble_elastic_operator();
   }
 
 
@@ -226,20 +231,26 @@ namespace ViscoContact
   ViscoplasticContact<dim>::assemble_elastic_operator()
   {
     TimerOutput::Scope t(computing_timer, "Setup: assemble elastic operator");
-    const auto         elasticity_of_cell
-      = [this](const typename DoFHandler<dim>::active_cell_iterator &cell)
-      -> const SymmetricTensor<4, dim> & {
-      return materials[material_number(cell->material_id())]
-        .elasticity_tensor();
-    };
     ViscoContact::assemble_elastic_operator(mapping,
                                             dof_handler,
                                             stress_quadrature,
-                                            ElasticityOfCell<dim>(
-                                              elasticity_of_cell),
+                                            cell_elasticity(),
                                             constraints,
                                             stiffness_matrix);
     ++n_operator_assemblies;
+  }
+
+
+
+  template <int dim>
+  ElasticityOfCell<dim>
+  ViscoplasticContact<dim>::cell_elasticity() const
+  {
+    return [this](const typename DoFHandler<dim>::active_cell_iterator &cell)
+             -> const SymmetricTensor<4, dim> & {
+      return materials[material_number(cell->material_id())]
+        .elasticity_tensor();
+    };
   }
 
 
@@ -371,7 +382,19 @@ namespace ViscoContact
       slip_bounds.push_back(bound.get());
     FileOutput::agree_on_problem(contact_set.set_slip_bounds(slip_bounds),
                                  mpi_communicator);
-    contact_set.set_operator(stiffness_matrix);
+    if (!matrix_free())
+      contact_set.set_operator(stiffness_matrix);
+    else
+      {
+        std::vector<std::array<types::global_dof_index, dim>> node_dofs;
+        for (unsigned int i = 0; i < contact_set.size(); ++i)
+          node_dofs.push_back(contact_set.node(i).dofs);
+        contact_set.set_operator(elastic_node_blocks<dim>(mapping,
+                                                          dof_handler,
+                                                          stress_quadrature,
+                                                          cell_elasticity(),
+                                                          node_dofs));
+      }
   }
 
 
@@ -396,12 +419,33 @@ namespace ViscoContact
                       Utilities::MPI::n_mpi_processes(mpi_communicator),
                       dof_handler.n_dofs(),
                       contact_enabled ? contact_set.n_global_nodes() : 0);
-    method_reason  = choice.reason;
+    method_reason = choice.reason;
+    // What the matrix-free back end builds its operator and multigrid
+    // from: the coarser meshes get the constraints of the same boundary
+    // parts.
+    const ElasticOperatorData<dim> operator_data{
+      mapping,
+      dof_handler,
+      constraints,
+      [this](const types::material_id id) -> const SymmetricTensor<4, dim> & {
+        return materials[material_number(id)].elasticity_tensor();
+      },
+      [this](const DoFHandler<dim>     &level_dofs,
+             const IndexSet            &relevant,
+             AffineConstraints<double> &level_constraints) {
+        make_displacement_constraints(mapping,
+                                      level_dofs,
+                                      dirichlet_parts(),
+                                      parameters.symmetry_ids,
+                                      relevant,
+                                      level_constraints);
+      }};
     contact_solver = create_contact_solver<dim>(choice.method,
                                                 parameters,
                                                 mapping,
                                                 dof_handler,
-                                                solution);
+                                                solution,
+                                                operator_data);
     // Only the set-up of the operator is timed: the factorisation and the
     // compliance S (from the factor's last block) of the condensed back end, or
     // the AMG hierarchy of the full space one. K is symmetric (the argument

@@ -1,8 +1,9 @@
 #!/bin/bash
-# One row of the test matrix: the scene PRM with both back ends (Method =
-# condensed and full space) on N MPI ranks. Each run must match the stored
+# One row of the test matrix: the scene PRM with every back end that runs
+# it (Method = condensed and full space; matrix free too on hypercube cells
+# with the explicit update) on N MPI ranks. Each run must match the stored
 # reference REFERENCE (the condensed back end on one rank) step by step, and
-# the two runs must match each other:
+# the runs must match each other:
 #   - per step: step, time, nodes at the rigid limit, in compliance
 #     contact, out of contact (exactly), total contact force;
 #   - the final state: ||eps(u)||, ||sigma||, max von Mises, the final
@@ -37,7 +38,12 @@ compare() { # what, file a, file b
 
 steps "$reference" > reference_steps.txt
 final_state "$reference" > reference_final.txt
-for method in condensed "full space"; do
+methods=(condensed "full space")
+if grep -qE '^ *set Cell type *= *hypercube' "$prm" \
+  && grep -qE '^ *set Stress update *= *explicit' "$prm"; then
+  methods+=("matrix free")
+fi
+for method in "${methods[@]}"; do
   dir=${method// /_}
   rm -rf "$dir"
   mkdir -p "$dir"
@@ -71,9 +77,13 @@ for method in condensed "full space"; do
     tail -n +2 "$profile" | sort > "$profile.sorted"
   done
 done
-compare "Steps of the two back ends" condensed/steps.txt full_space/steps.txt
-for profile in condensed/results/contact_profile_*.csv; do
-  compare "Contact profiles of the two back ends" "$profile.sorted" \
-    "full_space/results/$(basename "$profile").sorted"
+for method in "${methods[@]:1}"; do
+  dir=${method// /_}
+  compare "Steps of Method = condensed and $method" condensed/steps.txt \
+    "$dir/steps.txt"
+  for profile in condensed/results/contact_profile_*.csv; do
+    compare "Contact profiles of Method = condensed and $method" \
+      "$profile.sorted" "$dir/results/$(basename "$profile").sorted"
+  done
 done
-echo "Both back ends on $n rank(s) match $(basename "$reference") and each other: $(wc -l < reference_steps.txt) steps, final state, profiles; .vtu fields present."
+echo "The ${#methods[@]} back ends on $n rank(s) match $(basename "$reference") and each other: $(wc -l < reference_steps.txt) steps, final state, profiles; .vtu fields present."

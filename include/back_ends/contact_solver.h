@@ -10,6 +10,7 @@
 #include <deal.II/lac/vector.h>
 
 #include "back_ends/linear_algebra.h"
+#include "back_ends/matrix_free_elasticity.h"
 #include "contact_nodes.h"
 #include "contact_set.h"
 #include "parameters.h"
@@ -47,7 +48,10 @@ namespace ViscoContact
   //    contact problem condensed to the contact nodes (the compliance
   //    S = N A^{-1} N^T read off the factor, or one solve per contact node);
   //  - FullSpaceContactSolver: a Krylov method in the full space on the
-  //    projected operator, preconditioned by AMG or a factorisation of A.
+  //    projected operator, preconditioned by AMG or a factorisation of A;
+  //    or, for Method = matrix free, with K applied cell by cell and
+  //    preconditioned by geometric multigrid (matrix_free_elasticity.h), no
+  //    matrix stored at all (set_operator() then ignores its argument).
   //
   // All calls but description() and statistics() are collective over the
   // communicator of the displacement vectors: ContactNodes::solve() makes
@@ -120,6 +124,11 @@ namespace ViscoContact
     finish(const ContactSet<dim> &contact, VectorType &u)
       = 0;
 
+    // dst = A src, with the operator of the last set_operator() (the
+    // matrix-free back end has no matrix of it).
+    virtual void
+    apply_operator(VectorType &dst, const VectorType &src) const = 0;
+
     // u = A^{-1} b without any contact: the step problem of a scene without
     // contact, and the reference solve of the run summary's cost
     // measurements.
@@ -179,14 +188,16 @@ namespace ViscoContact
 
   // The back end of the given method (not automatic). layout is a
   // displacement vector with the run's partition; the AMG needs the
-  // support points of the dofs for the rigid-body modes.
+  // support points of the dofs for the rigid-body modes, the matrix-free
+  // back end what its operator is built from.
   template <int dim>
   std::unique_ptr<ContactSolver<dim>>
   create_contact_solver(const Parameters::Method         method,
                         const Parameters::AllParameters &parameters,
                         const Mapping<dim>              &mapping,
                         const DoFHandler<dim>           &dof_handler,
-                        const VectorType                &layout);
+                        const VectorType                &layout,
+                        const ElasticOperatorData<dim>  &operator_data);
 
   // The constructors of the two back ends (condensed_contact_solver.cc,
   // full_space_contact_solver.cc), for create_contact_solver().
@@ -196,10 +207,12 @@ namespace ViscoContact
                                   const VectorType                &layout);
   template <int dim>
   std::unique_ptr<ContactSolver<dim>>
-  create_full_space_contact_solver(const Parameters::AllParameters &parameters,
-                                   const Mapping<dim>              &mapping,
-                                   const DoFHandler<dim>           &dof_handler,
-                                   const VectorType                &layout);
+  create_full_space_contact_solver(
+    const Parameters::AllParameters &parameters,
+    const Mapping<dim>              &mapping,
+    const DoFHandler<dim>           &dof_handler,
+    const VectorType                &layout,
+    const ElasticOperatorData<dim>  *matrix_free_data);
 } // namespace ViscoContact
 
 #endif

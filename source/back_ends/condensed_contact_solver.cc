@@ -149,11 +149,19 @@ namespace ViscoContact
                      Vector<double>        &y) override;
     LinearSolveReport
     solve_without_contact(const VectorType &b, VectorType &u) override;
+    void
+    apply_operator(VectorType &dst, const VectorType &src) const override
+    {
+      A->vmult(dst, src);
+    }
 
     void
     forget_kept_state() override;
 
   private:
+    // The operator of the last set_operator().
+    const MatrixType *A = nullptr;
+
     // The two ways to S (see above).
     FullMatrix<double>
     compliance_from_last_block(const ContactSet<dim> &contact);
@@ -250,10 +258,11 @@ namespace ViscoContact
   // contact node i caused by a unit normal force at node j.
   template <int dim>
   void
-  CondensedContactSolver<dim>::set_operator(const MatrixType      &A,
+  CondensedContactSolver<dim>::set_operator(const MatrixType      &matrix,
                                             const bool             symmetric,
                                             const ContactSet<dim> &contact)
   {
+    A = &matrix;
     // The rows of every node (the normal, and the tangents in a frictional
     // zone), numbered across ranks.
     friction = contact.has_friction();
@@ -286,7 +295,7 @@ namespace ViscoContact
 
     // A new operator replaces the old factorisation (the implicit update
     // calls this once per Newton iteration).
-    factorization.factorize(A, symmetric, contact_dofs);
+    factorization.factorize(*A, symmetric, contact_dofs);
     ++this->counts.operator_setups;
     const unsigned int m = row_start.back();
     if (m == 0) // no contact: the factorisation is all there is to do

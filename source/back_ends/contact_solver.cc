@@ -85,15 +85,18 @@ namespace ViscoContact
                         const Parameters::AllParameters &parameters,
                         const Mapping<dim>              &mapping,
                         const DoFHandler<dim>           &dof_handler,
-                        const VectorType                &layout)
+                        const VectorType                &layout,
+                        const ElasticOperatorData<dim>  &operator_data)
   {
     Assert(method != Parameters::Method::automatic, ExcInternalError());
     if (method == Parameters::Method::condensed)
       return create_condensed_contact_solver<dim>(parameters, layout);
-    return create_full_space_contact_solver<dim>(parameters,
-                                                 mapping,
-                                                 dof_handler,
-                                                 layout);
+    return create_full_space_contact_solver<dim>(
+      parameters,
+      mapping,
+      dof_handler,
+      layout,
+      method == Parameters::Method::matrix_free ? &operator_data : nullptr);
   }
 
 
@@ -104,11 +107,13 @@ namespace ViscoContact
                         const Parameters::AllParameters &,
                         const Mapping<2> &,
                         const DoFHandler<2> &,
-                        const VectorType &);
+                        const VectorType &,
+                        const ElasticOperatorData<2> &);
   template std::unique_ptr<ContactSolver<3>>
   create_contact_solver(const Parameters::Method,
                         const Parameters::AllParameters &,
                         const Mapping<3> &,
                         const DoFHandler<3> &,
-                        const VectorType &);
+                        const VectorType &,
+                        const ElasticOperatorData<3> &);
 } // namespace ViscoContact

@@ -25,7 +25,8 @@
 
 #include "back_ends/contact_solver.h"
 #include "back_ends/direct_solver.h"
-#include "back_ends/rigid_body_modes.h"
+#include "back_ends/elasticity_amg.h"
+#include "back_ends/matrix_free_elasticity.h"
 
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Import.h>
@@ -100,7 +101,8 @@ namespace ViscoContact
     FullSpaceContactSolver(const Parameters::AllParameters &parameters,
                            const Mapping<dim>              &mapping,
                            const DoFHandler<dim>           &dof_handler,
-                           const VectorType                &layout);
+                           const VectorType                &layout,
+                           const ElasticOperatorData<dim>  *matrix_free_data);
 
     std::string
     description() const override;
@@ -128,6 +130,8 @@ namespace ViscoContact
                         const ContactSet<dim> &contact) override;
     void
     finish(const ContactSet<dim> &contact, VectorType &u) override;
+    void
+    apply_operator(VectorType &dst, const VectorType &src) const override;
     // After a checkpoint: the AMG of the step operator is built anew at the
     // next solve, as a resumed run builds it.
     void
@@ -150,13 +154,20 @@ namespace ViscoContact
       std::array<std::array<double, dim>, dim> gram_inverse;
     };
 
-    // The six (three in 2D) rigid-body modes at the locally owned rows.
-    void
-    compute_rigid_body_modes(const Epetra_Map &row_map);
+    // ML's smoothed aggregation of matrix with the null space (a
+    // projection of) the rigid-body modes.
     void
     build_amg(const Epetra_CrsMatrix            &matrix,
               const Epetra_MultiVector          &null_space,
-              TrilinosWrappers::PreconditionAMG &amg);
+              TrilinosWrappers::PreconditionAMG &amg)
+    {
+      build_elasticity_amg(matrix,
+                           null_space,
+                           rigid_body_modes.node_blocks,
+                           dim,
+                           symmetric,
+                           amg);
+    }
     // The AMG of the step operator of the current terms, rebuilt when
     // enough nodes have changed their fixed directions since it was last
     // built.
@@ -253,13 +264,16 @@ namespace ViscoContact
     // elastic matrix or the current tangent), whether it is symmetric (which
     // decides between CG and GMRES), the factorisation when Preconditioner =
     // direct, and the right-hand side of the current step problem.
-    const MatrixType                   *A         = nullptr;
-    bool                                symmetric = true;
-    std::unique_ptr<Epetra_MultiVector> rigid_body_modes;
-    bool node_blocks = true; // a vertex's dim dofs are consecutive rows
-    std::optional<SparseDirectSolver> factorization;
-    VectorType                        b;
-    double                            b_norm = 0;
+    const MatrixType *A = nullptr;
+    // Method = matrix free: what its operator is built from, and the
+    // operator with its multigrid, built by the first set_operator().
+    std::optional<ElasticOperatorData<dim>>    matrix_free_data;
+    std::unique_ptr<MatrixFreeElasticity<dim>> matrix_free;
+    bool                                       symmetric = true;
+    RigidBodyModes                             rigid_body_modes;
+    std::optional<SparseDirectSolver>          factorization;
+    VectorType                                 b;
+    double                                     b_norm = 0;
 
     // The two AMG preconditioners, each built when first needed after
     // set_operator(): one of A alone, for the solves without contact, and
@@ -298,7 +312,8 @@ namespace ViscoContact
     const Parameters::AllParameters &parameters,
     const Mapping<dim>              &mapping,
     const DoFHandler<dim>           &dof_handler,
-    const VectorType                &layout)
+    const VectorType                &layout,
+    const ElasticOperatorData<dim>  *matrix_free_data)
     : preconditioner_type(parameters.preconditioner)
     , tolerance(parameters.tolerance)
     , communicator(layout.get_mpi_communicator())
@@ -308,7 +323,9 @@ namespace ViscoContact
     , operator_scratch(layout)
     , preconditioner_scratch(layout)
   {
-    if (preconditioner_type == Parameters::Preconditioner::direct)
+    if (matrix_free_data != nullptr)
+      this->matrix_free_data.emplace(*matrix_free_data);
+    else if (preconditioner_type == Parameters::Preconditioner::direct)
       factorization.emplace(parameters.direct_solver, communicator);
   }
 
@@ -319,113 +336,16 @@ namespace ViscoContact
   std::string
   FullSpaceContactSolver<dim>::description() const
   {
+    if (matrix_free_data)
+      return "matrix free: CG on the projected operator, K applied cell by "
+             "cell, preconditioned by "
+             + (matrix_free ? matrix_free->description()
+                            : std::string("a geometric multigrid V-cycle"));
     return std::string("full space: CG (GMRES for the implicit update's "
                        "tangent) on the projected operator, preconditioned by ")
            + (factorization ? factorization->description()
                             : "ML AMG of the step operator with the "
                               "rigid-body modes");
-  }
-
-
-
-  // @sect4{FullSpaceContactSolver::compute_rigid_body_modes}
-  //
-  // Elasticity needs the near-null space of the operator without Dirichlet
-  // conditions, the dim translations and the dim(dim-1)/2 infinitesimal
-  // rotations, given to ML per locally owned dof (deal.II 9.4's
-  // AdditionalData only takes translations, so the parameter list is
-  // completed by hand in build_amg()). Smoothed aggregation builds its
-  // coarse spaces from these modes; with the translations alone they could
-  // not represent the rotations of parts of the body, the low-energy modes
-  // of elasticity. The modes depend on the mesh and the dofs only, not on
-  // the operator, so they are computed once and reused for every operator.
-  template <int dim>
-  void
-  FullSpaceContactSolver<dim>::compute_rigid_body_modes(
-    const Epetra_Map &row_map)
-  {
-    // The location of every dof, and which vector component each locally
-    // owned dof belongs to.
-    std::map<types::global_dof_index, Point<dim>> support_points;
-    DoFTools::map_dofs_to_support_points(mapping, dof_handler, support_points);
-    std::vector<IndexSet> component_dofs(dim);
-    for (unsigned int c = 0; c < dim; ++c)
-      component_dofs[c]
-        = DoFTools::extract_dofs(dof_handler,
-                                 dof_handler.get_fe().component_mask(
-                                   FEValuesExtractors::Scalar(c)));
-    // Three modes in 2D (two translations, one rotation), six in 3D, laid
-    // out like the rows of the matrix, so that ML can read them next to it.
-    const unsigned int n_modes = (dim == 2 ? 3 : 6);
-    rigid_body_modes = std::make_unique<Epetra_MultiVector>(row_map, n_modes);
-    // Per locally owned row: find its component c, then write component c
-    // of each mode at the row's support point x.
-    for (int local = 0; local < row_map.NumMyElements(); ++local)
-      {
-        const types::global_dof_index dof = row_map.GID64(local);
-        unsigned int                  c   = 0;
-        while (c < dim && !component_dofs[c].is_element(dof))
-          ++c;
-        Assert(c < dim, ExcInternalError());
-        const Point<dim> &x     = support_points.at(dof);
-        const auto        modes = rigid_body_mode_components(c, x);
-        for (unsigned int mode = 0; mode < modes.size(); ++mode)
-          (*rigid_body_modes)[mode][local] = modes[mode];
-        // Rows in blocks of dim, one block per vertex, in component order:
-        // what "PDE equations" = dim assumes in build_amg().
-        if (c != static_cast<unsigned int>(local) % dim)
-          node_blocks = false;
-      }
-    // Every rank must give ML the same number of PDE equations.
-    node_blocks = (Utilities::MPI::min(node_blocks ? 1 : 0, communicator) == 1);
-  }
-
-
-
-  // @sect4{FullSpaceContactSolver::build_amg}
-  //
-  // The AMG settings: ML's defaults for elliptic (symmetric) or for
-  // nonsymmetric problems, linear elements, Chebyshev smoothing of degree 2,
-  // Amesos-KLU on the coarsest level, and two more settings that make the
-  // iteration counts (nearly) independent of the mesh, measured by
-  // benchmarks/run_preconditioner_comparison.py (doc/performance.md,
-  // "Preconditioners"):
-  //  - aggregation threshold 0 (it was 0.02): every matrix entry counts as a
-  //    connection when ML forms its aggregates. With 0.02 CG took 18, 32, 45
-  //    iterations for the cube's elastic solve on hexahedra at 15k, 108k,
-  //    824k dofs (23, 34, 53 on tetrahedra); with these two settings 16, 20,
-  //    21 (24, 33, 36);
-  //  - "PDE equations" = dim: ML aggregates nodes, the dim dofs of a vertex
-  //    together, as the rigid-body modes need (deal.II 9.4's AdditionalData
-  //    leaves ML's default, 1: every dof its own node). A vertex's dofs are
-  //    consecutive in deal.II's numbering of the vector-valued Q1/P1
-  //    element; node_blocks, computed with the modes, checks it, and if it
-  //    did not hold ML would aggregate dofs.
-  // Chebyshev degree 3 or 4 and symmetric Gauss-Seidel took fewer iterations
-  // but not less time, a smoother as coarse solver more iterations. An
-  // unsymmetric tangent gets ML's settings for nonsymmetric problems.
-  template <int dim>
-  void
-  FullSpaceContactSolver<dim>::build_amg(const Epetra_CrsMatrix   &matrix,
-                                         const Epetra_MultiVector &null_space,
-                                         TrilinosWrappers::PreconditionAMG &amg)
-  {
-    TrilinosWrappers::PreconditionAMG::AdditionalData data;
-    data.elliptic              = symmetric;
-    data.higher_order_elements = false;
-    data.smoother_sweeps       = 2;
-    data.aggregation_threshold = 0.;
-    // Let deal.II translate these settings into ML's parameter list (its
-    // constant-mode output is not needed), then replace the null space by
-    // the given modes and build the hierarchy.
-    Teuchos::ParameterList              ml_parameters;
-    std::unique_ptr<Epetra_MultiVector> unused_constant_modes;
-    data.set_parameters(ml_parameters, unused_constant_modes, matrix);
-    ml_parameters.set("PDE equations", node_blocks ? dim : 1);
-    ml_parameters.set("null space: type", "pre-computed");
-    ml_parameters.set("null space: dimension", null_space.NumVectors());
-    ml_parameters.set("null space: vectors", null_space.Values());
-    amg.initialize(matrix, ml_parameters);
   }
 
 
@@ -445,12 +365,31 @@ namespace ViscoContact
                                             const bool        is_symmetric,
                                             const ContactSet<dim> &)
   {
+    symmetric = is_symmetric;
+    // Without a matrix: the operator and its multigrid are built once, for
+    // K (the implicit update's tangent is refused when the parameters are
+    // read).
+    if (matrix_free_data)
+      {
+        AssertThrow(is_symmetric, ExcInternalError());
+        if (!matrix_free)
+          {
+            matrix_free
+              = std::make_unique<MatrixFreeElasticity<dim>>(*matrix_free_data,
+                                                            b);
+            ++this->counts.operator_setups;
+          }
+        return;
+      }
     A                  = &matrix;
-    symmetric          = is_symmetric;
     operator_amg_built = false;
     contact_amg_built  = false;
-    if (!factorization && !rigid_body_modes)
-      compute_rigid_body_modes(matrix.trilinos_matrix().RowMap());
+    if (!factorization && !rigid_body_modes.modes)
+      rigid_body_modes
+        = compute_rigid_body_modes(mapping,
+                                   dof_handler,
+                                   matrix.trilinos_matrix().RowMap(),
+                                   communicator);
     if (factorization)
       {
         factorization->factorize(matrix, is_symmetric);
@@ -816,7 +755,8 @@ namespace ViscoContact
     const ContactSet<dim> &contact)
   {
     const Epetra_CrsMatrix &matrix = *contact_matrix;
-    contact_modes = std::make_unique<Epetra_MultiVector>(*rigid_body_modes);
+    contact_modes
+      = std::make_unique<Epetra_MultiVector>(*rigid_body_modes.modes);
     for (unsigned int i = 0; i < contact.size(); ++i)
       for (unsigned int b = 0; b < amg_fixed(terms[i]); ++b)
         for (int mode = 0; mode < contact_modes->NumVectors(); ++mode)
@@ -965,7 +905,7 @@ namespace ViscoContact
     collect_node_terms(contact, u0, step_rhs);
     // step_rhs = b - sum f v - A u_0: the prescribed part of u moves to the
     // right-hand side.
-    A->vmult(A_u0, u0);
+    apply_operator(A_u0, u0);
     // The scale of the tolerance: the largest of the loads b, of the nodes'
     // loads and of A u_0. A body loaded through the obstacle alone (an
     // indenter moving in, with no other load) has b = 0, and its load is
@@ -1020,7 +960,7 @@ namespace ViscoContact
     // The residual b - A u equals the nodes' forces, sum over directions of
     // force times row (a contact force acts on its node's dofs only).
     VectorType &residual = A_u0; // its value is no longer needed
-    A->vmult(residual, u);
+    apply_operator(residual, u);
     residual.sadd(-1., 1., b);
     read_off_contact(contact, u, residual);
     return report;
@@ -1179,7 +1119,7 @@ namespace ViscoContact
     const ContactSet<dim> &contact) const
   {
     return [this, &contact](VectorType &dst, const VectorType &src) {
-      A->vmult(dst, src);
+      apply_operator(dst, src);
       // The coupled directions (collect_node_terms(), solve_for_pieces()):
       // -coupling n.(A src)_i / |n|^2 where the normal is fixed, coupling
       // times the normal stiffness times n.src where it is free.
@@ -1228,6 +1168,10 @@ namespace ViscoContact
   FullSpaceContactSolver<dim>::step_preconditioner(
     const ContactSet<dim> &contact)
   {
+    if (matrix_free)
+      return [this](VectorType &dst, const VectorType &src) {
+        matrix_free->precondition(dst, src);
+      };
     if (factorization)
       return [this](VectorType &dst, const VectorType &src) {
         factorization->solve(dst, src);
@@ -1290,6 +1234,20 @@ namespace ViscoContact
 
 
 
+  // A src, with the matrix or without.
+  template <int dim>
+  void
+  FullSpaceContactSolver<dim>::apply_operator(VectorType       &dst,
+                                              const VectorType &src) const
+  {
+    if (matrix_free)
+      matrix_free->vmult(dst, src);
+    else
+      A->vmult(dst, src);
+  }
+
+
+
   // @sect4{FullSpaceContactSolver::solve_without_contact}
   //
   // A^{-1} b by the same Krylov method and preconditioner, from a zero
@@ -1300,10 +1258,15 @@ namespace ViscoContact
   FullSpaceContactSolver<dim>::solve_without_contact(const VectorType &rhs,
                                                      VectorType       &u)
   {
-    const Apply op
-      = [&](VectorType &dst, const VectorType &src) { A->vmult(dst, src); };
+    const Apply op = [&](VectorType &dst, const VectorType &src) {
+      apply_operator(dst, src);
+    };
     Apply prec;
-    if (factorization)
+    if (matrix_free)
+      prec = [&](VectorType &dst, const VectorType &src) {
+        matrix_free->precondition(dst, src);
+      };
+    else if (factorization)
       prec = [&](VectorType &dst, const VectorType &src) {
         factorization->solve(dst, src);
       };
@@ -1311,7 +1274,9 @@ namespace ViscoContact
       {
         if (!operator_amg_built)
           {
-            build_amg(A->trilinos_matrix(), *rigid_body_modes, operator_amg);
+            build_amg(A->trilinos_matrix(),
+                      *rigid_body_modes.modes,
+                      operator_amg);
             operator_amg_built = true;
             ++this->counts.operator_setups;
           }
@@ -1355,25 +1320,30 @@ namespace ViscoContact
   // (contact_solver.cc) reaches its constructor through this function.
   template <int dim>
   std::unique_ptr<ContactSolver<dim>>
-  create_full_space_contact_solver(const Parameters::AllParameters &parameters,
-                                   const Mapping<dim>              &mapping,
-                                   const DoFHandler<dim>           &dof_handler,
-                                   const VectorType                &layout)
+  create_full_space_contact_solver(
+    const Parameters::AllParameters &parameters,
+    const Mapping<dim>              &mapping,
+    const DoFHandler<dim>           &dof_handler,
+    const VectorType                &layout,
+    const ElasticOperatorData<dim>  *matrix_free_data)
   {
     return std::make_unique<FullSpaceContactSolver<dim>>(parameters,
                                                          mapping,
                                                          dof_handler,
-                                                         layout);
+                                                         layout,
+                                                         matrix_free_data);
   }
 
   template std::unique_ptr<ContactSolver<2>>
   create_full_space_contact_solver(const Parameters::AllParameters &,
                                    const Mapping<2> &,
                                    const DoFHandler<2> &,
-                                   const VectorType &);
+                                   const VectorType &,
+                                   const ElasticOperatorData<2> *);
   template std::unique_ptr<ContactSolver<3>>
   create_full_space_contact_solver(const Parameters::AllParameters &,
                                    const Mapping<3> &,
                                    const DoFHandler<3> &,
-                                   const VectorType &);
+                                   const VectorType &,
+                                   const ElasticOperatorData<3> *);
 } // namespace ViscoContact

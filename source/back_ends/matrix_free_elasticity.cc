@@ -1,0 +1,609 @@
+// The elastic operator K applied cell by cell, and a geometric multigrid
+// preconditioner for it on the meshes of global coarsening: the operator of
+// the matrix-free back end (Method = matrix free), which stores no matrix
+// of the fine mesh at all.
+
+#include <deal.II/base/aligned_vector.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/vectorization.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/lac/diagonal_matrix.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/precondition.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_precondition.h>
+
+#include <deal.II/matrix_free/fe_evaluation.h>
+#include <deal.II/matrix_free/matrix_free.h>
+#include <deal.II/matrix_free/operators.h>
+#include <deal.II/matrix_free/tools.h>
+
+#include <deal.II/multigrid/mg_base.h>
+#include <deal.II/multigrid/mg_matrix.h>
+#include <deal.II/multigrid/mg_smoother.h>
+#include <deal.II/multigrid/mg_transfer_global_coarsening.h>
+#include <deal.II/multigrid/multigrid.h>
+
+#include "back_ends/elasticity_amg.h"
+#include "back_ends/matrix_free_elasticity.h"
+#include "elastic_operator.h"
+
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <vector>
+
+namespace ViscoContact
+{
+  namespace
+  {
+    // @sect4{ElasticityOperator}
+    //
+    // K on one mesh, cell by cell: the symmetric gradient at the Gauss
+    // points, the isotropic stress sigma = lambda tr(eps) I + 2 mu eps of
+    // the cell's material, and back (FEEvaluation with dim components, as
+    // in step-37 for a vector field). lambda and mu are read off each
+    // material's elasticity tensor (for plane stress its effective 2D
+    // tensor, which is isotropic too), one value per cell and SIMD lane.
+    // The diagonal, for the Chebyshev smoother's Jacobi step, comes from
+    // MatrixFreeTools. deal.II's base class makes the rows of Dirichlet
+    // dofs identity rows.
+    template <int dim, typename number>
+    class ElasticityOperator
+      : public MatrixFreeOperators::
+          Base<dim, LinearAlgebra::distributed::Vector<number>>
+    {
+    public:
+      using VectorT    = LinearAlgebra::distributed::Vector<number>;
+      using Evaluation = FEEvaluation<dim, 1, 2, dim, number>;
+
+      void
+      set_materials(
+        const std::function<const SymmetricTensor<4, dim> &(types::material_id)>
+          &elasticity)
+      {
+        const MatrixFree<dim, number> &data = *this->data;
+        lambda.resize(data.n_cell_batches());
+        mu.resize(data.n_cell_batches());
+        for (unsigned int batch = 0; batch < data.n_cell_batches(); ++batch)
+          for (unsigned int v = 0; v < VectorizedArray<number>::size(); ++v)
+            {
+              // Empty lanes of the last batch repeat the first cell.
+              const unsigned int lane
+                = (v < data.n_active_entries_per_cell_batch(batch) ? v : 0);
+              const SymmetricTensor<4, dim> &C = elasticity(
+                data.get_cell_iterator(batch, lane)->material_id());
+              const double l = C[0][0][1][1], m = C[0][1][0][1];
+              AssertThrow(std::abs(C[0][0][0][0] - (l + 2 * m))
+                            <= 1e-10 * std::abs(C[0][0][0][0]),
+                          ExcMessage("Method = matrix free needs isotropic "
+                                     "materials."));
+              lambda[batch][v] = l;
+              mu[batch][v]     = m;
+            }
+        find_shared_cell_matrices();
+      }
+
+      void
+      compute_diagonal() override
+      {
+        this->inverse_diagonal_entries
+          = std::make_shared<DiagonalMatrix<VectorT>>();
+        VectorT &inverse_diagonal
+          = this->inverse_diagonal_entries->get_vector();
+        this->data->initialize_dof_vector(inverse_diagonal);
+        MatrixFreeTools::compute_diagonal(*this->data,
+                                          inverse_diagonal,
+                                          &ElasticityOperator::local_compute,
+                                          this);
+        this->set_constrained_entries_to_one(inverse_diagonal);
+        // A hanging dof has a zero row: 1 keeps the smoother defined there
+        // (nothing reads its value).
+        for (auto &d : inverse_diagonal)
+          d = (std::abs(d) > 0 ? number(1) / d : number(1));
+      }
+
+    private:
+      void
+      apply_add(VectorT &dst, const VectorT &src) const override
+      {
+        this->data->cell_loop(&ElasticityOperator::local_apply, this, dst, src);
+      }
+
+      static constexpr unsigned int dofs_per_cell
+        = dim * GeometryInfo<dim>::vertices_per_cell;
+
+      void
+      local_apply(const MatrixFree<dim, number>               &data,
+                  VectorT                                     &dst,
+                  const VectorT                               &src,
+                  const std::pair<unsigned int, unsigned int> &cells) const
+      {
+        Evaluation phi(data);
+        for (unsigned int cell = cells.first; cell < cells.second; ++cell)
+          {
+            phi.reinit(cell);
+            phi.read_dof_values(src);
+            if (shared_matrix.empty() || shared_matrix[cell] == none)
+              local_compute(phi);
+            else
+              apply_shared_matrix(shared_matrix[cell], phi);
+            phi.distribute_local_to_global(dst);
+          }
+      }
+
+      // @sect4{Cells of the same shape}
+      //
+      // Debian's deal.II 9.4 is built without SIMD (VectorizedArray has
+      // one lane), so the sum factorisation above runs on one cell at a
+      // time, and for linear elements its overhead per quadrature point
+      // dominates. Cells that are translates of each other (Cartesian or
+      // affine cells with the same Jacobian and material: all cells of a
+      // refinement level of a box, most of a graded mesh) have the same
+      // cell matrix; where few distinct ones cover the mesh, each is
+      // computed once, from the operator above applied to unit vectors,
+      // and applied as a dense 24 x 24 (8 x 8 in 2D) product, which the
+      // compiler vectorises. Reading and writing the cell's dofs (with the
+      // constraints) stays MatrixFree's. A mesh of distorted cells keeps
+      // the sum factorisation and stores no matrix.
+      void
+      find_shared_cell_matrices()
+      {
+        shared_matrix.clear();
+        matrices.clear();
+        if (VectorizedArray<number>::size() != 1)
+          return; // with SIMD lanes the sum factorisation is fast
+        const MatrixFree<dim, number> &data      = *this->data;
+        const unsigned int             n_batches = data.n_cell_batches();
+        // At most one distinct matrix per 64 cells, and 64 in all.
+        const unsigned int max_matrices
+          = std::min<unsigned int>(64, std::max(1u, n_batches / 64));
+        std::map<std::vector<number>, unsigned int> matrix_of_key;
+        std::vector<unsigned int>                   cells(n_batches, none);
+        Evaluation                                  phi(data);
+        for (unsigned int cell = 0; cell < n_batches; ++cell)
+          {
+            if (data.get_mapping_info().get_cell_type(cell)
+                > internal::MatrixFreeFunctions::affine)
+              continue;
+            phi.reinit(cell);
+            // An affine cell's Jacobian and JxW are the same at every
+            // quadrature point.
+            std::vector<number> key{lambda[cell][0],
+                                    mu[cell][0],
+                                    phi.JxW(0)[0]};
+            const auto          inverse_jacobian = phi.inverse_jacobian(0);
+            for (unsigned int d = 0; d < dim; ++d)
+              for (unsigned int e = 0; e < dim; ++e)
+                key.push_back(inverse_jacobian[d][e][0]);
+            auto [entry, is_new]
+              = matrix_of_key.emplace(key, matrix_of_key.size());
+            if (is_new)
+              {
+                if (matrix_of_key.size() > max_matrices)
+                  {
+                    matrices.clear();
+                    return;
+                  }
+                for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                  {
+                    for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                      phi.begin_dof_values()[i] = number(i == j);
+                    local_compute(phi);
+                    for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                      column_major.push_back(phi.begin_dof_values()[i][0]);
+                  }
+                // Stored row by row for the product.
+                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                    matrices.push_back(column_major[j * dofs_per_cell + i]);
+                column_major.clear();
+              }
+            cells[cell] = entry->second;
+          }
+        shared_matrix = std::move(cells);
+      }
+
+      void
+      apply_shared_matrix(const unsigned int index, Evaluation &phi) const
+      {
+        const number *matrix = &matrices[index * dofs_per_cell * dofs_per_cell];
+        number        x[dofs_per_cell], y[dofs_per_cell];
+        for (unsigned int j = 0; j < dofs_per_cell; ++j)
+          x[j] = phi.begin_dof_values()[j][0];
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          {
+            number sum = 0;
+            for (unsigned int j = 0; j < dofs_per_cell; ++j)
+              sum += matrix[i * dofs_per_cell + j] * x[j];
+            y[i] = sum;
+          }
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          phi.begin_dof_values()[i] = y[i];
+      }
+
+      void
+      local_compute(Evaluation &phi) const
+      {
+        const unsigned int             batch = phi.get_current_cell_index();
+        const VectorizedArray<number> &l     = lambda[batch];
+        const VectorizedArray<number>  two_m = number(2) * mu[batch];
+        phi.evaluate(EvaluationFlags::gradients);
+        for (const unsigned int q : phi.quadrature_point_indices())
+          {
+            SymmetricTensor<2, dim, VectorizedArray<number>> sigma
+              = phi.get_symmetric_gradient(q);
+            const VectorizedArray<number> lambda_trace = l * trace(sigma);
+            sigma *= two_m;
+            for (unsigned int d = 0; d < dim; ++d)
+              sigma[d][d] += lambda_trace;
+            phi.submit_symmetric_gradient(sigma, q);
+          }
+        phi.integrate(EvaluationFlags::gradients);
+      }
+
+      AlignedVector<VectorizedArray<number>> lambda, mu;
+      // Per cell the index of its shared matrix, or none; the matrices row
+      // by row (all empty where the mesh has too many distinct cells).
+      static constexpr unsigned int none = numbers::invalid_unsigned_int;
+      std::vector<unsigned int>     shared_matrix;
+      std::vector<number>           matrices, column_major;
+    };
+
+
+
+    // The matrix-free set-up of one mesh: Gauss points of the program's
+    // stress quadrature, gradients and JxW only, no threads (the program
+    // runs one rank per core).
+    template <int dim, typename number>
+    std::shared_ptr<const MatrixFree<dim, number>>
+    matrix_free_of(const Mapping<dim>              &mapping,
+                   const DoFHandler<dim>           &dof_handler,
+                   const AffineConstraints<double> &constraints)
+    {
+      typename MatrixFree<dim, number>::AdditionalData data;
+      data.tasks_parallel_scheme
+        = MatrixFree<dim, number>::AdditionalData::none;
+      data.mapping_update_flags = update_gradients | update_JxW_values;
+      auto matrix_free          = std::make_shared<MatrixFree<dim, number>>();
+      matrix_free->reinit(mapping,
+                          dof_handler,
+                          constraints,
+                          QGauss<1>(2),
+                          data);
+      return matrix_free;
+    }
+
+
+
+    // @sect4{CoarseAMG}
+    //
+    // The coarse solve of the multigrid: one V-cycle of ML's smoothed
+    // aggregation of the coarse mesh's assembled K, in double precision.
+    class CoarseAMG : public MGCoarseGridBase<VectorType>
+    {
+    public:
+      CoarseAMG(const TrilinosWrappers::PreconditionAMG &amg)
+        : amg(amg)
+      {}
+
+      void
+      operator()(const unsigned int,
+                 VectorType       &dst,
+                 const VectorType &src) const override
+      {
+        amg.vmult(dst, src);
+      }
+
+    private:
+      const TrilinosWrappers::PreconditionAMG &amg;
+    };
+  } // namespace
+
+
+
+  // @sect4{MatrixFreeElasticity::Implementation}
+  //
+  // The multigrid: on every mesh of the coarsening sequence (the finest is
+  // the program's own) a DoFHandler, its constraints and its operator, the
+  // transfer between consecutive meshes, Chebyshev smoothers, and the AMG
+  // of the coarsest mesh. The finest level's operator is also the Krylov
+  // method's. All in double precision: without SIMD lanes (see
+  // ElasticityOperator) single precision saves no time in the cell loops,
+  // and a second MatrixFree object of the finest mesh would cost memory.
+  template <int dim>
+  struct MatrixFreeElasticity<dim>::Implementation
+  {
+    using LevelVector   = VectorType;
+    using LevelOperator = ElasticityOperator<dim, double>;
+    using Smoother      = PreconditionChebyshev<LevelOperator, LevelVector>;
+    using Transfer      = MGTransferGlobalCoarsening<dim, LevelVector>;
+
+    Implementation(const ElasticOperatorData<dim> &data,
+                   const VectorType               &layout);
+
+    void
+    set_up_levels();
+    void
+    set_up_coarse_solver();
+    // K of the program's mesh: the finest level's operator.
+    const LevelOperator &
+    fine_operator() const
+    {
+      return level_operators[level_operators.max_level()];
+    }
+    LevelOperator &
+    fine_operator()
+    {
+      return level_operators[level_operators.max_level()];
+    }
+    // dst = src at the locally owned constrained dofs.
+    void
+    copy_constrained_rows(VectorType &dst, const VectorType &src) const;
+
+    const ElasticOperatorData<dim>       data;
+    const MPI_Comm                       communicator;
+    std::vector<types::global_dof_index> constrained_rows; // local indices
+    mutable VectorType                   src_copy, dst_copy;
+
+    // The multigrid, level 0 the coarsest mesh.
+    std::vector<std::shared_ptr<const Triangulation<dim>>> triangulations;
+    std::vector<std::unique_ptr<DoFHandler<dim>>>          coarse_dof_handlers;
+    std::vector<const DoFHandler<dim> *>                   dof_handlers;
+    MGLevelObject<AffineConstraints<double>>               level_constraints;
+    MGLevelObject<LevelOperator>                           level_operators;
+    MGLevelObject<MGTwoLevelTransfer<dim, LevelVector>>    two_level_transfers;
+    std::unique_ptr<Transfer>                              transfer;
+    TrilinosWrappers::SparseMatrix                         coarse_matrix;
+    TrilinosWrappers::PreconditionAMG                      coarse_amg;
+    std::unique_ptr<CoarseAMG>                             coarse_solver;
+    mg::SmootherRelaxation<Smoother, LevelVector>          smoother;
+    mg::Matrix<LevelVector>                                level_matrix;
+    std::unique_ptr<Multigrid<LevelVector>>                multigrid;
+    std::unique_ptr<PreconditionMG<dim, LevelVector, Transfer>> preconditioner;
+  };
+
+
+
+  // @sect4{MatrixFreeElasticity::Implementation::Implementation}
+  //
+  // The fine operator, the list of constrained rows (Dirichlet and hanging
+  // dofs: identity rows, as the assembled K's are decoupled), then the
+  // levels and one V-cycle, in which the Chebyshev smoothers estimate their
+  // eigenvalues (a set-up cost, not a solve's).
+  template <int dim>
+  MatrixFreeElasticity<dim>::Implementation::Implementation(
+    const ElasticOperatorData<dim> &data,
+    const VectorType               &layout)
+    : data(data)
+    , communicator(layout.get_mpi_communicator())
+  {
+    set_up_levels();
+    fine_operator().initialize_dof_vector(src_copy);
+    fine_operator().initialize_dof_vector(dst_copy);
+    const IndexSet &owned = data.dof_handler.locally_owned_dofs();
+    for (const types::global_dof_index dof : owned)
+      if (data.constraints.is_constrained(dof))
+        constrained_rows.push_back(owned.index_within_set(dof));
+    set_up_coarse_solver();
+    smoother.initialize(level_operators, [&] {
+      MGLevelObject<typename Smoother::AdditionalData> smoother_data(
+        level_operators.min_level(),
+        level_operators.max_level());
+      for (unsigned int level = smoother_data.min_level();
+           level <= smoother_data.max_level();
+           ++level)
+        {
+          smoother_data[level].smoothing_range     = data.smoothing_range;
+          smoother_data[level].degree              = data.smoother_degree;
+          smoother_data[level].eig_cg_n_iterations = 10;
+          smoother_data[level].preconditioner
+            = level_operators[level].get_matrix_diagonal_inverse();
+        }
+      return smoother_data;
+    }());
+    level_matrix.initialize(level_operators);
+    multigrid = std::make_unique<Multigrid<LevelVector>>(level_matrix,
+                                                         *coarse_solver,
+                                                         *transfer,
+                                                         smoother,
+                                                         smoother);
+    preconditioner
+      = std::make_unique<PreconditionMG<dim, LevelVector, Transfer>>(
+        data.dof_handler,
+        *multigrid,
+        *transfer);
+    VectorType x(layout), y(layout);
+    x = 1.;
+    preconditioner->vmult(y, x);
+  }
+
+
+
+  // @sect4{MatrixFreeElasticity::Implementation::set_up_levels}
+  //
+  // Global coarsening (step-75): deal.II copies the mesh and coarsens the
+  // copy until only the coarse cells are left, so that an adapted mesh with
+  // hanging nodes has its levels too. Each level has its own dofs,
+  // constraints (data.make_constraints: the Dirichlet parts and planes of
+  // symmetry of the coarser mesh) and operator; the finest is the program's
+  // mesh, dofs and constraints.
+  template <int dim>
+  void
+  MatrixFreeElasticity<dim>::Implementation::set_up_levels()
+  {
+    triangulations
+      = MGTransferGlobalCoarseningTools::create_geometric_coarsening_sequence(
+        data.dof_handler.get_triangulation());
+    const unsigned int finest = triangulations.size() - 1;
+    dof_handlers.resize(finest + 1);
+    level_constraints.resize(0, finest);
+    level_operators.resize(0, finest);
+    two_level_transfers.resize(0, finest);
+    for (unsigned int level = 0; level <= finest; ++level)
+      {
+        if (level == finest)
+          {
+            dof_handlers[level] = &data.dof_handler;
+            level_constraints[level].copy_from(data.constraints);
+          }
+        else
+          {
+            coarse_dof_handlers.push_back(
+              std::make_unique<DoFHandler<dim>>(*triangulations[level]));
+            coarse_dof_handlers.back()->distribute_dofs(
+              data.dof_handler.get_fe());
+            dof_handlers[level] = coarse_dof_handlers.back().get();
+            IndexSet relevant;
+            DoFTools::extract_locally_relevant_dofs(*dof_handlers[level],
+                                                    relevant);
+            data.make_constraints(*dof_handlers[level],
+                                  relevant,
+                                  level_constraints[level]);
+          }
+        level_operators[level].initialize(
+          matrix_free_of<dim, double>(data.mapping,
+                                      *dof_handlers[level],
+                                      level_constraints[level]));
+        level_operators[level].set_materials(data.elasticity);
+        level_operators[level].compute_diagonal();
+        if (level > 0)
+          two_level_transfers[level].reinit(*dof_handlers[level],
+                                            *dof_handlers[level - 1],
+                                            level_constraints[level],
+                                            level_constraints[level - 1]);
+      }
+    transfer = std::make_unique<Transfer>(
+      two_level_transfers,
+      [this](const unsigned int level, LevelVector &vector) {
+        level_operators[level].initialize_dof_vector(vector);
+      });
+  }
+
+
+
+  // @sect4{MatrixFreeElasticity::Implementation::set_up_coarse_solver}
+  //
+  // The coarsest mesh is the coarse mesh of the scene (the box's
+  // subdivisions, or the Gmsh file's cells), which may be large: its K is
+  // assembled as the matrix-based back ends do it and preconditioned by
+  // ML's smoothed aggregation with the rigid-body modes.
+  template <int dim>
+  void
+  MatrixFreeElasticity<dim>::Implementation::set_up_coarse_solver()
+  {
+    const DoFHandler<dim>           &dof_handler = *dof_handlers[0];
+    const AffineConstraints<double> &constraints = level_constraints[0];
+    const IndexSet                  &owned = dof_handler.locally_owned_dofs();
+    IndexSet                         relevant;
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
+    DynamicSparsityPattern dsp(relevant);
+    DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
+    SparsityTools::distribute_sparsity_pattern(dsp,
+                                               owned,
+                                               communicator,
+                                               relevant);
+    coarse_matrix.reinit(owned, owned, dsp, communicator);
+    assemble_elastic_operator(
+      data.mapping,
+      dof_handler,
+      QGauss<dim>(2),
+      ElasticityOfCell<dim>(
+        [this](const typename DoFHandler<dim>::active_cell_iterator &cell)
+          -> const SymmetricTensor<4, dim> & {
+          return data.elasticity(cell->material_id());
+        }),
+      constraints,
+      coarse_matrix);
+    const RigidBodyModes modes
+      = compute_rigid_body_modes(data.mapping,
+                                 dof_handler,
+                                 coarse_matrix.trilinos_matrix().RowMap(),
+                                 communicator);
+    build_elasticity_amg(coarse_matrix.trilinos_matrix(),
+                         *modes.modes,
+                         modes.node_blocks,
+                         dim,
+                         true,
+                         coarse_amg);
+    coarse_solver = std::make_unique<CoarseAMG>(coarse_amg);
+  }
+
+
+
+  template <int dim>
+  void
+  MatrixFreeElasticity<dim>::Implementation::copy_constrained_rows(
+    VectorType       &dst,
+    const VectorType &src) const
+  {
+    for (const types::global_dof_index row : constrained_rows)
+      dst.local_element(row) = src.local_element(row);
+  }
+
+
+
+  template <int dim>
+  MatrixFreeElasticity<dim>::MatrixFreeElasticity(
+    const ElasticOperatorData<dim> &data,
+    const VectorType               &layout)
+    : implementation(std::make_unique<Implementation>(data, layout))
+  {}
+
+
+
+  template <int dim>
+  MatrixFreeElasticity<dim>::~MatrixFreeElasticity() = default;
+
+
+
+  // @sect4{MatrixFreeElasticity::vmult}
+  //
+  // The program's vectors have the ghosts of all locally relevant dofs,
+  // MatrixFree's only those its cells read: the owned entries are copied
+  // in and out (a fraction of the product's cost).
+  template <int dim>
+  void
+  MatrixFreeElasticity<dim>::vmult(VectorType &dst, const VectorType &src) const
+  {
+    Implementation &m = *implementation;
+    m.src_copy.copy_locally_owned_data_from(src);
+    m.fine_operator().vmult(m.dst_copy, m.src_copy);
+    dst.copy_locally_owned_data_from(m.dst_copy);
+    m.copy_constrained_rows(dst, src);
+  }
+
+
+
+  template <int dim>
+  void
+  MatrixFreeElasticity<dim>::precondition(VectorType       &dst,
+                                          const VectorType &src) const
+  {
+    implementation->preconditioner->vmult(dst, src);
+    implementation->copy_constrained_rows(dst, src);
+  }
+
+
+
+  template <int dim>
+  std::string
+  MatrixFreeElasticity<dim>::description() const
+  {
+    const Implementation &m = *implementation;
+    std::ostringstream    text;
+    text << "a geometric multigrid V-cycle on " << m.dof_handlers.size()
+         << " meshes by global coarsening (coarsest "
+         << m.dof_handlers[0]->n_dofs()
+         << " dofs, ML AMG there), Chebyshev smoothing of degree "
+         << m.data.smoother_degree;
+    return text.str();
+  }
+
+
+
+  template class MatrixFreeElasticity<2>;
+  template class MatrixFreeElasticity<3>;
+} // namespace ViscoContact

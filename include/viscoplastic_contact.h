@@ -718,16 +718,28 @@ namespace ViscoContact
     // locally owned cell k its dofs (vertex a, component c) as indices into the
     // vectors' local storage, whether any of them is constrained, and per
     // stress point JxW and the gradients of the scalar shape functions N_a; the
-    // strain is sym(sum_a u_a (x) grad N_a). The indexing:
+    // strain is sym(sum_a u_a (x) grad N_a). Cells of the same shape (s =
+    // cell_shape[k], setup_stress_points()) share JxW and the gradients. The
+    // indexing:
     //   cell_local_dofs[(k * n_cell_vertices + a) * dim + c],
-    //   stress_point_JxW[k * n_q + q],
-    //   stress_point_gradients[(k * n_q + q) * n_cell_vertices + a].
+    //   stress_point_JxW[s * n_q + q] (get_stress_point_weight(k, q)),
+    //   stress_point_gradients[(s * n_q + q) * n_cell_vertices + a]
+    //   (shape_gradients(k, q)[a]).
     std::vector<typename DoFHandler<dim>::active_cell_iterator> owned_cells;
     unsigned int                n_cell_vertices = 0;
     std::vector<unsigned int>   cell_local_dofs;
     std::vector<bool>           cell_is_constrained;
+    std::vector<unsigned int>   cell_shape;
     std::vector<Tensor<1, dim>> stress_point_gradients;
     std::vector<double>         stress_point_JxW;
+    // The gradients grad N_a at stress point q of the k-th owned cell.
+    const Tensor<1, dim> *
+    shape_gradients(const unsigned int k, const unsigned int q) const
+    {
+      return &stress_point_gradients
+        [(std::size_t(cell_shape[k]) * stress_quadrature.size() + q)
+         * n_cell_vertices];
+    }
 
     // Contact: the nodes of Gamma_3 this rank owns, with their pieces, their
     // last (r, z) and their active-set parameters c_i. contact_enabled is false

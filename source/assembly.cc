@@ -581,11 +581,10 @@ namespace ViscoContact
           {
             // The stored geometry of stress point q of cell k: JxW and the
             // gradients of the scalar shape functions of the cell's vertices.
-            const std::size_t     point = std::size_t(k) * n_q + q;
-            const Tensor<1, dim> *gradients
-              = &stress_point_gradients[point * n_a];
-            const double         JxW = stress_point_JxW[point];
-            const Tensor<2, dim> displacement_gradient
+            const std::size_t     point     = std::size_t(k) * n_q + q;
+            const Tensor<1, dim> *gradients = shape_gradients(k, q);
+            const double          JxW       = get_stress_point_weight(k, q);
+            const Tensor<2, dim>  displacement_gradient
               = displacement_gradient_at(displacement, k, q);
 
             // The trial stress is E eps(u) plus the history

@@ -759,7 +759,7 @@ namespace ViscoContact
             = symmetrize(displacement_gradient_at(solution, k, q));
           const SymmetricTensor<2, dim> &sigma
             = quadrature_point_history[std::size_t(k) * n_q + q].stress;
-          const double JxW = stress_point_JxW[std::size_t(k) * n_q + q];
+          const double JxW = get_stress_point_weight(k, q);
           strain_norm += (strain * strain) * JxW;
           stress_norm += (sigma * sigma) * JxW;
         }

@@ -27,6 +27,8 @@
 #include <cmath>
 #include <map>
 #include <sstream>
+#include <unordered_map>
+#include <vector>
 
 namespace ViscoContact
 {
@@ -255,6 +257,139 @@ namespace ViscoContact
 
 
 
+  namespace
+  {
+    // @sect4{CellShapes}
+    //
+    // Which owned cells have the same stress-point geometry: JxW and the
+    // scalar shape gradients at every stress point, equal up to rounding
+    // (1e-12 of the largest value of each kind: cells that are translates of
+    // each other, such as those of a box). A hash of a cell's values, each
+    // rounded to 2^-30 of that scale, and of the scales finds the
+    // candidates, and a candidate's
+    // values are computed again to compare, so that only one cell per shape,
+    // its representative, is kept. Cells that match a shape use its values,
+    // which differ from their own by rounding only.
+    template <int dim>
+    class CellShapes
+    {
+    public:
+      CellShapes(
+        const Mapping<dim>       &mapping,
+        const FiniteElement<dim> &fe,
+        const Quadrature<dim>    &quadrature,
+        const std::vector<typename DoFHandler<dim>::active_cell_iterator>
+          &cells)
+        : fe(fe)
+        , cells(cells)
+        , candidate(mapping,
+                    fe,
+                    quadrature,
+                    update_gradients | update_JxW_values)
+      {}
+
+      // The shape of cell k, whose values fe_values holds.
+      unsigned int
+      shape_of(const FEValues<dim> &fe_values, const unsigned int k)
+      {
+        const std::vector<double> values = values_of(fe_values);
+        const std::size_t         hash   = hash_of(values);
+        for (auto [entry, end] = shapes_of_hash.equal_range(hash); entry != end;
+             ++entry)
+          {
+            candidate.reinit(cells[representatives[entry->second]]);
+            if (same(values, values_of(candidate)))
+              return entry->second;
+          }
+        representatives.push_back(k);
+        shapes_of_hash.emplace(hash, representatives.size() - 1);
+        return representatives.size() - 1;
+      }
+
+      // The first cell of every shape.
+      std::vector<unsigned int> representatives;
+
+    private:
+      // The values the stress points store, JxW first, and the largest
+      // magnitude of each kind (JxW, gradient components) at the end.
+      std::vector<double>
+      values_of(const FEValues<dim> &fe_values) const
+      {
+        std::vector<double> values;
+        double              JxW_scale = 0, gradient_scale = 0;
+        for (const unsigned int q : fe_values.quadrature_point_indices())
+          {
+            values.push_back(fe_values.JxW(q));
+            JxW_scale = std::max(JxW_scale, std::abs(fe_values.JxW(q)));
+          }
+        for (const unsigned int q : fe_values.quadrature_point_indices())
+          for (unsigned int a = 0; a < fe.base_element(0).n_dofs_per_cell();
+               ++a)
+            {
+              const Tensor<1, dim> gradient = fe_values.shape_grad_component(
+                fe.component_to_system_index(0, a),
+                q,
+                0);
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  values.push_back(gradient[d]);
+                  gradient_scale
+                    = std::max(gradient_scale, std::abs(gradient[d]));
+                }
+            }
+        values.push_back(JxW_scale);
+        values.push_back(gradient_scale);
+        return values;
+      }
+
+      // Each value rounded to 2^-30 of its kind's scale, and the scales
+      // themselves to 2^-30 in their logarithm.
+      std::size_t
+      hash_of(const std::vector<double> &values) const
+      {
+        const std::size_t n_JxW = candidate.n_quadrature_points;
+        const double scales[2]  = {values[values.size() - 2], values.back()};
+        std::size_t  hash       = 0;
+        const auto   add        = [&hash](const long long key) {
+          hash ^= std::hash<long long>()(key) + 0x9e3779b97f4a7c15ULL
+                  + (hash << 6) + (hash >> 2);
+        };
+        for (std::size_t i = 0; i + 2 < values.size(); ++i)
+          {
+            const double scale = scales[i < n_JxW ? 0 : 1];
+            add(std::llround(values[i] / (scale > 0 ? scale : 1.) * (1 << 30)));
+          }
+        for (const double scale : scales)
+          add(std::llround(std::log2(scale > 0 ? scale : 1.) * (1 << 30)));
+        return hash;
+      }
+
+      // Equal up to 1e-12 of each kind's scale.
+      bool
+      same(const std::vector<double> &a, const std::vector<double> &b) const
+      {
+        const std::size_t n_JxW     = candidate.n_quadrature_points;
+        const double      scales[2] = {a[a.size() - 2], a.back()};
+        for (std::size_t i = 0; i < a.size(); ++i)
+          {
+            const double scale
+              = (i + 2 >= a.size() ? a[i] : scales[i < n_JxW ? 0 : 1]);
+            if (std::abs(a[i] - b[i]) > 1e-12 * scale)
+              return false;
+          }
+        return true;
+      }
+
+
+      const FiniteElement<dim>                                          &fe;
+      const std::vector<typename DoFHandler<dim>::active_cell_iterator> &cells;
+      FEValues<dim>                                      candidate;
+      std::unordered_multimap<std::size_t, unsigned int> shapes_of_hash;
+    };
+  } // namespace
+
+
+
   // @sect4{ViscoplasticContact::setup_stress_points}
   //
   // One record per stress point of the locally owned cells, in a flat
@@ -295,9 +430,7 @@ namespace ViscoContact
     n_cell_vertices = scalar_fe->n_dofs_per_cell();
     cell_local_dofs.resize(n_cells * n_cell_vertices * dim);
     cell_is_constrained.assign(n_cells, false);
-    stress_point_gradients.resize(n_cells * n_q * n_cell_vertices);
-    stress_point_JxW.resize(n_cells * n_q);
-
+    cell_shape.resize(n_cells);
     FEValues<dim>                        fe_values(mapping,
                             *fe,
                             stress_quadrature,
@@ -307,6 +440,7 @@ namespace ViscoContact
     // local indices of its storage. Every dof of an owned cell is locally
     // relevant, so each has a local index (owned or ghost).
     const auto &partitioner = *solution.get_partitioner();
+    CellShapes  shapes(mapping, *fe, stress_quadrature, owned_cells);
     for (std::size_t k = 0; k < n_cells; ++k)
       {
         fe_values.reinit(owned_cells[k]);
@@ -326,15 +460,26 @@ namespace ViscoContact
               if (constraints.is_constrained(dof))
                 cell_is_constrained[k] = true;
             }
-        // JxW and the gradients of the scalar shape functions N_a: the shape
-        // function of vertex a in component 0 is N_a e_0, so its gradient in
-        // that component is grad N_a, which is all the strains need
-        // (eps(N_a e_c) = sym(e_c (x) grad N_a)).
+        // The cell's shape: that of an earlier cell with the same geometry.
+        cell_shape[k] = shapes.shape_of(fe_values, k);
+      }
+
+    // JxW and the gradients of the scalar shape functions N_a of each shape:
+    // the shape function of vertex a in component 0 is N_a e_0, so its
+    // gradient in that component is grad N_a, which is all the strains need
+    // (eps(N_a e_c) = sym(e_c (x) grad N_a)).
+    const std::vector<unsigned int> &representatives = shapes.representatives;
+    stress_point_JxW.resize(representatives.size() * n_q);
+    stress_point_gradients.resize(representatives.size() * n_q
+                                  * n_cell_vertices);
+    for (unsigned int shape = 0; shape < representatives.size(); ++shape)
+      {
+        fe_values.reinit(owned_cells[representatives[shape]]);
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            stress_point_JxW[k * n_q + q] = fe_values.JxW(q);
+            stress_point_JxW[shape * n_q + q] = fe_values.JxW(q);
             for (unsigned int a = 0; a < n_cell_vertices; ++a)
-              stress_point_gradients[(k * n_q + q) * n_cell_vertices + a]
+              stress_point_gradients[(shape * n_q + q) * n_cell_vertices + a]
                 = fe_values.shape_grad_component(
                   fe->component_to_system_index(0, a),
                   q,

@@ -300,7 +300,7 @@ namespace ViscoContact
     // the rate kept for the next step's estimate.
     if (step.estimate)
       {
-        const double JxW = stress_point_JxW[std::size_t(k) * n_q + q];
+        const double JxW = get_stress_point_weight(k, q);
         estimate_sums[1]
           += material.complementary_energy(state.stress, zz.stress_zz) * JxW;
         if (plastic)
@@ -393,13 +393,11 @@ namespace ViscoContact
     const unsigned int q) const
   {
     // The cell's dofs start at entry k * n_a * dim of cell_local_dofs, its
-    // stress point gradients at (k * n_q + q) * n_a of stress_point_gradients.
+    // stress point gradients at shape_gradients(k, q).
     const unsigned int    n_a    = n_cell_vertices;
     const unsigned int   *dofs   = &cell_local_dofs[std::size_t(k) * n_a * dim];
     const double         *values = displacement.get_values(); // owned, ghosts
-    const Tensor<1, dim> *gradients
-      = &stress_point_gradients[(std::size_t(k) * stress_quadrature.size() + q)
-                                * n_a];
+    const Tensor<1, dim> *gradients = shape_gradients(k, q);
     Assert(displacement.has_ghost_elements()
              || Utilities::MPI::n_mpi_processes(mpi_communicator) == 1,
            ExcMessage("The displacement needs its ghost values here."));
@@ -430,10 +428,8 @@ namespace ViscoContact
     const unsigned int             q,
     const ArrayView<double>       &cell_vector) const
   {
-    const std::size_t     point = std::size_t(k) * stress_quadrature.size() + q;
-    const Tensor<1, dim> *gradients
-      = &stress_point_gradients[point * n_cell_vertices];
-    const double JxW = stress_point_JxW[point];
+    const Tensor<1, dim> *gradients = shape_gradients(k, q);
+    const double          JxW       = get_stress_point_weight(k, q);
     for (unsigned int a = 0; a < n_cell_vertices; ++a)
       {
         const Tensor<1, dim> force = tau * gradients[a];

@@ -768,7 +768,9 @@ namespace ViscoContact
   ViscoplasticContact<dim>::get_stress_point_weight(const unsigned int k,
                                                     const unsigned int q) const
   {
-    return stress_point_JxW[std::size_t(k) * stress_quadrature.size() + q];
+    return stress_point_JxW[std::size_t(cell_shape[k])
+                              * stress_quadrature.size()
+                            + q];
   }
 
 

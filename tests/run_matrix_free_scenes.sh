@@ -6,8 +6,8 @@
 # vanish come out as 1e-9 to 1e-8 beside loads of 10 to 20), relative 1e-6:
 # both solve each step problem to the Tolerance of the parameter file, one
 # with K assembled, the other applied cell by cell. The
-# scenes cover friction (Coulomb and Tresca), oblique planes of symmetry,
-# curved Gmsh meshes, two materials, prescribed displacements and 3D.
+# scenes cover friction, oblique planes of symmetry, Gmsh meshes, two
+# materials, prescribed displacements and 3D.
 #   run_matrix_free_scenes.sh EXECUTABLE PRM...
 set -u
 here=$(dirname "$0")

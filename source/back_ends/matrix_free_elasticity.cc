@@ -7,7 +7,11 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/vectorization.h>
 
+#include <deal.II/distributed/tria.h>
+
 #include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/grid/grid_tools.h>
 
 #include <deal.II/lac/diagonal_matrix.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -278,6 +282,57 @@ namespace ViscoContact
 
 
 
+    // @sect4{coarsening_sequence}
+    //
+    // The meshes of the multigrid, coarsest first, the program's mesh last.
+    // deal.II's create_geometric_coarsening_sequence() copies the whole
+    // mesh and coarsens the copy, level by level; for a mesh refined
+    // uniformly from its coarse mesh (a box, a coarse Gmsh file with Global
+    // refinements) the same meshes come from the coarse mesh refined 0, 1,
+    // ... times, without a second copy of the finest mesh in memory. The
+    // coarse cells keep their order, so the cells of the levels match.
+    template <int dim>
+    std::vector<std::shared_ptr<const Triangulation<dim>>>
+    coarsening_sequence(const Triangulation<dim> &fine)
+    {
+      const auto *distributed
+        = dynamic_cast<const parallel::distributed::Triangulation<dim> *>(
+          &fine);
+      const unsigned int n_levels = fine.n_global_levels();
+      const bool         uniform
+        = distributed != nullptr
+          && fine.n_global_active_cells()
+               == static_cast<types::global_cell_index>(fine.n_cells(0))
+                    << (dim * (n_levels - 1));
+      if (!uniform)
+        return MGTransferGlobalCoarseningTools::
+          create_geometric_coarsening_sequence(fine);
+      std::vector<std::shared_ptr<const Triangulation<dim>>> levels(n_levels);
+      const auto coarse = GridTools::get_coarse_mesh_description(fine);
+      for (unsigned int level = 0; level + 1 < n_levels; ++level)
+        {
+          auto mesh
+            = std::make_shared<parallel::distributed::Triangulation<dim>>(
+              distributed->get_communicator(),
+              fine.get_mesh_smoothing());
+          for (const types::manifold_id id : fine.get_manifold_ids())
+            if (id != numbers::flat_manifold_id)
+              mesh->set_manifold(id, fine.get_manifold(id));
+          mesh->create_triangulation(std::get<0>(coarse),
+                                     std::get<1>(coarse),
+                                     std::get<2>(coarse));
+          mesh->refine_global(level);
+          levels[level] = mesh;
+        }
+      // The program's mesh, not owned here.
+      levels.back() = std::shared_ptr<const Triangulation<dim>>(
+        &fine,
+        [](const Triangulation<dim> *) {});
+      return levels;
+    }
+
+
+
     // @sect4{CoarseAMG}
     //
     // The coarse solve of the multigrid: one V-cycle of ML's smoothed
@@ -424,8 +479,8 @@ namespace ViscoContact
 
   // @sect4{MatrixFreeElasticity::Implementation::set_up_levels}
   //
-  // Global coarsening (step-75): deal.II copies the mesh and coarsens the
-  // copy until only the coarse cells are left, so that an adapted mesh with
+  // Global coarsening (step-75, coarsening_sequence()): the mesh coarsened
+  // until only the coarse cells are left, so that an adapted mesh with
   // hanging nodes has its levels too. Each level has its own dofs,
   // constraints (data.make_constraints: the Dirichlet parts and planes of
   // symmetry of the coarser mesh) and operator; the finest is the program's
@@ -434,9 +489,7 @@ namespace ViscoContact
   void
   MatrixFreeElasticity<dim>::Implementation::set_up_levels()
   {
-    triangulations
-      = MGTransferGlobalCoarseningTools::create_geometric_coarsening_sequence(
-        data.dof_handler.get_triangulation());
+    triangulations = coarsening_sequence(data.dof_handler.get_triangulation());
     const unsigned int finest = triangulations.size() - 1;
     dof_handlers.resize(finest + 1);
     level_constraints.resize(0, finest);

@@ -350,7 +350,8 @@ namespace ViscoContact
   // scenes (peak resident memory of runs of 10^4 to 10^5 dofs per rank):
   // about 2 kB per dof in 2D, and in 3D 13 kB on the condensed back end,
   // whose factorisation fills in, and 6 kB on the full space back end (which
-  // Method = auto takes for large 3D meshes; doc/scaling.md). A group root of
+  // Method = auto takes for large 3D meshes; doc/scaling.md); 1 kB on the
+  // matrix-free back end (1.1 kB measured at 108k dofs, doc/performance.md). A group root of
   // a simplex mesh (mesh.cc) holds the whole refined mesh during set-up,
   // before the run's data exist: about 400 bytes per cell (405 to 444
   // measured on tetrahedra, doc/scaling.md). The set-up and the run are
@@ -400,7 +401,8 @@ namespace ViscoContact
       }
     const double dofs = dim * vertices;
     const double bytes_per_dof
-      = dim == 2                                             ? 2e3
+      = parameters.method == Parameters::Method::matrix_free ? 1e3
+        : dim == 2                                           ? 2e3
         : parameters.method == Parameters::Method::condensed ? 13e3
                                                              : 6e3;
     const unsigned int n_ranks

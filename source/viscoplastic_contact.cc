@@ -351,9 +351,9 @@ namespace ViscoContact
   // about 2 kB per dof in 2D, and in 3D 13 kB on the condensed back end,
   // whose factorisation fills in, and 6 kB on the full space back end (which
   // Method = auto takes for large 3D meshes; doc/scaling.md); 1 kB on the
-  // matrix-free back end (1.1 kB measured at 108k dofs, doc/performance.md). A group root of
-  // a simplex mesh (mesh.cc) holds the whole refined mesh during set-up,
-  // before the run's data exist: about 400 bytes per cell (405 to 444
+  // matrix-free back end (1.1 kB measured at 108k dofs, doc/performance.md). A
+  // group root of a simplex mesh (mesh.cc) holds the whole refined mesh during
+  // set-up, before the run's data exist: about 400 bytes per cell (405 to 444
   // measured on tetrahedra, doc/scaling.md). The set-up and the run are
   // summed over the ranks of each node apart, and the larger sum is
   // compared with the node's physical memory (MemTotal of /proc/meminfo).

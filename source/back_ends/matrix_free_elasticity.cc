@@ -191,6 +191,7 @@ namespace ViscoContact
                     matrices.clear();
                     return;
                   }
+                std::vector<number> column_major;
                 for (unsigned int j = 0; j < dofs_per_cell; ++j)
                   {
                     for (unsigned int i = 0; i < dofs_per_cell; ++i)
@@ -203,7 +204,6 @@ namespace ViscoContact
                 for (unsigned int i = 0; i < dofs_per_cell; ++i)
                   for (unsigned int j = 0; j < dofs_per_cell; ++j)
                     matrices.push_back(column_major[j * dofs_per_cell + i]);
-                column_major.clear();
               }
             cells[cell] = entry->second;
           }
@@ -253,7 +253,7 @@ namespace ViscoContact
       // by row (all empty where the mesh has too many distinct cells).
       static constexpr unsigned int none = numbers::invalid_unsigned_int;
       std::vector<unsigned int>     shared_matrix;
-      std::vector<number>           matrices, column_major;
+      std::vector<number>           matrices;
     };
 
 

@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/types.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -430,10 +431,15 @@ namespace ViscoContact
       double       coarsen_fraction         = 0.03;
       unsigned int maximum_cells            = 20000;
       unsigned int maximum_refinement_level = 8;
-      // Nested iteration on the first step: solved on initial_cycles coarser
-      // meshes first, each solution the warm start of the next mesh.
-      unsigned int      initial_cycles     = 0;
-      InitialRefinement initial_refinement = InitialRefinement::global;
+      // Nested iteration on the first step: solved on L coarser meshes
+      // first, each solution the warm start of the next mesh. The entry is
+      // "auto" (the program chooses L) or L; initial_cycles() reads it.
+      std::string       initial_cycles_entry = "auto";
+      InitialRefinement initial_refinement   = InitialRefinement::global;
+
+      // L as set in the parameter file; nothing for auto.
+      std::optional<unsigned int>
+      initial_cycles() const;
 
       void
       add_parameters(ParameterHandler &prm);
@@ -491,6 +497,13 @@ namespace ViscoContact
       // Every boundary id of every contact zone.
       std::vector<types::boundary_id>
       all_contact_ids() const;
+      // How many times the mesh of the parameter file can be coarsened
+      // uniformly: its Global refinements, and for a generated box of
+      // hypercubes also the factors of 2 of Subdivisions (the box of
+      // m 2^j cells per edge is the box of m refined j times, with the same
+      // cells; mesh.cc), unless a Material id function decides on its cells.
+      unsigned int
+      uniform_coarsenings() const;
 
       // Every entry of the file, bound to the members of this object (which
       // must outlive the parsing); then the checks of every subsection and

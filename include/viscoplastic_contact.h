@@ -148,12 +148,17 @@ namespace ViscoContact
     setup_system();
     void
     assemble_elastic_operator();
-    // Method = matrix free: no matrix of K is assembled; the back end
+    // The back end of this mesh: Method as set, or for Method = auto the one
+    // the cost model (cost_model.h) estimates fastest, from the dofs just
+    // distributed and the vertices of the contact boundary.
+    void
+    choose_back_end();
+    // The matrix-free back end: no matrix of K is assembled; the back end
     // applies it cell by cell.
     bool
     matrix_free() const
     {
-      return parameters.method == Parameters::Method::matrix_free;
+      return back_end.method == Parameters::Method::matrix_free;
     }
     // The elasticity tensor of a cell's material.
     ElasticityOfCell<dim>
@@ -366,8 +371,22 @@ namespace ViscoContact
     // 0) or each rank's own part of one file (written collectively).
     void
     check_output_directory();
+    // The size of the parameter file's mesh before it is built (cells as
+    // well); collective.
+    SceneSize
+    estimate_scene(double &cells) const;
     void
-    check_memory_estimate() const;
+    check_memory_estimate();
+    // The number of initial cycles: as set, or for Initial cycles = auto
+    // chosen from the back end the cost model expects.
+    void
+                 choose_initial_cycles();
+    unsigned int first_step_cycles = 0;
+    // Why auto chose first_step_cycles (for the header; empty if set).
+    std::string initial_cycles_reason;
+    // A compute node's memory divided by the ranks on it (0 if unknown),
+    // for the cost model of Method = auto.
+    double memory_per_rank = 0;
     // Collective: the peak memory of the ranks up to now; when names the
     // moment ("after the mesh", ..., "over the run").
     void
@@ -589,9 +608,9 @@ namespace ViscoContact
     unsigned int n_external_load_assemblies = 0;
     unsigned int total_newton_iterations    = 0;
 
-    // How the step problems are solved: why this method (for the header)
-    // and the back end that implements it.
-    std::string                         method_reason;
+    // How the step problems are solved: the method and why (for the
+    // header), and the back end that implements it.
+    MethodChoice                        back_end;
     std::unique_ptr<ContactSolver<dim>> contact_solver;
 
     // u_n (with ghost entries), f_n, -(H_n, eps(v)), their sum. All four share

@@ -634,15 +634,20 @@ namespace ViscoContact
   // log(s_{r-1}/s_r) with s = h + k, or s = k (s = h) when the mesh (the
   // time step) is the same. h is measured along the first edge,
   // L1 / Subdivisions. NaN where the order is not defined: for the first
-  // run and after a failed one (there is no error to compare with).
+  // run and after a failed one (there is no error to compare with), and for
+  // a run on the reference's own mesh and step, whose error is zero or, on
+  // a back end whose arithmetic varies between runs (MUMPS on several
+  // ranks), roundoff.
   template <int dim>
   double
   ConvergenceStudy<dim>::observed_order(const unsigned int r,
                                         const double Run::*member) const
   {
-    if (r == 0 || runs[r - 1].failed)
+    const Run &run = runs[r];
+    if (r == 0 || runs[r - 1].failed
+        || (run.subdivisions == parameters.reference_subdivisions
+            && run.time_step == parameters.reference_time_step))
       return std::numeric_limits<double>::quiet_NaN();
-    const Run   &run      = runs[r];
     const Run   &previous = runs[r - 1];
     const double h        = parameters.lengths[0] / run.subdivisions;
     const double h_prev   = parameters.lengths[0] / previous.subdivisions;

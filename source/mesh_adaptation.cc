@@ -588,7 +588,7 @@ namespace ViscoContact
     TimerOutput::Scope t(computing_timer, "Initial cycles");
     const bool         global
       = parameters.initial_refinement == Parameters::InitialRefinement::global;
-    for (unsigned int cycle = 0; cycle < parameters.initial_cycles; ++cycle)
+    for (unsigned int cycle = 0; cycle < first_step_cycles; ++cycle)
       {
         const TimeSchedule                run_schedule = schedule;
         const std::array<unsigned int, 3> counts_before{
@@ -634,12 +634,14 @@ namespace ViscoContact
         // initial state is zero, as setup_on_mesh() left it).
         assemble_external_load(schedule.next_time());
       }
-    // The mesh of the run from here on, which the "Mesh:" line of the header
-    // (the first mesh of the cycles) does not show.
+    // The mesh of the run from here on, and its back end, which the header
+    // (on the first mesh of the cycles) does not show.
     pcout << "Initial cycles done: " << triangulation->n_global_active_cells()
           << " cells, " << dof_handler.n_dofs() << " dofs, "
           << (contact_enabled ? contact_set.n_global_nodes() : 0)
-          << " contact nodes for step 1" << std::endl;
+          << " contact nodes for step 1; back end: "
+          << contact_solver->description() << " (" << back_end.reason << ")"
+          << std::endl;
   }
 
 

@@ -87,6 +87,32 @@ namespace ViscoContact
               member = value;
         });
       }
+
+      // "auto", or an integer in [0, 20] (Initial cycles): the parser's
+      // message for any other text names the file, the line and this
+      // description.
+      class AutoOrCount : public Patterns::PatternBase
+      {
+      public:
+        bool
+        match(const std::string &text) const override
+        {
+          return text == "auto" || count.match(text);
+        }
+        std::string
+        description(const OutputStyle style = Machine) const override
+        {
+          return "auto or " + count.description(style);
+        }
+        std::unique_ptr<PatternBase>
+        clone() const override
+        {
+          return std::make_unique<AutoOrCount>();
+        }
+
+      private:
+        const Patterns::Integer count{0, 20};
+      };
     } // namespace
 
 
@@ -1370,15 +1396,19 @@ namespace ViscoContact
                           Patterns::Integer(0, 20));
         prm.add_parameter(
           "Initial cycles",
-          initial_cycles,
+          initial_cycles_entry,
           "Nested iteration on the first time step (doc/adaptivity.md, "
           "\"Initial cycles\"): step 1 is solved on L coarser meshes first, "
           "each solution (displacement and contact pressure) carried over to "
           "the next mesh as the starting point of its active-set iteration; "
-          "only the solve on the last mesh is recorded. 0: none. Hypercube "
-          "meshes only; an integer in [0, 20], with Initial refinement = "
-          "global at most Global refinements.",
-          Patterns::Integer(0, 20));
+          "only the solve on the last mesh is recorded. auto: the program "
+          "chooses L (printed in the header; none where the back end is the "
+          "condensed one, which solves a cold step in milliseconds once K is "
+          "factorised); 0: none. Hypercube meshes only; auto or an integer "
+          "in [0, 20], with Initial refinement = global at most the number "
+          "of times the mesh can be coarsened (Global refinements, and the "
+          "factors of 2 of a generated box's Subdivisions).",
+          AutoOrCount());
         add_selection(
           prm,
           "Initial refinement",
@@ -1785,6 +1815,29 @@ namespace ViscoContact
 
 
 
+    std::optional<unsigned int>
+    MeshAdaptation::initial_cycles() const
+    {
+      if (initial_cycles_entry == "auto")
+        return std::nullopt;
+      return Utilities::string_to_int(initial_cycles_entry);
+    }
+
+
+
+    unsigned int
+    AllParameters::uniform_coarsenings() const
+    {
+      unsigned int coarsenings = global_refinements;
+      if (mesh_file.empty() && material_id_function.empty()
+          && cell_type == CellType::hypercube && subdivisions > 0)
+        for (unsigned int n = subdivisions; n % 2 == 0; n /= 2)
+          ++coarsenings;
+      return coarsenings;
+    }
+
+
+
     void
     AllParameters::check_mesh_adaptation_entries() const
     {
@@ -1804,28 +1857,34 @@ namespace ViscoContact
       // the mesh of the parameter file is the finest, reached from one with
       // Initial cycles fewer uniform refinements, and the contact refinements
       // would not be nested that way.
-      if (initial_cycles > 0)
+      // (Initial cycles = auto takes none where they do not apply.)
+      const unsigned int cycles = initial_cycles().value_or(0);
+      if (cycles > 0)
         require(cell_type == CellType::hypercube && !study_enabled,
                 "Mesh adaptation",
                 "Initial cycles",
-                std::to_string(initial_cycles),
-                "0 when Cell type = simplex or a convergence study runs "
-                "(the initial cycles refine hypercube meshes on p4est)");
-      if (initial_cycles > 0 && initial_refinement == InitialRefinement::global)
+                initial_cycles_entry,
+                "auto or 0 when Cell type = simplex or a convergence study "
+                "runs (the initial cycles refine hypercube meshes on p4est)");
+      if (cycles > 0 && initial_refinement == InitialRefinement::global)
         {
-          require(initial_cycles <= global_refinements,
+          require(cycles <= uniform_coarsenings(),
                   "Mesh adaptation",
                   "Initial cycles",
-                  std::to_string(initial_cycles),
-                  "at most Global refinements = "
+                  initial_cycles_entry,
+                  "at most " + std::to_string(uniform_coarsenings())
+                    + " (Global refinements = "
                     + std::to_string(global_refinements)
-                    + " (subsection <Geometry>) with Initial refinement = "
-                      "global: the first cycle's mesh has Global refinements "
-                      "- Initial cycles uniform refinements");
+                    + ", and the factors of 2 of Subdivisions = "
+                    + std::to_string(subdivisions)
+                    + " of a generated box of hypercubes; subsection "
+                      "<Geometry>) with Initial refinement = global: the "
+                      "first cycle's mesh is the parameter file's coarsened "
+                      "Initial cycles times");
           require(contact_refinements == 0,
                   "Mesh adaptation",
                   "Initial cycles",
-                  std::to_string(initial_cycles),
+                  initial_cycles_entry,
                   "0 when Contact refinement levels > 0 (subsection "
                   "<Geometry>) with Initial refinement = global (uniform "
                   "refinement of a graded mesh does not give the graded mesh "

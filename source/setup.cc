@@ -54,7 +54,16 @@ namespace ViscoContact
     TimerOutput::Scope        t(computing_timer, "Setup: mesh");
     Parameters::AllParameters first_mesh = parameters;
     if (parameters.initial_refinement == Parameters::InitialRefinement::global)
-      first_mesh.global_refinements -= parameters.initial_cycles;
+      {
+        // Coarser by the Global refinements first, then by halving the
+        // generated box's Subdivisions (the same cells on p4est, whose
+        // trees are the box of Subdivisions without its factors of 2).
+        const unsigned int from_refinements
+          = std::min(first_step_cycles, first_mesh.global_refinements);
+        first_mesh.global_refinements -= from_refinements;
+        for (unsigned int l = from_refinements; l < first_step_cycles; ++l)
+          first_mesh.subdivisions /= 2;
+      }
     Timer timer;
     triangulation = create_distributed_mesh<dim>(first_mesh, mpi_communicator);
     if (parameters.print_timing_summary)
@@ -165,6 +174,8 @@ namespace ViscoContact
                                     constraints,
                                     has_prescribed_values ? &open_constraints
                                                           : nullptr);
+
+      choose_back_end();
 
       // The sparsity pattern of the owned cells, without the entries that the
       // constraints eliminate (distribute_local_to_global() never writes them).
@@ -544,6 +555,59 @@ namespace ViscoContact
 
 
 
+  // @sect4{ViscoplasticContact::choose_back_end}
+  //
+  // The cost model needs the scene's size before anything of a back end is
+  // built (the matrix-free back end assembles no matrix): the dofs, the
+  // vertices of the contact boundary (each counted by the rank that owns its
+  // first dof, constrained ones too), the steps left in the run (with
+  // adaptive steps as many as the last step length would give), and the
+  // memory of a rank (its compute node's divided by the ranks on it). All of
+  // them are the same on every rank, so every rank takes the same back end.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::choose_back_end()
+  {
+    SceneSize scene;
+    scene.dim             = dim;
+    scene.simplex         = reference_cell.is_simplex();
+    scene.implicit_update = implicit_update();
+    scene.dofs            = dof_handler.n_dofs();
+    scene.ranks           = Utilities::MPI::n_mpi_processes(mpi_communicator);
+    std::set<types::boundary_id> contact_ids;
+    for (const auto &zone : contact_zones)
+      contact_ids.insert(zone.boundary_ids.begin(), zone.boundary_ids.end());
+    if (!contact_ids.empty())
+      {
+        IndexSet on_contact
+          = DoFTools::extract_boundary_dofs(dof_handler,
+                                            fe->component_mask(
+                                              FEValuesExtractors::Scalar(0)),
+                                            contact_ids);
+        on_contact = on_contact & locally_owned_dofs;
+        scene.contact_nodes
+          = Utilities::MPI::sum(on_contact.n_elements(), mpi_communicator);
+      }
+    for (const auto &zone : contact_zones)
+      if (zone.friction.has_friction())
+        scene.node_unknowns = dim;
+    // Before the schedule exists (the first mesh), the steps of the
+    // parameter file.
+    const bool   scheduled = schedule.end_time() > 0;
+    const double step
+      = scheduled ? schedule.step_length() : parameters.time_step;
+    const double span = scheduled
+                          ? schedule.end_time() - schedule.current_time()
+                          : parameters.end_time;
+    scene.steps       = std::max(1., std::round(span / std::max(step, 1e-300)));
+    scene.memory_per_rank = memory_per_rank;
+    // The last mesh of the initial cycles has its cold step warm-started.
+    scene.nested_iteration = first_step_cycles > 0;
+    back_end               = choose_method(parameters.method, scene);
+  }
+
+
+
   // @sect4{ViscoplasticContact::setup_back_end}
   //
   // Method = auto picks the back end from the scene (contact_solver.cc);
@@ -558,13 +622,6 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::setup_back_end()
   {
-    const MethodChoice choice
-      = choose_method(parameters,
-                      dim,
-                      Utilities::MPI::n_mpi_processes(mpi_communicator),
-                      dof_handler.n_dofs(),
-                      contact_enabled ? contact_set.n_global_nodes() : 0);
-    method_reason = choice.reason;
     // What the matrix-free back end builds its operator and multigrid
     // from: the coarser meshes get the constraints of the same boundary
     // parts.
@@ -585,7 +642,7 @@ namespace ViscoContact
                                       relevant,
                                       level_constraints);
       }};
-    contact_solver = create_contact_solver<dim>(choice.method,
+    contact_solver = create_contact_solver<dim>(back_end.method,
                                                 parameters,
                                                 mapping,
                                                 dof_handler,
@@ -620,14 +677,20 @@ namespace ViscoContact
       pcout << n_steps << " time steps\n";
     // With initial cycles the mesh above is the first of them (a resumed run
     // starts on the checkpoint's mesh and runs none).
-    if (parameters.initial_cycles > 0 && !parameters.resume)
-      pcout << "Initial cycles: step 1 on " << parameters.initial_cycles
+    if (first_step_cycles > 0 && !parameters.resume)
+      pcout << "Initial cycles: step 1 on " << first_step_cycles
             << " coarser meshes first, from this one, "
             << (parameters.initial_refinement
                     == Parameters::InitialRefinement::global
                   ? "refined globally"
                   : "refined adaptively")
+            << (initial_cycles_reason.empty()
+                  ? ""
+                  : " (Initial cycles = auto: " + initial_cycles_reason + ")")
             << '\n';
+    else if (!initial_cycles_reason.empty())
+      pcout << "Initial cycles: none (Initial cycles = auto: "
+            << initial_cycles_reason << ")\n";
     pcout << "Model: "
           << (parameters.any_plasticity() ? "viscoplastic" : "elastic");
     if (parameters.plane_model == Parameters::PlaneModel::plane_strain)
@@ -654,7 +717,7 @@ namespace ViscoContact
     else if (contact_zones.size() > 1)
       pcout << "Contact zones: " << contact_zones.size() << '\n';
     pcout << "Back end: " << contact_solver->description() << " ("
-          << method_reason << ")\n"
+          << back_end.reason << ")\n"
           << "Parallel: " << Utilities::MPI::n_mpi_processes(mpi_communicator)
           << " MPI rank(s), "
           << (reference_cell.is_simplex() ? "fully distributed" : "p4est")

@@ -38,7 +38,7 @@ namespace ViscoContact
     // Adaptive and cut steps are not counted before the run: their number
     // is bounded here (fixed schedules were checked with the parameters).
     check_step_count(n, schedule.current_time());
-    if (n == 1 && parameters.initial_cycles > 0)
+    if (n == 1 && first_step_cycles > 0)
       solve_initial_cycles();
 
     StepStartState  start         = save_step_start();

@@ -331,39 +331,27 @@ namespace ViscoContact
 
 
 
-  // @sect4{ViscoplasticContact::check_memory_estimate}
+  // @sect4{ViscoplasticContact::estimate_scene}
   //
-  // A lower estimate of the memory a run needs on each compute node, so that
-  // a mesh is refused only if it certainly does not fit. The size of the
-  // mesh follows from the parameters: the generated box of N Subdivisions
-  // and r Global refinements has (N 2^r)^dim squares (cubes), each cut into
-  // the simplices of its pattern, and (N 2^r + 1)^dim vertices (the
-  // five-tetrahedra pattern has no more; crossed adds a centre per square).
-  // A Gmsh file is known by the node count V at the head of its $Nodes
-  // section (read by rank 0, a few lines): a mesh of V vertices has at least
-  // V - dim simplices or V / 2^(dim-1) - 1 hypercubes, refinement multiplies
-  // the cells by 2^dim per level, and a fine mesh has about 2 triangles, 6.5
-  // tetrahedra or 1 hypercube per vertex.
-  //
-  // Each rank needs about 150 MB for the libraries, and for the run its
-  // share of the dofs times the memory per dof measured on the benchmark
-  // scenes (peak resident memory of runs of 10^4 to 10^5 dofs per rank):
-  // about 2 kB per dof in 2D, and in 3D 13 kB on the condensed back end,
-  // whose factorisation fills in, and 6 kB on the full space back end (which
-  // Method = auto takes for large 3D meshes; doc/scaling.md); 1 kB on the
-  // matrix-free back end (1.1 kB measured at 108k dofs, doc/performance.md). A
-  // group root of a simplex mesh (mesh.cc) holds the whole refined mesh during
-  // set-up, before the run's data exist: about 400 bytes per cell (405 to 444
-  // measured on tetrahedra, doc/scaling.md). The set-up and the run are
-  // summed over the ranks of each node apart, and the larger sum is
-  // compared with the node's physical memory (MemTotal of /proc/meminfo).
+  // The size of the parameter file's mesh, before it is built, for the
+  // decisions taken before the mesh exists. The generated box of N
+  // Subdivisions and r Global refinements has (N 2^r)^dim squares (cubes),
+  // each cut into the simplices of its pattern, and (N 2^r + 1)^dim vertices
+  // (the five-tetrahedra pattern has no more; crossed adds a centre per
+  // square). A Gmsh file is known by the node count V at the head of its
+  // $Nodes section (read by rank 0, a few lines): a mesh of V vertices has at
+  // least V - dim simplices or V / 2^(dim-1) - 1 hypercubes, refinement
+  // multiplies the cells by 2^dim per level, and a fine mesh has about 2
+  // triangles, 6.5 tetrahedra or 1 hypercube per vertex. Each contact
+  // boundary part is taken as one side of the body: V^((dim-1)/dim)
+  // vertices. Collective (rank 0 reads the file).
   template <int dim>
-  void
-  ViscoplasticContact<dim>::check_memory_estimate() const
+  SceneSize
+  ViscoplasticContact<dim>::estimate_scene(double &cells) const
   {
     const bool simplex
       = (parameters.cell_type == Parameters::CellType::simplex);
-    double vertices = 0, cells = 0;
+    double vertices = 0;
     if (parameters.mesh_file.empty())
       {
         const double edge = parameters.subdivisions
@@ -399,16 +387,62 @@ namespace ViscoContact
                 * std::pow(2., dim * parameters.global_refinements);
         vertices = cells / (simplex ? (dim == 2 ? 2 : 6.5) : 1);
       }
-    const double dofs = dim * vertices;
-    const double bytes_per_dof
-      = parameters.method == Parameters::Method::matrix_free ? 1e3
-        : dim == 2                                           ? 2e3
-        : parameters.method == Parameters::Method::condensed ? 13e3
-                                                             : 6e3;
-    const unsigned int n_ranks
-      = Utilities::MPI::n_mpi_processes(mpi_communicator);
-    const double libraries  = 150e6;
-    const double rank_bytes = libraries + dofs / n_ranks * bytes_per_dof;
+    SceneSize scene;
+    scene.dim             = dim;
+    scene.simplex         = simplex;
+    scene.implicit_update = implicit_update();
+    scene.dofs            = dim * vertices;
+    scene.contact_nodes   = parameters.all_contact_ids().size()
+                          * std::pow(vertices, (dim - 1.) / dim);
+    for (const auto &zone : parameters.used_contact_zones())
+      if (zone.contact->tangential_law
+          != Parameters::TangentialLawType::frictionless)
+        scene.node_unknowns = dim;
+    scene.ranks = Utilities::MPI::n_mpi_processes(mpi_communicator);
+    scene.steps
+      = std::max(1.,
+                 std::round(parameters.end_time
+                            / std::max(parameters.time_step, 1e-300)));
+    scene.memory_per_rank = memory_per_rank;
+    return scene;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::check_memory_estimate}
+  //
+  // A lower estimate of the memory a run needs on each compute node, so that
+  // a mesh is refused only if it certainly does not fit, from the size
+  // estimate_scene() expects.
+  //
+  // What a rank needs for the run is the cost model's estimate
+  // (cost_model.h: the libraries, and the rank's share of the dofs times the
+  // bytes per dof of the back end, measured on the benchmark scenes), for
+  // the back end the run will use; with Method = auto for the one of least
+  // memory that can run the scene, which auto takes when the faster ones do
+  // not fit. A group root of a simplex mesh (mesh.cc) holds the whole
+  // refined mesh during set-up, before the run's data exist: about 400 bytes
+  // per cell (405 to 444 measured on tetrahedra, doc/scaling.md). The set-up
+  // and the run are summed over the ranks of each node apart, and the larger
+  // sum is compared with the node's physical memory (MemTotal of
+  // /proc/meminfo). A node's memory divided by its ranks is kept for the
+  // cost model's choices (memory_per_rank).
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::check_memory_estimate()
+  {
+    double             cells      = 0;
+    const SceneSize    scene      = estimate_scene(cells);
+    const bool         simplex    = scene.simplex;
+    const double       dofs       = scene.dofs;
+    const unsigned int n_ranks    = scene.ranks;
+    double             rank_bytes = std::numeric_limits<double>::max();
+    for (const BackEndCost &cost : estimate_costs(scene))
+      if (cost.unavailable.empty()
+          && (parameters.method == Parameters::Method::automatic
+              || parameters.method == cost.method))
+        rank_bytes = std::min(rank_bytes, cost.bytes_per_rank);
+    const double libraries  = library_bytes_per_rank;
     const double root_bytes = libraries + cells * 400;
 
     // The physical memory of this rank's node, and the set-up and run
@@ -438,6 +472,8 @@ namespace ViscoContact
       = Utilities::MPI::sum(mesh_group_root ? root_bytes : libraries,
                             node_communicator);
     const double run_need = Utilities::MPI::sum(rank_bytes, node_communicator);
+    memory_per_rank
+      = node_memory / Utilities::MPI::n_mpi_processes(node_communicator);
     MPI_Comm_free(&node_communicator);
     // The node that lacks most; without /proc/meminfo (not Linux) there is
     // nothing to compare with.
@@ -477,6 +513,72 @@ namespace ViscoContact
 
 
 
+  // @sect4{ViscoplasticContact::choose_initial_cycles}
+  //
+  // Initial cycles = auto. Nested iteration pays where an active-set
+  // iteration is a Krylov solve on the whole mesh (the full space and
+  // matrix-free back ends): a cold first step takes 9 to 12 of them on the
+  // fine mesh and 2 after the cycles, whose meshes cost a quarter (an eighth
+  // in 3D) of the next one (doc/performance.md, "Nested iteration"). With
+  // the condensed back end an iteration is a dense solve on the contact
+  // nodes, and the coarse meshes' set-ups cost what the cycles save. So the
+  // cycles run when the cost model expects an iterative back end for the
+  // parameter file's mesh (from estimate_scene(); the back end of each mesh
+  // is chosen again from its own size), down to a mesh of about 2000 dofs
+  // (below that a cold step is cheap anyway) and at most 4 levels. None on a
+  // resumed run (its first step is not a cold start), without contact, and
+  // where the cycles' meshes would not be the parameter file's mesh
+  // coarsened: simplices, graded and adaptive meshes, convergence studies.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::choose_initial_cycles()
+  {
+    if (const std::optional<unsigned int> set = parameters.initial_cycles())
+      {
+        first_step_cycles = *set;
+        return;
+      }
+    first_step_cycles = 0;
+    if (parameters.resume || parameters.used_contact_zones().empty())
+      return;
+    if (parameters.cell_type != Parameters::CellType::hypercube
+        || parameters.study_enabled || parameters.adaptive_refinement
+        || parameters.contact_refinements > 0
+        || parameters.initial_refinement
+             != Parameters::InitialRefinement::global)
+      {
+        initial_cycles_reason = "they need a hypercube mesh refined "
+                                "uniformly from a coarser one";
+        return;
+      }
+    double    cells = 0;
+    SceneSize scene = estimate_scene(cells);
+    // The iterative back ends' estimate with the cycles they would run.
+    scene.nested_iteration    = true;
+    const MethodChoice choice = choose_method(parameters.method, scene);
+    if (choice.method == Parameters::Method::condensed)
+      {
+        initial_cycles_reason = "the condensed back end is expected, whose "
+                                "active-set iterations are dense solves on the "
+                                "contact nodes";
+        return;
+      }
+    const unsigned int most_levels
+      = std::min(parameters.uniform_coarsenings(), 4u);
+    while (first_step_cycles < most_levels
+           && scene.dofs / std::pow(2., dim * (first_step_cycles + 1)) >= 2000)
+      ++first_step_cycles;
+    initial_cycles_reason
+      = "the "
+        + std::string(choice.method == Parameters::Method::matrix_free
+                        ? "matrix-free"
+                        : "full space")
+        + " back end is expected, and the coarsest mesh "
+          "keeps about 2000 dofs or more";
+  }
+
+
+
   // @sect4{ViscoplasticContact::run}
   //
   // The algorithm of doc/model.md, section 2, as the reader would write it
@@ -496,6 +598,7 @@ namespace ViscoContact
     // (there is no step to save yet).
     check_output_directory();
     check_memory_estimate();
+    choose_initial_cycles();
     make_grid();
     StopSignals::stop_if_received(mpi_communicator, "after the mesh");
     setup_on_mesh();

@@ -8,13 +8,20 @@
 # the Krylov iterations), the same contact profiles and the same final norms,
 # by numdiff absolute 1e-8, relative 1e-8. The cycled run must have printed
 # L cycles, and its step 1 on the last mesh must take at most the active-set
-# iterations of the cold start.
+# iterations of the cold start. With Initial cycles = auto, the file names
+# the L the program must choose ("# expect cycles: L"), and the header must
+# say why.
 #   run_initial_cycles.sh EXECUTABLE PRM
 set -u
 here=$(dirname "$0")
 executable=$1 prm=$2
 absolute=1e-8 relative=1e-8
-cycles=$(sed -n 's/^ *set Initial cycles *= *\([0-9]*\).*/\1/p' "$prm")
+cycles=$(sed -n 's/^ *set Initial cycles *= *\([0-9a-z]*\).*/\1/p' "$prm")
+automatic=false
+if [ "$cycles" = auto ]; then
+  automatic=true
+  cycles=$(sed -n 's/^# expect cycles: *\([0-9]*\).*/\1/p' "$prm")
+fi
 
 "$here/run_scene_variant.sh" cycles "$executable" "$prm" || exit 1
 "$here/run_scene_variant.sh" direct "$executable" "$prm" \
@@ -27,6 +34,10 @@ done
 n_cycles=$(grep -c '^Initial cycle [0-9]' cycles/output.txt)
 if [ "$n_cycles" -ne "$cycles" ] || grep -q '^Initial cycle' direct/output.txt; then
   echo "The cycled run printed $n_cycles initial cycles, not $cycles (or the direct one printed some)."
+  exit 1
+fi
+if $automatic && ! grep -q "^Initial cycles: step 1 on $cycles coarser meshes .*(Initial cycles = auto: " cycles/output.txt; then
+  echo "The header does not say that Initial cycles = auto chose $cycles cycles, and why."
   exit 1
 fi
 if ! grep -q "^  initial cycles: .* on $cycles coarser meshes" cycles/output.txt; then

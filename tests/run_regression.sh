@@ -28,8 +28,12 @@ if [ "$n" -gt 1 ]; then
     exit 1
   fi
 else
-  cp "$reference" expected.txt
-  cp output.txt observed.txt
+  # Method = auto's reason names its cost estimates and this machine's
+  # memory, which the unit tests check (CostModel): here the back end it
+  # chose is compared, not the estimates.
+  estimates='s/\(Method = auto: .*\)$/(Method = auto)/'
+  sed -E "$estimates" "$reference" > expected.txt
+  sed -E "$estimates" output.txt > observed.txt
 fi
 if ! numdiff -q -a "$absolute" -r "$relative" -s ' \t\n=,:;<>[](){}^' \
      expected.txt observed.txt > /dev/null; then

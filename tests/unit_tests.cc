@@ -48,6 +48,7 @@
 
 #include "back_ends/blas_threads.h"
 #include "back_ends/condensed_system.h"
+#include "back_ends/cost_model.h"
 #include "back_ends/rigid_body_modes.h"
 #include "contact_law.h"
 #include "contact_nodes.h"
@@ -2547,6 +2548,131 @@ TEST(RigidMotions, Hexahedra)
                                                     0,
                                                     ComponentMask(3, true))),
             Names{});
+}
+
+
+// @sect3{The cost model of Method = auto}
+//
+// The scenes of doc/back_ends/method_choice.md, where every back end was
+// timed (benchmarks/run_method_choice.py): auto must take the one that was
+// fastest, and never one that cannot run the scene or does not fit.
+
+namespace
+{
+  SceneSize
+  scene_of(const unsigned int dim,
+           const bool         simplex,
+           const double       dofs,
+           const double       contact_nodes,
+           const double       steps,
+           const unsigned int ranks = 1)
+  {
+    SceneSize scene;
+    scene.dim             = dim;
+    scene.simplex         = simplex;
+    scene.dofs            = dofs;
+    scene.contact_nodes   = contact_nodes;
+    scene.steps           = steps;
+    scene.ranks           = ranks;
+    scene.memory_per_rank = 24e9 / ranks;
+    return scene;
+  }
+} // namespace
+
+TEST(CostModel, MethodSetInTheParameterFileIsKept)
+{
+  const SceneSize scene = scene_of(2, true, 526338, 512, 1);
+  for (const auto method : {Parameters::Method::condensed,
+                            Parameters::Method::full_space,
+                            Parameters::Method::matrix_free})
+    {
+      const MethodChoice choice = choose_method(method, scene);
+      EXPECT_EQ(choice.method, method);
+      EXPECT_EQ(choice.reason, "set in the parameter file");
+    }
+}
+
+TEST(CostModel, MatrixFreeOnlyForHypercubesAndTheExplicitUpdate)
+{
+  SceneSize scene = scene_of(3, true, 1.2e6, 5000, 32);
+  EXPECT_FALSE(
+    estimate_cost(Parameters::Method::matrix_free, scene).unavailable.empty());
+  EXPECT_NE(choose_method(Parameters::Method::automatic, scene).method,
+            Parameters::Method::matrix_free);
+  scene.simplex         = false;
+  scene.implicit_update = true;
+  EXPECT_FALSE(
+    estimate_cost(Parameters::Method::matrix_free, scene).unavailable.empty());
+  EXPECT_NE(choose_method(Parameters::Method::automatic, scene).method,
+            Parameters::Method::matrix_free);
+}
+
+TEST(CostModel, ChoosesTheMeasuredFastest)
+{
+  const auto automatic = Parameters::Method::automatic;
+  // The static scene (one cold step) on triangles: the condensed back end on
+  // one rank, the full space one on two (S by one MUMPS solve per node).
+  for (const double n : {128., 256., 512.})
+    {
+      const double dofs = 2 * (n + 1) * (n + 1);
+      EXPECT_EQ(choose_method(automatic, scene_of(2, true, dofs, n, 1)).method,
+                Parameters::Method::condensed);
+      EXPECT_EQ(
+        choose_method(automatic, scene_of(2, true, dofs, n, 1, 2)).method,
+        Parameters::Method::full_space);
+    }
+  // cube_3d.prm (32 steps) at 15k and 108k dofs: condensed on one rank.
+  EXPECT_EQ(choose_method(automatic, scene_of(3, false, 14739, 289, 32)).method,
+            Parameters::Method::condensed);
+  EXPECT_EQ(
+    choose_method(automatic, scene_of(3, false, 107811, 1089, 32)).method,
+    Parameters::Method::condensed);
+  // At 1.2M dofs the factor does not fit: matrix free on hexahedra, full
+  // space on tetrahedra.
+  EXPECT_EQ(
+    choose_method(automatic, scene_of(3, false, 1.2e6, 5329, 32)).method,
+    Parameters::Method::matrix_free);
+  EXPECT_EQ(choose_method(automatic, scene_of(3, true, 1.2e6, 5329, 32)).method,
+            Parameters::Method::full_space);
+}
+
+TEST(CostModel, MemoryDecides)
+{
+  // The condensed back end is fastest on the static scene on
+  // quadrilaterals, but does not fit in 1.5 GB per rank; the matrix-free
+  // back end does; with 100 MB nothing fits, and auto takes the back end of
+  // least memory.
+  SceneSize scene = scene_of(2, false, 526338, 512, 1);
+  EXPECT_EQ(choose_method(Parameters::Method::automatic, scene).method,
+            Parameters::Method::condensed);
+  scene.memory_per_rank = 1.5e9;
+  EXPECT_EQ(choose_method(Parameters::Method::automatic, scene).method,
+            Parameters::Method::matrix_free);
+  scene.memory_per_rank = 1e8;
+  const MethodChoice choice
+    = choose_method(Parameters::Method::automatic, scene);
+  EXPECT_EQ(choice.method, Parameters::Method::matrix_free);
+  EXPECT_NE(choice.reason.find("none fits"), std::string::npos);
+}
+
+TEST(CostModel, CostsGrowWithTheMeshAndShrinkWithRanks)
+{
+  for (const auto method : {Parameters::Method::condensed,
+                            Parameters::Method::full_space,
+                            Parameters::Method::matrix_free})
+    for (const unsigned int dim : {2u, 3u})
+      {
+        const BackEndCost small
+          = estimate_cost(method, scene_of(dim, false, 1e5, 300, 10));
+        const BackEndCost large
+          = estimate_cost(method, scene_of(dim, false, 1e6, 1000, 10));
+        const BackEndCost shared
+          = estimate_cost(method, scene_of(dim, false, 1e6, 1000, 10, 4));
+        EXPECT_LT(small.bytes_per_rank, large.bytes_per_rank);
+        EXPECT_LT(small.run_seconds(), large.run_seconds());
+        EXPECT_LT(shared.bytes_per_rank, large.bytes_per_rank);
+        EXPECT_GT(small.bytes_per_rank, library_bytes_per_rank);
+      }
 }
 
 

@@ -9,6 +9,7 @@
 
 #include <deal.II/lac/vector.h>
 
+#include "back_ends/cost_model.h"
 #include "back_ends/linear_algebra.h"
 #include "back_ends/matrix_free_elasticity.h"
 #include "contact_nodes.h"
@@ -167,24 +168,6 @@ namespace ViscoContact
   };
 
 
-
-  // What Method = auto picks, and why (printed at start-up).
-  struct MethodChoice
-  {
-    Parameters::Method method;
-    std::string        reason;
-  };
-
-  // Resolves Method = auto from the scene: the space dimension, the number
-  // of ranks, of dofs and of contact nodes (the limits and the measurements
-  // behind them are in contact_solver.cc). A Method set in the parameter
-  // file is returned as it is.
-  MethodChoice
-  choose_method(const Parameters::AllParameters &parameters,
-                const unsigned int               dim,
-                const unsigned int               n_ranks,
-                const types::global_dof_index    n_dofs,
-                const types::global_dof_index    n_contact_nodes);
 
   // The back end of the given method (not automatic). layout is a
   // displacement vector with the run's partition; the AMG needs the

@@ -1,0 +1,104 @@
+#ifndef viscoplastic_contact_cost_model_h
+#define viscoplastic_contact_cost_model_h
+
+#include "parameters.h"
+
+#include <string>
+#include <vector>
+
+namespace ViscoContact
+{
+  // @sect3{The cost of each back end}
+  //
+  // One estimator of what a back end costs on a scene, before it is built:
+  // the memory each rank needs at its peak and the time of the run (set-up
+  // and steps). It serves two decisions:
+  //  - Method = auto takes the back end of least estimated time among those
+  //    that can run the scene and fit in the memory of a rank
+  //    (choose_method());
+  //  - before the mesh is built, a run is refused if the back end it will
+  //    use, or with Method = auto every back end it could use, needs more
+  //    memory than a compute node has
+  //    (ViscoplasticContact::check_memory_estimate()).
+  // The formulas and the measurements behind their constants are in
+  // cost_model.cc and doc/performance.md ("Method = auto").
+
+  // The libraries and MPI of one rank (peak resident memory of a run on a
+  // tiny mesh).
+  constexpr double library_bytes_per_rank = 150e6;
+
+  // What the estimate depends on. Contact nodes count vertices of the contact
+  // boundary (0 when not known yet: the estimate is then a lower one).
+  struct SceneSize
+  {
+    unsigned int dim             = 2;
+    bool         simplex         = false;
+    bool         implicit_update = false;
+    double       dofs            = 0;
+    double       contact_nodes   = 0;
+    // Unknowns per contact node in the dense problem of the condensed back
+    // end: 1 without friction, dim with it.
+    unsigned int node_unknowns = 1;
+    unsigned int ranks         = 1;
+    // The steps left in the run (at least one).
+    double steps = 1;
+    // Whether the first step runs initial cycles (nested iteration), so
+    // that its cold start on this mesh takes few active-set iterations.
+    bool nested_iteration = false;
+    // The bytes available to each rank: its compute node's memory divided by
+    // the ranks on the node (0: unknown, every back end fits).
+    double memory_per_rank = 0;
+  };
+
+  struct BackEndCost
+  {
+    Parameters::Method method;
+    // Why the back end cannot run the scene; empty if it can.
+    std::string unavailable;
+    // Peak resident memory of one rank, the libraries included.
+    double bytes_per_rank = 0;
+    // The back end's set-up, and the steps left in the run.
+    double setup_seconds = 0;
+    double steps_seconds = 0;
+
+    double
+    run_seconds() const
+    {
+      return setup_seconds + steps_seconds;
+    }
+    // Whether the back end fits in a rank's memory with a quarter to spare
+    // (for the system, the output and the model's own error: its memory
+    // estimates were within 20% of the measured peaks).
+    bool
+    fits(const SceneSize &scene) const
+    {
+      return scene.memory_per_rank <= 0
+             || bytes_per_rank <= 0.75 * scene.memory_per_rank;
+    }
+  };
+
+  // The three back ends' costs on a scene (method condensed, full space,
+  // matrix free, in this order).
+  std::vector<BackEndCost>
+  estimate_costs(const SceneSize &scene);
+
+  // The cost of one back end.
+  BackEndCost
+  estimate_cost(const Parameters::Method method, const SceneSize &scene);
+
+  // What Method = auto picks, and why (printed at start-up).
+  struct MethodChoice
+  {
+    Parameters::Method method;
+    std::string        reason;
+  };
+
+  // Resolves Method = auto: the available back end of least estimated run
+  // time among those that fit in a rank's memory, or the one of least
+  // memory if none fits; the reason names every estimate. A method set in
+  // the parameter file is returned as it is.
+  MethodChoice
+  choose_method(const Parameters::Method requested, const SceneSize &scene);
+} // namespace ViscoContact
+
+#endif

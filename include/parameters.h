@@ -498,12 +498,17 @@ namespace ViscoContact
       std::vector<types::boundary_id>
       all_contact_ids() const;
       // How many times the mesh of the parameter file can be coarsened
-      // uniformly: its Global refinements, and for a generated box of
-      // hypercubes also the factors of 2 of Subdivisions (the box of
-      // m 2^j cells per edge is the box of m refined j times, with the same
-      // cells; mesh.cc), unless a Material id function decides on its cells.
+      // uniformly: its Global refinements, and for a generated box also the
+      // factors of 2 of Subdivisions. (On p4est the box of m 2^j cells per
+      // edge is the box of m refined j times, with the same cells, mesh.cc,
+      // unless a Material id function decides on its cells; a simplex mesh
+      // of the initial cycles is built anew for each cycle.)
       unsigned int
       uniform_coarsenings() const;
+      // The parameters of the mesh coarsened levels times: fewer Global
+      // refinements first, then Subdivisions halved.
+      AllParameters
+      coarsened(const unsigned int levels) const;
 
       // Every entry of the file, bound to the members of this object (which
       // must outlive the parsing); then the checks of every subsection and

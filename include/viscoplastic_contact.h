@@ -458,10 +458,20 @@ namespace ViscoContact
     mark_cells_by_indicators();
     void
     refine_and_transfer(const bool transfer_stress_points);
+    // The initial cycles on a simplex mesh (deal.II 9.4's fully distributed
+    // triangulation cannot refine): the next mesh, the parameter file's
+    // coarsened coarsenings times, is built anew, and u and the contact
+    // pressure are interpolated to it from the current mesh.
+    void
+    rebuild_and_transfer(const unsigned int coarsenings);
     // The contact pressure as a nodal field of the displacement's layout
     // (at the x-dof of each contact node), for the transfer.
     VectorType
     contact_pressure_field() const;
+    // After a transfer: each contact node's (r, z) from u and the pressure
+    // field, the piece they name, friction from stick.
+    void
+    set_contact_state_from(const VectorType &pressure);
     // Debug builds: the transferred stress points reproduce E eps(u) on the
     // children of refined_parents (implicit update).
     void

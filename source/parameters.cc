@@ -1404,10 +1404,11 @@ namespace ViscoContact
           "only the solve on the last mesh is recorded. auto: the program "
           "chooses L (printed in the header; none where the back end is the "
           "condensed one, which solves a cold step in milliseconds once K is "
-          "factorised); 0: none. Hypercube meshes only; auto or an integer "
-          "in [0, 20], with Initial refinement = global at most the number "
-          "of times the mesh can be coarsened (Global refinements, and the "
-          "factors of 2 of a generated box's Subdivisions).",
+          "factorised); 0: none. auto or an integer in [0, 20], with "
+          "Initial refinement = global at most the number of times the mesh "
+          "can be coarsened (Global refinements, and the factors of 2 of a "
+          "generated box's Subdivisions); simplex meshes are built anew for "
+          "each cycle.",
           AutoOrCount());
         add_selection(
           prm,
@@ -1829,11 +1830,24 @@ namespace ViscoContact
     AllParameters::uniform_coarsenings() const
     {
       unsigned int coarsenings = global_refinements;
-      if (mesh_file.empty() && material_id_function.empty()
-          && cell_type == CellType::hypercube && subdivisions > 0)
+      if (mesh_file.empty() && subdivisions > 0
+          && (cell_type == CellType::simplex || material_id_function.empty()))
         for (unsigned int n = subdivisions; n % 2 == 0; n /= 2)
           ++coarsenings;
       return coarsenings;
+    }
+
+
+
+    AllParameters
+    AllParameters::coarsened(const unsigned int levels) const
+    {
+      AllParameters      coarse = *this;
+      const unsigned int from_refinements
+        = std::min(levels, global_refinements);
+      coarse.global_refinements -= from_refinements;
+      coarse.subdivisions >>= (levels - from_refinements);
+      return coarse;
     }
 
 
@@ -1853,19 +1867,29 @@ namespace ViscoContact
                 "(adaptive meshes need hypercube cells on p4est: deal.II "
                 "9.4's fully distributed triangulation of triangles and "
                 "tetrahedra cannot refine)");
-      // The initial cycles refine p4est meshes too; with global refinement
-      // the mesh of the parameter file is the finest, reached from one with
-      // Initial cycles fewer uniform refinements, and the contact refinements
-      // would not be nested that way.
-      // (Initial cycles = auto takes none where they do not apply.)
+      // With global refinement the mesh of the parameter file is the finest,
+      // reached from one coarsened Initial cycles times (by refinement on
+      // p4est, built anew for simplices), and the contact refinements would
+      // not be nested that way; adaptive initial refinement refines p4est
+      // meshes. (Initial cycles = auto takes none where they do not apply.)
       const unsigned int cycles = initial_cycles().value_or(0);
       if (cycles > 0)
-        require(cell_type == CellType::hypercube && !study_enabled,
+        require(!study_enabled,
                 "Mesh adaptation",
                 "Initial cycles",
                 initial_cycles_entry,
-                "auto or 0 when Cell type = simplex or a convergence study "
-                "runs (the initial cycles refine hypercube meshes on p4est)");
+                "auto or 0 when a convergence study runs (it builds its own "
+                "meshes)");
+      if (cycles > 0 && initial_refinement == InitialRefinement::adaptive)
+        require(cell_type == CellType::hypercube,
+                "Mesh adaptation",
+                "Initial cycles",
+                initial_cycles_entry,
+                "auto or 0 when Cell type = simplex and Initial refinement = "
+                "adaptive (adaptive meshes need hypercube cells on p4est: "
+                "deal.II 9.4's fully distributed triangulation of triangles "
+                "and tetrahedra cannot refine); or Initial refinement = "
+                "global");
       if (cycles > 0 && initial_refinement == InitialRefinement::global)
         {
           require(cycles <= uniform_coarsenings(),
@@ -1877,10 +1901,10 @@ namespace ViscoContact
                     + std::to_string(global_refinements)
                     + ", and the factors of 2 of Subdivisions = "
                     + std::to_string(subdivisions)
-                    + " of a generated box of hypercubes; subsection "
-                      "<Geometry>) with Initial refinement = global: the "
-                      "first cycle's mesh is the parameter file's coarsened "
-                      "Initial cycles times");
+                    + " of a generated box; subsection <Geometry>) with "
+                      "Initial refinement = global: the first cycle's mesh "
+                      "is the parameter file's coarsened Initial cycles "
+                      "times");
           require(contact_refinements == 0,
                   "Mesh adaptation",
                   "Initial cycles",

@@ -43,10 +43,11 @@ namespace ViscoContact
   // across all ranks.
   //
   // With Initial cycles and Initial refinement = global, the mesh of the
-  // parameter file is the last one of the cycles: the run starts on the one
-  // with Initial cycles fewer uniform refinements, whose refinement the cycles
-  // do (solve_initial_cycles()). On p4est both give the same cells with the
-  // same ids.
+  // parameter file is the last one of the cycles: the run starts on it
+  // coarsened Initial cycles times (fewer Global refinements, then half the
+  // Subdivisions of a generated box), whose refinement the cycles do
+  // (solve_initial_cycles()). On p4est both give the same cells with the
+  // same ids; simplex meshes are built anew for each cycle.
   template <int dim>
   void
   ViscoplasticContact<dim>::make_grid()
@@ -54,16 +55,7 @@ namespace ViscoContact
     TimerOutput::Scope        t(computing_timer, "Setup: mesh");
     Parameters::AllParameters first_mesh = parameters;
     if (parameters.initial_refinement == Parameters::InitialRefinement::global)
-      {
-        // Coarser by the Global refinements first, then by halving the
-        // generated box's Subdivisions (the same cells on p4est, whose
-        // trees are the box of Subdivisions without its factors of 2).
-        const unsigned int from_refinements
-          = std::min(first_step_cycles, first_mesh.global_refinements);
-        first_mesh.global_refinements -= from_refinements;
-        for (unsigned int l = from_refinements; l < first_step_cycles; ++l)
-          first_mesh.subdivisions /= 2;
-      }
+      first_mesh = parameters.coarsened(first_step_cycles);
     Timer timer;
     triangulation = create_distributed_mesh<dim>(first_mesh, mpi_communicator);
     if (parameters.print_timing_summary)
@@ -680,7 +672,8 @@ namespace ViscoContact
     if (first_step_cycles > 0 && !parameters.resume)
       pcout << "Initial cycles: step 1 on " << first_step_cycles
             << " coarser meshes first, from this one, "
-            << (parameters.initial_refinement
+            << (reference_cell.is_simplex() ? "each finer one built anew"
+                : parameters.initial_refinement
                     == Parameters::InitialRefinement::global
                   ? "refined globally"
                   : "refined adaptively")

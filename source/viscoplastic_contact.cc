@@ -528,7 +528,7 @@ namespace ViscoContact
   // (below that a cold step is cheap anyway) and at most 4 levels. None on a
   // resumed run (its first step is not a cold start), without contact, and
   // where the cycles' meshes would not be the parameter file's mesh
-  // coarsened: simplices, graded and adaptive meshes, convergence studies.
+  // coarsened: graded and adaptive meshes, convergence studies.
   template <int dim>
   void
   ViscoplasticContact<dim>::choose_initial_cycles()
@@ -541,14 +541,15 @@ namespace ViscoContact
     first_step_cycles = 0;
     if (parameters.resume || parameters.used_contact_zones().empty())
       return;
-    if (parameters.cell_type != Parameters::CellType::hypercube
-        || parameters.study_enabled || parameters.adaptive_refinement
+    if (parameters.study_enabled || parameters.adaptive_refinement
         || parameters.contact_refinements > 0
         || parameters.initial_refinement
-             != Parameters::InitialRefinement::global)
+             != Parameters::InitialRefinement::global
+        || parameters.uniform_coarsenings() == 0)
       {
-        initial_cycles_reason = "they need a hypercube mesh refined "
-                                "uniformly from a coarser one";
+        initial_cycles_reason = "they need a mesh that can be coarsened "
+                                "uniformly (Global refinements, or a "
+                                "generated box with even Subdivisions)";
         return;
       }
     double    cells = 0;

@@ -11,12 +11,16 @@
 # iterations of the cold start. With Initial cycles = auto, the file names
 # the L the program must choose ("# expect cycles: L"), and the header must
 # say why.
+# The runs take the ranks of the file's "# ranks: N" line (1 if none).
 #   run_initial_cycles.sh EXECUTABLE PRM
 set -u
 here=$(dirname "$0")
 executable=$1 prm=$2
 absolute=1e-8 relative=1e-8
 cycles=$(sed -n 's/^ *set Initial cycles *= *\([0-9a-z]*\).*/\1/p' "$prm")
+# The ranks of "# ranks: N" (1 if none).
+RANKS=$(sed -n 's/^# ranks: *\([0-9]*\).*/\1/p' "$prm" | head -1)
+export RANKS=${RANKS:-1}
 automatic=false
 if [ "$cycles" = auto ]; then
   automatic=true

@@ -2,15 +2,15 @@
 # One run of a variant of a scene, for the tests that compare two runs of
 # the same scene: DIRECTORY is made afresh, gets the parameter file PRM
 # (through the sed expression EDIT, if given) as scene.prm, and the program
-# runs there on one rank, its output in output.txt and error.txt. A failed
-# run prints why and exits with 1.
+# runs there on RANKS ranks (environment, default 1), its output in
+# output.txt and error.txt. A failed run prints why and exits with 1.
 #   run_scene_variant.sh DIRECTORY EXECUTABLE PRM [EDIT]
 set -u
 directory=$1 executable=$2 prm=$3 edit=${4:-}
 rm -rf "$directory"
 mkdir -p "$directory"
 sed -e "$edit" "$prm" > "$directory/scene.prm"
-(cd "$directory" && "$(dirname "$0")/run_mpi.sh" 1 "$executable" scene.prm > output.txt 2> error.txt)
+(cd "$directory" && "$(dirname "$0")/run_mpi.sh" "${RANKS:-1}" "$executable" scene.prm > output.txt 2> error.txt)
 status=$?
 if [ $status -ne 0 ]; then
   echo "The $directory run failed with exit status $status:"

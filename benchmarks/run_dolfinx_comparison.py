@@ -1,0 +1,305 @@
+#!/usr/bin/python3
+"""The program against an independent dolfinx implementation, static scene.
+
+The static scene is parameters/elastic.prm (elastic body, nonmonotone
+normal compliance over a rigid foundation) with Subdivisions = N and one
+step of k = 1/64 from rest: one static contact problem. For N in
+--subdivisions and each rank count in --ranks the script runs, back to
+back, the program with its default settings (Method = auto; VTU output,
+profiles, timing summary and verbose output off, as in
+run_method_choice.py) and benchmarks/dolfinx_static_scene.py (dolfinx 0.5,
+PETSc SNES vinewtonrsls with the bounds u_y >= -g, full semismooth Newton
+steps, LU by MUMPS; see its docstring), both on the same discretisation:
+P1 on the "/" triangles, lumped nodal contact. The pair is repeated
+--repeat times, interleaved; the fastest run of each counts.
+
+Per run: the whole process's wall time (start-up, Python imports, mesh,
+assembly, solve, for dolfinx also the MPI start-up of mpi4py), the peak
+resident memory of the largest rank, the final contact state (unilateral /
+compliance / no contact nodes) and the total contact force sum_i z_i. The
+program's force is read from its time_series.csv (10 digits), dolfinx's
+from its output (12 digits). Per row: dolfinx time / program time and the
+relative difference of the forces; differing contact counts are flagged.
+
+Before the timed runs the dolfinx script runs once, untimed, at N = 8 so
+that FFCx's JIT cache (~/.cache/fenics) holds the compiled forms and no
+row pays the form compilation (about 0.5 s; a first-time user pays it once).
+
+Writes <output-dir>/dolfinx_comparison.csv and dolfinx_comparison.md.
+
+    benchmarks/run_dolfinx_comparison.py [--executable build/viscoplastic_contact]
+        [--subdivisions 128,256,512] [--ranks 1,2] [--repeat 1]
+        [--python /usr/bin/python3] [--petsc-options "-snes_linesearch_type bt"]
+        [--timeout 600] [--output-dir doc/back_ends]
+
+Needs Debian's python3-dolfinx (apt-get install python3-dolfinx), run by
+--python (default /usr/bin/python3, which sees the Debian packages). Build
+the program in Release mode. Runs as root need no flag: the script sets
+Open MPI's OMPI_ALLOW_RUN_AS_ROOT variables.
+"""
+
+import argparse
+import csv
+import datetime
+import os
+import platform
+import re
+import shlex
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                "..", "scripts"))
+from vc_scripts import (REPO_ROOT, add_executable_argument,  # noqa: E402
+                        resolve_executable, set_prm_entries)
+
+DOLFINX_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                              "dolfinx_static_scene.py")
+# Runs the command and prints the largest resident set of its descendants
+# (kB): the largest rank's peak under mpirun.
+PEAK_WRAPPER = ("import resource, subprocess, sys; "
+                "code = subprocess.run(sys.argv[1:]).returncode; "
+                "print('peak-rss-kB', resource.getrusage("
+                "resource.RUSAGE_CHILDREN).ru_maxrss, file=sys.stderr); "
+                "sys.exit(code)")
+CONTACT_RE = re.compile(r"final contact: (\d+) unilateral, (\d+) compliance, "
+                        r"(\d+) no contact, total force = (\S+)")
+
+
+def static_prm(n):
+    """The static scene's parameter file at N subdivisions."""
+    with open(os.path.join(REPO_ROOT, "parameters", "elastic.prm")) as f:
+        elastic = f.read()
+    return set_prm_entries(elastic, {
+        (("Geometry",), "Subdivisions"): str(n),
+        (("Time",), "End time"): "0.015625",
+        (("Output",), "Write vtu"): "false",
+        (("Output",), "Profile times"): "",
+        (("Output",), "Print timing summary"): "false",
+        (("Output",), "Verbose"): "false",
+        (("Output",), "Output directory"): "out"})
+
+
+def timed_run(command, ranks, workdir, timeout):
+    """Runs command (under mpirun for ranks > 1) in workdir: (wall time [s],
+    peak memory of the largest rank [MB], stdout); stdout None after a
+    timeout, "failed" after a nonzero exit code (the end of the output is
+    printed)."""
+    if ranks > 1:
+        command = ["mpirun", "-np", str(ranks)] + command
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
+               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    start = time.perf_counter()
+    try:
+        result = subprocess.run([sys.executable, "-c", PEAK_WRAPPER] + command,
+                                cwd=workdir, capture_output=True, text=True,
+                                env=env, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return float("inf"), float("nan"), None
+    wall = time.perf_counter() - start
+    if result.returncode != 0:
+        print(f"{' '.join(command)} failed:\n" + result.stdout[-2000:]
+              + result.stderr[-2000:], file=sys.stderr, flush=True)
+        return float("inf"), float("nan"), "failed"
+    peak = re.search(r"peak-rss-kB (\d+)", result.stderr)
+    return wall, int(peak.group(1)) / 1024 if peak else float("nan"), result.stdout
+
+
+def run_program(executable, n, ranks, timeout):
+    with tempfile.TemporaryDirectory() as workdir:
+        with open(os.path.join(workdir, "run.prm"), "w") as f:
+            f.write(static_prm(n))
+        wall, memory, out = timed_run([executable, "run.prm"], ranks, workdir,
+                                      timeout)
+        if out is None or out == "failed":
+            return {"time": wall, "memory": memory,
+                    "status": "timeout" if out is None else "failed"}
+        # The force with 10 digits from the time series (stdout has 8).
+        series = os.path.join(workdir, "out", "time_series.csv")
+        force = None
+        if os.path.exists(series):
+            with open(series) as f:
+                last = list(csv.DictReader(f))[-1]
+            force = float(last["total_contact_force"])
+    contact = CONTACT_RE.search(out)
+    mesh = re.search(r"^Mesh: \d+ \w+ cells, (\d+) displacement dofs, (\d+) "
+                     r"contact nodes", out, re.M)
+    back_end = re.search(r"^Back end: ([a-z ]+):", out, re.M)
+    # With initial cycles (Initial cycles = auto chooses them for the full
+    # space back end) the program solves the step on coarser meshes first;
+    # the mesh and the back end of the run are those of the last cycle.
+    cycles = re.search(r"^Initial cycles done: \d+ cells, (\d+) dofs, (\d+) "
+                       r"contact nodes.*back end: ([a-z ]+):", out, re.M)
+    iterations = re.search(r"active-set iterations: (\d+)", out)
+    cycle_iterations = re.search(r"initial cycles: (\d+) active-set iterations",
+                                 out)
+    return {"time": wall, "memory": memory, "status": "ok",
+            "counts": tuple(int(contact.group(i)) for i in (1, 2, 3)),
+            "force": force if force is not None else float(contact.group(4)),
+            "dofs": (cycles or mesh).group(1), "contact_nodes": (cycles or mesh).group(2),
+            "back_end": (cycles.group(3) + " (initial cycles)" if cycles else
+                         back_end.group(1) if back_end else "?"),
+            "iterations": iterations.group(1) if iterations else "",
+            "cycle_iterations": (cycle_iterations.group(1)
+                                 if cycle_iterations else "")}
+
+
+def run_dolfinx(python, n, ranks, petsc_options, timeout):
+    command = [python, DOLFINX_SCRIPT, "--subdivisions", str(n)] + petsc_options
+    with tempfile.TemporaryDirectory() as workdir:
+        wall, memory, out = timed_run(command, ranks, workdir, timeout)
+    if out is None or out == "failed":
+        return {"time": wall, "memory": memory,
+                "status": "timeout" if out is None else "failed"}
+    contact = CONTACT_RE.search(out)
+    iterations = re.search(r"SNES iterations: (\d+)", out)
+    times = re.search(r"set-up time: (\S+) s, solve time: (\S+) s", out)
+    return {"time": wall, "memory": memory, "status": "ok",
+            "counts": tuple(int(contact.group(i)) for i in (1, 2, 3)),
+            "force": float(contact.group(4)),
+            "iterations": iterations.group(1),
+            "setup": float(times.group(1)), "solve": float(times.group(2))}
+
+
+def fastest(old, new):
+    return new if old is None or new["time"] < old["time"] else old
+
+
+def main():
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_executable_argument(parser)
+    parser.add_argument("--subdivisions", default="128,256,512")
+    parser.add_argument("--ranks", default="1,2")
+    parser.add_argument("--repeat", type=int, default=1)
+    parser.add_argument("--python", default="/usr/bin/python3",
+                        help="the Python that imports dolfinx")
+    parser.add_argument("--petsc-options", default="",
+                        help="extra PETSc options for the dolfinx script")
+    parser.add_argument("--timeout", type=float, default=600)
+    parser.add_argument("--output-dir", default=os.path.join(REPO_ROOT, "doc",
+                                                             "back_ends"))
+    args = parser.parse_args()
+    executable = resolve_executable(args.executable)
+    petsc_options = shlex.split(args.petsc_options)
+
+    # Untimed: fills the FFCx JIT cache.
+    run_dolfinx(args.python, 8, 1, petsc_options, args.timeout)
+
+    rows = []
+    for n in [int(n) for n in args.subdivisions.split(",") if n]:
+        for ranks in [int(r) for r in args.ranks.split(",") if r]:
+            program = dolfinx = None
+            for _ in range(args.repeat):
+                program = fastest(program, run_program(executable, n, ranks,
+                                                       args.timeout))
+                dolfinx = fastest(dolfinx, run_dolfinx(args.python, n, ranks,
+                                                       petsc_options, args.timeout))
+            row = {"N": n, "ranks": ranks,
+                   "dofs": program.get("dofs", ""),
+                   "contact_nodes": program.get("contact_nodes", "")}
+            for name, r in (("program", program), ("dolfinx", dolfinx)):
+                row[f"{name}_s"] = (r["status"] if r["status"] != "ok"
+                                    else f"{r['time']:.3f}")
+                row[f"{name}_MB"] = f"{r['memory']:.0f}"
+                row[f"{name}_iterations"] = r.get("iterations", "")
+                row[f"{name}_counts"] = ("/".join(map(str, r["counts"]))
+                                         if "counts" in r else "")
+                row[f"{name}_force"] = (f"{r['force']:.12g}" if "force" in r
+                                        else "")
+            row["program_back_end"] = program.get("back_end", "")
+            row["program_cycle_iterations"] = program.get("cycle_iterations", "")
+            row["dolfinx_setup_s"] = (f"{dolfinx['setup']:.3f}"
+                                      if "setup" in dolfinx else "")
+            row["dolfinx_solve_s"] = (f"{dolfinx['solve']:.3f}"
+                                      if "solve" in dolfinx else "")
+            both = program["status"] == "ok" and dolfinx["status"] == "ok"
+            row["time_ratio"] = (f"{dolfinx['time'] / program['time']:.2f}"
+                                 if both else "")
+            row["memory_ratio"] = (f"{dolfinx['memory'] / program['memory']:.2f}"
+                                   if both else "")
+            row["force_rel_diff"] = (
+                f"{abs(dolfinx['force'] - program['force']) / abs(program['force']):.1e}"
+                if both else "")
+            row["counts_agree"] = ("yes" if both and program["counts"]
+                                   == dolfinx["counts"] else "NO" if both else "")
+            print(f"N = {n:4d}, {ranks} rank(s): program {row['program_s']} s "
+                  f"({row['program_MB']} MB, {row['program_back_end']}), dolfinx "
+                  f"{row['dolfinx_s']} s ({row['dolfinx_MB']} MB, solve "
+                  f"{row['dolfinx_solve_s']} s, {row['dolfinx_iterations']} SNES "
+                  f"iterations); ratio {row['time_ratio']}; forces "
+                  f"{row['program_force']} / {row['dolfinx_force']}, rel. diff "
+                  f"{row['force_rel_diff']}, counts agree: {row['counts_agree']}",
+                  flush=True)
+            rows.append(row)
+
+    os.makedirs(args.output_dir, exist_ok=True)
+    with open(os.path.join(args.output_dir, "dolfinx_comparison.csv"), "w",
+              newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        writer.writeheader()
+        writer.writerows(rows)
+
+    def shown(a):
+        """An argument, paths inside the repository relative to it."""
+        if a.startswith(REPO_ROOT + os.sep):
+            a = os.path.relpath(a, REPO_ROOT)
+        return shlex.quote(a)
+    command = "benchmarks/run_dolfinx_comparison.py " + " ".join(
+        shown(a) for a in sys.argv[1:])
+    versions = subprocess.run(
+        [args.python, "-c", "import dolfinx; from petsc4py import PETSc; "
+         "print(dolfinx.__version__, '.'.join(map(str, PETSc.Sys.getVersion())))"],
+        capture_output=True, text=True).stdout.split()
+    lines = [
+        "# The program against dolfinx on the static scene", "",
+        f"Generated by `benchmarks/run_dolfinx_comparison.py` on "
+        f"{datetime.date.today()} ({platform.node()}, {os.cpu_count()} cores); "
+        f"command: `{command}`.", "",
+        "The static scene: parameters/elastic.prm with Subdivisions = N and one "
+        "step of k = 1/64 from rest (one elastic contact problem with the "
+        "nonmonotone layer and the rigid limit). *program*: viscoplastic_contact "
+        "with its defaults (Method = auto). *dolfinx*: "
+        "benchmarks/dolfinx_static_scene.py, an independent implementation of "
+        "the same discretisation (P1, lumped nodal contact) in dolfinx "
+        + (f"{versions[0]} with PETSc {versions[1]}" if len(versions) == 2 else "")
+        + ": SNES vinewtonrsls (the rigid limit as the bounds u_y >= -g), full "
+        "semismooth Newton steps, LU by MUMPS in every Newton iteration"
+        + (f", PETSc options `{args.petsc_options}`" if args.petsc_options else "")
+        + ". Both runs of a row ran back to back, the fastest of "
+        f"{args.repeat} interleaved repeat(s) counting. Times are whole "
+        "processes in seconds (start-up, imports, mesh, assembly, solve; "
+        "dolfinx's forms precompiled by an untimed warm-up run, so no JIT); "
+        "*set-up* and *solve* are dolfinx's own timers (mesh to solver set-up, "
+        "SNES solve). Memory is the peak resident memory of the largest rank "
+        "in MB. *program back end*: the one Method = auto chose; *initial cycles*: "
+        "the program solved the step on a coarser mesh first and started the "
+        "final mesh from its solution. *iterations*: the program's active-set "
+        "iterations on the final mesh (in brackets those on the coarser meshes), "
+        "dolfinx's SNES (Newton) iterations. *contact*: unilateral / compliance / no "
+        "contact nodes. *force*: the total contact force sum_i z_i; *rel. diff*: "
+        "|dolfinx - program| / |program| (the program's force has 10 digits).", "",
+        "| N | ranks | dofs | program [s] | dolfinx [s] | dolfinx / program "
+        "| dolfinx set-up [s] | dolfinx solve [s] | memory: program [MB] "
+        "| dolfinx [MB] | program back end | iterations: program | dolfinx "
+        "| contact: program | dolfinx | force: program | dolfinx | rel. diff |",
+        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---|---|"
+        "---:|---:|---:|"]
+    for r in rows:
+        lines.append(
+            f"| {r['N']} | {r['ranks']} | {r['dofs']} | {r['program_s']} | "
+            f"{r['dolfinx_s']} | {r['time_ratio']} | {r['dolfinx_setup_s']} | "
+            f"{r['dolfinx_solve_s']} | {r['program_MB']} | {r['dolfinx_MB']} | "
+            f"{r['program_back_end']} | {r['program_iterations']}"
+            f"{' (+' + r['program_cycle_iterations'] + ')' if r['program_cycle_iterations'] else ''} | "
+            f"{r['dolfinx_iterations']} | {r['program_counts']} | "
+            f"{r['dolfinx_counts']}{'' if r['counts_agree'] != 'NO' else ' (differ)'} | "
+            f"{r['program_force']} | {r['dolfinx_force']} | {r['force_rel_diff']} |")
+    with open(os.path.join(args.output_dir, "dolfinx_comparison.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    main()

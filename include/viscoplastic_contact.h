@@ -443,11 +443,12 @@ namespace ViscoContact
     // the checkpoint's mesh.
     //
     // Both the adaptation during the run and the initial cycles (nested
-    // iteration on the first step) mark cells and then call
+    // iteration on the first step) on p4est mark cells and then call
     // refine_and_transfer(), which changes the mesh, sets everything up on it
     // and carries u and the contact pressure over, and the stress-point data
     // if asked to (the initial cycles start every mesh from the initial
-    // history instead).
+    // history instead); on simplices the initial cycles call
+    // rebuild_and_transfer().
     bool
     adaptation_due() const;
     void

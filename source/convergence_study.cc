@@ -57,12 +57,14 @@ namespace ViscoContact
     run_parameters.subdivisions              = subdivisions;
     run_parameters.time_step                 = time_step;
     run_parameters.study_enabled             = false;
-    run_parameters.resumable                 = false;
-    run_parameters.write_vtu                 = false;
-    run_parameters.verbose                   = false;
-    run_parameters.print_timing_summary      = false;
-    run_parameters.overwrite                 = false;
-    run_parameters.check_uniqueness          = false;
+    // Each run of the study is timed as it is, without initial cycles.
+    run_parameters.initial_cycles_entry = "0";
+    run_parameters.resumable            = false;
+    run_parameters.write_vtu            = false;
+    run_parameters.verbose              = false;
+    run_parameters.print_timing_summary = false;
+    run_parameters.overwrite            = false;
+    run_parameters.check_uniqueness     = false;
     run_parameters.profile_times.clear();
     run_parameters.directory = parameters.directory + "/runs/" + name;
 

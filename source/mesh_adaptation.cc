@@ -537,6 +537,11 @@ namespace ViscoContact
   {
     std::optional<TimerOutput::Scope> part;
     part.emplace(computing_timer, "Mesh adaptation: transfer");
+    // The back end and the matrices of this mesh go first: the group root
+    // of the next mesh holds it whole while it is built.
+    contact_solver.reset();
+    stiffness_matrix.clear();
+    tangent_matrix.clear();
     std::unique_ptr<parallel::DistributedTriangulationBase<dim>> next_mesh
       = create_distributed_mesh<dim>(parameters.coarsened(coarsenings),
                                      mpi_communicator);
@@ -600,7 +605,6 @@ namespace ViscoContact
 
     // The next mesh replaces the current one; nothing may refer to the old
     // one when it goes.
-    contact_solver.reset();
     dof_handler.reinit(*next_mesh);
     scalar_dof_handler.reinit(*next_mesh);
     triangulation = std::move(next_mesh);

@@ -431,8 +431,12 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::check_memory_estimate()
   {
-    double             cells      = 0;
-    const SceneSize    scene      = estimate_scene(cells);
+    double    cells = 0;
+    SceneSize scene = estimate_scene(cells);
+    // A lower estimate: no dense problem (the contact nodes of a Gmsh mesh
+    // are a guess) and a factor no fuller per dof than measured.
+    scene.contact_nodes           = 0;
+    scene.lower_estimate          = true;
     const bool         simplex    = scene.simplex;
     const double       dofs       = scene.dofs;
     const unsigned int n_ranks    = scene.ranks;
@@ -472,8 +476,17 @@ namespace ViscoContact
       = Utilities::MPI::sum(mesh_group_root ? root_bytes : libraries,
                             node_communicator);
     const double run_need = Utilities::MPI::sum(rank_bytes, node_communicator);
+    // The least memory per rank of any node (nodes may differ, and so may
+    // their rank counts): every rank must see the same number, since the
+    // choices made from it must agree. Nodes that do not know theirs do
+    // not count; if none does, 0.
+    const double rank_share = Utilities::MPI::min(
+      node_memory > 0
+        ? node_memory / Utilities::MPI::n_mpi_processes(node_communicator)
+        : std::numeric_limits<double>::max(),
+      mpi_communicator);
     memory_per_rank
-      = node_memory / Utilities::MPI::n_mpi_processes(node_communicator);
+      = rank_share < std::numeric_limits<double>::max() ? rank_share : 0;
     MPI_Comm_free(&node_communicator);
     // The node that lacks most; without /proc/meminfo (not Linux) there is
     // nothing to compare with.
@@ -535,21 +548,34 @@ namespace ViscoContact
   {
     if (const std::optional<unsigned int> set = parameters.initial_cycles())
       {
-        first_step_cycles = *set;
+        // A resumed simplex run starts on the checkpoint's mesh, the last
+        // of the cycles, which the parameter file describes (p4est meshes
+        // are rebuilt from the first one: restore_checkpoint_mesh()).
+        first_step_cycles
+          = (parameters.resume
+             && parameters.cell_type == Parameters::CellType::simplex)
+              ? 0
+              : *set;
         return;
       }
     first_step_cycles = 0;
     if (parameters.resume || parameters.used_contact_zones().empty())
       return;
-    if (parameters.study_enabled || parameters.adaptive_refinement
-        || parameters.contact_refinements > 0
+    if (parameters.adaptive_refinement
         || parameters.initial_refinement
-             != Parameters::InitialRefinement::global
+             != Parameters::InitialRefinement::global)
+      {
+        initial_cycles_reason = "the mesh adapts; set Initial cycles to run "
+                                "them";
+        return;
+      }
+    if (parameters.contact_refinements > 0
         || parameters.uniform_coarsenings() == 0)
       {
         initial_cycles_reason = "they need a mesh that can be coarsened "
                                 "uniformly (Global refinements, or a "
-                                "generated box with even Subdivisions)";
+                                "generated box with even Subdivisions, no "
+                                "Contact refinement levels)";
         return;
       }
     double    cells = 0;
@@ -569,6 +595,12 @@ namespace ViscoContact
     while (first_step_cycles < most_levels
            && scene.dofs / std::pow(2., dim * (first_step_cycles + 1)) >= 2000)
       ++first_step_cycles;
+    if (first_step_cycles == 0)
+      {
+        initial_cycles_reason = "a coarser mesh would have fewer than about "
+                                "2000 dofs, where a cold step is cheap";
+        return;
+      }
     initial_cycles_reason
       = "the "
         + std::string(choice.method == Parameters::Method::matrix_free

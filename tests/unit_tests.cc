@@ -2676,6 +2676,32 @@ TEST(CostModel, CostsGrowWithTheMeshAndShrinkWithRanks)
 }
 
 
+TEST(InitialCycles, CoarseningsOfTheParameterFilesMesh)
+{
+  // Global refinements first, then the factors of 2 of a generated box's
+  // Subdivisions; on p4est not with a Material id function (the cells of
+  // the coarse box would carry other materials), on simplices (built anew
+  // per cycle) always; a Gmsh file only by its refinements.
+  Parameters::AllParameters parameters;
+  parameters.subdivisions       = 12;
+  parameters.global_refinements = 2;
+  parameters.cell_type          = Parameters::CellType::hypercube;
+  EXPECT_EQ(parameters.uniform_coarsenings(), 4u);
+  const Parameters::AllParameters coarse = parameters.coarsened(3);
+  EXPECT_EQ(coarse.global_refinements, 0u);
+  EXPECT_EQ(coarse.subdivisions, 6u);
+  EXPECT_EQ(parameters.coarsened(4).subdivisions, 3u);
+  EXPECT_EQ(parameters.coarsened(0).subdivisions, 12u);
+  EXPECT_EQ(parameters.coarsened(0).global_refinements, 2u);
+  parameters.material_id_function = "x < 0.5 ? 1 : 2";
+  EXPECT_EQ(parameters.uniform_coarsenings(), 2u);
+  parameters.cell_type = Parameters::CellType::simplex;
+  EXPECT_EQ(parameters.uniform_coarsenings(), 4u);
+  parameters.mesh_file = "mesh.msh";
+  EXPECT_EQ(parameters.uniform_coarsenings(), 2u);
+}
+
+
 
 int
 main(int argc, char **argv)

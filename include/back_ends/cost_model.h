@@ -46,8 +46,12 @@ namespace ViscoContact
     // that its cold start on this mesh takes few active-set iterations.
     bool nested_iteration = false;
     // The bytes available to each rank: its compute node's memory divided by
-    // the ranks on the node (0: unknown, every back end fits).
+    // the ranks on the node, the least over the nodes (0: unknown, every back
+    // end fits).
     double memory_per_rank = 0;
+    // A lower estimate of the memory (the check before a run): the condensed
+    // back end's factor no fuller per dof than at the largest measured size.
+    bool lower_estimate = false;
   };
 
   struct BackEndCost

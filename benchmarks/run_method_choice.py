@@ -37,6 +37,7 @@ import datetime
 import os
 import platform
 import re
+import signal
 import subprocess
 import sys
 import tempfile
@@ -111,15 +112,24 @@ def run(executable, text, method, ranks, timeout):
         env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
                    OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
         start = time.perf_counter()
+        # In a session of its own, so that a run past the timeout is stopped
+        # with all its processes (mpirun and the ranks), which would
+        # otherwise go on and slow the next runs down.
+        process = subprocess.Popen([sys.executable, "-c", PEAK_WRAPPER] + command,
+                                   cwd=workdir, stdout=subprocess.PIPE,
+                                   stderr=subprocess.PIPE, text=True, env=env,
+                                   start_new_session=True)
         try:
-            result = subprocess.run([sys.executable, "-c", PEAK_WRAPPER] + command,
-                                    cwd=workdir, capture_output=True, text=True,
-                                    env=env, timeout=timeout)
+            stdout, stderr = process.communicate(timeout=timeout)
         except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.communicate()
             return {"time": float("inf"), "memory": float("nan"),
                     "back_end": "timeout", "cycles": "", "dofs": "",
                     "contact_nodes": "", "steps": ""}
         wall = time.perf_counter() - start
+        result = subprocess.CompletedProcess(command, process.returncode,
+                                             stdout, stderr)
     if result.returncode != 0:
         if "Invalid parameter <Method>" in result.stdout + result.stderr:
             return None

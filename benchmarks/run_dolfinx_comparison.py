@@ -48,70 +48,37 @@ import shlex
 import subprocess
 import sys
 import tempfile
-import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                 "..", "scripts"))
 from vc_scripts import (REPO_ROOT, add_executable_argument,  # noqa: E402
-                        resolve_executable, set_prm_entries)
+                        resolve_executable, static_scene_prm, timed_run)
 
 DOLFINX_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)),
                               "dolfinx_static_scene.py")
-# Runs the command and prints the largest resident set of its descendants
-# (kB): the largest rank's peak under mpirun.
-PEAK_WRAPPER = ("import resource, subprocess, sys; "
-                "code = subprocess.run(sys.argv[1:]).returncode; "
-                "print('peak-rss-kB', resource.getrusage("
-                "resource.RUSAGE_CHILDREN).ru_maxrss, file=sys.stderr); "
-                "sys.exit(code)")
 CONTACT_RE = re.compile(r"final contact: (\d+) unilateral, (\d+) compliance, "
                         r"(\d+) no contact, total force = (\S+)")
 
 
-def static_prm(n):
-    """The static scene's parameter file at N subdivisions."""
-    with open(os.path.join(REPO_ROOT, "parameters", "elastic.prm")) as f:
-        elastic = f.read()
-    return set_prm_entries(elastic, {
-        (("Geometry",), "Subdivisions"): str(n),
-        (("Time",), "End time"): "0.015625",
-        (("Output",), "Write vtu"): "false",
-        (("Output",), "Profile times"): "",
-        (("Output",), "Print timing summary"): "false",
-        (("Output",), "Verbose"): "false",
-        (("Output",), "Output directory"): "out"})
-
-
-def timed_run(command, ranks, workdir, timeout):
-    """Runs command (under mpirun for ranks > 1) in workdir: (wall time [s],
-    peak memory of the largest rank [MB], stdout); stdout None after a
-    timeout, "failed" after a nonzero exit code (the end of the output is
-    printed)."""
-    if ranks > 1:
-        command = ["mpirun", "-np", str(ranks)] + command
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
-               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    start = time.perf_counter()
-    try:
-        result = subprocess.run([sys.executable, "-c", PEAK_WRAPPER] + command,
-                                cwd=workdir, capture_output=True, text=True,
-                                env=env, timeout=timeout)
-    except subprocess.TimeoutExpired:
-        return float("inf"), float("nan"), None
-    wall = time.perf_counter() - start
+def checked_run(command, ranks, workdir, timeout):
+    """timed_run(): (wall time [s], peak memory of the largest rank [MB],
+    stdout); stdout None after a timeout, "failed" after a nonzero exit code
+    (the end of the output is printed)."""
+    wall, memory, result = timed_run(command, ranks, workdir, timeout)
+    if result is None:
+        return wall, memory, None
     if result.returncode != 0:
         print(f"{' '.join(command)} failed:\n" + result.stdout[-2000:]
               + result.stderr[-2000:], file=sys.stderr, flush=True)
         return float("inf"), float("nan"), "failed"
-    peak = re.search(r"peak-rss-kB (\d+)", result.stderr)
-    return wall, int(peak.group(1)) / 1024 if peak else float("nan"), result.stdout
+    return wall, memory, result.stdout
 
 
 def run_program(executable, n, ranks, timeout):
     with tempfile.TemporaryDirectory() as workdir:
         with open(os.path.join(workdir, "run.prm"), "w") as f:
-            f.write(static_prm(n))
-        wall, memory, out = timed_run([executable, "run.prm"], ranks, workdir,
+            f.write(static_scene_prm(n))
+        wall, memory, out = checked_run([executable, "run.prm"], ranks, workdir,
                                       timeout)
         if out is None or out == "failed":
             return {"time": wall, "memory": memory,
@@ -149,7 +116,7 @@ def run_program(executable, n, ranks, timeout):
 def run_dolfinx(python, n, ranks, petsc_options, timeout):
     command = [python, DOLFINX_SCRIPT, "--subdivisions", str(n)] + petsc_options
     with tempfile.TemporaryDirectory() as workdir:
-        wall, memory, out = timed_run(command, ranks, workdir, timeout)
+        wall, memory, out = checked_run(command, ranks, workdir, timeout)
     if out is None or out == "failed":
         return {"time": wall, "memory": memory,
                 "status": "timeout" if out is None else "failed"}

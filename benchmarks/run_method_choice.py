@@ -37,26 +37,16 @@ import datetime
 import os
 import platform
 import re
-import signal
-import subprocess
 import sys
 import tempfile
-import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                 "..", "scripts"))
 from vc_scripts import (REPO_ROOT, add_executable_argument,  # noqa: E402
-                        resolve_executable, set_prm_entries)
+                        resolve_executable, set_prm_entries, static_scene_prm,
+                        timed_run)
 
 METHODS = ["condensed", "full space", "matrix free", "auto"]
-# Runs the command and prints the largest resident set of its descendants
-# (kB): the largest rank's peak under mpirun.
-PEAK_WRAPPER = ("import resource, subprocess, sys; "
-                "code = subprocess.run(sys.argv[1:]).returncode; "
-                "print('peak-rss-kB', resource.getrusage("
-                "resource.RUSAGE_CHILDREN).ru_maxrss, file=sys.stderr); "
-                "sys.exit(code)")
-
 
 def case_prms(args):
     """(name, parameter file text) of every case."""
@@ -74,19 +64,10 @@ def case_prms(args):
         text = text.replace("../meshes/", os.path.join(REPO_ROOT, "meshes", ""))
         cases.append((scene, set_prm_entries(text, {
             (("Output",), "Write vtu"): "false"})))
-    with open(os.path.join(REPO_ROOT, "parameters", "elastic.prm")) as f:
-        elastic = f.read()
     for cell_type in [c for c in args.static_cell_types.split(",") if c]:
         name = "static" + (" quadrilaterals" if cell_type == "hypercube" else "")
         for n in [int(n) for n in args.static_subdivisions.split(",") if n]:
-            cases.append((f"{name} N={n}", set_prm_entries(elastic, {
-                (("Geometry",), "Subdivisions"): str(n),
-                (("Geometry",), "Cell type"): cell_type,
-                (("Time",), "End time"): "0.015625",
-                (("Output",), "Write vtu"): "false",
-                (("Output",), "Profile times"): "",
-                (("Output",), "Print timing summary"): "false",
-                (("Output",), "Verbose"): "false"})))
+            cases.append((f"{name} N={n}", static_scene_prm(n, cell_type)))
     with open(os.path.join(REPO_ROOT, "parameters", "cube_3d.prm")) as f:
         cube = f.read()
     for n in [int(n) for n in args.cube_subdivisions.split(",") if n]:
@@ -106,36 +87,16 @@ def run(executable, text, method, ranks, timeout):
     with tempfile.TemporaryDirectory() as workdir:
         with open(os.path.join(workdir, "run.prm"), "w") as f:
             f.write(set_prm_entries(text, overrides))
-        command = [executable, "run.prm"]
-        if ranks > 1:
-            command = ["mpirun", "-np", str(ranks)] + command
-        env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
-                   OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-        start = time.perf_counter()
-        # In a session of its own, so that a run past the timeout is stopped
-        # with all its processes (mpirun and the ranks), which would
-        # otherwise go on and slow the next runs down.
-        process = subprocess.Popen([sys.executable, "-c", PEAK_WRAPPER] + command,
-                                   cwd=workdir, stdout=subprocess.PIPE,
-                                   stderr=subprocess.PIPE, text=True, env=env,
-                                   start_new_session=True)
-        try:
-            stdout, stderr = process.communicate(timeout=timeout)
-        except subprocess.TimeoutExpired:
-            os.killpg(process.pid, signal.SIGKILL)
-            process.communicate()
-            return {"time": float("inf"), "memory": float("nan"),
-                    "back_end": "timeout", "cycles": "", "dofs": "",
-                    "contact_nodes": "", "steps": ""}
-        wall = time.perf_counter() - start
-        result = subprocess.CompletedProcess(command, process.returncode,
-                                             stdout, stderr)
+        wall, memory, result = timed_run([executable, "run.prm"], ranks,
+                                         workdir, timeout)
+    if result is None:
+        return {"time": wall, "memory": memory, "back_end": "timeout",
+                "cycles": "", "dofs": "", "contact_nodes": "", "steps": ""}
     if result.returncode != 0:
         if "Invalid parameter <Method>" in result.stdout + result.stderr:
             return None
         raise RuntimeError(f"{method} on {ranks} rank(s) failed:\n"
                            + result.stdout[-2000:] + result.stderr[-2000:])
-    peak = re.search(r"peak-rss-kB (\d+)", result.stderr)
     back_end = re.search(r"^Back end: ([a-z ]+):", result.stdout, re.M)
     mesh = re.search(r"^Mesh: \d+ \w+ cells, (\d+) displacement dofs, (\d+) "
                      r"contact nodes, (\d+|adaptive) time steps", result.stdout, re.M)
@@ -143,7 +104,7 @@ def run(executable, text, method, ranks, timeout):
     cycles = re.search(r"^Initial cycles done: \d+ cells, (\d+) dofs, (\d+) "
                        r"contact nodes.*back end: ([a-z ]+):", result.stdout, re.M)
     return {"time": wall,
-            "memory": int(peak.group(1)) / 1024 if peak else float("nan"),
+            "memory": memory,
             "back_end": (cycles.group(3) if cycles else
                          back_end.group(1) if back_end else "?"),
             "cycles": "yes" if cycles else "no",

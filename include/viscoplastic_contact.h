@@ -371,8 +371,13 @@ namespace ViscoContact
     // 0) or each rank's own part of one file (written collectively).
     void
     check_output_directory();
-    // The size of the parameter file's mesh before it is built (cells as
-    // well); collective.
+    // What the cost model knows of the run apart from the mesh: dimension,
+    // cell type, update, friction, ranks, the steps of the parameter file
+    // and the memory per rank.
+    SceneSize
+    scene_of_run() const;
+    // The same with the size of the parameter file's mesh, before it is
+    // built (cells as well); collective.
     SceneSize
     estimate_scene(double &cells) const;
     void

@@ -5,7 +5,9 @@ program."""
 import contextlib
 import os
 import re
+import signal
 import subprocess
+import sys
 import tempfile
 import time
 
@@ -96,3 +98,66 @@ def run_in_temporary_directory(executable, prm_text):
         if result.returncode != 0:
             raise RuntimeError(result.stdout[-2000:] + result.stderr[-2000:])
         yield workdir, result.stdout, wall
+
+
+# Runs the command and prints the largest resident set of its descendants
+# (kB): the largest rank's peak under mpirun.
+PEAK_WRAPPER = ("import resource, subprocess, sys; "
+                "code = subprocess.run(sys.argv[1:]).returncode; "
+                "print('peak-rss-kB', resource.getrusage("
+                "resource.RUSAGE_CHILDREN).ru_maxrss, file=sys.stderr); "
+                "sys.exit(code)")
+
+
+def timed_run(command, ranks, workdir, timeout):
+    """Runs command (under mpirun for ranks > 1, as root too) in workdir and
+    returns (wall time [s], peak resident memory of the largest process [MB],
+    subprocess.CompletedProcess). The run has a session of its own: past the
+    timeout all its processes (mpirun and the ranks) are stopped, which would
+    otherwise go on and slow the next runs down, and the result is
+    (inf, nan, None)."""
+    if ranks > 1:
+        command = ["mpirun", "-np", str(ranks)] + command
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
+               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    start = time.perf_counter()
+    process = subprocess.Popen([sys.executable, "-c", PEAK_WRAPPER] + command,
+                               cwd=workdir, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True, env=env,
+                               start_new_session=True)
+    try:
+        stdout, stderr = process.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        # SIGTERM first: mpirun passes it on to the ranks, which it starts in
+        # a session of their own.
+        os.killpg(process.pid, signal.SIGTERM)
+        try:
+            process.communicate(timeout=10)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.communicate()
+        return float("inf"), float("nan"), None
+    wall = time.perf_counter() - start
+    peak = re.search(r"peak-rss-kB (\d+)", stderr)
+    return (wall, int(peak.group(1)) / 1024 if peak else float("nan"),
+            subprocess.CompletedProcess(command, process.returncode, stdout,
+                                        stderr))
+
+
+def static_scene_prm(subdivisions, cell_type="simplex"):
+    """The static scene of the benchmarks: parameters/elastic.prm (elastic
+    body, nonmonotone layer, rigid limit) with N Subdivisions of the given
+    Cell type and one step of k = 1/64 from rest, so that the whole contact
+    zone forms in one cold step; no files but the time series, output
+    folder "out"."""
+    with open(os.path.join(REPO_ROOT, "parameters", "elastic.prm")) as f:
+        elastic = f.read()
+    return set_prm_entries(elastic, {
+        (("Geometry",), "Subdivisions"): str(subdivisions),
+        (("Geometry",), "Cell type"): cell_type,
+        (("Time",), "End time"): "0.015625",
+        (("Output",), "Write vtu"): "false",
+        (("Output",), "Profile times"): "",
+        (("Output",), "Print timing summary"): "false",
+        (("Output",), "Verbose"): "false",
+        (("Output",), "Output directory"): "out"})

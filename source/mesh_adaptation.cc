@@ -555,13 +555,14 @@ namespace ViscoContact
     {
       DoFHandler<dim> next_dofs(*next_mesh);
       next_dofs.distribute_dofs(*fe);
-      std::set<types::boundary_id> contact_ids;
-      for (const auto &zone : contact_zones)
-        contact_ids.insert(zone.boundary_ids.begin(), zone.boundary_ids.end());
+      const std::vector<types::boundary_id> contact_ids
+        = parameters.all_contact_ids();
       const IndexSet owned = next_dofs.locally_owned_dofs()
-                             & DoFTools::extract_boundary_dofs(next_dofs,
-                                                               ComponentMask(),
-                                                               contact_ids);
+                             & DoFTools::extract_boundary_dofs(
+                               next_dofs,
+                               ComponentMask(),
+                               std::set<types::boundary_id>(contact_ids.begin(),
+                                                            contact_ids.end()));
       FEValues<dim>                        support_values(mapping,
                                    *fe,
                                    Quadrature<dim>(

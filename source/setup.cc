@@ -560,39 +560,28 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::choose_back_end()
   {
-    SceneSize scene;
-    scene.dim             = dim;
-    scene.simplex         = reference_cell.is_simplex();
-    scene.implicit_update = implicit_update();
-    scene.dofs            = dof_handler.n_dofs();
-    scene.ranks           = Utilities::MPI::n_mpi_processes(mpi_communicator);
-    std::set<types::boundary_id> contact_ids;
-    for (const auto &zone : contact_zones)
-      contact_ids.insert(zone.boundary_ids.begin(), zone.boundary_ids.end());
+    SceneSize scene = scene_of_run();
+    scene.dofs      = dof_handler.n_dofs();
+    const std::vector<types::boundary_id> contact_ids
+      = parameters.all_contact_ids();
     if (!contact_ids.empty())
       {
-        IndexSet on_contact
-          = DoFTools::extract_boundary_dofs(dof_handler,
-                                            fe->component_mask(
-                                              FEValuesExtractors::Scalar(0)),
-                                            contact_ids);
-        on_contact = on_contact & locally_owned_dofs;
+        const IndexSet on_contact
+          = DoFTools::extract_boundary_dofs(
+              dof_handler,
+              fe->component_mask(FEValuesExtractors::Scalar(0)),
+              std::set<types::boundary_id>(contact_ids.begin(),
+                                           contact_ids.end()))
+            & locally_owned_dofs;
         scene.contact_nodes
           = Utilities::MPI::sum(on_contact.n_elements(), mpi_communicator);
       }
-    for (const auto &zone : contact_zones)
-      if (zone.friction.has_friction())
-        scene.node_unknowns = dim;
-    // Before the schedule exists (the first mesh), the steps of the
-    // parameter file.
-    const bool   scheduled = schedule.end_time() > 0;
-    const double step
-      = scheduled ? schedule.step_length() : parameters.time_step;
-    const double span = scheduled
-                          ? schedule.end_time() - schedule.current_time()
-                          : parameters.end_time;
-    scene.steps       = std::max(1., std::round(span / std::max(step, 1e-300)));
-    scene.memory_per_rank = memory_per_rank;
+    // Once the schedule exists (a later mesh), the steps it has left.
+    if (schedule.end_time() > 0)
+      scene.steps
+        = std::max(1.,
+                   std::round((schedule.end_time() - schedule.current_time())
+                              / std::max(schedule.step_length(), 1e-300)));
     // The last mesh of the initial cycles has its cold step warm-started.
     scene.nested_iteration = first_step_cycles > 0;
     back_end               = choose_method(parameters.method, scene);

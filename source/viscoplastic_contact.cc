@@ -387,13 +387,23 @@ namespace ViscoContact
                 * std::pow(2., dim * parameters.global_refinements);
         vertices = cells / (simplex ? (dim == 2 ? 2 : 6.5) : 1);
       }
-    SceneSize scene;
-    scene.dim             = dim;
-    scene.simplex         = simplex;
-    scene.implicit_update = implicit_update();
-    scene.dofs            = dim * vertices;
-    scene.contact_nodes   = parameters.all_contact_ids().size()
+    SceneSize scene     = scene_of_run();
+    scene.dofs          = dim * vertices;
+    scene.contact_nodes = parameters.all_contact_ids().size()
                           * std::pow(vertices, (dim - 1.) / dim);
+    return scene;
+  }
+
+
+
+  template <int dim>
+  SceneSize
+  ViscoplasticContact<dim>::scene_of_run() const
+  {
+    SceneSize scene;
+    scene.dim     = dim;
+    scene.simplex = parameters.cell_type == Parameters::CellType::simplex;
+    scene.implicit_update = implicit_update();
     for (const auto &zone : parameters.used_contact_zones())
       if (zone.contact->tangential_law
           != Parameters::TangentialLawType::frictionless)

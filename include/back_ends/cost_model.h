@@ -27,6 +27,11 @@ namespace ViscoContact
   // tiny mesh).
   constexpr double library_bytes_per_rank = 150e6;
 
+  // The part of a rank's memory a back end may take: a quarter stays for the
+  // system, the output and the model's own error (its memory estimates were
+  // within 20% of the measured peaks).
+  constexpr double usable_memory_fraction = 0.75;
+
   // What the estimate depends on. Contact nodes count vertices of the contact
   // boundary (0 when not known yet: the estimate is then a lower one).
   struct SceneSize
@@ -70,15 +75,9 @@ namespace ViscoContact
     {
       return setup_seconds + steps_seconds;
     }
-    // Whether the back end fits in a rank's memory with a quarter to spare
-    // (for the system, the output and the model's own error: its memory
-    // estimates were within 20% of the measured peaks).
+    // Whether the back end fits in the part of a rank's memory it may take.
     bool
-    fits(const SceneSize &scene) const
-    {
-      return scene.memory_per_rank <= 0
-             || bytes_per_rank <= 0.75 * scene.memory_per_rank;
-    }
+    fits(const SceneSize &scene) const;
   };
 
   // The three back ends' costs on a scene (method condensed, full space,

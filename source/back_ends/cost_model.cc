@@ -217,6 +217,15 @@ namespace ViscoContact
 
 
 
+  bool
+  BackEndCost::fits(const SceneSize &scene) const
+  {
+    return scene.memory_per_rank <= 0
+           || bytes_per_rank <= usable_memory_fraction * scene.memory_per_rank;
+  }
+
+
+
   std::vector<BackEndCost>
   estimate_costs(const SceneSize &scene)
   {
@@ -272,7 +281,9 @@ namespace ViscoContact
       }
     reason << (none_fits ? " none fits in " : " the fastest that fits in ");
     if (scene.memory_per_rank > 0)
-      reason << "3/4 of " << scene.memory_per_rank / 1e9 << " GB per rank";
+      reason << usable_memory_fraction * scene.memory_per_rank / 1e9
+             << " GB per rank (" << 100 * usable_memory_fraction << "% of "
+             << scene.memory_per_rank / 1e9 << ")";
     else
       reason << "the memory per rank";
     reason << ": " << name_of(best->method);

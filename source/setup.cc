@@ -582,9 +582,15 @@ namespace ViscoContact
         = std::max(1.,
                    std::round((schedule.end_time() - schedule.current_time())
                               / std::max(schedule.step_length(), 1e-300)));
-    // The last mesh of the initial cycles has its cold step warm-started.
-    scene.nested_iteration = first_step_cycles > 0;
-    back_end               = choose_method(parameters.method, scene);
+    // A coarser mesh of the initial cycles solves the first step only; every
+    // mesh after the first of them has its cold step warm-started.
+    const bool cycle_mesh
+      = !parameters.resume && n_initial_cycles < first_step_cycles;
+    if (cycle_mesh)
+      scene.steps = 1;
+    scene.nested_iteration
+      = first_step_cycles > 0 && (!cycle_mesh || n_initial_cycles > 0);
+    back_end = choose_method(parameters.method, scene);
   }
 
 

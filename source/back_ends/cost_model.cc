@@ -50,6 +50,20 @@ namespace ViscoContact
              + warm_iterations * std::max(0., scene.steps - 1);
     }
 
+    // The Krylov solves of an iterative back end: one per active-set
+    // iteration, and with the implicit update one per Newton iteration
+    // beyond the first of each step, since every Newton iteration solves
+    // with a new tangent (the time-convergence studies with 1024 implicit
+    // steps on 578 dofs: without this term the model took the full space
+    // back end where the condensed one was 1.3 times faster).
+    double
+    krylov_solves_of_run(const SceneSize &scene)
+    {
+      return iterations_of_run(scene)
+             + (scene.implicit_update ? (newton_iterations - 1) * scene.steps
+                                      : 0.);
+    }
+
     // Full space back end (assembled K, ML's AMG): bytes per dof of a rank
     // (K, the AMG hierarchy, the vectors, the stress points), and seconds
     // per dof of one active-set iteration (the projected Krylov solve and
@@ -114,11 +128,17 @@ namespace ViscoContact
     }
     // On several ranks MUMPS factorises (its work shared, the model takes
     // the square root of the ranks) and solves with the right-hand side and
-    // solution on rank 0, 1.7 times a CHOLMOD solve whatever the rank count
-    // (static scene on 2 ranks: 0.15 s per solve at 526k dofs); S then
+    // solution on rank 0: 1.7 times a CHOLMOD solve in 2D (static scene on
+    // 2 ranks: 0.15 s per solve at 526k dofs), 1.0 to 1.3 times in 3D,
+    // where the factor's work outweighs the gather (cube_3d on tetrahedra
+    // and hexahedra, 15k dofs, 2 ranks), whatever the rank count. S then
     // costs one solve per unknown of the dense problem, as it does for the
     // implicit update's unsymmetric tangent (UMFPACK) on one rank.
-    constexpr double distributed_solve_factor = 1.7;
+    double
+    distributed_solve_factor(const SceneSize &scene)
+    {
+      return scene.dim == 2 ? 1.7 : 1.1;
+    }
     // The dense problem: S and its LU factors on every rank (two m x m
     // arrays), about m^3 / 3 flops per factorisation, one every other step
     // (19 ms of dense work per step at 1056 nodes, by hand, with the
@@ -149,7 +169,8 @@ namespace ViscoContact
   //
   // The operator is set up once for the explicit update (K) and once per
   // Newton iteration for the implicit one; the iterative back ends do one
-  // Krylov solve per active-set iteration, the condensed one a solve with
+  // Krylov solve per active-set and per Newton iteration
+  // (krylov_solves_of_run()), the condensed one a solve with
   // the factor per step (two on several ranks) and a dense solve per
   // iteration. Work on the mesh is shared by the ranks; what the condensed
   // back end does with S is done on every rank.
@@ -159,7 +180,7 @@ namespace ViscoContact
     BackEndCost cost;
     cost.method                = method;
     const double dofs_per_rank = scene.dofs / scene.ranks;
-    const double iterations    = iterations_of_run(scene);
+    const double iterations    = krylov_solves_of_run(scene);
     const double operator_setups
       = scene.implicit_update ? newton_iterations * scene.steps : 1;
     switch (method)
@@ -192,8 +213,9 @@ namespace ViscoContact
           {
             const double unknowns = scene.contact_nodes * scene.node_unknowns;
             const bool   distributed = scene.ranks > 1;
-            const double solve = (distributed ? distributed_solve_factor : 1)
-                                 * factor_solve_seconds(scene);
+            const double solve
+              = (distributed ? distributed_solve_factor(scene) : 1)
+                * factor_solve_seconds(scene);
             const double factorisation
               = factorisation_seconds(scene) / std::sqrt(scene.ranks);
             const double compliance = (distributed || scene.implicit_update)

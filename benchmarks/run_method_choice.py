@@ -19,13 +19,19 @@ Cases:
   * cube N: parameters/cube_3d.prm (hexahedra, 32 steps) with N
     Subdivisions, for N in --cube-subdivisions (none by default).
 
-Writes <output-dir>/method_choice.csv and method_choice.md.
+Writes <output-dir>/<name>.csv and <name>.md (--name, default
+method_choice). The tables in doc/back_ends come from two invocations:
+
+    benchmarks/run_method_choice.py --scenes none --cube-subdivisions 24
+    benchmarks/run_method_choice.py --static-subdivisions "" \
+        --timeout 120 --name method_choice_shipped
 
     benchmarks/run_method_choice.py [--executable build/viscoplastic_contact]
         [--ranks 1,2] [--static-subdivisions 128,256,512]
         [--static-cell-types simplex,hypercube]
         [--cube-subdivisions 24,32] [--scenes all|none|a.prm,b.prm]
         [--repeat 1] [--timeout 600] [--output-dir doc/back_ends]
+        [--name method_choice]
 
 Build in Release mode. Runs as root need no flag: the script sets Open MPI's
 OMPI_ALLOW_RUN_AS_ROOT variables.
@@ -126,6 +132,7 @@ def main():
     parser.add_argument("--timeout", type=float, default=600)
     parser.add_argument("--output-dir", default=os.path.join(REPO_ROOT, "doc",
                                                              "back_ends"))
+    parser.add_argument("--name", default="method_choice")
     args = parser.parse_args()
     executable = resolve_executable(args.executable)
 
@@ -150,7 +157,10 @@ def main():
             for method in METHODS:
                 result = results.get(method)
                 key = method.replace(" ", "_")
-                row[f"{key}_s"] = "" if result is None else f"{result['time']:.3f}"
+                row[f"{key}_s"] = ("" if result is None else
+                                   f">{args.timeout:g}"
+                                   if result["back_end"] == "timeout" else
+                                   f"{result['time']:.3f}")
                 row[f"{key}_MB"] = "" if result is None else f"{result['memory']:.0f}"
             row.update({"auto_chose": auto["back_end"], "best": best,
                         "auto_over_best": f"{auto['time'] / timed[best]['time']:.3f}"})
@@ -161,7 +171,7 @@ def main():
             rows.append(row)
 
     os.makedirs(args.output_dir, exist_ok=True)
-    with open(os.path.join(args.output_dir, "method_choice.csv"), "w",
+    with open(os.path.join(args.output_dir, args.name + ".csv"), "w",
               newline="") as f:
         writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         writer.writeheader()
@@ -184,7 +194,9 @@ def main():
         "memory is the peak resident memory of the largest rank in MB. "
         "*auto / best*: auto's time over the fastest method's, measured in "
         "the same invocation (at these sizes two runs of one method differ "
-        "by up to 0.1 s).", "",
+        "by up to 0.1 s). *>T*: stopped at the timeout of T s, counted "
+        "as T. *auto chose*: the back end of the run's first mesh (a "
+        "convergence study chooses per run).", "",
         f"Auto within 1.2 times the best: **{within} of {len(rows)}** rows; "
         f"largest ratio {max(ratios):.2f}.", "",
         "| case | ranks | dofs | contact nodes | steps | condensed | full space "
@@ -198,7 +210,7 @@ def main():
             f"{r['matrix_free_s'] or '-'} | {r['auto_s']} | {r['auto_chose']} | "
             f"{r['best']} | {r['auto_over_best']} | {r['condensed_MB'] or '-'} | "
             f"{r['full_space_MB'] or '-'} | {r['matrix_free_MB'] or '-'} |")
-    with open(os.path.join(args.output_dir, "method_choice.md"), "w") as f:
+    with open(os.path.join(args.output_dir, args.name + ".md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 
 

@@ -420,7 +420,7 @@ namespace ViscoContact
                                Vector<float>              &von_mises,
                                Vector<float>              &subdomain) const;
     std::string
-    write_vtu_pieces(const DataOut<dim>          &data_out,
+    write_vtu_pieces(DataOut<dim>                &data_out,
                      const DataOutBase::VtkFlags &flags,
                      const std::string           &stem,
                      const unsigned int           step);
@@ -494,11 +494,17 @@ namespace ViscoContact
     void
     write_checkpoint(const double wall_time);
     // The header of a checkpoint file (the same on every rank; rank 0's is
-    // written) and the records of the locally owned cells.
+    // written); the vectors the records hold besides u, with their ghost
+    // values; and the records of owned_cells[first, end).
     ByteWriter
     checkpoint_header(const double wall_time) const;
-    std::vector<char>
-    checkpoint_cell_records() const;
+    std::array<VectorType, 4>
+    checkpoint_vectors() const;
+    void
+    write_cell_records(const std::array<VectorType, 4> &vectors,
+                       const std::size_t                first,
+                       const std::size_t                end,
+                       char                            *out) const;
     // A scheduler's signal received on any rank: all ranks stop after this
     // step, with a checkpoint of it (unless one was just written).
     void
@@ -532,8 +538,9 @@ namespace ViscoContact
     // their cells and restored on the owned dofs and stress points; false on
     // a rank that did not find all its cells.
     bool
-    restore_cell_records(const std::vector<char> &share,
-                         CellRecordVectors       &vectors);
+    restore_cell_records(const std::string &file,
+                         std::vector<char> &header,
+                         CellRecordVectors &vectors);
     void
     restore_contact_nodes(const CellRecordVectors &vectors,
                           const ByteReader        &header);

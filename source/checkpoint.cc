@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cstring>
+#include <unordered_map>
 
 namespace ViscoContact
 {
@@ -71,19 +72,23 @@ namespace ViscoContact
     output_folder->create_folder(checkpoint_folder);
     output_folder->record_files({checkpoint_name(step), checkpoint_info});
 
-    const ByteWriter        header      = checkpoint_header(wall_time);
-    const std::vector<char> records     = checkpoint_cell_records();
-    const std::size_t       record_size = checkpoint_record_size();
+    const ByteWriter                header  = checkpoint_header(wall_time);
+    const std::array<VectorType, 4> vectors = checkpoint_vectors();
 
     // Collective: the file is complete (written and renamed, the rename on
     // the disk) before the record of the checkpoint is published, and only
-    // then is the previous checkpoint's file removed.
-    write_record_file(*output_folder,
-                      checkpoint_name(step),
-                      header.bytes,
-                      records,
-                      record_size,
-                      mpi_communicator);
+    // then is the previous checkpoint's file removed. The records are made
+    // as they are written, a piece at a time.
+    write_record_file(
+      *output_folder,
+      checkpoint_name(step),
+      header.bytes,
+      owned_cells.size(),
+      checkpoint_record_size(),
+      [&](const std::size_t first, const std::size_t end, char *out) {
+        write_cell_records(vectors, first, end, out);
+      },
+      mpi_communicator);
     output_folder->commit(/*durable=*/true);
 
     CheckpointRecord record;
@@ -136,10 +141,10 @@ namespace ViscoContact
 
 
 
-  // @sect4{ViscoplasticContact::checkpoint_cell_records}
+  // @sect4{ViscoplasticContact::checkpoint_vectors}
   template <int dim>
-  std::vector<char>
-  ViscoplasticContact<dim>::checkpoint_cell_records() const
+  std::array<VectorType, 4>
+  ViscoplasticContact<dim>::checkpoint_vectors() const
   {
     // The contact state as a displacement-sized vector: each owned contact node
     // writes into the owned entries of its own dofs. The ghost import then
@@ -178,34 +183,43 @@ namespace ViscoContact
     start_displacement.update_ghost_values();
     node_history.update_ghost_values();
     friction_state.update_ghost_values();
+    return {{std::move(contact_state),
+             std::move(start_displacement),
+             std::move(node_history),
+             std::move(friction_state)}};
+  }
 
+
+
+  // @sect4{ViscoplasticContact::write_cell_records}
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::write_cell_records(
+    const std::array<VectorType, 4> &vectors,
+    const std::size_t                first,
+    const std::size_t                end,
+    char                            *out) const
+  {
     // A record: the cell id in binary form, the dofs_per_cell values of u, of
     // the contact state, of u_{n-1} and of the nodes' history, in the cell's
     // dof order, and the n_q stress-point records of the cell, copied as
     // raw bytes (QuadraturePointHistory is plain data: symmetric tensors and
     // doubles, with the zz components in 2D).
-    using Key                        = CellId::binary_type;
-    const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
-    const unsigned int n_q           = stress_quadrature.size();
-    const std::size_t  record_size   = checkpoint_record_size();
-    std::vector<char>  records(owned_cells.size() * record_size);
+    using Key                                          = CellId::binary_type;
+    const unsigned int                   dofs_per_cell = fe->n_dofs_per_cell();
+    const unsigned int                   n_q = stress_quadrature.size();
     std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
-    char                                *out = records.data();
     // The cells in the order of owned_cells; (*vector)(dof) reads owned and
-    // ghost entries alike, which is why both vectors must have their ghost
+    // ghost entries alike, which is why the vectors must have their ghost
     // values here.
-    for (unsigned int k = 0; k < owned_cells.size(); ++k)
+    for (std::size_t k = first; k < end; ++k)
       {
         const Key key = owned_cells[k]->id().template to_binary<dim>();
         std::memcpy(out, &key, sizeof(Key));
         out += sizeof(Key);
         owned_cells[k]->get_dof_indices(dof_indices);
-        for (const VectorType *vector :
-             std::array<const VectorType *, 5>{{&solution,
-                                                &contact_state,
-                                                &start_displacement,
-                                                &node_history,
-                                                &friction_state}})
+        for (const VectorType *vector : std::array<const VectorType *, 5>{
+               {&solution, &vectors[0], &vectors[1], &vectors[2], &vectors[3]}})
           for (const types::global_dof_index dof : dof_indices)
             {
               const double value = (*vector)(dof);
@@ -219,7 +233,6 @@ namespace ViscoContact
                     n_q * sizeof(QuadraturePointHistory<dim>));
         out += n_q * sizeof(QuadraturePointHistory<dim>);
       }
-    return records;
   }
 
 
@@ -255,24 +268,19 @@ namespace ViscoContact
                                parameters.result_entries);
     const std::string file
       = output_folder->path(checkpoint_name(checkpoint.step));
-    std::vector<char> header_bytes, share;
-    read_record_file(file,
-                     header_bytes,
-                     share,
-                     checkpoint_record_size(),
-                     mpi_communicator);
 
-    ByteReader            header(header_bytes, file);
+    // The state of every owned cell, as the file is read; the decision is
+    // reduced over the ranks, so that all throw if any cell was not found.
+    // Then the ghosts of u are imported, as the stress update and the output
+    // expect.
+    std::vector<char> header_bytes;
+    CellRecordVectors vectors{solution, solution, solution, solution};
+    const bool complete = restore_cell_records(file, header_bytes, vectors);
+    ByteReader header(header_bytes, file);
     const CheckpointFlags flags
       = read_checkpoint_header(header, checkpoint.step);
     const std::pair<double, double> next_step_lengths
       = continue_schedule_after_checkpoint();
-
-    // The state of every owned cell; the decision is reduced over the ranks,
-    // so that all throw if any cell was not found. Then the ghosts of u are
-    // imported, as the stress update and the output expect.
-    CellRecordVectors vectors{solution, solution, solution, solution};
-    const bool        complete = restore_cell_records(share, vectors);
     header.check(Utilities::MPI::min(complete ? 1 : 0, mpi_communicator) == 1);
     solution.update_ghost_values();
     if (contact_enabled)
@@ -370,13 +378,15 @@ namespace ViscoContact
 
   // @sect4{ViscoplasticContact::restore_cell_records}
   //
-  // The records of this rank's share go to the owners of their cells. Each
-  // becomes a (key, payload) pair: the key is the binary cell id, the payload
-  // the doubles of u, of the contact state, of the start of the step, of the
-  // nodes' history and of the stress points. Each rank then asks for the keys
-  // of its own cells; exchange_records() meets the holders and the askers at
-  // a rendezvous rank chosen by a hash of the key, so no rank needs to know
-  // who holds which cell.
+  // The records of this rank's share of the file go to the owners of their
+  // cells, a piece of the file at a time (read_record_file()), so that no
+  // rank holds more than a piece of them besides the run's own data. Each
+  // becomes a (key, payload) pair: the key is the binary cell id, the
+  // payload the doubles of u, of the contact state, of the start of the
+  // step, of the nodes' history and of the stress points. Each rank asks
+  // once for the keys of its own cells; a RecordRouter meets the holders
+  // and the askers at a rendezvous rank chosen by a hash of the key, so no
+  // rank needs to know who holds which cell.
   //
   // The received values go into the owned entries only: a dof of an owned
   // cell that another rank owns is set there, by the rank that owns it (every
@@ -385,7 +395,8 @@ namespace ViscoContact
   // incomplete.
   template <int dim>
   bool
-  ViscoplasticContact<dim>::restore_cell_records(const std::vector<char> &share,
+  ViscoplasticContact<dim>::restore_cell_records(const std::string &file,
+                                                 std::vector<char> &header,
                                                  CellRecordVectors &vectors)
   {
     using Key                        = CellId::binary_type;
@@ -393,24 +404,18 @@ namespace ViscoContact
     const unsigned int n_q           = stress_quadrature.size();
     const std::size_t  record_size   = checkpoint_record_size();
     const unsigned int n_doubles = (record_size - sizeof(Key)) / sizeof(double);
-    std::vector<MPITools::Record> records(share.size() / record_size);
-    for (std::size_t r = 0; r < records.size(); ++r)
-      {
-        const char *in = share.data() + r * record_size;
-        records[r].first.assign(in, sizeof(Key));
-        records[r].second.resize(n_doubles);
-        std::memcpy(records[r].second.data(),
-                    in + sizeof(Key),
-                    n_doubles * sizeof(double));
-      }
-    std::vector<std::string> requests(owned_cells.size());
+
+    // Where the record of each owned cell goes: its place in owned_cells.
+    std::unordered_map<std::string, unsigned int> place_of;
+    std::vector<std::string>                      requests(owned_cells.size());
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
       {
         const Key key = owned_cells[k]->id().template to_binary<dim>();
         requests[k].assign(reinterpret_cast<const char *>(&key), sizeof(Key));
+        place_of.emplace(requests[k], k);
       }
-    const auto found
-      = MPITools::exchange_records(records, requests, mpi_communicator);
+    const MPITools::RecordRouter router(requests, mpi_communicator);
+    requests = std::vector<std::string>();
 
     VectorType *const targets[5] = {&solution,
                                     &vectors.contact_state,
@@ -419,29 +424,51 @@ namespace ViscoContact
                                     &vectors.friction_state};
     for (VectorType *target : targets)
       *target = 0;
+    std::vector<unsigned int>            times_found(owned_cells.size(), 0);
     std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
     bool                                 complete = true;
-    for (unsigned int k = 0; k < owned_cells.size(); ++k)
-      {
-        const auto entry = found.find(requests[k]);
-        if (entry == found.end() || entry->second.size() != 1
-            || entry->second[0].size() != n_doubles)
+    const auto                           restore
+      = [&](const std::string &key, const std::vector<double> &values) {
+          const auto entry = place_of.find(key);
+          if (entry == place_of.end() || values.size() != n_doubles)
+            {
+              complete = false;
+              return;
+            }
+          const unsigned int k = entry->second;
+          ++times_found[k];
+          owned_cells[k]->get_dof_indices(dof_indices);
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            if (locally_owned_dofs.is_element(dof_indices[i]))
+              for (unsigned int v = 0; v < 5; ++v)
+                (*targets[v])(dof_indices[i]) = values[v * dofs_per_cell + i];
+          // The stress-point records go back to their place k * n_q + q, byte
+          // for byte.
+          std::memcpy(&quadrature_point_history[std::size_t(k) * n_q],
+                      values.data() + 5 * dofs_per_cell,
+                      n_q * sizeof(QuadraturePointHistory<dim>));
+        };
+    read_record_file(
+      file,
+      header,
+      record_size,
+      [&](const std::vector<char> &piece) {
+        std::vector<MPITools::Record> records(piece.size() / record_size);
+        for (std::size_t r = 0; r < records.size(); ++r)
           {
-            complete = false;
-            continue;
+            const char *in = piece.data() + r * record_size;
+            records[r].first.assign(in, sizeof(Key));
+            records[r].second.resize(n_doubles);
+            std::memcpy(records[r].second.data(),
+                        in + sizeof(Key),
+                        n_doubles * sizeof(double));
           }
-        const std::vector<double> &values = entry->second[0];
-        owned_cells[k]->get_dof_indices(dof_indices);
-        for (unsigned int i = 0; i < dofs_per_cell; ++i)
-          if (locally_owned_dofs.is_element(dof_indices[i]))
-            for (unsigned int v = 0; v < 5; ++v)
-              (*targets[v])(dof_indices[i]) = values[v * dofs_per_cell + i];
-        // The stress-point records go back to their place k * n_q + q, byte for
-        // byte.
-        std::memcpy(&quadrature_point_history[std::size_t(k) * n_q],
-                    values.data() + 5 * dofs_per_cell,
-                    n_q * sizeof(QuadraturePointHistory<dim>));
-      }
+        for (const auto &[key, values] : router.deliver(records))
+          restore(key, values);
+      },
+      mpi_communicator);
+    for (const unsigned int n : times_found)
+      complete = complete && (n == 1);
     return complete;
   }
 

@@ -822,33 +822,35 @@ namespace ViscoContact
                                parameters.result_entries);
     using Key              = CellId::binary_type;
     const std::size_t size = checkpoint_record_size();
-    std::vector<char> header, share;
-    read_record_file(output_folder->path(checkpoint_name(checkpoint.step)),
-                     header,
-                     share,
-                     size,
-                     mpi_communicator);
 
-    // The records of this rank's share: its cells, and their ancestors
-    // once each.
+    // The records of this rank's share, a piece of the file at a time: their
+    // cells, and their ancestors once each.
     std::vector<MPITools::Record> records;
     std::set<std::string>         ancestors;
-    for (std::size_t r = 0; r < share.size() / size; ++r)
-      {
-        Key key;
-        std::memcpy(&key, share.data() + r * size, sizeof(Key));
-        const CellId cell(key);
-        records.emplace_back(cell.to_string(), std::vector<double>{1.});
-        const auto path = cell.get_child_indices();
-        for (unsigned int level = 0; level < path.size(); ++level)
+    std::vector<char>             header;
+    read_record_file(
+      output_folder->path(checkpoint_name(checkpoint.step)),
+      header,
+      size,
+      [&](const std::vector<char> &piece) {
+        for (std::size_t r = 0; r < piece.size() / size; ++r)
           {
-            const std::string ancestor
-              = CellId(cell.get_coarse_cell_id(), level, path.data())
-                  .to_string();
-            if (ancestors.insert(ancestor).second)
-              records.emplace_back(ancestor, std::vector<double>{0.});
+            Key key;
+            std::memcpy(&key, piece.data() + r * size, sizeof(Key));
+            const CellId cell(key);
+            records.emplace_back(cell.to_string(), std::vector<double>{1.});
+            const auto path = cell.get_child_indices();
+            for (unsigned int level = 0; level < path.size(); ++level)
+              {
+                const std::string ancestor
+                  = CellId(cell.get_coarse_cell_id(), level, path.data())
+                      .to_string();
+                if (ancestors.insert(ancestor).second)
+                  records.emplace_back(ancestor, std::vector<double>{0.});
+              }
           }
-      }
+      },
+      mpi_communicator);
 
     auto &mesh = dynamic_cast<parallel::distributed::Triangulation<dim> &>(
       *triangulation);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -156,22 +157,33 @@ namespace ViscoContact
 
   // Collective. A file of the header (rank 0's) followed by the records of
   // all ranks in rank order, each record_size bytes, staged in the output
-  // folder (committed by the caller).
+  // folder (committed by the caller). fill_records(first, end, out) puts
+  // this rank's records [first, end) into out; they are made and written a
+  // piece of at most about 64 MB at a time, so that a checkpoint needs
+  // little memory beyond the run's own (a copy of all records would be
+  // 0.7 kB per dof on hexahedra).
+  using RecordFiller
+    = std::function<void(std::size_t first, std::size_t end, char *out)>;
   void
   write_record_file(OutputFolder            &folder,
                     const std::string       &name,
                     const std::vector<char> &header,
-                    const std::vector<char> &local_records,
+                    const std::size_t        n_local_records,
                     const std::uint64_t      record_size,
+                    const RecordFiller      &fill_records,
                     const MPI_Comm           communicator);
 
   // Collective. The header, and an equal share of the records for each
-  // rank (whatever the number of ranks that wrote them).
+  // rank (whatever the number of ranks that wrote them), handed to
+  // use_records(records) a piece of whole records of at most about 64 MB at
+  // a time. Every rank calls use_records equally often (with an empty piece
+  // once its share is used up), so that use_records may be collective.
+  using RecordUser = std::function<void(const std::vector<char> &records)>;
   void
   read_record_file(const std::string  &file,
                    std::vector<char>  &header,
-                   std::vector<char>  &record_share,
                    const std::uint64_t record_size,
+                   const RecordUser   &use_records,
                    const MPI_Comm      communicator);
 
   // Collective. After the checkpoint file is complete: rank 0 publishes

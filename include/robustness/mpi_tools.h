@@ -37,6 +37,27 @@ namespace ViscoContact
                      const std::vector<std::string> &requests,
                      const MPI_Comm                  communicator);
 
+    // The same exchange in rounds, for more records than a rank can hold
+    // twice (a checkpoint's): the requests go to their rendezvous ranks
+    // once, which keep who asked for each key; each deliver() then sends a
+    // batch of records there and on to the ranks that asked for their keys,
+    // and returns those that arrived here. Collective: every rank calls
+    // deliver() equally often (with an empty batch when it has none).
+    class RecordRouter
+    {
+    public:
+      RecordRouter(const std::vector<std::string> &requests,
+                   const MPI_Comm                  communicator);
+
+      std::vector<Record>
+      deliver(const std::vector<Record> &records) const;
+
+    private:
+      MPI_Comm communicator;
+      // On the rendezvous rank of each key: the ranks that asked for it.
+      std::map<std::string, std::vector<unsigned int>> askers;
+    };
+
     // @sect4{Errors that all ranks agree on}
     //
     // Work that only some ranks do (a group root reading the mesh) may fail

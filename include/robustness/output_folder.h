@@ -3,6 +3,8 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <cstdint>
+#include <functional>
 #include <set>
 #include <string>
 #include <vector>
@@ -126,6 +128,21 @@ namespace ViscoContact
                        const MPI_Comm     group,
                        const Replace      replace = Replace::never);
 
+    // The same for a block too large to hold in memory twice: it is made
+    // and written piece by piece, fill(begin, size, buffer) putting bytes
+    // [begin, begin + size) of this rank's block into buffer, pieces of at
+    // most piece_size bytes.
+    using BlockFiller
+      = std::function<void(std::size_t begin, std::size_t size, char *buffer)>;
+    void
+    stage_collectively(const std::string &name,
+                       const std::string &prefix,
+                       const std::size_t  local_size,
+                       const std::size_t  piece_size,
+                       const BlockFiller &fill,
+                       const MPI_Comm     group,
+                       const Replace      replace = Replace::never);
+
     // Collective: every staged file into place, or none (all ranks throw the
     // message of the first failure, naming the file and the system's
     // reason). With durable = true the renames reach the disk (fsync of the
@@ -185,6 +202,16 @@ namespace ViscoContact
     append_to_manifest(const std::string &kind, const std::string &name);
     std::string
     failure(const std::string &name, const int error_number) const;
+    // What both stage_collectively() share: write_block(descriptor, offset)
+    // writes this rank's local_size bytes at offset, returning 0 or the
+    // errno.
+    void
+    stage_blocks(const std::string                            &name,
+                 const std::string                            &prefix,
+                 const std::size_t                             local_size,
+                 const std::function<int(int, std::uint64_t)> &write_block,
+                 const MPI_Comm                                group,
+                 const Replace                                 replace);
     void
     release();
 

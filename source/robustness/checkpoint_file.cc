@@ -149,13 +149,13 @@ namespace ViscoContact
   write_record_file(OutputFolder            &folder,
                     const std::string       &name,
                     const std::vector<char> &header,
-                    const std::vector<char> &local_records,
+                    const std::size_t        n_local_records,
                     const std::uint64_t      record_size,
+                    const RecordFiller      &fill_records,
                     const MPI_Comm           communicator)
   {
     const std::uint64_t n_records
-      = Utilities::MPI::sum(std::uint64_t(local_records.size() / record_size),
-                            communicator);
+      = Utilities::MPI::sum(std::uint64_t(n_local_records), communicator);
     std::string prefix;
     const auto  append = [&prefix](const std::uint64_t value) {
       prefix.append(reinterpret_cast<const char *>(&value), sizeof(value));
@@ -164,11 +164,18 @@ namespace ViscoContact
     prefix.append(header.begin(), header.end());
     append(n_records);
     append(record_size);
-    folder.stage_collectively(name,
-                              prefix,
-                              local_records.data(),
-                              local_records.size(),
-                              communicator);
+    // Pieces of whole records.
+    const std::size_t records_per_piece
+      = std::max<std::size_t>(1, (std::size_t(64) << 20) / record_size);
+    folder.stage_collectively(
+      name,
+      prefix,
+      n_local_records * record_size,
+      records_per_piece * record_size,
+      [&](const std::size_t begin, const std::size_t size, char *buffer) {
+        fill_records(begin / record_size, (begin + size) / record_size, buffer);
+      },
+      communicator);
   }
 
 
@@ -185,8 +192,8 @@ namespace ViscoContact
   void
   read_record_file(const std::string  &file,
                    std::vector<char>  &header,
-                   std::vector<char>  &record_share,
                    const std::uint64_t record_size,
+                   const RecordUser   &use_records,
                    const MPI_Comm      communicator)
   {
     const int descriptor
@@ -249,18 +256,38 @@ namespace ViscoContact
       }
 
     // This rank's share of the records: an equal split of n_total, whatever the
-    // number of ranks that wrote them.
+    // number of ranks that wrote them, read a piece at a time; as many pieces
+    // on every rank.
     const unsigned int  n_ranks = Utilities::MPI::n_mpi_processes(communicator);
     const unsigned int  rank  = Utilities::MPI::this_mpi_process(communicator);
     const std::uint64_t begin = n_total * rank / n_ranks;
     const std::uint64_t end   = n_total * (rank + 1) / n_ranks;
-    record_share.resize((end - begin) * record_size);
-    error = read_at(descriptor,
-                    record_share.data(),
-                    record_share.size(),
-                    records_start + begin * record_size);
+    const std::uint64_t records_per_piece
+      = std::max<std::uint64_t>(1, (std::uint64_t(64) << 20) / record_size);
+    const std::uint64_t n_pieces
+      = Utilities::MPI::max((end - begin + records_per_piece - 1)
+                              / records_per_piece,
+                            communicator);
+    std::vector<char> piece;
+    for (std::uint64_t p = 0; p < n_pieces; ++p)
+      {
+        const std::uint64_t first
+          = std::min(end, begin + p * records_per_piece);
+        const std::uint64_t last = std::min(end, first + records_per_piece);
+        piece.resize((last - first) * record_size);
+        if (error == 0)
+          error = read_at(descriptor,
+                          piece.data(),
+                          piece.size(),
+                          records_start + first * record_size);
+        if (Utilities::MPI::max(error, communicator) != 0)
+          {
+            ::close(descriptor);
+            agree_on_errors(error, file, "Reading", communicator);
+          }
+        use_records(piece);
+      }
     ::close(descriptor);
-    agree_on_errors(error, file, "Reading", communicator);
   }
 
 

@@ -157,6 +157,67 @@ namespace ViscoContact
 
 
 
+    // @sect4{RecordRouter}
+    //
+    // exchange_records()'s round 2 once, at construction; then per batch
+    // its rounds 1 and 3, the rendezvous rank forwarding each record to the
+    // ranks that asked for its key as it arrives, so that no rank holds
+    // more than a batch of records at a time.
+    RecordRouter::RecordRouter(const std::vector<std::string> &requests,
+                               const MPI_Comm                  communicator)
+      : communicator(communicator)
+    {
+      const unsigned int n_ranks
+        = Utilities::MPI::n_mpi_processes(communicator);
+      std::map<unsigned int, std::vector<char>> outgoing;
+      for (const std::string &key : requests)
+        append(outgoing[rendezvous_rank(key, n_ranks)], key, nullptr);
+      for (const auto &[rank, buffer] :
+           Utilities::MPI::some_to_some(communicator, outgoing))
+        for_each_entry(buffer,
+                       [&, rank = rank](const std::string &key,
+                                        std::vector<double> &) {
+                         askers[key].push_back(rank);
+                       });
+    }
+
+
+
+    std::vector<Record>
+    RecordRouter::deliver(const std::vector<Record> &records) const
+    {
+      const unsigned int n_ranks
+        = Utilities::MPI::n_mpi_processes(communicator);
+      std::map<unsigned int, std::vector<char>> outgoing;
+      for (const Record &record : records)
+        append(outgoing[rendezvous_rank(record.first, n_ranks)],
+               record.first,
+               &record.second);
+      std::map<unsigned int, std::vector<char>> forwarded;
+      for (const auto &[rank, buffer] :
+           Utilities::MPI::some_to_some(communicator, outgoing))
+        for_each_entry(buffer,
+                       [&](const std::string   &key,
+                           std::vector<double> &payload) {
+                         const auto entry = askers.find(key);
+                         if (entry != askers.end())
+                           for (const unsigned int asker : entry->second)
+                             append(forwarded[asker], key, &payload);
+                       });
+      outgoing.clear();
+      std::vector<Record> arrived;
+      for (const auto &[rank, buffer] :
+           Utilities::MPI::some_to_some(communicator, forwarded))
+        for_each_entry(buffer,
+                       [&](const std::string   &key,
+                           std::vector<double> &payload) {
+                         arrived.emplace_back(key, std::move(payload));
+                       });
+      return arrived;
+    }
+
+
+
     // @sect4{agree_on_failure}
     //
     // One reduction finds the lowest failing rank (or none), one broadcast

@@ -988,6 +988,66 @@ namespace ViscoContact
                                    const MPI_Comm     group,
                                    const Replace      replace)
   {
+    stage_blocks(
+      name,
+      prefix,
+      local_size,
+      [&](const int descriptor, const std::uint64_t offset) {
+        return write_all(descriptor, local_block, local_size, offset, true);
+      },
+      group,
+      replace);
+  }
+
+
+
+  // The block piece by piece through one buffer of piece_size bytes: the
+  // memory a checkpoint needs beyond the run's own data is that buffer.
+  void
+  OutputFolder::stage_collectively(const std::string &name,
+                                   const std::string &prefix,
+                                   const std::size_t  local_size,
+                                   const std::size_t  piece_size,
+                                   const BlockFiller &fill,
+                                   const MPI_Comm     group,
+                                   const Replace      replace)
+  {
+    Assert(piece_size > 0, ExcInternalError());
+    stage_blocks(
+      name,
+      prefix,
+      local_size,
+      [&](const int descriptor, const std::uint64_t offset) {
+        std::vector<char> buffer(std::min(local_size, piece_size));
+        for (std::size_t begin = 0; begin < local_size; begin += piece_size)
+          {
+            const std::size_t size = std::min(piece_size, local_size - begin);
+            fill(begin, size, buffer.data());
+            const int error = write_all(descriptor,
+                                        buffer.data(),
+                                        size,
+                                        offset + begin,
+                                        true);
+            if (error != 0)
+              return error;
+          }
+        return 0;
+      },
+      group,
+      replace);
+  }
+
+
+
+  void
+  OutputFolder::stage_blocks(
+    const std::string                            &name,
+    const std::string                            &prefix,
+    const std::size_t                             local_size,
+    const std::function<int(int, std::uint64_t)> &write_block,
+    const MPI_Comm                                group,
+    const Replace                                 replace)
+  {
     const unsigned int group_rank = Utilities::MPI::this_mpi_process(group);
     const unsigned int group_size = Utilities::MPI::n_mpi_processes(group);
     const std::string  temporary  = temporary_name(name);
@@ -1042,7 +1102,7 @@ namespace ViscoContact
             && group_rank + 1 == group_size)
           error = ENOSPC;
         if (error == 0)
-          error = write_all(descriptor, local_block, local_size, offset, true);
+          error = write_block(descriptor, offset);
         if (error == 0 && ::fsync(descriptor) != 0)
           error = errno;
         if (::close(descriptor) != 0 && error == 0)

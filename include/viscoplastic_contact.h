@@ -535,12 +535,14 @@ namespace ViscoContact
       VectorType friction_state;
     };
     // The records of this rank's share of the file sent to the owners of
-    // their cells and restored on the owned dofs and stress points; false on
-    // a rank that did not find all its cells.
+    // their cells and restored on the owned dofs and stress points, after
+    // check_header() has read the header; false on a rank that did not find
+    // all its cells.
     bool
-    restore_cell_records(const std::string &file,
-                         std::vector<char> &header,
-                         CellRecordVectors &vectors);
+    restore_cell_records(const std::string           &file,
+                         std::vector<char>           &header,
+                         CellRecordVectors           &vectors,
+                         const std::function<void()> &check_header);
     void
     restore_contact_nodes(const CellRecordVectors &vectors,
                           const ByteReader        &header);

@@ -269,18 +269,21 @@ namespace ViscoContact
     const std::string file
       = output_folder->path(checkpoint_name(checkpoint.step));
 
-    // The state of every owned cell, as the file is read; the decision is
-    // reduced over the ranks, so that all throw if any cell was not found.
-    // Then the ghosts of u are imported, as the stress update and the output
-    // expect.
-    std::vector<char> header_bytes;
-    CellRecordVectors vectors{solution, solution, solution, solution};
-    const bool complete = restore_cell_records(file, header_bytes, vectors);
-    ByteReader header(header_bytes, file);
-    const CheckpointFlags flags
-      = read_checkpoint_header(header, checkpoint.step);
-    const std::pair<double, double> next_step_lengths
-      = continue_schedule_after_checkpoint();
+    // The header first (a file of another scene, or an End time before the
+    // checkpoint, is refused before any cell is touched); then the state of
+    // every owned cell, as the file is read. The decision is reduced over the
+    // ranks, so that all throw if any cell was not found. Then the ghosts of
+    // u are imported, as the stress update and the output expect.
+    std::vector<char>         header_bytes;
+    ByteReader                header(header_bytes, file);
+    CheckpointFlags           flags{false};
+    std::pair<double, double> next_step_lengths;
+    CellRecordVectors         vectors{solution, solution, solution, solution};
+    const bool                complete
+      = restore_cell_records(file, header_bytes, vectors, [&]() {
+          flags             = read_checkpoint_header(header, checkpoint.step);
+          next_step_lengths = continue_schedule_after_checkpoint();
+        });
     header.check(Utilities::MPI::min(complete ? 1 : 0, mpi_communicator) == 1);
     solution.update_ghost_values();
     if (contact_enabled)
@@ -395,9 +398,11 @@ namespace ViscoContact
   // incomplete.
   template <int dim>
   bool
-  ViscoplasticContact<dim>::restore_cell_records(const std::string &file,
-                                                 std::vector<char> &header,
-                                                 CellRecordVectors &vectors)
+  ViscoplasticContact<dim>::restore_cell_records(
+    const std::string           &file,
+    std::vector<char>           &header,
+    CellRecordVectors           &vectors,
+    const std::function<void()> &check_header)
   {
     using Key                        = CellId::binary_type;
     const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
@@ -466,7 +471,8 @@ namespace ViscoContact
         for (const auto &[key, values] : router.deliver(records))
           restore(key, values);
       },
-      mpi_communicator);
+      mpi_communicator,
+      check_header);
     for (const unsigned int n : times_found)
       complete = complete && (n == 1);
     return complete;

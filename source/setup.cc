@@ -583,9 +583,13 @@ namespace ViscoContact
                    std::round((schedule.end_time() - schedule.current_time())
                               / std::max(schedule.step_length(), 1e-300)));
     // A coarser mesh of the initial cycles solves the first step only; every
-    // mesh after the first of them has its cold step warm-started.
-    const bool cycle_mesh
-      = !parameters.resume && n_initial_cycles < first_step_cycles;
+    // mesh after the first of them has its cold step warm-started. Cycles of
+    // adaptive meshes may stop early, on a mesh that then runs every step:
+    // their meshes are costed for the whole run.
+    const bool cycle_mesh = !parameters.resume
+                            && n_initial_cycles < first_step_cycles
+                            && parameters.initial_refinement
+                                 == Parameters::InitialRefinement::global;
     if (cycle_mesh)
       scene.steps = 1;
     scene.nested_iteration

@@ -178,13 +178,15 @@ namespace ViscoContact
   // use_records(records) a piece of whole records of at most about 64 MB at
   // a time. Every rank calls use_records equally often (with an empty piece
   // once its share is used up), so that use_records may be collective.
+  // check_header() runs once the header is read, before the first piece.
   using RecordUser = std::function<void(const std::vector<char> &records)>;
   void
-  read_record_file(const std::string  &file,
-                   std::vector<char>  &header,
-                   const std::uint64_t record_size,
-                   const RecordUser   &use_records,
-                   const MPI_Comm      communicator);
+  read_record_file(const std::string           &file,
+                   std::vector<char>           &header,
+                   const std::uint64_t          record_size,
+                   const RecordUser            &use_records,
+                   const MPI_Comm               communicator,
+                   const std::function<void()> &check_header = {});
 
   // Collective. After the checkpoint file is complete: rank 0 publishes
   // the record and removes the file of the previous checkpoint

@@ -190,11 +190,12 @@ namespace ViscoContact
   // caller. Errors are sticky and agreed on by all ranks, so that all throw
   // together.
   void
-  read_record_file(const std::string  &file,
-                   std::vector<char>  &header,
-                   const std::uint64_t record_size,
-                   const RecordUser   &use_records,
-                   const MPI_Comm      communicator)
+  read_record_file(const std::string           &file,
+                   std::vector<char>           &header,
+                   const std::uint64_t          record_size,
+                   const RecordUser            &use_records,
+                   const MPI_Comm               communicator,
+                   const std::function<void()> &check_header)
   {
     const int descriptor
       = ::open(file.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
@@ -269,6 +270,18 @@ namespace ViscoContact
                               / records_per_piece,
                             communicator);
     std::vector<char> piece;
+    try
+      {
+        // The caller's checks of the header (the same bytes on every rank,
+        // so that all ranks throw alike) come before any record is used.
+        if (check_header)
+          check_header();
+      }
+    catch (...)
+      {
+        ::close(descriptor);
+        throw;
+      }
     for (std::uint64_t p = 0; p < n_pieces; ++p)
       {
         const std::uint64_t first
@@ -285,7 +298,15 @@ namespace ViscoContact
             ::close(descriptor);
             agree_on_errors(error, file, "Reading", communicator);
           }
-        use_records(piece);
+        try
+          {
+            use_records(piece);
+          }
+        catch (...)
+          {
+            ::close(descriptor);
+            throw;
+          }
       }
     ::close(descriptor);
   }

@@ -92,6 +92,13 @@ def parse_output(text):
             raise RuntimeError("could not find %s in the program output:\n%s"
                                % (key, text[-3000:]))
         values[key] = float(match.group(1)) * scale
+    # With initial cycles the "Mesh:" line is the first (coarsest) mesh; the
+    # run's mesh is the one of the "Initial cycles done:" line.
+    match = re.search(r"^Initial cycles done: (\d+) cells, (\d+) dofs, (\d+) "
+                      r"contact nodes", text, re.M)
+    if match:
+        values["cells"], values["dofs"], values["contact_nodes"] = (
+            float(g) for g in match.groups())
     values["active_set_per_step"] = (values["active_set_iterations"]
                                      / max(1.0, values["summary_steps"]))
     values["krylov_per_solve"] = (values["krylov_iterations"]

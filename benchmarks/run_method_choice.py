@@ -178,8 +178,8 @@ def main():
         writer.writerows(rows)
 
     command = "benchmarks/run_method_choice.py " + " ".join(
-        a if not a.startswith("/") else os.path.relpath(a, REPO_ROOT)
-        for a in sys.argv[1:])
+        '""' if not a else a if not a.startswith("/")
+        else os.path.relpath(a, REPO_ROOT) for a in sys.argv[1:])
     ratios = [float(r["auto_over_best"]) for r in rows]
     within = sum(1 for r in ratios if r <= 1.2)
     lines = [

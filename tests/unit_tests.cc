@@ -2774,6 +2774,31 @@ TEST(CostModel, CostsGrowWithTheMeshAndShrinkWithRanks)
 }
 
 
+// The default Profile times (1/64, 1/2, 1) in a run that ends at t = 1/4:
+// the one within the run is kept. Profile times a parameter file sets must
+// lie in the run.
+TEST(Parameters, DefaultProfileTimesWithinAShortRun)
+{
+  const auto parse = [](const std::string &text) {
+    Parameters::AllParameters parameters;
+    ParameterHandler          prm;
+    parameters.add_parameters(prm);
+    prm.parse_input_from_string(text);
+    parameters.check_parameters(prm);
+    return parameters;
+  };
+  const std::string short_run = "subsection Time\n"
+                                "  set End time  = 0.25\n"
+                                "  set Time step = 0.015625\n"
+                                "end\n";
+  EXPECT_EQ(parse(short_run).profile_times, std::vector<double>{0.015625});
+  EXPECT_EQ(parse("").profile_times, (std::vector<double>{0.015625, 0.5, 1}));
+  EXPECT_ANY_THROW(parse(short_run
+                         + "subsection Output\n"
+                           "  set Profile times = 0.015625, 0.5\n"
+                           "end\n"));
+}
+
 TEST(InitialCycles, CoarseningsOfTheParameterFilesMesh)
 {
   // Global refinements first, then the factors of 2 of a generated box's

@@ -1584,7 +1584,7 @@ namespace ViscoContact
       // The default Profile times are the benchmark's (1/64, 1/2, 1): a
       // shorter run keeps those within it. Times a parameter file sets must
       // lie in the run (check_schedule_size()).
-      if (prm.get({"Output"}, "Profile times") == default_profile_times)
+      if (profile_times == Output().profile_times)
         profile_times.erase(std::remove_if(profile_times.begin(),
                                            profile_times.end(),
                                            [this](const double t) {

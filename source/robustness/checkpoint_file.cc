@@ -20,6 +20,7 @@
 #include <fstream>
 #include <iostream>
 #include <iomanip>
+#include <memory>
 #include <sstream>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -65,6 +66,14 @@ namespace ViscoContact
           done += n;
         }
       return 0;
+    }
+    // The records a checkpoint is written and read by at a time: about
+    // 64 MB, at least one.
+    std::uint64_t
+    records_per_piece(const std::uint64_t record_size)
+    {
+      return std::max<std::uint64_t>(1,
+                                     (std::uint64_t(64) << 20) / record_size);
     }
   } // namespace
 
@@ -165,13 +174,12 @@ namespace ViscoContact
     append(n_records);
     append(record_size);
     // Pieces of whole records.
-    const std::size_t records_per_piece
-      = std::max<std::size_t>(1, (std::size_t(64) << 20) / record_size);
+    const std::size_t per_piece = records_per_piece(record_size);
     folder.stage_collectively(
       name,
       prefix,
       n_local_records * record_size,
-      records_per_piece * record_size,
+      per_piece * record_size,
       [&](const std::size_t begin, const std::size_t size, char *buffer) {
         fill_records(begin / record_size, (begin + size) / record_size, buffer);
       },
@@ -199,7 +207,14 @@ namespace ViscoContact
   {
     const int descriptor
       = ::open(file.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
-    int         error = descriptor < 0 ? errno : 0;
+    int error = descriptor < 0 ? errno : 0;
+    // Closed on every way out, also where a check or the caller throws.
+    const std::unique_ptr<const int, void (*)(const int *)> closer(
+      &descriptor,
+      [](const int *d) {
+        if (*d >= 0)
+          ::close(*d);
+      });
     struct stat status;
     if (error == 0 && ::fstat(descriptor, &status) != 0)
       error = errno;
@@ -248,7 +263,6 @@ namespace ViscoContact
         == 1;
     if (!consistent)
       {
-        ::close(descriptor);
         AssertThrow(false,
                     ExcMessage(
                       "The checkpoint file " + file
@@ -263,52 +277,28 @@ namespace ViscoContact
     const unsigned int  rank  = Utilities::MPI::this_mpi_process(communicator);
     const std::uint64_t begin = n_total * rank / n_ranks;
     const std::uint64_t end   = n_total * (rank + 1) / n_ranks;
-    const std::uint64_t records_per_piece
-      = std::max<std::uint64_t>(1, (std::uint64_t(64) << 20) / record_size);
+    const std::uint64_t per_piece = records_per_piece(record_size);
     const std::uint64_t n_pieces
-      = Utilities::MPI::max((end - begin + records_per_piece - 1)
-                              / records_per_piece,
+      = Utilities::MPI::max((end - begin + per_piece - 1) / per_piece,
                             communicator);
+    // The caller's checks of the header (the same bytes on every rank, so
+    // that all ranks throw alike) come before any record is used.
+    if (check_header)
+      check_header();
     std::vector<char> piece;
-    try
-      {
-        // The caller's checks of the header (the same bytes on every rank,
-        // so that all ranks throw alike) come before any record is used.
-        if (check_header)
-          check_header();
-      }
-    catch (...)
-      {
-        ::close(descriptor);
-        throw;
-      }
     for (std::uint64_t p = 0; p < n_pieces; ++p)
       {
-        const std::uint64_t first
-          = std::min(end, begin + p * records_per_piece);
-        const std::uint64_t last = std::min(end, first + records_per_piece);
+        const std::uint64_t first = std::min(end, begin + p * per_piece);
+        const std::uint64_t last  = std::min(end, first + per_piece);
         piece.resize((last - first) * record_size);
         if (error == 0)
           error = read_at(descriptor,
                           piece.data(),
                           piece.size(),
                           records_start + first * record_size);
-        if (Utilities::MPI::max(error, communicator) != 0)
-          {
-            ::close(descriptor);
-            agree_on_errors(error, file, "Reading", communicator);
-          }
-        try
-          {
-            use_records(piece);
-          }
-        catch (...)
-          {
-            ::close(descriptor);
-            throw;
-          }
+        agree_on_errors(error, file, "Reading", communicator);
+        use_records(piece);
       }
-    ::close(descriptor);
   }
 
 

@@ -83,86 +83,23 @@ namespace ViscoContact
 
 
 
-    // @sect4{exchange_records}
+    // @sect4{RecordRouter}
     //
     // Three rounds of point-to-point messages between the ranks that have
-    // something to say (Utilities::MPI::some_to_some): the records go to
-    // their rendezvous ranks, the requests too, and the rendezvous ranks
-    // answer. Each rank handles about its share of all records.
+    // something to say (Utilities::MPI::some_to_some): the requests go to
+    // the rendezvous ranks of their keys once, at construction; then per
+    // batch the records go there too, and the rendezvous rank forwards each
+    // to the ranks that asked for its key as it arrives, so that no rank
+    // holds more than a batch of records at a time. Each rank handles about
+    // its share of all records.
     //
     // Why a rendezvous: the rank that holds a record does not know who will
     // ask for it, and the rank that asks does not know who holds it. Both
     // know the key, and with it the rendezvous rank, where holders and
     // askers meet without anyone gathering all records or all requests. The
     // records of a key arrive there in the order of the ranks that sent them
-    // (some_to_some returns the buffers ordered by rank), which gives the
-    // order the header promises.
-    std::map<std::string, std::vector<std::vector<double>>>
-    exchange_records(const std::vector<Record>      &records,
-                     const std::vector<std::string> &requests,
-                     const MPI_Comm                  communicator)
-    {
-      const unsigned int n_ranks
-        = Utilities::MPI::n_mpi_processes(communicator);
-
-      // Round 1: every record goes to the rendezvous rank of its key, which
-      // keeps all payloads per key.
-      std::map<unsigned int, std::vector<char>> outgoing;
-      for (const Record &record : records)
-        append(outgoing[rendezvous_rank(record.first, n_ranks)],
-               record.first,
-               &record.second);
-      std::map<std::string, std::vector<std::vector<double>>> held;
-      for (const auto &[rank, buffer] :
-           Utilities::MPI::some_to_some(communicator, outgoing))
-        for_each_entry(buffer,
-                       [&](const std::string   &key,
-                           std::vector<double> &payload) {
-                         held[key].push_back(std::move(payload));
-                       });
-
-      // Round 2: every request goes to the rendezvous rank of its key.
-      outgoing.clear();
-      for (const std::string &key : requests)
-        append(outgoing[rendezvous_rank(key, n_ranks)], key, nullptr);
-      // The rendezvous rank answers each asking rank with all payloads of
-      // the keys it asked for; a key that no rank holds is simply not
-      // answered.
-      std::map<unsigned int, std::vector<char>> answers;
-      for (const auto &[rank, buffer] :
-           Utilities::MPI::some_to_some(communicator, outgoing))
-        {
-          std::vector<char> &answer = answers[rank];
-          for_each_entry(buffer,
-                         [&](const std::string &key, std::vector<double> &) {
-                           const auto entry = held.find(key);
-                           if (entry != held.end())
-                             for (const std::vector<double> &payload :
-                                  entry->second)
-                               append(answer, key, &payload);
-                         });
-        }
-
-      // Round 3: the answers go back to the ranks that asked.
-      std::map<std::string, std::vector<std::vector<double>>> result;
-      for (const auto &[rank, buffer] :
-           Utilities::MPI::some_to_some(communicator, answers))
-        for_each_entry(buffer,
-                       [&](const std::string   &key,
-                           std::vector<double> &payload) {
-                         result[key].push_back(std::move(payload));
-                       });
-      return result;
-    }
-
-
-
-    // @sect4{RecordRouter}
-    //
-    // exchange_records()'s round 2 once, at construction; then per batch
-    // its rounds 1 and 3, the rendezvous rank forwarding each record to the
-    // ranks that asked for its key as it arrives, so that no rank holds
-    // more than a batch of records at a time.
+    // (some_to_some returns the buffers ordered by rank), and are forwarded
+    // in that order.
     RecordRouter::RecordRouter(const std::vector<std::string> &requests,
                                const MPI_Comm                  communicator)
       : communicator(communicator)
@@ -214,6 +151,23 @@ namespace ViscoContact
                          arrived.emplace_back(key, std::move(payload));
                        });
       return arrived;
+    }
+
+
+
+    // @sect4{exchange_records}
+    //
+    // All records in one batch.
+    std::map<std::string, std::vector<std::vector<double>>>
+    exchange_records(const std::vector<Record>      &records,
+                     const std::vector<std::string> &requests,
+                     const MPI_Comm                  communicator)
+    {
+      std::map<std::string, std::vector<std::vector<double>>> result;
+      for (auto &[key, payload] :
+           RecordRouter(requests, communicator).deliver(records))
+        result[key].push_back(std::move(payload));
+      return result;
     }
 
 

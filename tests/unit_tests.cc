@@ -2825,6 +2825,35 @@ TEST(InitialCycles, CoarseningsOfTheParameterFilesMesh)
 }
 
 
+TEST(Mesh, CoarseCellsNumberedAsP4estTrees)
+{
+  // A box of 19^3 coarse cells (Subdivisions = 38: 19 refined once), whose
+  // generated numbering p4est would permute: deal.II's coarse cells are
+  // p4est's trees in p4est's order, and the colorized faces keep their
+  // boundary ids (19^2 level-0 faces on each side of the box).
+  Parameters::AllParameters parameters;
+  parameters.dimension    = 3;
+  parameters.lengths      = {1, 1, 1};
+  parameters.subdivisions = 38;
+  parameters.cell_type    = Parameters::CellType::hypercube;
+  const auto mesh
+    = create_distributed_mesh<3>(parameters, MPI_COMM_WORLD, false);
+  const auto &p4est_mesh
+    = dynamic_cast<const parallel::distributed::Triangulation<3> &>(*mesh);
+  ASSERT_EQ(p4est_mesh.n_cells(0), 19u * 19u * 19u);
+  std::array<unsigned int, 6> faces_on_side{};
+  for (const auto &cell : p4est_mesh.cell_iterators_on_level(0))
+    {
+      ASSERT_EQ(cell->id().get_coarse_cell_id(),
+                static_cast<types::coarse_cell_id>(cell->index()));
+      for (const auto &face : cell->face_iterators())
+        if (face->at_boundary())
+          ++faces_on_side.at(face->boundary_id());
+    }
+  for (const unsigned int n : faces_on_side)
+    EXPECT_EQ(n, 19u * 19u);
+}
+
 
 int
 main(int argc, char **argv)

@@ -136,6 +136,9 @@ namespace ViscoContact
     // Whether there is a start of the step to predict from, and whether the
     // back end has a state of its own (both the same on every rank).
     header.write<std::uint32_t>(previous_step_start.has_value());
+    // The uniqueness check's eigenvalue, if the run computed one.
+    header.write<std::uint32_t>(uniqueness_eigenvalue.has_value());
+    header.write(uniqueness_eigenvalue.value_or(0.));
     return header;
   }
 
@@ -338,7 +341,11 @@ namespace ViscoContact
         times_and_names.emplace_back(time, header.read_string());
       }
     CheckpointFlags flags;
-    flags.has_step_start = header.read<std::uint32_t>() == 1;
+    flags.has_step_start        = header.read<std::uint32_t>() == 1;
+    const bool   has_eigenvalue = header.read<std::uint32_t>() == 1;
+    const double eigenvalue     = header.read<double>();
+    if (has_eigenvalue)
+      uniqueness_eigenvalue = eigenvalue;
     return flags;
   }
 

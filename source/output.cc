@@ -823,7 +823,7 @@ namespace ViscoContact
       pcout << "  Newton iterations (implicit scheme): "
             << total_newton_iterations << '\n';
     pcout << "  active-set iterations: " << total_active_set_iterations
-          << " in " << schedule.n_steps() << " steps\n";
+          << " in " << schedule.step_number() << " steps\n";
     // The solves of step 1 on the coarser meshes of the initial cycles (not
     // in the count above, which is that of the recorded steps).
     if (n_initial_cycles > 0)

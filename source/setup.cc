@@ -783,11 +783,17 @@ namespace ViscoContact
             << " not soften, so the step problem has one solution\n";
     else
       {
-        TimerOutput::Scope t(computing_timer, "Setup: uniqueness margin");
-        const double       eigenvalue = smallest_uniqueness_eigenvalue();
+        const bool from_checkpoint = uniqueness_eigenvalue.has_value();
+        if (!from_checkpoint)
+          {
+            TimerOutput::Scope t(computing_timer, "Setup: uniqueness margin");
+            uniqueness_eigenvalue = smallest_uniqueness_eigenvalue();
+          }
+        const double eigenvalue = *uniqueness_eigenvalue;
         pcout << "Uniqueness: smallest eigenvalue of (stiffness, lumped "
                  "normal boundary mass) = "
-              << eigenvalue << ", steepest softening of the contact law"
+              << eigenvalue << (from_checkpoint ? " (from the checkpoint)" : "")
+              << ", steepest softening of the contact law"
               << (contact_zones.size() > 1 ? "s" : "") << " = " << softening
               << '\n';
         // Several solutions possible: a predicted start must not move the

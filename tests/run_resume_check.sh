@@ -10,8 +10,9 @@
 # pair, a copy of the stopped run's folder resumed (Resume = true) on R
 # ranks. Compared: time_series.csv (all
 # columns but the wall time and the Krylov iterations), the contact
-# profiles (rows sorted: each rank writes its own block), solution.pvd and
-# the final state. On the same ranks a resumed run repeats the same
+# profiles (rows sorted: each rank writes its own block), solution.pvd,
+# the final state and the uniqueness check's eigenvalue (taken from the
+# checkpoint, not computed anew). On the same ranks a resumed run repeats the same
 # arithmetic: numdiff absolute 1e-12, relative 1e-10. On other ranks the
 # partition, and with it the rounding of the solvers, changes: absolute
 # 1e-10, relative 1e-8.
@@ -82,7 +83,16 @@ for pair in "$@"; do
   for dir in "$full" "$resumed"; do
     cut -d, -f1-8 "$dir/results/time_series.csv" > "$dir/series.txt"
     grep -E '^  final (state|contact):|^Final displacement' "$dir/output.txt" > "$dir/final.txt"
+    # The uniqueness check's eigenvalue, which the resumed run takes from
+    # the checkpoint (the uninterrupted run computed it on its first mesh).
+    sed -n 's/^Uniqueness: smallest eigenvalue [^=]*= \([^ ,]*\).*/uniqueness eigenvalue \1/p' \
+      "$dir/output.txt" >> "$dir/final.txt"
   done
+  if grep -q '^Uniqueness: smallest eigenvalue' "$full/output.txt" \
+    && ! grep -q '^Uniqueness: smallest eigenvalue .*(from the checkpoint)' "$resumed/output.txt"; then
+    echo "The resumed run ($pair) did not take the uniqueness check's eigenvalue from the checkpoint."
+    exit 1
+  fi
   compare series.txt
   compare final.txt
   for profile in "$full"/results/contact_profile_*.csv; do

@@ -1281,7 +1281,9 @@ namespace ViscoContact
                           "the end of the run, and the wall time of the mesh "
                           "and the peak memory of the ranks (the sum, the "
                           "largest rank, group root and member) after each "
-                          "set-up phase and over the run.",
+                          "set-up phase and over the run. The cost ratios "
+                          "take two elastic solves and a stress update "
+                          "after the run (on small meshes four and three).",
                           Patterns::Bool());
         prm.add_parameter("Verbose",
                           verbose,

@@ -31,6 +31,7 @@
 #include <deal.II/fe/mapping_q1.h>
 
 #include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/grid/tria_description.h>
@@ -2852,6 +2853,56 @@ TEST(Mesh, CoarseCellsNumberedAsP4estTrees)
     }
   for (const unsigned int n : faces_on_side)
     EXPECT_EQ(n, 19u * 19u);
+}
+
+TEST(Mesh, GmshBoundaryIdsKeptWhenCoarseCellsAreRenumbered)
+{
+  // A Gmsh mesh of hexahedra (the quarter sphere of the Hertz benchmark):
+  // its coarse cells become p4est's trees in p4est's order, and every
+  // boundary face keeps the boundary id the file gives it, found by its
+  // centre.
+  const std::string file
+    = std::string(VC_MESH_DIR) + "/hertz_sphere_hexahedron_8.msh";
+  Triangulation<3> file_mesh;
+  GridIn<3>        grid_in;
+  grid_in.attach_triangulation(file_mesh);
+  std::ifstream in(file);
+  grid_in.read_msh(in);
+  std::map<std::array<long, 3>, types::boundary_id> id_at;
+  const auto key = [](const Point<3> &p) {
+    return std::array<long, 3>{{std::lround(p[0] * 1e6),
+                                std::lround(p[1] * 1e6),
+                                std::lround(p[2] * 1e6)}};
+  };
+  for (const auto &cell : file_mesh.active_cell_iterators())
+    for (const auto &face : cell->face_iterators())
+      if (face->at_boundary())
+        id_at[key(face->center())] = face->boundary_id();
+
+  Parameters::AllParameters parameters;
+  parameters.dimension   = 3;
+  parameters.cell_type   = Parameters::CellType::hypercube;
+  parameters.mesh_file   = file;
+  parameters.clamped_ids = {};
+  parameters.contact_ids = {4};
+  parameters.loaded_ids  = {};
+  const auto mesh
+    = create_distributed_mesh<3>(parameters, MPI_COMM_WORLD, false);
+  unsigned int boundary_faces = 0;
+  for (const auto &cell : mesh->cell_iterators_on_level(0))
+    {
+      ASSERT_EQ(cell->id().get_coarse_cell_id(),
+                static_cast<types::coarse_cell_id>(cell->index()));
+      for (const auto &face : cell->face_iterators())
+        if (face->at_boundary())
+          {
+            ++boundary_faces;
+            const auto found = id_at.find(key(face->center()));
+            ASSERT_NE(found, id_at.end());
+            EXPECT_EQ(face->boundary_id(), found->second);
+          }
+    }
+  EXPECT_EQ(boundary_faces, id_at.size());
 }
 
 

@@ -12,8 +12,8 @@
 # columns but the wall time and the Krylov iterations), the contact
 # profiles (rows sorted: each rank writes its own block), solution.pvd,
 # the final state and the uniqueness check's eigenvalue (taken from the
-# checkpoint, not computed anew). On the same ranks a resumed run repeats the same
-# arithmetic: numdiff absolute 1e-12, relative 1e-10. On other ranks the
+# checkpoint, not computed anew). On the same ranks a resumed run repeats
+# the same arithmetic: numdiff absolute 1e-12, relative 1e-10. On other ranks the
 # partition, and with it the rounding of the solvers, changes: absolute
 # 1e-10, relative 1e-8.
 #   run_resume_check.sh EXECUTABLE PRM N|W:R...

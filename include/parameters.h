@@ -384,12 +384,13 @@ namespace ViscoContact
 
     struct Output
     {
-      std::string         directory            = "output/default";
-      bool                write_vtu            = true;
-      unsigned int        interval             = 1;
-      std::vector<double> profile_times        = {0.015625, 0.5, 1};
-      bool                print_timing_summary = true;
-      bool                verbose              = true;
+      std::string         directory               = "output/default";
+      bool                write_vtu               = true;
+      unsigned int        interval                = 1;
+      std::vector<double> profile_times           = {0.015625, 0.5, 1};
+      bool                print_timing_summary    = true;
+      bool                verbose                 = true;
+      bool                print_iteration_history = false;
       bool                overwrite = false; // remove an earlier run's files
       // The parameter file being run (set by main(), not an entry): a run
       // never removes or replaces it.

@@ -740,13 +740,15 @@ namespace ViscoContact
         total_active_set_iterations = counts_before[0];
         total_newton_iterations     = counts_before[1];
         total_inner_iterations      = counts_before[2];
-        if (parameters.verbose)
+        if (parameters.verbose || parameters.print_iteration_history)
           pcout << "Initial cycle " << cycle << ": "
                 << triangulation->n_global_active_cells() << " cells, "
                 << dof_handler.n_dofs() << " dofs, "
                 << (contact_enabled ? contact_set.n_global_nodes() : 0)
                 << " contact nodes, " << result.iterations()
                 << " active-set iterations" << std::endl;
+        if (parameters.print_iteration_history)
+          pcout << result.describe() << std::flush;
 
         // The next mesh: every cell refined, or the marking of the adaptive
         // meshes, whose indicator also looks at the plastic zone of step 1's

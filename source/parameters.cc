@@ -1289,6 +1289,17 @@ namespace ViscoContact
                           verbose,
                           "Print one line per time step.",
                           Patterns::Bool());
+        prm.add_parameter(
+          "Print iteration history",
+          print_iteration_history,
+          "After every step (and every solve of the Initial cycles), print "
+          "its line (as Verbose does) and under it one line per active-set "
+          "iteration: the nodes that changed their "
+          "piece of the law, the nodes at the rigid limit, the relative "
+          "residual of the linear solve and its Krylov iterations (with the "
+          "implicit update: those of the step's last Newton iteration). "
+          "Shows where a step's iterations go (doc/performance.md).",
+          Patterns::Bool());
       }
       prm.leave_subsection();
     }

@@ -752,14 +752,17 @@ namespace ViscoContact
       step_observer(n, t);
 
     write_time_series_row(n, t, k, result, wall_time);
-    if (parameters.verbose && !schedule.is_adaptive())
+    // The iteration history is read under its step's line.
+    const bool step_line
+      = parameters.verbose || parameters.print_iteration_history;
+    if (step_line && !schedule.is_adaptive())
       print_step_line(pcout,
                       n,
                       t,
                       result.iterations(),
                       count_contact_states(),
                       total_contact_force());
-    if (parameters.verbose && schedule.is_adaptive())
+    if (step_line && schedule.is_adaptive())
       print_adaptive_step_line(pcout,
                                n,
                                t,
@@ -768,6 +771,8 @@ namespace ViscoContact
                                total_contact_force(),
                                k,
                                error_estimate);
+    if (parameters.print_iteration_history)
+      pcout << result.describe() << std::flush;
     // The profile for a requested time is written at the step closest to it
     // (adaptive steps land on it exactly).
     if (contact_enabled

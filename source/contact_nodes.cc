@@ -67,8 +67,9 @@ namespace ViscoContact
 
 
   // The iteration history of the last run, one line per iteration, for the
-  // report of a failed step (step_report.cc): how many nodes moved, how many
-  // sit at the rigid limit, and how well the linear solve did.
+  // report of a failed step (step_report.cc) and Print iteration history:
+  // how many nodes moved, how many sit at the rigid limit, and how well the
+  // linear solve did.
   std::string
   ActiveSetResult::describe() const
   {

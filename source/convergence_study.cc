@@ -58,13 +58,14 @@ namespace ViscoContact
     run_parameters.time_step                 = time_step;
     run_parameters.study_enabled             = false;
     // Each run of the study is timed as it is, without initial cycles.
-    run_parameters.initial_cycles_entry = "0";
-    run_parameters.resumable            = false;
-    run_parameters.write_vtu            = false;
-    run_parameters.verbose              = false;
-    run_parameters.print_timing_summary = false;
-    run_parameters.overwrite            = false;
-    run_parameters.check_uniqueness     = false;
+    run_parameters.initial_cycles_entry    = "0";
+    run_parameters.resumable               = false;
+    run_parameters.write_vtu               = false;
+    run_parameters.verbose                 = false;
+    run_parameters.print_iteration_history = false;
+    run_parameters.print_timing_summary    = false;
+    run_parameters.overwrite               = false;
+    run_parameters.check_uniqueness        = false;
     run_parameters.profile_times.clear();
     run_parameters.directory = parameters.directory + "/runs/" + name;
 
@@ -83,6 +84,7 @@ namespace ViscoContact
       << "subsection Output\n  set Output directory = "
       << run_parameters.directory
       << "\n  set Write vtu = false\n  set Verbose = false\n"
+      << "  set Print iteration history = false\n"
       << "  set Print timing summary = false\n  set Profile times =\nend\n";
     run_parameters.parsed_parameters += changes.str();
     return run_parameters;

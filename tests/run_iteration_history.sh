@@ -1,43 +1,76 @@
 #!/bin/bash
-# Print iteration history (subsection Output) prints, after each step's
-# line, one line per active-set iteration. The scene runs with it on; for
-# every step the lines must agree with the step's row of time_series.csv:
-# as many lines as active_set_iterations, numbered 1, 2, ..., their Krylov
-# iterations summing to krylov_iterations, the last one with no node that
-# changed its piece and with unilateral_nodes nodes at the rigid limit.
-# At least one step must take several iterations, so that the check covers
-# a history with changes.
-#   run_iteration_history.sh EXECUTABLE PRM
+# Print iteration history (subsection Output) prints each step's line, even
+# with Verbose = false, and under it one line per active-set iteration. The
+# scene runs with it on and Verbose off; for every step the lines must
+# agree with the step's row of time_series.csv: as many lines as
+# active_set_iterations, numbered 1, 2, ..., their Krylov iterations summing
+# to krylov_iterations, the last one with no node that changed its piece and
+# with unilateral_nodes nodes at the rigid limit. At least one step must
+# take several iterations, so that the check covers a history with changes.
+# With CYCLES > 0 the scene solves step 1 on CYCLES coarser meshes first
+# (Initial cycles): each "Initial cycle" line must be followed by as many
+# numbered lines as the iterations it states, the last one moving no node.
+#   run_iteration_history.sh EXECUTABLE PRM [CYCLES]
 set -u
 here=$(dirname "$0")
-executable=$1 prm=$2
+executable=$1 prm=$2 cycles=${3:-0}
 
-"$here/run_scene_variant.sh" history "$executable" "$prm" \
-  "s/^\( *subsection Output\)/\1\n  set Print iteration history = true\n  set Verbose = true/" || exit 1
+edit="s/^\( *subsection Output\)/\1\n  set Print iteration history = true/;s/^\( *set Verbose *=\).*/\1 false/"
+if [ "$cycles" -gt 0 ]; then
+  edit="$edit;\$a subsection Mesh adaptation\n  set Initial cycles = $cycles\nend"
+fi
+"$here/run_scene_variant.sh" history "$executable" "$prm" "$edit" || exit 1
 grep -q "^ *set Print iteration history = true" history/scene.prm || {
   echo "$prm has no subsection <Output> to switch the history on in."
+  exit 1
+}
+grep -q "^ *set Verbose *= false" history/scene.prm || {
+  echo "$prm has no Verbose entry in subsection <Output> to switch off."
   exit 1
 }
 
 # One line per step from the terminal: step, lines, last number, sum of
 # Krylov iterations, changed nodes and nodes at the rigid limit of the last.
-awk '
+# The initial cycles' histories are checked here and counted in cycles.txt.
+awk -v cycles_file=history/cycles.txt '
   function flush() {
+    if (cycle != "" && (lines != expected || changed != 0)) {
+      print "Initial cycle " cycle ": " lines " history lines for " expected \
+            " iterations, the last moving " changed " nodes"
+      exit 1
+    }
+    if (cycle != "")
+      print cycle > cycles_file
     if (step != "")
       print step, lines, last, krylov, changed, rigid
+    cycle = ""; step = ""
   }
-  /^Step +[0-9]+ / { flush(); step = $2; lines = 0; last = 0; krylov = 0; next }
+  /^Initial cycle [0-9]+: / {
+    flush(); cycle = $3; sub(":", "", cycle); lines = 0; changed = -1
+    for (i = 1; i < NF; i++) if ($(i + 1) == "active-set") expected = $i
+    next
+  }
+  /^Step +[0-9]+ +t = / {
+    flush(); step = $2; lines = 0; last = 0; krylov = 0; changed = -1; next
+  }
   /^    iteration [0-9]+: / {
-    if (step == "") next   # the initial cycles print theirs before step 1
+    if (step == "" && cycle == "") { print "a history line under no step"; exit 1 }
     lines++
     number = $2; sub(":", "", number)
-    if (number != lines) { print "bad numbering in step " step; exit 1 }
+    if (number != lines) { print "bad numbering in step " step cycle; exit 1 }
     last = number; changed = $3; rigid = $8
     if (match($0, /after [0-9]+ Krylov/))
       krylov += substr($0, RSTART + 6, RLENGTH - 13)
+    next
   }
+  /^(Step|Initial cycles done)/ { flush() }
   END { flush() }' history/output.txt > history/terminal.txt || {
   cat history/terminal.txt
+  exit 1
+}
+printed_cycles=$(cat history/cycles.txt 2> /dev/null | wc -l)
+[ "$printed_cycles" -eq "$cycles" ] || {
+  echo "The run printed the history of $printed_cycles initial cycles, $cycles were asked for."
   exit 1
 }
 # The same from the time series: step, iterations, Krylov, unilateral.
@@ -69,4 +102,4 @@ while read -r step lines last krylov changed rigid && read -r s iterations serie
   [ "$lines" -gt 1 ] && several=1
 done < history/terminal.txt 3< history/series.txt
 [ "$several" -eq 1 ] || { echo "No step of $prm took more than one iteration."; exit 1; }
-echo "The iteration history of $steps steps agrees with the time series."
+echo "The iteration history of $steps steps agrees with the time series ($cycles initial cycles)."

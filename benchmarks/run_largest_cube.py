@@ -211,15 +211,9 @@ def main():
     try:
         with open(os.path.join(workdir, "cube.prm"), "w") as f:
             f.write(scene(args.subdivisions, args.steps))
-        wall, peak_rank_mb, result = timed_run([executable, "cube.prm"],
-                                               args.ranks, workdir,
-                                               args.timeout)
-        if result is None or result.returncode != 0:
-            sys.exit("the run failed or timed out:\n"
-                     + ("" if result is None else
-                        result.stdout[-3000:] + result.stderr[-3000:]))
-        with open(os.path.join(workdir, "output.txt"), "w") as f:
-            f.write(result.stdout)
+        wall, peak_rank_mb, result = checked_run(
+            executable, args.ranks, workdir, args.timeout, "run",
+            "output.txt")
         page = report(result.stdout, wall, peak_rank_mb,
                       os.path.join(workdir, "results"), args)
         agree = True
@@ -241,6 +235,21 @@ def main():
                 shutil.rmtree(directory, ignore_errors=True)
 
 
+def checked_run(executable, ranks, directory, timeout, what, output_name):
+    """Runs directory/cube.prm on ranks ranks, stops the script if the run
+    fails or times out, and keeps its terminal output in output_name;
+    returns timed_run's (wall time, peak memory of a rank, result)."""
+    wall, peak_mb, result = timed_run([executable, "cube.prm"], ranks,
+                                      directory, timeout)
+    if result is None or result.returncode != 0:
+        sys.exit(f"the {what} failed or timed out:\n"
+                 + ("" if result is None else
+                    result.stdout[-3000:] + result.stderr[-3000:]))
+    with open(os.path.join(directory, output_name), "w") as f:
+        f.write(result.stdout)
+    return wall, peak_mb, result
+
+
 def resume_check(executable, workdir, args):
     """Resumes the run of workdir on --resume-ranks ranks for one more step
     and runs the reference, steps + 1 steps uninterrupted, in
@@ -254,15 +263,9 @@ def resume_check(executable, workdir, args):
         f.write(set_prm_entries(text, {
             (("Checkpoint",), "Stop after step"): str(steps),
             (("Checkpoint",), "Resume"): "true"}))
-    wall, peak_mb, resumed = timed_run([executable, "cube.prm"],
-                                       args.resume_ranks, workdir,
-                                       args.timeout)
-    if resumed is None or resumed.returncode != 0:
-        sys.exit("the resumed run failed or timed out:\n"
-                 + ("" if resumed is None else
-                    resumed.stdout[-3000:] + resumed.stderr[-3000:]))
-    with open(os.path.join(workdir, "resume_output.txt"), "w") as f:
-        f.write(resumed.stdout)
+    wall, peak_mb, resumed = checked_run(executable, args.resume_ranks,
+                                         workdir, args.timeout,
+                                         "resumed run", "resume_output.txt")
     if not args.keep:
         # The run's files are no longer needed: room for the reference.
         for name in glob.glob(os.path.join(workdir, "results", "*.vtu")) \
@@ -275,14 +278,8 @@ def resume_check(executable, workdir, args):
     with open(os.path.join(reference_dir, "cube.prm"), "w") as f:
         f.write(set_prm_entries(scene(args.subdivisions, steps), {
             (("Output",), "Write vtu"): "false"}))
-    _, _, reference = timed_run([executable, "cube.prm"], args.ranks,
-                                reference_dir, args.timeout)
-    if reference is None or reference.returncode != 0:
-        sys.exit("the reference run failed or timed out:\n"
-                 + ("" if reference is None else
-                    reference.stdout[-3000:] + reference.stderr[-3000:]))
-    with open(os.path.join(reference_dir, "output.txt"), "w") as f:
-        f.write(reference.stdout)
+    _, _, reference = checked_run(executable, args.ranks, reference_dir,
+                                  args.timeout, "reference run", "output.txt")
     lines, agree = compare_runs(reference_dir, workdir, reference.stdout,
                                 resumed.stdout)
     step_line = re.search(r"^Step\s+%d\s.*$" % steps, resumed.stdout, re.M)

@@ -16,6 +16,13 @@ twice:
              (the same run as "fixed k" at N = 16), so that the front crosses
              about as many rows per step on every mesh.
 
+and the hexahedra a third time:
+
+  step cycles  the shipped k with Step cycles = 1: every step after the
+             first is solved on the mesh coarsened once first, whose contact
+             zone starts the iteration on the mesh (the two runs above have
+             Step cycles = 0; tetrahedra have no coarser p4est meshes).
+
 The first step is solved on 2 coarser meshes first (Initial cycles; the
 hexahedra refine theirs, the tetrahedra are built anew; none where N is not
 a multiple of 4). The uniqueness check (a Lanczos iteration at set-up) is
@@ -55,7 +62,7 @@ SCENES = {"hexahedra": "cube_3d.prm", "tetrahedra": "cube_3d_tetrahedra.prm"}
 SHIPPED_STEP = 1 / 32
 
 
-def cube(cells, n, end_time, step, method, directory):
+def cube(cells, n, end_time, step, method, directory, step_cycles):
     # The first step on 2 coarser meshes: refined from N/4 subdivisions on
     # hexahedra, built anew on tetrahedra (Subdivisions = N).
     cycles = 2 if n % 4 == 0 else 0
@@ -66,6 +73,7 @@ def cube(cells, n, end_time, step, method, directory):
         (("Geometry",), "Subdivisions"): str(n // 2 ** refinements),
         (("Geometry",), "Global refinements"): str(refinements),
         (("Mesh adaptation",), "Initial cycles"): str(cycles),
+        (("Mesh adaptation",), "Step cycles"): str(step_cycles),
         (("Time",), "End time"): repr(end_time),
         (("Time",), "Time step"): repr(step),
         (("Linear solver",), "Method"): method,
@@ -111,12 +119,13 @@ def parse_steps(out):
     return steps
 
 
-def measure(executable, cells, n, step, args, work):
-    name = f"{cells}_{n}_k{round(1 / step)}"
+def measure(executable, cells, n, step, step_cycles, args, work):
+    name = f"{cells}_{n}_k{round(1 / step)}_c{step_cycles}"
     directory = os.path.join(work, name)
     prm = os.path.join(work, name + ".prm")
     with open(prm, "w") as f:
-        f.write(cube(cells, n, args.end_time, step, args.method, directory))
+        f.write(cube(cells, n, args.end_time, step, args.method, directory,
+                     step_cycles))
     start = time.perf_counter()
     done = subprocess.run([executable, prm], stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, text=True)
@@ -129,12 +138,16 @@ def measure(executable, cells, n, step, args, work):
     dofs = re.findall(r"(?:Mesh: \d+ \w+ cells, (\d+) displacement dofs"
                       r"|Initial cycles done: \d+ cells, (\d+) dofs)", out)
     dofs = int(next(g for g in dofs[-1] if g))
+    coarser = re.search(r"^  step cycles: (\d+) active-set iterations", out,
+                        re.M)
     second = steps[1] if len(steps) > 1 else None
     later = steps[2:]
     return {
         "cells": cells, "n": n, "k": step, "dofs": dofs, "wall": wall,
         "steps": len(steps),
         "per_step": sum(s["iterations"] for s in steps) / len(steps),
+        "coarser_per_step": (int(coarser.group(1)) / len(steps)
+                             if coarser else None),
         "krylov_per_step": sum(h["krylov"] for s in steps
                                for h in s["history"]) / len(steps),
         "step1": steps[0]["iterations"],
@@ -167,22 +180,30 @@ def page(rows, args, command):
         f"step 1; *rigid: peak / end*: the most nodes at the rigid limit "
         f"during step 2 against the number at its end; *steps 3-*: the "
         f"iterations per step after step 2; *Krylov/step*: the CG "
-        f"iterations per step.",
+        f"iterations per step on the mesh. *step cycles*: the shipped k "
+        f"with Step cycles = 1 (the other runs have 0): each step after "
+        f"the first solved on the mesh coarsened once first; *coarser "
+        f"its/step*: the active-set iterations there, per step of the run. "
+        f"The wall times of one mesh ran one after the other.",
         "",
         "| cells | N | dofs | k | steps | its/step | step 1 | step 2 | rigid in step 2: "
-        "peak / end | steps 3-: its/step | Krylov/step | wall [s] |",
-        "|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|",
+        "peak / end | steps 3-: its/step | Krylov/step | coarser its/step "
+        "| wall [s] |",
+        "|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for r in rows:
         k = ("1/32 (fixed, = 1/(2N))" if r["n"] == 16 and r["mode"] == "fixed"
              else "1/32 (fixed)" if r["mode"] == "fixed"
+             else "1/32, step cycles" if r["mode"] == "cycles"
              else f"1/{round(1 / r['k'])} (~ h)")
+        coarser = ("" if r["coarser_per_step"] is None
+                   else f"{r['coarser_per_step']:.2f}")
         lines.append(
             f"| {r['cells']} | {r['n']} | {r['dofs']} | {k} | {r['steps']} "
             f"| {r['per_step']:.2f} | {r['step1']} | {r['step2']} "
             f"| {r['step2_peak']} / {r['step2_rigid']} "
             f"| {r['later_per_step']:.2f} | {r['krylov_per_step']:.1f} "
-            f"| {r['wall']:.1f} |")
+            f"| {coarser} | {r['wall']:.1f} |")
     lines.append("")
     return "\n".join(lines)
 
@@ -205,11 +226,15 @@ def main():
         for cells, sizes in (("hexahedra", args.hexahedra),
                              ("tetrahedra", args.tetrahedra)):
             for n in [int(s) for s in sizes.split(",") if s]:
-                for mode, step in (("fixed", SHIPPED_STEP),
-                                   ("h", 1 / (2 * n))):
+                for mode, step, step_cycles in (
+                        ("fixed", SHIPPED_STEP, 0), ("h", 1 / (2 * n), 0),
+                        ("cycles", SHIPPED_STEP, 1)):
                     if mode == "h" and abs(step - SHIPPED_STEP) < 1e-15:
                         continue  # the same run as fixed k
-                    row = measure(executable, cells, n, step, args, work)
+                    if mode == "cycles" and cells != "hexahedra":
+                        continue  # no coarser p4est meshes
+                    row = measure(executable, cells, n, step, step_cycles,
+                                  args, work)
                     row["mode"] = mode
                     rows.append(row)
                     print(f"{cells} N = {n} k = 1/{round(1 / step)}: "

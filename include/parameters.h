@@ -437,10 +437,17 @@ namespace ViscoContact
       // "auto" (the program chooses L) or L; initial_cycles() reads it.
       std::string       initial_cycles_entry = "auto";
       InitialRefinement initial_refinement   = InitialRefinement::global;
+      // Nested iteration in every later step: each step problem is solved on
+      // L coarser meshes first (its history load restricted to them), whose
+      // contact zone starts the solve on the run's mesh. "auto" or L, read
+      // by step_cycles().
+      std::string step_cycles_entry = "auto";
 
       // L as set in the parameter file; nothing for auto.
       std::optional<unsigned int>
       initial_cycles() const;
+      std::optional<unsigned int>
+      step_cycles() const;
 
       void
       add_parameters(ParameterHandler &prm);
@@ -527,6 +534,8 @@ namespace ViscoContact
       check_study_entries() const;
       void
       check_mesh_adaptation_entries() const;
+      void
+      check_step_cycles() const;
       // Method = matrix free: hypercube cells, the explicit update.
       void
       check_method_entries() const;

@@ -487,6 +487,40 @@ namespace ViscoContact
     void
     restore_checkpoint_mesh();
 
+    // @sect4{Step cycles (step_cycles.cc)}
+    //
+    // Nested iteration in every step (Step cycles = L): the step problem is
+    // solved first on the mesh coarsened once, by a ViscoplasticContact of
+    // that mesh (which starts from the mesh coarsened once more while L > 1),
+    // from this step's start injected into it and with this step's history
+    // load restricted to it; its displacement and contact pressure,
+    // prolongated, are where the active-set iteration here starts. The
+    // coarser problem and the transfer are built at their first use and
+    // dropped with every new mesh (setup_on_mesh()).
+    // Step cycles = auto: one coarser mesh where the cost model expects an
+    // iterative back end and the coarser mesh keeps about 2000 dofs.
+    void
+                 choose_step_cycles();
+    unsigned int n_step_cycles = 0;
+    // Why auto chose n_step_cycles (for the header; empty if set).
+    std::string step_cycles_reason;
+    bool
+    step_cycles_due() const;
+    void
+    set_up_coarser_step_problem();
+    void
+    start_from_coarser_mesh();
+    // The contact state of this rank's nodes from u and a nodal pressure
+    // field, keeping their friction state.
+    void
+    set_pieces_from(const VectorType &pressure);
+    struct CoarserStepProblem;
+    std::shared_ptr<CoarserStepProblem> coarser_step_problem;
+    // The active-set iterations on the coarser meshes: of the last step
+    // (for the iteration history) and of the run.
+    ActiveSetResult coarser_step_result;
+    unsigned int    step_cycle_iterations = 0;
+
     // @sect4{Checkpoints}
     //
     // One file per checkpoint with one record per cell, keyed by the cell's id,

@@ -830,6 +830,11 @@ namespace ViscoContact
       pcout << "  initial cycles: " << initial_cycle_iterations
             << " active-set iterations on " << n_initial_cycles
             << " coarser meshes\n";
+    // The solves of the steps on the coarser meshes of the Step cycles.
+    if (n_step_cycles > 0)
+      pcout << "  step cycles: " << step_cycle_iterations
+            << " active-set iterations on " << n_step_cycles << " coarser mesh"
+            << (n_step_cycles > 1 ? "es" : "") << '\n';
     if (parameters.time_step_control == Parameters::TimeStepControl::adaptive)
       pcout << "  adaptive time steps: " << schedule.n_steps() << " accepted, "
             << schedule.n_rejected_steps() << " rejected\n";

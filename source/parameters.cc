@@ -1424,6 +1424,26 @@ namespace ViscoContact
           "generated box's Subdivisions); simplex meshes are built anew for "
           "each cycle.",
           AutoOrCount());
+        prm.add_parameter(
+          "Step cycles",
+          step_cycles_entry,
+          "Nested iteration in every time step after the first (doc/"
+          "algorithm.md, \"Step cycles\"): each step problem is first solved "
+          "on L coarser meshes (the mesh coarsened uniformly 1, ..., L times, "
+          "with the step's history load restricted to them), and the contact "
+          "zone of that solve starts the active-set iteration on the mesh of "
+          "the run. It changes where the iteration starts, not the solution. "
+          "auto: the program chooses L (printed in the header: 1 where the "
+          "back end is expected to be an iterative one and the coarser mesh "
+          "keeps about 2000 dofs, else none); 0: none (each step starts from "
+          "the last one, extrapolated with Predicted start). auto or an "
+          "integer in [0, 20]; more than 0 needs "
+          "hypercube cells, a mesh that can be coarsened L times (Global "
+          "refinements, and the factors of 2 of a generated box's "
+          "Subdivisions), no Contact refinement levels, no Adaptive "
+          "refinement, no friction, and the explicit update (or no "
+          "plasticity).",
+          AutoOrCount());
         add_selection(
           prm,
           "Initial refinement",
@@ -1850,6 +1870,16 @@ namespace ViscoContact
 
 
 
+    std::optional<unsigned int>
+    MeshAdaptation::step_cycles() const
+    {
+      if (step_cycles_entry == "auto")
+        return std::nullopt;
+      return Utilities::string_to_int(step_cycles_entry);
+    }
+
+
+
     unsigned int
     AllParameters::uniform_coarsenings() const
     {
@@ -1938,6 +1968,64 @@ namespace ViscoContact
                   "refinement of a graded mesh does not give the graded mesh "
                   "of the parameter file); or Initial refinement = adaptive");
         }
+      check_step_cycles();
+    }
+
+
+
+    // Step cycles solve every step on coarser meshes of the same p4est
+    // forest, made from the parameter file with fewer refinements: the mesh
+    // of the run must be theirs refined uniformly (no graded or adapted
+    // mesh), and the coarse problem must be the step problem restricted to
+    // them, which holds for the explicit update's fixed operator K with its
+    // history load; friction would need the slip of the last step on each
+    // coarser mesh, which they do not keep.
+    void
+    AllParameters::check_step_cycles() const
+    {
+      const unsigned int cycles = step_cycles().value_or(0);
+      if (cycles == 0)
+        return;
+      const auto refuse_unless
+        = [&](const bool condition, const std::string &accepted) {
+            require(condition,
+                    "Mesh adaptation",
+                    "Step cycles",
+                    step_cycles_entry,
+                    "auto or " + accepted);
+          };
+      refuse_unless(cell_type == CellType::hypercube,
+                    "0 when Cell type = simplex (the coarser meshes of the "
+                    "steps are p4est meshes of hypercubes)");
+      refuse_unless(!study_enabled,
+                    "0 when a convergence study runs (it builds its own "
+                    "meshes)");
+      refuse_unless(!adaptive_refinement,
+                    "0 when Adaptive refinement = true (an adapted mesh is "
+                    "not a uniform refinement of the coarser meshes)");
+      refuse_unless(contact_refinements == 0,
+                    "0 when Contact refinement levels > 0 (subsection "
+                    "<Geometry>: a graded mesh is not a uniform refinement "
+                    "of the coarser meshes)");
+      refuse_unless(cycles <= uniform_coarsenings(),
+                    "at most " + std::to_string(uniform_coarsenings())
+                      + " (Global refinements = "
+                      + std::to_string(global_refinements)
+                      + ", and the factors of 2 of Subdivisions = "
+                      + std::to_string(subdivisions)
+                      + " of a generated box; subsection <Geometry>)");
+      refuse_unless(stress_update == StressUpdate::explicit_euler
+                      || !any_plasticity(),
+                    "0 with Stress update = implicit euler and a "
+                    "viscoplastic material (the coarser meshes solve the "
+                    "explicit update's step problem)");
+      for (const ContactZone &zone : used_contact_zones())
+        refuse_unless(zone.contact->tangential_law
+                        == TangentialLawType::frictionless,
+                      "0 with friction (Tangential law in subsection <"
+                        + zone.subsection
+                        + ">): the coarser meshes do not keep the slip of "
+                          "the last step");
     }
 
     // Profile times within the run, and schedules of a size the run can

@@ -95,6 +95,7 @@ namespace ViscoContact
   ViscoplasticContact<dim>::setup_on_mesh()
   {
     previous_step_start.reset();
+    coarser_step_problem.reset();
     contact_solver.reset();
     // The peak memory after each phase, on the first set-up.
     const bool report_memory
@@ -683,6 +684,19 @@ namespace ViscoContact
     else if (!initial_cycles_reason.empty())
       pcout << "Initial cycles: none (Initial cycles = auto: "
             << initial_cycles_reason << ")\n";
+    const std::string step_cycles_auto
+      = step_cycles_reason.empty()
+          ? ""
+          : " (Step cycles = auto: " + step_cycles_reason + ")";
+    if (n_step_cycles > 0)
+      pcout << "Step cycles: every step"
+            << (first_step_cycles > 0 ? " after the first" : "")
+            << " solved on " << n_step_cycles << " coarser mesh"
+            << (n_step_cycles > 1 ? "es" : "")
+            << " first, whose contact zone starts it on the mesh of the run"
+            << step_cycles_auto << '\n';
+    else if (!step_cycles_auto.empty())
+      pcout << "Step cycles: none" << step_cycles_auto << '\n';
     pcout << "Model: "
           << (parameters.any_plasticity() ? "viscoplastic" : "elastic");
     if (parameters.plane_model == Parameters::PlaneModel::plane_strain)

@@ -131,6 +131,8 @@ namespace ViscoContact
         const double k = schedule.step_length();
         assemble_right_hand_side(schedule.next_time());
         predict_step_start();
+        if (step_cycles_due())
+          start_from_coarser_mesh();
         // The step starts with the displacement prescribed at t_n (the
         // implicit update's first Newton iterate must have it).
         if (has_prescribed_values)

@@ -279,7 +279,9 @@ namespace ViscoContact
   template <int dim>
   ViscoplasticContact<dim>::~ViscoplasticContact()
   {
-    // The DoFHandlers refer to the triangulation: release them first.
+    // The DoFHandlers refer to the triangulation: release them first, after
+    // the coarser step problem, whose transfer refers to them.
+    coarser_step_problem.reset();
     scalar_dof_handler.clear();
     dof_handler.clear();
   }
@@ -642,6 +644,7 @@ namespace ViscoContact
     check_output_directory();
     check_memory_estimate();
     choose_initial_cycles();
+    choose_step_cycles();
     make_grid();
     StopSignals::stop_if_received(mpi_communicator, "after the mesh");
     setup_on_mesh();
@@ -772,7 +775,13 @@ namespace ViscoContact
                                k,
                                error_estimate);
     if (parameters.print_iteration_history)
-      pcout << result.describe() << std::flush;
+      {
+        if (!coarser_step_result.history.empty())
+          pcout << "    step cycles: " << coarser_step_result.iterations()
+                << " active-set iterations on the coarser mesh\n";
+        pcout << result.describe() << std::flush;
+      }
+    coarser_step_result = ActiveSetResult();
     // The profile for a requested time is written at the step closest to it
     // (adaptive steps land on it exactly).
     if (contact_enabled

@@ -1,0 +1,267 @@
+// Step cycles of ViscoplasticContact<dim>: nested iteration in every time
+// step (doc/algorithm.md, "Step cycles").
+//
+// At a fixed time step the front of the rigid zone crosses more rows of
+// nodes per step on a finer mesh, and the active-set iteration finds them a
+// batch per iteration, so the iterations per step grow with the mesh
+// (doc/performance.md, "Active-set iterations, the mesh and the time step").
+// The same step problem on the mesh coarsened once has half as many rows to
+// cross and an eighth of the dofs (in 3D); its contact zone, prolongated, is
+// wrong only within a coarse cell of the front, so the iteration on the fine
+// mesh starts next to its end.
+//
+// The coarser problem is the step problem restricted to the coarser space:
+// its operator is K of the coarser mesh (for Q1 on nested meshes the
+// Galerkin product P^T K P), its external load and prescribed values are its
+// own, and its history load is P^T of this mesh's, so the viscoplastic
+// history of this mesh, not a coarser one's, drives it. It starts from this
+// step's start (after the prediction), injected into the coarser space. So
+// the coarser problem keeps no state between steps: a cut, rejected or
+// resumed step has the same coarser solve as an uninterrupted one. The
+// transfers are deal.II's MGTwoLevelTransfer between the two p4est meshes
+// (the global-coarsening transfer of step-75): prolongation P, restriction
+// P^T and injection, on any partition of either mesh.
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/timer.h>
+
+#include <deal.II/multigrid/mg_transfer_global_coarsening.h>
+
+#include "back_ends/cost_model.h"
+#include "viscoplastic_contact.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ViscoContact
+{
+  template <int dim>
+  struct ViscoplasticContact<dim>::CoarserStepProblem
+  {
+    // The step problem on the mesh coarsened once, and the transfer between
+    // it and this mesh (declared after it: it goes first).
+    std::unique_ptr<ViscoplasticContact<dim>> problem;
+    MGTwoLevelTransfer<dim, VectorType>       transfer;
+  };
+
+
+
+  // @sect4{ViscoplasticContact::step_cycles_due}
+  //
+  // Where the coarser meshes start the step: with contact, on every step but
+  // one that the initial cycles start, and not where the uniqueness check
+  // found that the step problem may have several solutions (there the nodes
+  // keep the pieces of the branch the run is on, predict_step_start()).
+  template <int dim>
+  bool
+  ViscoplasticContact<dim>::step_cycles_due() const
+  {
+    const bool chosen_by_auto = !parameters.step_cycles().has_value();
+    return n_step_cycles > 0 && contact_enabled && pieces_predictable
+           && !(schedule.step_number() == 0 && first_step_cycles > 0)
+           && !(chosen_by_auto
+                && back_end.method == Parameters::Method::condensed);
+  }
+
+
+
+  // @sect4{ViscoplasticContact::choose_step_cycles}
+  //
+  // Step cycles = auto. As for the initial cycles, the coarser solve pays
+  // where an active-set iteration is a Krylov solve on the whole mesh: on
+  // the cube at k = 1/32 one coarser mesh took the steps after the first
+  // from 3.5 to 2.25 active-set iterations at 353k dofs (from 2.75 to 2.1
+  // at 108k), for a coarser solve that costs about an eighth
+  // (doc/performance.md, "Step cycles"). A second coarser mesh saved no
+  // further iteration there, so auto takes one. None with the condensed
+  // back end (an iteration is a dense solve on the contact nodes), where the
+  // coarser mesh would have fewer than about 2000 dofs, and where the
+  // coarser problem would not be the step problem restricted (see
+  // Parameters::AllParameters::check_step_cycles()).
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::choose_step_cycles()
+  {
+    if (const std::optional<unsigned int> set = parameters.step_cycles())
+      {
+        n_step_cycles = *set;
+        return;
+      }
+    n_step_cycles = 0;
+    if (parameters.used_contact_zones().empty() || parameters.study_enabled)
+      return;
+    const auto frictional = [](const Parameters::ContactZone &zone) {
+      return zone.contact->tangential_law
+             != Parameters::TangentialLawType::frictionless;
+    };
+    const auto zones = parameters.used_contact_zones();
+    if (reference_cell.is_simplex())
+      step_cycles_reason = "simplex meshes have no coarser p4est meshes";
+    else if (parameters.adaptive_refinement
+             || parameters.contact_refinements > 0
+             || parameters.uniform_coarsenings() == 0)
+      step_cycles_reason = "they need a mesh that can be coarsened uniformly "
+                           "(Global refinements, or a generated box with "
+                           "even Subdivisions, no Contact refinement levels, "
+                           "no Adaptive refinement)";
+    else if (implicit_update())
+      step_cycles_reason = "the implicit update";
+    else if (std::any_of(zones.begin(), zones.end(), frictional))
+      step_cycles_reason = "friction";
+    if (!step_cycles_reason.empty())
+      return;
+    double    cells           = 0;
+    SceneSize scene           = estimate_scene(cells);
+    scene.nested_iteration    = first_step_cycles > 0;
+    const MethodChoice choice = choose_method(parameters.method, scene);
+    if (choice.method == Parameters::Method::condensed)
+      step_cycles_reason = "the condensed back end is expected, whose "
+                           "active-set iterations are dense solves on the "
+                           "contact nodes";
+    else if (scene.dofs / std::pow(2., dim) < 2000)
+      step_cycles_reason = "the coarser mesh would have fewer than about "
+                           "2000 dofs, where an iteration is cheap";
+    else
+      {
+        n_step_cycles = 1;
+        step_cycles_reason
+          = "the "
+            + std::string(choice.method == Parameters::Method::matrix_free
+                            ? "matrix-free"
+                            : "full space")
+            + " back end is expected, and the coarser mesh keeps about 2000 "
+              "dofs or more";
+      }
+  }
+
+
+
+  // @sect4{ViscoplasticContact::set_up_coarser_step_problem}
+  //
+  // The coarser problem is a ViscoplasticContact of the parameter file
+  // coarsened once (parameters.check_step_cycles() made sure its p4est mesh
+  // is this one coarsened uniformly), with Step cycles - 1 of its own, set up
+  // as run() sets up a run but without output, checks or schedule: it only
+  // ever solves step problems for this object, silently.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::set_up_coarser_step_problem()
+  {
+    TimerOutput::Scope        t(computing_timer, "Setup: step cycles");
+    Parameters::AllParameters coarser = parameters.coarsened(1);
+    coarser.step_cycles_entry         = std::to_string(n_step_cycles - 1);
+    coarser.initial_cycles_entry      = "0";
+    coarser.verbose                   = false;
+    coarser.print_iteration_history   = false;
+    coarser.print_timing_summary      = false;
+    coarser.write_vtu                 = false;
+    coarser.resume                    = false;
+    coarser.checkpoint_interval       = 0;
+
+    coarser_step_problem = std::make_shared<CoarserStepProblem>();
+    coarser_step_problem->problem
+      = std::make_unique<ViscoplasticContact<dim>>(coarser, mpi_communicator);
+    ViscoplasticContact<dim> &coarse = *coarser_step_problem->problem;
+    coarse.pcout.set_condition(false);
+    coarse.n_step_cycles = n_step_cycles - 1;
+    coarse.make_grid();
+    coarse.setup_on_mesh();
+    AssertThrow(coarse.contact_enabled == contact_enabled
+                  && coarse.contact_set.n_global_nodes() > 0,
+                ExcInternalError());
+    // Plain transfers: on uniformly refined meshes there are no hanging
+    // nodes, and the constrained entries are set by each mesh's constraints
+    // after the transfer.
+    coarser_step_problem->transfer
+      .reinit_geometric_transfer(dof_handler, coarse.dof_handler);
+  }
+
+
+
+  // @sect4{ViscoplasticContact::start_from_coarser_mesh}
+  //
+  // Called once the step's right-hand side is assembled and its start
+  // predicted: the coarser problem is solved from the injected start, and
+  // its u and contact pressure are prolongated into this step's start. A
+  // coarser solve that fails leaves the start as it was (the step then
+  // starts from the prediction, as without step cycles).
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::start_from_coarser_mesh()
+  {
+    if (!coarser_step_problem)
+      set_up_coarser_step_problem();
+    TimerOutput::Scope        t(computing_timer, "Solve: step cycles");
+    ViscoplasticContact<dim> &coarse = *coarser_step_problem->problem;
+    const MGTwoLevelTransfer<dim, VectorType> &transfer
+      = coarser_step_problem->transfer;
+
+    // The same step: its time levels, its history load restricted, its
+    // external load, prescribed values and gaps at t_n on the coarser mesh.
+    coarse.schedule     = schedule;
+    coarse.history_load = 0;
+    if (explicit_history_update())
+      transfer.restrict_and_add(coarse.history_load, history_load);
+    coarse.assemble_right_hand_side(schedule.next_time());
+
+    // The start: u and the contact pressure of this step's start, injected.
+    VectorType pressure = contact_pressure_field();
+    coarse.solution.zero_out_ghost_values();
+    transfer.interpolate(coarse.solution, solution);
+    VectorType coarse_pressure(coarse.solution);
+    transfer.interpolate(coarse_pressure, pressure);
+    coarse.apply_constraints(coarse.solution);
+    coarse.solution.update_ghost_values();
+    coarse_pressure.update_ghost_values();
+    coarse.set_pieces_from(coarse_pressure);
+
+    // The coarser problem's own coarser meshes first, then its solve.
+    const unsigned int deeper_iterations = coarse.step_cycle_iterations;
+    if (coarse.step_cycles_due())
+      coarse.start_from_coarser_mesh();
+    coarser_step_result = coarse.solve_contact_problem(coarse.system_rhs);
+    step_cycle_iterations += coarser_step_result.iterations()
+                             + coarse.step_cycle_iterations - deeper_iterations;
+    if (!coarser_step_result.converged)
+      return;
+
+    // This step's start: the coarser u and pressure prolongated.
+    solution.zero_out_ghost_values();
+    solution = 0;
+    transfer.prolongate_and_add(solution, coarse.solution);
+    pressure.zero_out_ghost_values();
+    pressure = 0;
+    transfer.prolongate_and_add(pressure, coarse.contact_pressure_field());
+    apply_constraints(solution);
+    solution.update_ghost_values();
+    pressure.update_ghost_values();
+    set_pieces_from(pressure);
+  }
+
+
+
+  // @sect4{ViscoplasticContact::set_pieces_from}
+  //
+  // Each contact node's r = u.nu - s and z = w p from u and the pressure
+  // field p, and the piece they name; the friction state is left as it is
+  // (as predict_step_start() does).
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::set_pieces_from(const VectorType &pressure)
+  {
+    for (unsigned int i = 0; i < contact_set.size(); ++i)
+      {
+        contact_set.r[i]
+          = contact_set.normal_component(solution, i) - contact_set.gap(i);
+        contact_set.z[i]
+          = contact_set.weight(i)
+            * pressure.local_element(contact_set.node(i).local_dofs[0]);
+      }
+    contact_set.update_pieces(/*with_friction=*/false);
+  }
+
+
+
+  template class ViscoplasticContact<2>;
+  template class ViscoplasticContact<3>;
+} // namespace ViscoContact

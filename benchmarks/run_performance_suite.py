@@ -46,7 +46,7 @@ PARTS = [
      "doc/performance/cold_start.md", 15),
     ("active_set_growth", "run_active_set_growth.py",
      ["--executable", "{program}", "--hexahedra", "16,32,48,64"],
-     "doc/performance/active_set_growth.md", 15),
+     "doc/performance/active_set_growth.md", 22),
     ("matrix_free", "run_matrix_free.py",
      ["--executable", "{program}", "--subdivisions", "16,32,72",
       "--output-dir", "{repo}/doc/back_ends"],

@@ -149,6 +149,12 @@ namespace ViscoContact
       // Simplex meshes are built by one rank per group of this many
       // consecutive ranks (0: the ranks of one compute node).
       unsigned int mesh_group_size = 0;
+      // Not an entry: a simplex box of Subdivisions = m 2^j is built as the
+      // box of m 2^(j - b) refined b = min(j, box_refinement_limit) times
+      // (mesh.cc). The coarser meshes of the step cycles lower it, so that
+      // they refine the same coarse box and are nested in the mesh of the
+      // run.
+      unsigned int box_refinement_limit = 4;
 
       void
       add_parameters(ParameterHandler &prm);
@@ -517,6 +523,17 @@ namespace ViscoContact
       // refinements first, then Subdivisions halved.
       AllParameters
       coarsened(const unsigned int levels) const;
+      // How many times the mesh of the parameter file is the uniform
+      // refinement of a coarser mesh of the same coarse cells (the coarser
+      // meshes of the step cycles): uniform_coarsenings() on hypercubes; on
+      // simplices the Global refinements, and for a box of triangles cut
+      // by "/" or backslash the refinements of its coarse box.
+      unsigned int
+      nested_coarsenings() const;
+      // The parameters of the mesh the step cycles coarsen to: coarsened
+      // once, a simplex box from the same coarse box.
+      AllParameters
+      nested_coarsened() const;
 
       // Every entry of the file, bound to the members of this object (which
       // must outlive the parsing); then the checks of every subsection and

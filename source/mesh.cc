@@ -701,7 +701,8 @@ namespace ViscoContact
         if (Utilities::MPI::this_mpi_process(communicator) % group_size == 0)
           failure = MPITools::failure_of([&]() {
             const auto [coarse_parameters, box_refinements]
-              = coarser_equivalent_box(parameters, 4);
+              = coarser_equivalent_box(parameters,
+                                       parameters.box_refinement_limit);
             create_coarse_mesh(coarse_parameters, serial_mesh);
             serial_mesh.refine_global(box_refinements);
             refine_mesh(parameters, serial_mesh);

@@ -1433,14 +1433,16 @@ namespace ViscoContact
           "with the step's history load restricted to them), and the contact "
           "zone of that solve starts the active-set iteration on the mesh of "
           "the run. It changes where the iteration starts, not the solution. "
-          "auto: the program chooses L (printed in the header: 1 where the "
-          "back end is expected to be an iterative one and the coarser mesh "
-          "keeps about 2000 dofs, else none); 0: none (each step starts from "
+          "auto: the program chooses L (printed in the header: 1 on "
+          "hypercubes where the back end is expected to be an iterative one "
+          "and the coarser mesh keeps about 2000 dofs, else none); 0: none "
+          "(each step starts from "
           "the last one, extrapolated with Predicted start). auto or an "
-          "integer in [0, 20]; more than 0 needs "
-          "hypercube cells, a mesh that can be coarsened L times (Global "
-          "refinements, and the factors of 2 of a generated box's "
-          "Subdivisions), no Contact refinement levels, no Adaptive "
+          "integer in [0, 20]; more than 0 needs a mesh that is the uniform "
+          "refinement of one coarsened L times (Global refinements, and the "
+          "factors of 2 of a generated box's Subdivisions: of a box of "
+          "hypercubes, or at most 4 of a box of triangles cut by / or "
+          "backslash), no Contact refinement levels, no Adaptive "
           "refinement, no friction, and the explicit update (or no "
           "plasticity).",
           AutoOrCount());
@@ -1906,6 +1908,39 @@ namespace ViscoContact
 
 
 
+    unsigned int
+    AllParameters::nested_coarsenings() const
+    {
+      if (cell_type == CellType::hypercube)
+        return uniform_coarsenings();
+      // As mesh.cc's coarser_equivalent_box() builds simplex boxes.
+      const bool box_refines
+        = mesh_file.empty() && material_id_function.empty() && dimension == 2
+          && (simplex_pattern == SimplexPattern::slash
+              || simplex_pattern == SimplexPattern::backslash);
+      unsigned int coarsenings = global_refinements;
+      if (box_refines)
+        for (unsigned int n = subdivisions, b = 0;
+             n > 0 && n % 2 == 0 && b < box_refinement_limit;
+             n /= 2, ++b)
+          ++coarsenings;
+      return coarsenings;
+    }
+
+
+
+    AllParameters
+    AllParameters::nested_coarsened() const
+    {
+      AllParameters coarse = coarsened(1);
+      // Subdivisions halved: one refinement of the same coarse box less.
+      if (global_refinements == 0 && box_refinement_limit > 0)
+        --coarse.box_refinement_limit;
+      return coarse;
+    }
+
+
+
     void
     AllParameters::check_mesh_adaptation_entries() const
     {
@@ -1994,9 +2029,6 @@ namespace ViscoContact
                     step_cycles_entry,
                     "auto or " + accepted);
           };
-      refuse_unless(cell_type == CellType::hypercube,
-                    "0 when Cell type = simplex (the coarser meshes of the "
-                    "steps are p4est meshes of hypercubes)");
       refuse_unless(!study_enabled,
                     "0 when a convergence study runs (it builds its own "
                     "meshes)");
@@ -2007,13 +2039,20 @@ namespace ViscoContact
                     "0 when Contact refinement levels > 0 (subsection "
                     "<Geometry>: a graded mesh is not a uniform refinement "
                     "of the coarser meshes)");
-      refuse_unless(cycles <= uniform_coarsenings(),
-                    "at most " + std::to_string(uniform_coarsenings())
+      refuse_unless(cycles <= nested_coarsenings(),
+                    "at most " + std::to_string(nested_coarsenings())
                       + " (Global refinements = "
                       + std::to_string(global_refinements)
-                      + ", and the factors of 2 of Subdivisions = "
-                      + std::to_string(subdivisions)
-                      + " of a generated box; subsection <Geometry>)");
+                      + (cell_type == CellType::hypercube
+                           ? ", and the factors of 2 of Subdivisions = "
+                               + std::to_string(subdivisions)
+                               + " of a generated box"
+                           : ", and for a generated box of triangles cut "
+                             "by / or backslash at most 4 of the factors of "
+                             "2 of Subdivisions = "
+                               + std::to_string(subdivisions))
+                      + "; subsection <Geometry>: the coarser meshes must "
+                        "refine to the mesh of the run)");
       refuse_unless(stress_update == StressUpdate::explicit_euler
                       || !any_plasticity(),
                     "0 with Stress update = implicit euler and a "

@@ -260,7 +260,12 @@ namespace ViscoContact
     Parameters::AllParameters coarse_parameters = parameters.nested_coarsened();
     coarse_parameters.step_cycles_entry    = std::to_string(n_step_cycles - 1);
     coarse_parameters.initial_cycles_entry = "0";
-    coarse_parameters.verbose              = false;
+    // The back end of this mesh: the cost model of Method = auto would
+    // choose for the coarser mesh alone, without the memory this one holds
+    // (a matrix-based back end there could take more than the matrix-free
+    // one here).
+    coarse_parameters.method                  = back_end.method;
+    coarse_parameters.verbose                 = false;
     coarse_parameters.print_iteration_history = false;
     coarse_parameters.print_timing_summary    = false;
     coarse_parameters.write_vtu               = false;

@@ -25,7 +25,7 @@ exactly), and the final norms the program prints to a relative 1e-6 (8
 digits); the page gets a section on the comparison, and the script exits
 with status 1 if they differ.
 
-The run needs about 1.3 kB per dof (14 GB at N = 152) and writes about
+The run needs about 1.7 kB per dof (18 GB at N = 152) and writes about
 2.5 GB of VTU files and a 7 GB checkpoint at N = 152 (the resume and the
 reference run another 7 GB each); the folders are removed afterwards
 unless --keep. Build in Release mode.

@@ -61,7 +61,7 @@ PARTS = [
      "doc/back_ends/method_choice_shipped.md", 25),
     ("largest_cube", "run_largest_cube.py",
      ["--executable", "{program}", "--subdivisions", "152", "--ranks", "2"],
-     "doc/back_ends/largest_cube.md", 26),
+     "doc/back_ends/largest_cube.md", 10),
 ]
 
 

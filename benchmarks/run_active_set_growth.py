@@ -21,7 +21,8 @@ and the hexahedra a third time:
   step cycles  the shipped k with Step cycles = 1: every step after the
              first is solved on the mesh coarsened once first, whose contact
              zone starts the iteration on the mesh (the two runs above have
-             Step cycles = 0; tetrahedra have no coarser p4est meshes).
+             Step cycles = 0; a box of tetrahedra is not the refinement of a coarser
+             box, so these have none).
 
 The first step is solved on 2 coarser meshes first (Initial cycles; the
 hexahedra refine theirs, the tetrahedra are built anew; none where N is not
@@ -232,7 +233,7 @@ def main():
                     if mode == "h" and abs(step - SHIPPED_STEP) < 1e-15:
                         continue  # the same run as fixed k
                     if mode == "cycles" and cells != "hexahedra":
-                        continue  # no coarser p4est meshes
+                        continue  # a box of tetrahedra refines no coarser box
                     row = measure(executable, cells, n, step, step_cycles,
                                   args, work)
                     row["mode"] = mode

@@ -1427,8 +1427,9 @@ namespace ViscoContact
         prm.add_parameter(
           "Step cycles",
           step_cycles_entry,
-          "Nested iteration in every time step after the first (doc/"
-          "algorithm.md, \"Step cycles\"): each step problem is first solved "
+          "Nested iteration in every time step (doc/algorithm.md, \"Step "
+          "cycles\"; not in a first step that Initial cycles start): each "
+          "step problem is first solved "
           "on L coarser meshes (the mesh coarsened uniformly 1, ..., L times, "
           "with the step's history load restricted to them), and the contact "
           "zone of that solve starts the active-set iteration on the mesh of "
@@ -2035,6 +2036,11 @@ namespace ViscoContact
       refuse_unless(!adaptive_refinement,
                     "0 when Adaptive refinement = true (an adapted mesh is "
                     "not a uniform refinement of the coarser meshes)");
+      refuse_unless(initial_refinement == InitialRefinement::global
+                      || initial_cycles().value_or(0) == 0,
+                    "0 when Initial refinement = adaptive with Initial "
+                    "cycles (the cycles adapt the mesh of the run, which is "
+                    "then not a uniform refinement of the coarser meshes)");
       refuse_unless(contact_refinements == 0,
                     "0 when Contact refinement levels > 0 (subsection "
                     "<Geometry>: a graded mesh is not a uniform refinement "

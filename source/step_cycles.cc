@@ -207,11 +207,15 @@ namespace ViscoContact
                            "Step cycles to run them";
     else if (parameters.adaptive_refinement
              || parameters.contact_refinements > 0
-             || parameters.nested_coarsenings() == 0)
+             || parameters.nested_coarsenings() == 0
+             || (first_step_cycles > 0
+                 && parameters.initial_refinement
+                      == Parameters::InitialRefinement::adaptive))
       step_cycles_reason = "they need a mesh that can be coarsened uniformly "
                            "(Global refinements, or a generated box with "
                            "even Subdivisions, no Contact refinement levels, "
-                           "no Adaptive refinement)";
+                           "no Adaptive refinement or adaptive Initial "
+                           "refinement)";
     else if (implicit_update())
       step_cycles_reason = "the implicit update";
     else if (std::any_of(zones.begin(), zones.end(), frictional))

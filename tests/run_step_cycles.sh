@@ -45,6 +45,10 @@ fi
 for dir in cycles none; do
   cut -d, -f1,2,4-8,11- "$dir/results/time_series.csv" | tr ',' ' ' > "$dir/series.txt"
   grep '^  final state:\|^  final contact:\|^Final displacement:' "$dir/output.txt" > "$dir/final.txt"
+  if [ "$(wc -l < "$dir/final.txt")" -ne 3 ] || [ "$(wc -l < "$dir/series.txt")" -lt 2 ]; then
+    echo "The $dir run printed no final state or wrote no time series to compare."
+    exit 1
+  fi
 done
 "$here/compare_scene_variants.sh" --profiles cycles none \
   "with and without step cycles" $absolute $relative \

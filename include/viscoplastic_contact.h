@@ -511,9 +511,10 @@ namespace ViscoContact
     void
     start_from_coarser_mesh();
     // The contact state of this rank's nodes from u and a nodal pressure
-    // field, keeping their friction state.
+    // field; their stick/slip states only with_friction.
     void
-    set_pieces_from(const VectorType &pressure);
+    set_pieces_from(const VectorType &pressure,
+                    const bool        with_friction = false);
     struct CoarserStepProblem;
     std::shared_ptr<CoarserStepProblem> coarser_step_problem;
     // The active-set iterations on the coarser meshes: of the last step

@@ -496,15 +496,7 @@ namespace ViscoContact
   {
     if (!contact_enabled)
       return;
-    for (unsigned int i = 0; i < contact_set.size(); ++i)
-      {
-        contact_set.r[i]
-          = contact_set.normal_component(solution, i) - contact_set.gap(i);
-        contact_set.z[i]
-          = contact_set.weight(i)
-            * pressure.local_element(contact_set.node(i).local_dofs[0]);
-      }
-    contact_set.update_pieces();
+    set_pieces_from(pressure, /*with_friction=*/true);
     // Friction starts again from stick on the new mesh, its slip measured
     // from the transferred displacement.
     contact_set.reset_slip(

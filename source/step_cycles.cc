@@ -410,11 +410,13 @@ namespace ViscoContact
   // @sect4{ViscoplasticContact::set_pieces_from}
   //
   // Each contact node's r = u.nu - s and z = w p from u and the pressure
-  // field p, and the piece they name; the friction state is left as it is
-  // (as predict_step_start() does).
+  // field p, and the piece they name; the stick/slip states are updated
+  // too only if asked (the step cycles leave them as predict_step_start()
+  // does; a transfer to a new mesh updates them, then resets the slip).
   template <int dim>
   void
-  ViscoplasticContact<dim>::set_pieces_from(const VectorType &pressure)
+  ViscoplasticContact<dim>::set_pieces_from(const VectorType &pressure,
+                                            const bool        with_friction)
   {
     for (unsigned int i = 0; i < contact_set.size(); ++i)
       {
@@ -424,7 +426,7 @@ namespace ViscoContact
           = contact_set.weight(i)
             * pressure.local_element(contact_set.node(i).local_dofs[0]);
       }
-    contact_set.update_pieces(/*with_friction=*/false);
+    contact_set.update_pieces(with_friction);
   }
 
 

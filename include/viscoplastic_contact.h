@@ -506,6 +506,8 @@ namespace ViscoContact
     std::string step_cycles_reason;
     bool
     step_cycles_due() const;
+    bool
+    step_cycles_dropped() const;
     void
     set_up_coarser_step_problem();
     void

@@ -627,7 +627,9 @@ namespace ViscoContact
   // @sect4{ViscoplasticContact::contact_pressure_field}
   //
   // z_i / w_i at the x-dof of each contact node, zero elsewhere, with the
-  // hanging-node constraints of the mesh and the ghosts.
+  // hanging-node constraints of the mesh and the ghosts. Only those: a
+  // Dirichlet constraint (a symmetry plane x = 0 through Gamma_3) would
+  // overwrite the pressure of its contact nodes.
   template <int dim>
   VectorType
   ViscoplasticContact<dim>::contact_pressure_field() const
@@ -639,7 +641,7 @@ namespace ViscoContact
         pressure.local_element(contact_set.node(i).local_dofs[0])
           = contact_set.contact_pressure(i);
     pressure.zero_out_ghost_values();
-    constraints.distribute(pressure);
+    hanging_node_constraints.distribute(pressure);
     pressure.update_ghost_values();
     return pressure;
   }

@@ -831,7 +831,10 @@ namespace ViscoContact
             << " active-set iterations on " << n_initial_cycles
             << " coarser meshes\n";
     // The solves of the steps on the coarser meshes of the Step cycles.
-    if (n_step_cycles > 0)
+    if (step_cycles_dropped())
+      pcout << "  step cycles: none (Method = auto chose the condensed back "
+               "end for the mesh of the run)\n";
+    else if (n_step_cycles > 0)
       pcout << "  step cycles: " << step_cycle_iterations
             << " active-set iterations on " << n_step_cycles << " coarser mesh"
             << (n_step_cycles > 1 ? "es" : "") << '\n';

@@ -2045,18 +2045,25 @@ namespace ViscoContact
                     "0 when Contact refinement levels > 0 (subsection "
                     "<Geometry>: a graded mesh is not a uniform refinement "
                     "of the coarser meshes)");
-      refuse_unless(cycles <= nested_coarsenings(),
-                    "at most " + std::to_string(nested_coarsenings())
-                      + " (Global refinements = "
-                      + std::to_string(global_refinements)
-                      + (cell_type == CellType::hypercube
-                           ? ", and the factors of 2 of Subdivisions = "
-                               + std::to_string(subdivisions)
-                               + " of a generated box"
-                           : ", and for a generated box of triangles cut "
-                             "by / or backslash at most 4 of the factors of "
-                             "2 of Subdivisions = "
-                               + std::to_string(subdivisions))
+      // What the coarser meshes are made of: the global refinements, and of
+      // a generated box the factors of 2 of its subdivisions (at most
+      // box_refinement_limit for triangles, none for tetrahedra).
+      const unsigned int box_factors
+        = nested_coarsenings() - global_refinements;
+      std::string made_of
+        = "Global refinements = " + std::to_string(global_refinements);
+      if (box_factors > 0)
+        made_of += ", and " + std::to_string(box_factors)
+                   + " factor(s) of 2 of Subdivisions = "
+                   + std::to_string(subdivisions) + " of a generated box";
+      else if (cell_type == CellType::simplex && mesh_file.empty())
+        made_of += "; a generated box of simplices is coarsened only as "
+                   "triangles cut by / or backslash";
+      const unsigned int most = nested_coarsenings();
+      refuse_unless(cycles <= most,
+                    (most == 0 ? std::string("0")
+                               : "at most " + std::to_string(most))
+                      + " (" + made_of
                       + "; subsection <Geometry>: the coarser meshes must "
                         "refine to the mesh of the run)");
       refuse_unless(stress_update == StressUpdate::explicit_euler

@@ -688,7 +688,11 @@ namespace ViscoContact
       = step_cycles_reason.empty()
           ? ""
           : " (Step cycles = auto: " + step_cycles_reason + ")";
-    if (n_step_cycles > 0)
+    // Without initial cycles the back end is already that of the run's mesh.
+    if (step_cycles_dropped() && first_step_cycles == 0)
+      pcout << "Step cycles: none (Step cycles = auto: Method = auto chose "
+               "the condensed back end)\n";
+    else if (n_step_cycles > 0)
       pcout << "Step cycles: every step"
             << (first_step_cycles > 0 ? " after the first" : "")
             << " solved on " << n_step_cycles << " coarser mesh"

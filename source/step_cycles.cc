@@ -159,11 +159,24 @@ namespace ViscoContact
   bool
   ViscoplasticContact<dim>::step_cycles_due() const
   {
-    const bool chosen_by_auto = !parameters.step_cycles().has_value();
     return n_step_cycles > 0 && contact_enabled && pieces_predictable
            && !(schedule.step_number() == 0 && first_step_cycles > 0)
-           && !(chosen_by_auto
-                && back_end.method == Parameters::Method::condensed);
+           && !step_cycles_dropped();
+  }
+
+
+
+  // @sect4{ViscoplasticContact::step_cycles_dropped}
+  //
+  // Step cycles = auto chose them from the cost model's estimate of the
+  // scene, but Method = auto chose the condensed back end for the mesh of the
+  // run from its actual size: then none run.
+  template <int dim>
+  bool
+  ViscoplasticContact<dim>::step_cycles_dropped() const
+  {
+    return n_step_cycles > 0 && !parameters.step_cycles().has_value()
+           && back_end.method == Parameters::Method::condensed;
   }
 
 

@@ -5,31 +5,40 @@
 # ranks of its line "# ranks: N" (default 1). Both runs must give the same
 # time series (all columns but the active-set iterations, the wall time and
 # the Krylov iterations), the same contact profiles and final norms, by
-# numdiff absolute 1e-8, relative 1e-8. The run with step cycles must say so
+# numdiff absolute 1e-8, relative 1e-8 (or those of a line "# tolerance:
+# ABSOLUTE RELATIVE", for an iterative back end's solver tolerance). The run with step cycles must say so
 # in its header, count active-set iterations on its coarser meshes in its
 # summary, and take fewer active-set iterations than the run without them
 # (the scenes are chosen so that the front of the rigid zone crosses several
-# rows of nodes per step).
+# rows of nodes per step). A scene with Step cycles = auto names the number
+# auto must choose in a line "# auto chooses: L", and its header must give
+# auto's reason.
 #   run_step_cycles.sh EXECUTABLE PRM
 set -u
 here=$(dirname "$0")
 executable=$1 prm=$2
-absolute=1e-8 relative=1e-8
+read -r absolute relative < <(sed -n 's/^# tolerance: *//p' "$prm")
+absolute=${absolute:-1e-8} relative=${relative:-1e-8}
 ranks=$(sed -n 's/^# ranks: //p' "$prm")
 export RANKS=${ranks:-1}
 
-cycles=$(sed -n 's/^ *set Step cycles *= *\([0-9]*\).*/\1/p' "$prm")
+cycles=$(sed -n 's/^ *set Step cycles *= *\([0-9a-z]*\).*/\1/p' "$prm")
+reason=
+if [ "$cycles" = auto ]; then
+  cycles=$(sed -n 's/^# auto chooses: //p' "$prm")
+  reason=".*(Step cycles = auto: "
+fi
 if [ -z "$cycles" ] || [ "$cycles" -eq 0 ]; then
-  echo "$prm sets no Step cycles > 0."
+  echo "$prm sets no Step cycles > 0 (nor auto with '# auto chooses: L')."
   exit 1
 fi
 "$here/run_scene_variant.sh" cycles "$executable" "$prm" || exit 1
 "$here/run_scene_variant.sh" none "$executable" "$prm" \
   "s/^\( *set Step cycles *=\).*/\1 0/" || exit 1
 
-header="Step cycles: every step.* solved on $cycles coarser mesh"
+header="Step cycles: every step.* solved on $cycles coarser mesh$reason"
 grep -q "^$header" cycles/output.txt || {
-  echo "The run with Step cycles = $cycles does not print '$header' in its header."
+  echo "The run with Step cycles = ${reason:+auto choosing }$cycles does not print '$header' in its header."
   exit 1
 }
 coarse=$(sed -n 's/^  step cycles: \([0-9]*\) active-set iterations.*/\1/p' cycles/output.txt)

@@ -46,8 +46,9 @@ residual of the VI, projected on the bounds, is below them). Line search
 what the program's active-set method does (3, 4, 6 iterations at N = 32,
 64, 128). PETSc's own default for vinewtonrsls, "bt" (backtracking on
 |F|^2), rejects the full step near the kinks of p and crawls with steps of
-0.1: 24, 22, 19 iterations, about 3 to 5 times the solve time, for the
-same answer (-snes_linesearch_type bt). The linear solves are KSP
+0.1: 24, 22, 19 iterations at N = 32, 64, 128 and 37 at 512, about 3 to
+5 times the solve time, for the same answer (-snes_linesearch_type bt;
+benchmarks/run_dolfinx_comparison.py runs both). The linear solves are KSP
 preonly + LU with MUMPS (PETSc's parallel direct solver, what a dolfinx
 user would take for a 2D problem of this size), on the reduced system of
 the inactive dofs, so the matrix is extracted and factorised anew

@@ -8,10 +8,13 @@ step of k = 1/64 from rest: one static contact problem. For N in
 back, the program with its default settings (Method = auto; VTU output,
 profiles, timing summary and verbose output off, as in
 run_method_choice.py) and benchmarks/dolfinx_static_scene.py (dolfinx 0.5,
-PETSc SNES vinewtonrsls with the bounds u_y >= -g, full semismooth Newton
-steps, LU by MUMPS; see its docstring), both on the same discretisation:
-P1 on the "/" triangles, lumped nodal contact. The pair is repeated
---repeat times, interleaved; the fastest run of each counts.
+PETSc SNES vinewtonrsls with the bounds u_y >= -g, LU by MUMPS; see its
+docstring) once per line search of --line-searches: "basic" (full
+semismooth Newton steps, the fastest set-up found) and "bt" (PETSc's
+default for vinewtonrsls, what a dolfinx user gets without the option).
+All solve the same discretisation: P1 on the "/" triangles, lumped nodal
+contact. The runs of a row are repeated --repeat times, interleaved; the
+fastest run of each counts.
 
 Per run: the whole process's wall time (start-up, Python imports, mesh,
 assembly, solve, for dolfinx also the MPI start-up of mpi4py), the peak
@@ -19,7 +22,8 @@ resident memory of the largest rank, the final contact state (unilateral /
 compliance / no contact nodes) and the total contact force sum_i z_i. The
 program's force is read from its time_series.csv (10 digits), dolfinx's
 from its output (12 digits). Per row: dolfinx time / program time and the
-relative difference of the forces; differing contact counts are flagged.
+relative difference of the forces, per line search; differing contact
+counts are flagged.
 
 Before the timed runs the dolfinx script runs once, untimed, at N = 8 so
 that FFCx's JIT cache (~/.cache/fenics) holds the compiled forms and no
@@ -29,7 +33,8 @@ Writes <output-dir>/dolfinx_comparison.csv and dolfinx_comparison.md.
 
     benchmarks/run_dolfinx_comparison.py [--executable build/viscoplastic_contact]
         [--subdivisions 128,256,512] [--ranks 1,2] [--repeat 1]
-        [--python /usr/bin/python3] [--petsc-options "-snes_linesearch_type bt"]
+        [--line-searches basic,bt] [--python /usr/bin/python3]
+        [--petsc-options "-snes_max_it 100"]
         [--timeout 600] [--output-dir doc/back_ends]
 
 Needs Debian's python3-dolfinx (apt-get install python3-dolfinx), run by
@@ -113,8 +118,9 @@ def run_program(executable, n, ranks, timeout):
                                  if cycle_iterations else "")}
 
 
-def run_dolfinx(python, n, ranks, petsc_options, timeout):
-    command = [python, DOLFINX_SCRIPT, "--subdivisions", str(n)] + petsc_options
+def run_dolfinx(python, n, ranks, line_search, petsc_options, timeout):
+    command = ([python, DOLFINX_SCRIPT, "--subdivisions", str(n),
+                "-snes_linesearch_type", line_search] + petsc_options)
     with tempfile.TemporaryDirectory() as workdir:
         wall, memory, out = checked_run(command, ranks, workdir, timeout)
     if out is None or out == "failed":
@@ -143,6 +149,8 @@ def main():
     parser.add_argument("--repeat", type=int, default=1)
     parser.add_argument("--python", default="/usr/bin/python3",
                         help="the Python that imports dolfinx")
+    parser.add_argument("--line-searches", default="basic,bt",
+                        help="the dolfinx set-ups: SNES line search types")
     parser.add_argument("--petsc-options", default="",
                         help="extra PETSc options for the dolfinx script")
     parser.add_argument("--timeout", type=float, default=600)
@@ -151,23 +159,28 @@ def main():
     args = parser.parse_args()
     executable = resolve_executable(args.executable)
     petsc_options = shlex.split(args.petsc_options)
+    searches = [ls for ls in args.line_searches.split(",") if ls]
 
     # Untimed: fills the FFCx JIT cache.
-    run_dolfinx(args.python, 8, 1, petsc_options, args.timeout)
+    run_dolfinx(args.python, 8, 1, searches[0], petsc_options, args.timeout)
 
     rows = []
     for n in [int(n) for n in args.subdivisions.split(",") if n]:
         for ranks in [int(r) for r in args.ranks.split(",") if r]:
-            program = dolfinx = None
+            program = None
+            dolfinx = {ls: None for ls in searches}
             for _ in range(args.repeat):
                 program = fastest(program, run_program(executable, n, ranks,
                                                        args.timeout))
-                dolfinx = fastest(dolfinx, run_dolfinx(args.python, n, ranks,
-                                                       petsc_options, args.timeout))
+                for ls in searches:
+                    dolfinx[ls] = fastest(dolfinx[ls], run_dolfinx(
+                        args.python, n, ranks, ls, petsc_options, args.timeout))
             row = {"N": n, "ranks": ranks,
                    "dofs": program.get("dofs", ""),
                    "contact_nodes": program.get("contact_nodes", "")}
-            for name, r in (("program", program), ("dolfinx", dolfinx)):
+            runs = [("program", program)] + [(f"dolfinx_{ls}", dolfinx[ls])
+                                             for ls in searches]
+            for name, r in runs:
                 row[f"{name}_s"] = (r["status"] if r["status"] != "ok"
                                     else f"{r['time']:.3f}")
                 row[f"{name}_MB"] = f"{r['memory']:.0f}"
@@ -178,28 +191,34 @@ def main():
                                         else "")
             row["program_back_end"] = program.get("back_end", "")
             row["program_cycle_iterations"] = program.get("cycle_iterations", "")
-            row["dolfinx_setup_s"] = (f"{dolfinx['setup']:.3f}"
-                                      if "setup" in dolfinx else "")
-            row["dolfinx_solve_s"] = (f"{dolfinx['solve']:.3f}"
-                                      if "solve" in dolfinx else "")
-            both = program["status"] == "ok" and dolfinx["status"] == "ok"
-            row["time_ratio"] = (f"{dolfinx['time'] / program['time']:.2f}"
-                                 if both else "")
-            row["memory_ratio"] = (f"{dolfinx['memory'] / program['memory']:.2f}"
-                                   if both else "")
-            row["force_rel_diff"] = (
-                f"{abs(dolfinx['force'] - program['force']) / abs(program['force']):.1e}"
-                if both else "")
-            row["counts_agree"] = ("yes" if both and program["counts"]
-                                   == dolfinx["counts"] else "NO" if both else "")
+            summary = []
+            for ls in searches:
+                d = dolfinx[ls]
+                row[f"dolfinx_{ls}_setup_s"] = (f"{d['setup']:.3f}"
+                                                if "setup" in d else "")
+                row[f"dolfinx_{ls}_solve_s"] = (f"{d['solve']:.3f}"
+                                                if "solve" in d else "")
+                both = program["status"] == "ok" and d["status"] == "ok"
+                row[f"time_ratio_{ls}"] = (f"{d['time'] / program['time']:.2f}"
+                                           if both else "")
+                row[f"memory_ratio_{ls}"] = (
+                    f"{d['memory'] / program['memory']:.2f}" if both else "")
+                row[f"force_rel_diff_{ls}"] = (
+                    f"{abs(d['force'] - program['force']) / abs(program['force']):.1e}"
+                    if both else "")
+                row[f"counts_agree_{ls}"] = ("yes" if both and program["counts"]
+                                             == d["counts"] else "NO" if both else "")
+                summary.append(
+                    f"dolfinx ({ls}) {row[f'dolfinx_{ls}_s']} s "
+                    f"({row[f'dolfinx_{ls}_MB']} MB, solve "
+                    f"{row[f'dolfinx_{ls}_solve_s']} s, "
+                    f"{row[f'dolfinx_{ls}_iterations']} SNES iterations), ratio "
+                    f"{row[f'time_ratio_{ls}']}, force rel. diff "
+                    f"{row[f'force_rel_diff_{ls}']}, counts agree: "
+                    f"{row[f'counts_agree_{ls}']}")
             print(f"N = {n:4d}, {ranks} rank(s): program {row['program_s']} s "
-                  f"({row['program_MB']} MB, {row['program_back_end']}), dolfinx "
-                  f"{row['dolfinx_s']} s ({row['dolfinx_MB']} MB, solve "
-                  f"{row['dolfinx_solve_s']} s, {row['dolfinx_iterations']} SNES "
-                  f"iterations); ratio {row['time_ratio']}; forces "
-                  f"{row['program_force']} / {row['dolfinx_force']}, rel. diff "
-                  f"{row['force_rel_diff']}, counts agree: {row['counts_agree']}",
-                  flush=True)
+                  f"({row['program_MB']} MB, {row['program_back_end']}); "
+                  + "; ".join(summary), flush=True)
             rows.append(row)
 
     os.makedirs(args.output_dir, exist_ok=True)
@@ -232,38 +251,50 @@ def main():
         "benchmarks/dolfinx_static_scene.py, an independent implementation of "
         "the same discretisation (P1, lumped nodal contact) in dolfinx "
         + (f"{versions[0]} with PETSc {versions[1]}" if len(versions) == 2 else "")
-        + ": SNES vinewtonrsls (the rigid limit as the bounds u_y >= -g), full "
-        "semismooth Newton steps, LU by MUMPS in every Newton iteration"
+        + ": SNES vinewtonrsls (the rigid limit as the bounds u_y >= -g), LU "
+        "by MUMPS in every Newton iteration"
         + (f", PETSc options `{args.petsc_options}`" if args.petsc_options else "")
-        + ". Both runs of a row ran back to back, the fastest of "
+        + ", with each line search: *basic* (full semismooth Newton steps, the "
+        "fastest set-up found) and *bt* (backtracking, PETSc's default for "
+        "vinewtonrsls). The runs of a row ran back to back, the fastest of "
         f"{args.repeat} interleaved repeat(s) counting. Times are whole "
         "processes in seconds (start-up, imports, mesh, assembly, solve; "
         "dolfinx's forms precompiled by an untimed warm-up run, so no JIT); "
-        "*set-up* and *solve* are dolfinx's own timers (mesh to solver set-up, "
-        "SNES solve). Memory is the peak resident memory of the largest rank "
-        "in MB. *program back end*: the one Method = auto chose; *initial cycles*: "
-        "the program solved the step on a coarser mesh first and started the "
-        "final mesh from its solution. *iterations*: the program's active-set "
-        "iterations on the final mesh (in brackets those on the coarser meshes), "
-        "dolfinx's SNES (Newton) iterations. *contact*: unilateral / compliance / no "
-        "contact nodes. *force*: the total contact force sum_i z_i; *rel. diff*: "
-        "|dolfinx - program| / |program| (the program's force has 10 digits).", "",
-        "| N | ranks | dofs | program [s] | dolfinx [s] | dolfinx / program "
-        "| dolfinx set-up [s] | dolfinx solve [s] | memory: program [MB] "
-        "| dolfinx [MB] | program back end | iterations: program | dolfinx "
-        "| contact: program | dolfinx | force: program | dolfinx | rel. diff |",
-        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---|---|"
-        "---:|---:|---:|"]
+        "*solve* is dolfinx's own timer of the SNES solve. Memory is the peak "
+        "resident memory of the largest rank in MB. *program back end*: the "
+        "one Method = auto chose; *initial cycles*: the program solved the step "
+        "on a coarser mesh first and started the final mesh from its solution. "
+        "*iterations*: the program's active-set iterations on the final mesh "
+        "(in brackets those on the coarser meshes), dolfinx's SNES (Newton) "
+        "iterations. *contact*: unilateral / compliance / no contact nodes "
+        "(the same for every run of a row unless flagged). *force*: the total "
+        "contact force sum_i z_i; *rel. diff*: the largest |dolfinx - program| "
+        "/ |program| of the row (the program's force has 10 digits).", ""]
+    header = ("| N | ranks | dofs | program [s] | "
+              + " | ".join(f"dolfinx {ls} [s] | {ls} / program | {ls} solve [s]"
+                           for ls in searches)
+              + " | memory: program [MB] | "
+              + " | ".join(f"dolfinx {ls} [MB]" for ls in searches)
+              + " | program back end | iterations: program | "
+              + " | ".join(f"dolfinx {ls}" for ls in searches)
+              + " | contact | force: program | rel. diff |")
+    lines += [header, "|" + "|".join(["---:"] * (header.count("|") - 1)) + "|"]
     for r in rows:
+        counts_differ = any(r[f"counts_agree_{ls}"] == "NO" for ls in searches)
+        diffs = [float(r[f"force_rel_diff_{ls}"]) for ls in searches
+                 if r[f"force_rel_diff_{ls}"]]
+        largest_diff = f"{max(diffs):.1e}" if diffs else ""
         lines.append(
             f"| {r['N']} | {r['ranks']} | {r['dofs']} | {r['program_s']} | "
-            f"{r['dolfinx_s']} | {r['time_ratio']} | {r['dolfinx_setup_s']} | "
-            f"{r['dolfinx_solve_s']} | {r['program_MB']} | {r['dolfinx_MB']} | "
-            f"{r['program_back_end']} | {r['program_iterations']}"
+            + " | ".join(f"{r[f'dolfinx_{ls}_s']} | {r[f'time_ratio_{ls}']} | "
+                         f"{r[f'dolfinx_{ls}_solve_s']}" for ls in searches)
+            + f" | {r['program_MB']} | "
+            + " | ".join(r[f"dolfinx_{ls}_MB"] for ls in searches)
+            + f" | {r['program_back_end']} | {r['program_iterations']}"
             f"{' (+' + r['program_cycle_iterations'] + ')' if r['program_cycle_iterations'] else ''} | "
-            f"{r['dolfinx_iterations']} | {r['program_counts']} | "
-            f"{r['dolfinx_counts']}{'' if r['counts_agree'] != 'NO' else ' (differ)'} | "
-            f"{r['program_force']} | {r['dolfinx_force']} | {r['force_rel_diff']} |")
+            + " | ".join(r[f"dolfinx_{ls}_iterations"] for ls in searches)
+            + f" | {r['program_counts']}{' (differ)' if counts_differ else ''} | "
+            f"{r['program_force']} | {largest_diff} |")
     with open(os.path.join(args.output_dir, "dolfinx_comparison.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 

@@ -5,9 +5,13 @@ For each case and rank count the program runs once with every Method
 (condensed, full space, matrix free where the scene allows it) and once with
 the default, Method = auto, one run at a time, the methods of a case back to
 back (repeated --repeat times, interleaved; the fastest of the repeats
-counts). Per run it records the whole process's wall time, the peak resident
-memory of the largest rank, and the back end the program reports; per case
-the best method, auto's choice and the ratio auto / best.
+counts). Where the default run solved on coarser meshes (Initial cycles or
+Step cycles = auto chose some), the case also runs once more with the
+default Method and both entries set to 0 ("no cycles"), so that the nested
+iteration too is weighed against going without it. Per run it records the
+whole process's wall time, the peak resident memory of the largest rank,
+and the back end the program reports; per case the best setting, auto's
+choice and the ratio auto / best.
 
 Cases:
   * shipped: every parameters/*.prm as shipped (VTU output off, nothing else
@@ -53,6 +57,8 @@ from vc_scripts import (REPO_ROOT, add_executable_argument,  # noqa: E402
                         timed_run)
 
 METHODS = ["condensed", "full space", "matrix free", "auto"]
+# The defaults without nested iteration, where the default run had some.
+NO_CYCLES = "no cycles"
 
 def case_prms(args):
     """(name, parameter file text) of every case."""
@@ -88,7 +94,10 @@ def run(executable, text, method, ranks, timeout):
     """One run: wall time [s], peak memory of the largest rank [MB], the back
     end's description; None for a method the scene refuses."""
     overrides = {(("Output",), "Output directory"): "out"}
-    if method != "auto":
+    if method == NO_CYCLES:
+        overrides[(("Mesh adaptation",), "Initial cycles")] = "0"
+        overrides[(("Mesh adaptation",), "Step cycles")] = "0"
+    elif method != "auto":
         overrides[(("Linear solver",), "Method")] = method
     with tempfile.TemporaryDirectory() as workdir:
         with open(os.path.join(workdir, "run.prm"), "w") as f:
@@ -97,6 +106,7 @@ def run(executable, text, method, ranks, timeout):
                                          workdir, timeout)
     if result is None:
         return {"time": wall, "memory": memory, "back_end": "timeout",
+                "nested": False,
                 "cycles": "", "dofs": "", "contact_nodes": "", "steps": ""}
     if result.returncode != 0:
         if "Invalid parameter <Method>" in result.stdout + result.stderr:
@@ -109,8 +119,12 @@ def run(executable, text, method, ranks, timeout):
     # With initial cycles the run's mesh is the last of them.
     cycles = re.search(r"^Initial cycles done: \d+ cells, (\d+) dofs, (\d+) "
                        r"contact nodes.*back end: ([a-z ]+):", result.stdout, re.M)
+    step_cycles = re.search(r"^  step cycles: (\d+) active-set", result.stdout,
+                            re.M)
     return {"time": wall,
             "memory": memory,
+            "nested": bool(cycles or (step_cycles
+                                      and int(step_cycles.group(1)) > 0)),
             "back_end": (cycles.group(3) if cycles else
                          back_end.group(1) if back_end else "?"),
             "cycles": "yes" if cycles else "no",
@@ -149,12 +163,17 @@ def main():
                             result is not None
                             and result["time"] < results[method]["time"]):
                         results[method] = result
+                if results["auto"]["nested"]:
+                    result = run(executable, text, NO_CYCLES, ranks, args.timeout)
+                    if NO_CYCLES not in results or (
+                            result["time"] < results[NO_CYCLES]["time"]):
+                        results[NO_CYCLES] = result
             timed = {m: r for m, r in results.items() if r is not None and m != "auto"}
             best = min(timed, key=lambda m: timed[m]["time"])
             auto = results["auto"]
             row = {"case": name, "ranks": ranks, "dofs": auto["dofs"],
                    "contact_nodes": auto["contact_nodes"], "steps": auto["steps"]}
-            for method in METHODS:
+            for method in METHODS + [NO_CYCLES]:
                 result = results.get(method)
                 key = method.replace(" ", "_")
                 row[f"{key}_s"] = ("" if result is None else
@@ -165,7 +184,8 @@ def main():
             row.update({"auto_chose": auto["back_end"], "best": best,
                         "auto_over_best": f"{auto['time'] / timed[best]['time']:.3f}"})
             print(f"{name:36s} {ranks} rank(s): " + ", ".join(
-                f"{m} {row[m.replace(' ', '_') + '_s'] or '-'} s" for m in METHODS)
+                f"{m} {row[m.replace(' ', '_') + '_s'] or '-'} s"
+                for m in METHODS + [NO_CYCLES])
                 + f"; auto chose {row['auto_chose']}, {row['auto_over_best']} x best ({best})",
                 flush=True)
             rows.append(row)
@@ -192,22 +212,25 @@ def main():
         f"{args.repeat} repeat(s) counting. Times are whole processes "
         "(start-up, mesh, set-up, every step, no VTU output) in seconds; "
         "memory is the peak resident memory of the largest rank in MB. "
-        "*auto / best*: auto's time over the fastest method's, measured in "
-        "the same invocation (at these sizes two runs of one method differ "
-        "by up to 0.1 s). *>T*: stopped at the timeout of T s, counted "
-        "as T. *auto chose*: the back end of the run's first mesh (a "
+        "*no cycles*: the defaults with Initial cycles = 0 and Step cycles = "
+        "0, run only where the default run solved on coarser meshes. "
+        "*auto / best*: auto's time over the fastest other setting's, "
+        "measured in the same invocation (at these sizes two runs of one "
+        "method differ by up to 0.1 s). *>T*: stopped at the timeout of T s, "
+        "counted as T. *auto chose*: the back end of the run's mesh (a "
         "convergence study chooses per run).", "",
         f"Auto within 1.2 times the best: **{within} of {len(rows)}** rows; "
         f"largest ratio {max(ratios):.2f}.", "",
         "| case | ranks | dofs | contact nodes | steps | condensed | full space "
-        "| matrix free | auto | auto chose | best | auto / best | memory: condensed "
-        "| full space | matrix free |",
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---:|---:|---:|---:|"]
+        "| matrix free | auto | no cycles | auto chose | best | auto / best "
+        "| memory: condensed | full space | matrix free |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---:|---:|---:|---:|"]
     for r in rows:
         lines.append(
             f"| {r['case']} | {r['ranks']} | {r['dofs']} | {r['contact_nodes']} | "
             f"{r['steps']} | {r['condensed_s'] or '-'} | {r['full_space_s'] or '-'} | "
-            f"{r['matrix_free_s'] or '-'} | {r['auto_s']} | {r['auto_chose']} | "
+            f"{r['matrix_free_s'] or '-'} | {r['auto_s']} | "
+            f"{r['no_cycles_s'] or '-'} | {r['auto_chose']} | "
             f"{r['best']} | {r['auto_over_best']} | {r['condensed_MB'] or '-'} | "
             f"{r['full_space_MB'] or '-'} | {r['matrix_free_MB'] or '-'} |")
     with open(os.path.join(args.output_dir, args.name + ".md"), "w") as f:

@@ -498,7 +498,7 @@ namespace ViscoContact
     // coarser problem and the transfer are built at their first use and
     // dropped with every new mesh (setup_on_mesh()).
     // Step cycles = auto: one coarser mesh where the cost model expects an
-    // iterative back end and the coarser mesh keeps about 2000 dofs.
+    // iterative back end and the coarser mesh keeps 40000 dofs or more.
     void
                  choose_step_cycles();
     unsigned int n_step_cycles = 0;

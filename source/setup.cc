@@ -595,7 +595,9 @@ namespace ViscoContact
       scene.steps = 1;
     scene.nested_iteration
       = first_step_cycles > 0 && (!cycle_mesh || n_initial_cycles > 0);
-    back_end = choose_method(parameters.method, scene);
+    // The mesh of the run holds the coarser problems of the step cycles too.
+    scene.step_cycles = cycle_mesh ? 0 : n_step_cycles;
+    back_end          = choose_method(parameters.method, scene);
   }
 
 

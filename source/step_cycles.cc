@@ -8,7 +8,8 @@
 // The same step problem on the mesh coarsened once has half as many rows to
 // cross and an eighth of the dofs (in 3D); its contact zone, prolongated, is
 // wrong only within a coarse cell of the front, so the iteration on the fine
-// mesh starts next to its end.
+// mesh starts next to its end. Where the step's own start was already right
+// at the coarser resolution, it is kept (start_from_coarser_mesh()).
 //
 // The coarser problem is the step problem restricted to the coarser space:
 // its operator is K of the coarser mesh (for Q1 on nested meshes the
@@ -184,15 +185,19 @@ namespace ViscoContact
   // @sect4{ViscoplasticContact::choose_step_cycles}
   //
   // Step cycles = auto. As for the initial cycles, the coarser solve pays
-  // where an active-set iteration is a Krylov solve on the whole mesh: on
-  // the cube at k = 1/32 one coarser mesh took the steps after the first
-  // from 3.5 to 2.25 active-set iterations at 353k dofs (from 2.75 to 2.1
-  // at 108k), for a coarser solve that costs about an eighth
-  // (doc/performance.md, "Step cycles"). A second coarser mesh saved no
-  // further iteration there, so auto takes one. None with the condensed
-  // back end (an iteration is a dense solve on the contact nodes), where the
-  // coarser mesh would have fewer than about 2000 dofs, and where the
-  // coarser problem would not be the step problem restricted (see
+  // where an active-set iteration is a Krylov solve on the whole mesh, and
+  // only on large meshes. On the cube at k = 1/32 one coarser mesh took the
+  // eight steps in which the contact zone forms from 3.5 to 2.5 active-set
+  // iterations per step at 353k dofs and from 4.1 to 2.9 at 824k, 1.2 and
+  // 1.35 times faster (doc/performance.md, "Step cycles"); but over the
+  // shipped run's 32 steps, most of them after the zone formed, where the
+  // predicted start is right and the coarser solve is pure cost, they were
+  // 6 to 8% slower at 20k, 47k and 108k dofs. So auto takes one coarser
+  // mesh where it keeps 40000 dofs or more (320k on the mesh of the run in
+  // 3D). A second coarser mesh saved no further iteration, so auto takes
+  // one. None with the condensed back end (an iteration is a dense solve on
+  // the contact nodes), and none where the coarser problem would not be the
+  // step problem restricted (see
   // Parameters::AllParameters::check_step_cycles()). None on simplices: on
   // the tetrahedral cube refined once the prolongated zone was wrong at
   // more nodes, and the iterations fell by a fifth only (27 to 23 at 108k
@@ -201,6 +206,7 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::choose_step_cycles()
   {
+    constexpr double smallest_coarser_dofs = 40000;
     if (const std::optional<unsigned int> set = parameters.step_cycles())
       {
         n_step_cycles = *set;
@@ -243,9 +249,11 @@ namespace ViscoContact
       step_cycles_reason = "the condensed back end is expected, whose "
                            "active-set iterations are dense solves on the "
                            "contact nodes";
-    else if (scene.dofs / std::pow(2., dim) < 2000)
-      step_cycles_reason = "the coarser mesh would have fewer than about "
-                           "2000 dofs, where an iteration is cheap";
+    else if (scene.dofs / std::pow(2., dim) < smallest_coarser_dofs)
+      step_cycles_reason = "the coarser mesh would have fewer than "
+                           "40000 dofs; below that they cost more in the "
+                           "steps after the contact zone formed than they "
+                           "save while it forms";
     else
       {
         n_step_cycles = 1;
@@ -254,7 +262,7 @@ namespace ViscoContact
             + std::string(choice.method == Parameters::Method::matrix_free
                             ? "matrix-free"
                             : "full space")
-            + " back end is expected, and the coarser mesh keeps about 2000 "
+            + " back end is expected, and the coarser mesh keeps 40000 "
               "dofs or more";
       }
   }

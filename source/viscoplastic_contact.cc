@@ -447,8 +447,11 @@ namespace ViscoContact
     SceneSize scene = estimate_scene(cells);
     // A lower estimate: no dense problem (the contact nodes of a Gmsh mesh
     // are a guess) and a factor no fuller per dof than measured.
-    scene.contact_nodes           = 0;
-    scene.lower_estimate          = true;
+    scene.contact_nodes  = 0;
+    scene.lower_estimate = true;
+    // Step cycles set by hand (auto chooses later, from the memory found
+    // here, and a lower estimate need not count them).
+    scene.step_cycles             = parameters.step_cycles().value_or(0);
     const bool         simplex    = scene.simplex;
     const double       dofs       = scene.dofs;
     const unsigned int n_ranks    = scene.ranks;

@@ -50,6 +50,10 @@ namespace ViscoContact
     // Whether the first step runs initial cycles (nested iteration), so
     // that its cold start on this mesh takes few active-set iterations.
     bool nested_iteration = false;
+    // The coarser meshes every step is solved on first (Step cycles), each
+    // with 2^-dim of the dofs of the one above and the same back end, held
+    // beside this mesh's for the whole run.
+    unsigned int step_cycles = 0;
     // The bytes available to each rank: its compute node's memory divided by
     // the ranks on the node, the least over the nodes (0: unknown, every back
     // end fits).

@@ -88,13 +88,23 @@ namespace ViscoContact
     }
 
     // Matrix-free back end: no matrix, a multigrid of global coarsening;
-    // 1.1 kB per dof beyond the libraries and 0.5 to 0.93 times the full
-    // space back end's time per step (cube_3d, 15k to 824k dofs).
+    // 1.1 kB per dof beyond the libraries. Its time per active-set
+    // iteration against the full space back end's, over whole runs
+    // (benchmarks/run_method_choice.py): in 3D 1.4 to 1.6 at 47k dofs
+    // (cube_3d, 32 steps, 1 and 2 ranks: its CG took 11.5 iterations per
+    // solve against ML's 6) and 0.85 at 1.2M (run_matrix_free.py), the model
+    // interpolating in log(dofs) between; in 2D 1.13 to 1.28 from 33k to
+    // 526k dofs (the static scene on quadrilaterals).
     constexpr double matrix_free_bytes_per_dof = 1e3;
     double
     matrix_free_iteration_seconds_per_dof(const SceneSize &scene)
     {
-      return 0.9 * full_space_iteration_seconds_per_dof(scene);
+      const double position
+        = std::clamp(std::log(scene.dofs / 5e4) / std::log(1.2e6 / 5e4),
+                     0.,
+                     1.);
+      return (scene.dim == 2 ? 1.25 : 1.5 - 0.65 * position)
+             * full_space_iteration_seconds_per_dof(scene);
     }
     constexpr double matrix_free_setup_seconds_per_dof = 10e-6;
 
@@ -234,6 +244,14 @@ namespace ViscoContact
         default:
           Assert(false, ExcInternalError());
       }
+    // The coarser problems of the step cycles: their share of the memory
+    // per dof. (Their time is not costed: a coarser iteration costs 2^-dim
+    // of one here, and they save iterations here.)
+    double coarser_share = 0;
+    for (unsigned int level = 1; level <= scene.step_cycles; ++level)
+      coarser_share += std::pow(2., -double(scene.dim * level));
+    cost.bytes_per_rank
+      += coarser_share * (cost.bytes_per_rank - library_bytes_per_rank);
     return cost;
   }
 

@@ -192,12 +192,12 @@ namespace ViscoContact
   // 1.35 times faster (doc/performance.md, "Step cycles"); but over the
   // shipped run's 32 steps, most of them after the zone formed, where the
   // predicted start is right and the coarser solve is pure cost, they were
-  // 6 to 8% slower at 20k, 47k and 108k dofs. So auto takes one coarser
-  // mesh where it keeps 40000 dofs or more (320k on the mesh of the run in
-  // 3D). A second coarser mesh saved no further iteration, so auto takes
-  // one. None with the condensed back end (an iteration is a dense solve on
-  // the contact nodes), and none where the coarser problem would not be the
-  // step problem restricted (see
+  // 6 to 8% slower at 20k, 47k and 108k dofs. So auto takes a coarser mesh
+  // where it keeps 40000 dofs or more (320k on the mesh of the run in 3D),
+  // and only one: a second saved no further iteration. None with the
+  // condensed back end (an iteration is a dense solve on the contact
+  // nodes), and none where the coarser problem would not be the step
+  // problem restricted (see
   // Parameters::AllParameters::check_step_cycles()). None on simplices: on
   // the tetrahedral cube refined once the prolongated zone was wrong at
   // more nodes, and the iterations fell by a fifth only (27 to 23 at 108k

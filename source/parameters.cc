@@ -1431,9 +1431,11 @@ namespace ViscoContact
           "cycles\"; not in a first step that Initial cycles start): each "
           "step problem is first solved "
           "on L coarser meshes (the mesh coarsened uniformly 1, ..., L times, "
-          "with the step's history load restricted to them), and the contact "
-          "zone of that solve starts the active-set iteration on the mesh of "
-          "the run. It changes where the iteration starts, not the solution. "
+          "with the step's history load restricted to them), and where that "
+          "solve moved the contact zone further than the step's predicted "
+          "start (three iterations or more there), its contact zone starts "
+          "the active-set iteration on the mesh of the run. It changes where "
+          "the iteration starts, not the solution. "
           "auto: the program chooses L (printed in the header: 1 on "
           "hypercubes where the back end is expected to be an iterative one "
           "and the coarser mesh keeps 40000 dofs or more, else none); 0: "
@@ -2049,9 +2051,9 @@ namespace ViscoContact
       // What the coarser meshes are made of: the global refinements, and of
       // a generated box the factors of 2 of its subdivisions (at most
       // box_refinement_limit for triangles, none for tetrahedra).
-      const unsigned int box_factors
-        = nested_coarsenings() - global_refinements;
-      std::string made_of
+      const unsigned int most        = nested_coarsenings();
+      const unsigned int box_factors = most - global_refinements;
+      std::string        made_of
         = "Global refinements = " + std::to_string(global_refinements);
       if (box_factors > 0)
         made_of += ", and " + std::to_string(box_factors)
@@ -2060,7 +2062,6 @@ namespace ViscoContact
       else if (cell_type == CellType::simplex && mesh_file.empty())
         made_of += "; a generated box of simplices is coarsened only as "
                    "triangles cut by / or backslash";
-      const unsigned int most = nested_coarsenings();
       refuse_unless(cycles <= most,
                     (most == 0 ? std::string("0")
                                : "at most " + std::to_string(most))

@@ -699,7 +699,8 @@ namespace ViscoContact
             << (first_step_cycles > 0 ? " after the first" : "")
             << " solved on " << n_step_cycles << " coarser mesh"
             << (n_step_cycles > 1 ? "es" : "")
-            << " first, whose contact zone starts it on the mesh of the run"
+            << " first, whose contact zone starts it on the mesh of the run "
+               "where it moved further than the predicted start"
             << step_cycles_auto << '\n';
     else if (!step_cycles_auto.empty())
       pcout << "Step cycles: none" << step_cycles_auto << '\n';

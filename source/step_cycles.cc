@@ -206,7 +206,8 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::choose_step_cycles()
   {
-    constexpr double smallest_coarser_dofs = 40000;
+    constexpr unsigned int smallest_coarser_dofs = 40000;
+    const std::string      smallest = std::to_string(smallest_coarser_dofs);
     if (const std::optional<unsigned int> set = parameters.step_cycles())
       {
         n_step_cycles = *set;
@@ -250,10 +251,10 @@ namespace ViscoContact
                            "active-set iterations are dense solves on the "
                            "contact nodes";
     else if (scene.dofs / std::pow(2., dim) < smallest_coarser_dofs)
-      step_cycles_reason = "the coarser mesh would have fewer than "
-                           "40000 dofs; below that they cost more in the "
-                           "steps after the contact zone formed than they "
-                           "save while it forms";
+      step_cycles_reason = "the coarser mesh would have fewer than " + smallest
+                           + " dofs; below that they cost more in the steps "
+                             "after the contact zone formed than they save "
+                             "while it forms";
     else
       {
         n_step_cycles = 1;
@@ -262,8 +263,8 @@ namespace ViscoContact
             + std::string(choice.method == Parameters::Method::matrix_free
                             ? "matrix-free"
                             : "full space")
-            + " back end is expected, and the coarser mesh keeps 40000 "
-              "dofs or more";
+            + " back end is expected, and the coarser mesh keeps " + smallest
+            + " dofs or more";
       }
   }
 

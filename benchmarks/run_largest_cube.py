@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The largest cube this machine runs with the shipped defaults (issue 29).
+"""The largest cube this machine runs with the shipped defaults.
 
 Runs parameters/cube_3d.prm as shipped (Method = auto, Initial cycles =
 auto, VTU output on) with only these entries changed: Subdivisions = N

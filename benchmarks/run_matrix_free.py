@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The matrix-free back end against the full space back end (issue 29).
+"""The matrix-free back end against the full space back end.
 
 Runs parameters/cube_3d.prm (hexahedra, p4est) at increasing resolution with
 Linear solver / Method = full space (ML AMG on the assembled K) and matrix

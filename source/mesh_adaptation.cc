@@ -784,6 +784,12 @@ namespace ViscoContact
           << " contact nodes for step 1; back end: "
           << contact_solver->description() << " (" << back_end.reason << ")"
           << std::endl;
+    // The header announced the step cycles auto chose from its estimate;
+    // with the condensed back end on this mesh none run.
+    if (step_cycles_dropped())
+      pcout << "Step cycles: none after all (Step cycles = auto: Method = "
+               "auto chose the condensed back end for this mesh)"
+            << std::endl;
   }
 
 

@@ -54,7 +54,7 @@ ML_CHOSEN = "ml:pde=3,thr=0"
 HYPRE_BEST = "hypre:bs=3,theta=0.5,coarsen=HMIS,interp=ext+i,pmax=4"
 GMG_BEST = "gmg:degree=4"
 SWEEP = [
-    ("ML as configured before", ML_BEFORE),
+    ("ML, PDE equations 1, threshold 0.02", ML_BEFORE),
     ("ML, PDE equations 3", "ml:pde=3"),
     ("ML, PDE equations 3, threshold 0 (chosen for hexahedra)", ML_CHOSEN),
     ("ML, PDE equations 1, threshold 0", "ml:pde=1,thr=0"),
@@ -87,7 +87,7 @@ SWEEP = [
 # The scaling: the configuration before, the chosen one, and the best of
 # the other kinds.
 SCALING = [
-    ("ML as configured before", ML_BEFORE),
+    ("ML, PDE equations 1, threshold 0.02", ML_BEFORE),
     ("ML, PDE equations 3, threshold 0 (chosen for hexahedra)", ML_CHOSEN),
     ("BoomerAMG, HMIS, ext+i, P_max 4, block size 3, theta 0.5", HYPRE_BEST),
     ("GMG matrix-free, Chebyshev degree 4", GMG_BEST),

@@ -56,8 +56,8 @@ PATTERNS = [("/", "slash"), ("backslash", "backslash"),
 DESCRIPTIONS = {
     "/": "each square split by the diagonal from (x_i,y_j) to (x_i+1,y_j+1) "
          "(the published benchmark; the default)",
-    "backslash": "each square split by the other diagonal (the mesh the "
-                 "program used before the pattern became selectable)",
+    "backslash": "each square split by the other diagonal, from "
+                 "(x_i+1,y_j) to (x_i,y_j+1)",
     "union jack": "alternating diagonals that meet at every second vertex",
     "crossed": "both diagonals around a new vertex at the centre of each "
                "square (4 triangles per square)",

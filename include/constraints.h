@@ -7,6 +7,8 @@
 #define viscoplastic_contact_constraints_h
 
 #include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
 
 #include <deal.II/dofs/dof_handler.h>
@@ -49,6 +51,17 @@ namespace ViscoContact
     const IndexSet                        &locally_relevant_dofs,
     AffineConstraints<double>             &constraints,
     AffineConstraints<double>             *open_constraints = nullptr);
+
+  // The unit outward normal of the planar boundary part id (a plane of
+  // symmetry): the mean of its faces' normals over all ranks, components
+  // at rounding level set to zero. A part that is not planar is refused on
+  // every rank, naming the entry. Collective.
+  template <int dim>
+  Tensor<1, dim>
+  symmetry_plane_normal(const Mapping<dim>      &mapping,
+                        const DoFHandler<dim>   &dof_handler,
+                        const types::boundary_id id,
+                        const MPI_Comm           communicator);
 } // namespace ViscoContact
 
 #endif

@@ -268,8 +268,9 @@ namespace ViscoContact
     // Over all ranks: sum_i z_i over the nodes of each zone.
     std::vector<double>
     zone_forces(const MPI_Comm communicator) const;
-    // Over all ranks: the sum of the weights of the nodes in contact (the
-    // contact width in 2D, the area in 3D) and the largest pressure z / w.
+    // Over all ranks: the sum of the weights of the nodes in contact with a
+    // positive pressure (the contact width in 2D, the area in 3D) and the
+    // largest pressure z / w.
     double
     contact_area(const MPI_Comm communicator) const;
     double

@@ -78,7 +78,12 @@ namespace ViscoContact
       // The node's row n_i of N on its dofs, r_i = n_i . u: the normal (or
       // the zone's direction) without the constrained components, of
       // length 1 except on an oblique plane of symmetry (find_nodes()).
-      Tensor<1, dim>                           normal;
+      Tensor<1, dim> normal;
+      // The direction of the node's contact force in space (the unit
+      // vector of which normal is the row; the same where no plane of
+      // symmetry constrains the node): the force the obstacle exerts on
+      // the body is -z_i direction - sum_j t_ij tangents_j.
+      Tensor<1, dim>                           direction;
       std::array<types::global_dof_index, dim> dofs;
       // The same dofs as indices into the local storage of the
       // displacement vectors (owned entries first, then ghosts).

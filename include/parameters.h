@@ -314,8 +314,9 @@ namespace ViscoContact
       check_parameters(ParameterHandler  &prm,
                        const unsigned int dim,
                        const std::string &subsection = "Contact") const;
-      // The numbers of Gap direction (empty if it is "normal" or not a list
-      // of numbers).
+      // Gap direction as a unit vector (empty if it is "normal", not a list
+      // of finite numbers, or all zero). Scaled by its largest entry before
+      // it is normalised, so that neither 1e300 nor 1e-300 overflows.
       std::vector<double>
       direction_vector() const;
     };

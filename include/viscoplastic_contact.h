@@ -35,8 +35,10 @@
 #include "parameters.h"
 #include "robustness/checkpoint_file.h"
 #include "robustness/output_folder.h"
+#include "step_report.h"
 #include "time_schedule.h"
 
+#include <array>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -272,11 +274,24 @@ namespace ViscoContact
     // u's constrained entries from the constraints and g_n.
     void
     apply_constraints(VectorType &u) const;
-    // The force every Dirichlet part exerts on the body at time t_n,
-    // (sigma_n, eps(v)) - (f_n, v) summed over the part's dofs, per
-    // component. Collective.
+    // The force every Dirichlet part and then every plane of symmetry
+    // exerts on the body at time t_n, (sigma_n, eps(v)) - (f_n, v) summed
+    // over the part's dofs, per component; reaction_part_names() names
+    // them. Collective.
     std::vector<Tensor<1, dim>>
     reaction_forces(const double time);
+    std::vector<std::string>
+    reaction_part_names() const;
+    // Per mesh: the owned vertices of the planes of symmetry
+    // (roller_vertices), given the local dofs a Dirichlet part takes.
+    void
+    setup_roller_vertices(const std::vector<bool> &dirichlet_dof);
+    // The reactions of the planes of symmetry from the residual at their
+    // owned vertices, added to plane_forces (the residual's contact nodes
+    // are changed).
+    void
+    add_roller_reactions(VectorType                      &residual,
+                         const ArrayView<Tensor<1, dim>> &plane_forces) const;
     // Every load value at the load points and the times of the run is
     // finite, or all ranks stop with a message naming the entry.
     void
@@ -392,10 +407,12 @@ namespace ViscoContact
     // A compute node's memory divided by the ranks on it (0 if unknown),
     // for the cost model of Method = auto.
     double memory_per_rank = 0;
-    // Collective: the peak memory of the ranks up to now; when names the
-    // moment ("after the mesh", ..., "over the run").
+    // Collective: the peak memory of the ranks up to now, for the run
+    // summary (peak_memory_lines); when names the moment ("after the mesh",
+    // ..., "over the run").
     void
-    print_peak_memory(const std::string &when) const;
+                             record_peak_memory(const std::string &when);
+    std::vector<std::string> peak_memory_lines;
     // The .vtu records of n_steps steps fit on the disk of the output folder
     // (a lower estimate of their size), or all ranks stop with the entries
     // that make them.
@@ -793,8 +810,20 @@ namespace ViscoContact
     std::vector<DirichletDof> dirichlet_dofs;
     std::vector<unsigned int> lifting_cells;
     std::vector<unsigned int> reaction_cells;
-    VectorType                dirichlet_values;
-    VectorType                lifting_load;
+    // The owned vertices on the planes of symmetry (rollers), for their
+    // reactions: the vertex's dofs (local storage), the components a
+    // Dirichlet part takes (its reaction has them), and the planes it lies
+    // on (indices into parameters.symmetry_ids and symmetry_normals).
+    struct RollerVertex
+    {
+      std::array<unsigned int, dim> local_dofs;
+      std::array<bool, dim>         dirichlet;
+      std::vector<unsigned int>     planes;
+    };
+    std::vector<RollerVertex>                roller_vertices;
+    std::vector<Tensor<1, dim>>              symmetry_normals;
+    VectorType                               dirichlet_values;
+    VectorType                               lifting_load;
     std::vector<QuadraturePointHistory<dim>> quadrature_point_history;
     double                                   max_von_mises = 0;
     // The relative error estimate of the last stress update.
@@ -871,11 +900,13 @@ namespace ViscoContact
     // The output folder (created by run() before the set-up, which checks
     // and locks it), the .pvd list (kept on rank 0), the time spent in the
     // time loop without output, the wall time of the run a resumed run
-    // continues, and the step of the last checkpoint.
+    // continues, the progress of the time loop (for the step lines), and
+    // the step of the last checkpoint.
     std::unique_ptr<OutputFolder>               output_folder;
     std::vector<std::pair<double, std::string>> times_and_names;
     double                                      time_loop_compute_time = 0;
     double                                      loop_time_offset       = 0;
+    std::optional<RunProgress>                  progress;
     unsigned int last_checkpoint_step = numbers::invalid_unsigned_int;
   };
 } // namespace ViscoContact

@@ -18,6 +18,10 @@
 
 #include <deal.II/dofs/dof_tools.h>
 
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include "constraints.h"
 #include "rigid_motions.h"
 #include "robustness/file_output.h"
 #include "time_schedule.h"
@@ -26,6 +30,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <sstream>
 
 namespace ViscoContact
@@ -119,6 +124,8 @@ namespace ViscoContact
                                               face->vertex(v)});
                   }
 
+    setup_roller_vertices(taken);
+
     // The owned cells with a dof where a marker is not zero.
     const auto cells_touching = [&](const VectorType &marker) {
       std::vector<unsigned int> cells;
@@ -134,12 +141,16 @@ namespace ViscoContact
             }
       return cells;
     };
-    // The reactions need the residual at the Dirichlet dofs and at the
-    // hanging nodes that pass theirs on to them.
+    // The reactions need the residual at the Dirichlet dofs, at the
+    // vertices of the planes of symmetry, and at the hanging nodes that pass
+    // theirs on to them.
     VectorType marker(solution);
     marker = 0;
     for (const DirichletDof &dof : dirichlet_dofs)
       marker.local_element(dof.local_index) = 1;
+    for (const RollerVertex &vertex : roller_vertices)
+      for (const unsigned int local : vertex.local_dofs)
+        marker.local_element(local) = 1;
     marker.update_ghost_values();
     for (const auto &line : hanging_node_constraints.get_lines())
       if (partitioner.in_local_range(line.index))
@@ -164,6 +175,74 @@ namespace ViscoContact
         marker.update_ghost_values();
         lifting_cells = cells_touching(marker);
       }
+  }
+
+
+
+  // @sect4{ViscoplasticContact::setup_roller_vertices}
+  //
+  // The owned vertices of the faces on each plane of symmetry that are not
+  // hanging nodes, with the planes each lies on (a vertex on an edge or a
+  // corner lies on several) and the components a Dirichlet part takes
+  // (dirichlet_dof[local]: setup_dirichlet_dofs()).
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::setup_roller_vertices(
+    const std::vector<bool> &dirichlet_dof)
+  {
+    roller_vertices.clear();
+    symmetry_normals.clear();
+    for (const auto id : parameters.symmetry_ids)
+      symmetry_normals.push_back(
+        symmetry_plane_normal(mapping, dof_handler, id, mpi_communicator));
+    const Utilities::MPI::Partitioner &partitioner
+      = *solution.get_partitioner();
+    std::map<types::global_dof_index, unsigned int> vertex_of_x_dof;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary())
+            for (unsigned int p = 0; p < parameters.symmetry_ids.size(); ++p)
+              if (face->boundary_id() == parameters.symmetry_ids[p])
+                for (const unsigned int v : face->vertex_indices())
+                  {
+                    const types::global_dof_index x_dof
+                      = face->vertex_dof_index(v, 0);
+                    if (!partitioner.in_local_range(x_dof)
+                        || hanging_node_constraints.is_constrained(x_dof))
+                      continue;
+                    const auto [entry, is_new]
+                      = vertex_of_x_dof.emplace(x_dof, roller_vertices.size());
+                    if (is_new)
+                      {
+                        RollerVertex vertex;
+                        for (unsigned int c = 0; c < dim; ++c)
+                          {
+                            vertex.local_dofs[c] = partitioner.global_to_local(
+                              face->vertex_dof_index(v, c));
+                            vertex.dirichlet[c]
+                              = dirichlet_dof[vertex.local_dofs[c]];
+                          }
+                        roller_vertices.push_back(vertex);
+                      }
+                    std::vector<unsigned int> &planes
+                      = roller_vertices[entry->second].planes;
+                    if (std::find(planes.begin(), planes.end(), p)
+                        == planes.end())
+                      planes.push_back(p);
+                  }
+  }
+
+
+
+  template <int dim>
+  std::vector<std::string>
+  ViscoplasticContact<dim>::reaction_part_names() const
+  {
+    std::vector<std::string> names = dirichlet_part_names;
+    for (const auto id : parameters.symmetry_ids)
+      names.push_back("symmetry_" + std::to_string(id));
+    return names;
   }
 
 
@@ -394,7 +473,8 @@ namespace ViscoContact
   std::vector<Tensor<1, dim>>
   ViscoplasticContact<dim>::reaction_forces(const double time)
   {
-    std::vector<Tensor<1, dim>> forces(dirichlet_part_names.size());
+    std::vector<Tensor<1, dim>> forces(dirichlet_part_names.size()
+                                       + parameters.symmetry_ids.size());
     if (forces.empty())
       return forces;
     VectorType residual(solution);
@@ -463,9 +543,78 @@ namespace ViscoContact
       if (dof.owned)
         forces[dof.part][dof.component]
           += residual.local_element(dof.local_index);
+    add_roller_reactions(residual,
+                         make_array_view(forces.begin()
+                                           + dirichlet_part_names.size(),
+                                         forces.end()));
     for (Tensor<1, dim> &force : forces)
       force = Utilities::MPI::sum(force, mpi_communicator);
     return forces;
+  }
+
+
+
+  // @sect4{ViscoplasticContact::add_roller_reactions}
+  //
+  // A vertex on a plane of symmetry holds the plane's reaction, and where it
+  // is a contact node also the contact force: the contact force is taken
+  // out first (the residual plus z_i d_i and t_ij tau_ij, its direction and
+  // tangents in space: zero at the free components of the vertex then, by
+  // equilibrium), and what is left, apart from the components a Dirichlet
+  // part takes, lies in the span of the normals of the planes at the
+  // vertex. One plane: its
+  // force is all of it; an edge or a corner: the least-squares split over
+  // the planes' normals (exact for independent normals, which the
+  // constraints need). Adds this rank's vertices to the planes' forces.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::add_roller_reactions(
+    VectorType                      &residual,
+    const ArrayView<Tensor<1, dim>> &plane_forces) const
+  {
+    if (roller_vertices.empty())
+      return;
+    if (contact_enabled)
+      for (unsigned int i = 0; i < contact_set.size(); ++i)
+        {
+          const auto    &node  = contact_set.node(i);
+          Tensor<1, dim> force = contact_set.z[i] * node.direction;
+          for (unsigned int j = 0; j < contact_set.n_tangential(i); ++j)
+            force += contact_set.t[i][j] * node.tangents[j];
+          for (unsigned int c = 0; c < dim; ++c)
+            residual.local_element(node.local_dofs[c]) += force[c];
+        }
+    for (const RollerVertex &vertex : roller_vertices)
+      {
+        Tensor<1, dim> force;
+        for (unsigned int c = 0; c < dim; ++c)
+          if (!vertex.dirichlet[c])
+            force[c] = residual.local_element(vertex.local_dofs[c]);
+        const unsigned int          m = vertex.planes.size();
+        std::vector<Tensor<1, dim>> normals(m);
+        for (unsigned int a = 0; a < m; ++a)
+          for (unsigned int c = 0; c < dim; ++c)
+            if (!vertex.dirichlet[c])
+              normals[a][c] = symmetry_normals[vertex.planes[a]][c];
+        // The normal equations G alpha = N^T force of the split.
+        FullMatrix<double> gram(m, m);
+        Vector<double>     alpha(m), projection(m);
+        for (unsigned int a = 0; a < m; ++a)
+          {
+            projection(a) = normals[a] * force;
+            for (unsigned int b = 0; b < m; ++b)
+              gram(a, b) = normals[a] * normals[b];
+          }
+        if (m == 1)
+          alpha(0) = gram(0, 0) > 0 ? projection(0) / gram(0, 0) : 0.;
+        else if (std::abs(gram.determinant()) > 1e-12)
+          {
+            gram.gauss_jordan();
+            gram.vmult(alpha, projection);
+          }
+        for (unsigned int a = 0; a < m; ++a)
+          plane_forces[vertex.planes[a]] += alpha(a) * normals[a];
+      }
   }
 
 

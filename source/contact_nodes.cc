@@ -246,20 +246,22 @@ namespace ViscoContact
     const unsigned int k = tangential_directions[i];
     if (k == 0)
       return {{false, false}};
-    const double g      = bound_of(i);
-    Tangential   q      = {{0, 0}};
-    double       q_norm = 0;
+    const double g = bound_of(i);
+    Tangential   q = {{0, 0}};
     for (unsigned int j = 0; j < k; ++j)
-      {
-        q[j] = t[i][j] + c[i] * w[i] * (s[i][j] - slip_reference[i][j]);
-        q_norm += q[j] * q[j];
-      }
-    q_norm = std::sqrt(q_norm);
+      q[j] = t[i][j] + c[i] * w[i] * (s[i][j] - slip_reference[i][j]);
+    // hypot: the squares of forces of a tiny bound (a Friction coefficient
+    // of 1e-200, say) would underflow to zero.
+    const double q_norm = std::hypot(q[0], q[1]);
 
     const unsigned int old      = friction_states[i];
     const double       rounding = 1e-9;
     unsigned int       next     = (q_norm <= g ? stick : slip);
-    if (g <= 0)
+    // A bound below the rounding of the node's forces (a Friction
+    // coefficient or Slip bound of 1e-200, say) holds nothing the arithmetic
+    // resolves: the node is free, as with a zero bound. Otherwise rounding in
+    // q would decide between stick and slip, and the iteration would cycle.
+    if (g <= 1e-14 * (std::abs(z[i]) + q_norm))
       next = free_tangential;
     else if (old == stick && q_norm <= g * (1 + rounding))
       next = stick;
@@ -461,7 +463,7 @@ namespace ViscoContact
                                    const double       g)
   {
     const unsigned int k      = tangential_directions[i];
-    const double       q_norm = std::sqrt(q[0] * q[0] + q[1] * q[1]);
+    const double       q_norm = std::hypot(q[0], q[1]);
     for (unsigned int j = 0; j < k; ++j)
       slip_direction[i][j] = q[j] / q_norm;
     const double gamma = g / q_norm;
@@ -926,16 +928,18 @@ namespace ViscoContact
 
   // @sect4{ContactNodes::contact_area and peak_pressure}
   //
-  // Over all ranks: the weights of the nodes in contact (status 1 or 2)
-  // summed, which is the contact width in 2D and the contact area in 3D to
-  // within the weight of the nodes at the edge of the zone, and the largest
-  // nodal pressure z_i / w_i. Both are collective.
+  // Over all ranks: the weights of the nodes that carry a pressure (z_i >
+  // 0) summed, which is the contact width in 2D and the contact area in 3D
+  // to within the weight of the nodes at the edge of the zone, and the
+  // largest nodal pressure z_i / w_i. A node that touches the obstacle
+  // without being pressed (at zero load, say) is not counted: the area is
+  // where the pressure acts. Both are collective.
   double
   ContactNodes::contact_area(const MPI_Comm communicator) const
   {
     double sum = 0;
     for (unsigned int i = 0; i < size(); ++i)
-      if (status(i) > 0)
+      if (status(i) > 0 && z[i] > 0)
         sum += w[i];
     return Utilities::MPI::sum(sum, communicator);
   }

@@ -294,6 +294,7 @@ namespace ViscoContact
   template <int dim>
   struct FreeFrame
   {
+    Tensor<1, dim>                      direction;
     Tensor<1, dim>                      normal_row;
     unsigned int                        n_tangents = 0;
     std::array<Tensor<1, dim>, dim - 1> tangent_rows, tangents;
@@ -361,6 +362,7 @@ namespace ViscoContact
     if (direction.norm() <= 1e-3 * length)
       return frame;
     direction /= direction.norm();
+    frame.direction = direction;
     for (unsigned int f = 0; f < dim; ++f)
       for (unsigned int c = 0; c < dim; ++c)
         frame.normal_row[f] += C(c, f) * direction[c];
@@ -459,7 +461,8 @@ namespace ViscoContact
                     node.normal = *zones[zone].direction;
                   const FreeFrame<dim> frame
                     = free_frame<dim>(node, constraints);
-                  node.normal = frame.normal_row;
+                  node.normal    = frame.normal_row;
+                  node.direction = frame.direction;
                   if (node.normal.norm() == 0)
                     continue;
                   // The tangential frame, in a frictional zone only. Its

@@ -433,8 +433,10 @@ namespace ViscoContact
                                  "nothing for the generated box."));
         // The reader's own complaint, whatever its type, becomes part of the
         // message; an empty mesh is an error too.
-        // A node id defined twice would silently replace the first node.
-        check_gmsh_node_ids(file);
+        // A count the reader would take for a size (a negative one, say)
+        // or a node id defined twice (which would silently replace the
+        // first node) is refused first.
+        check_gmsh_sections(file);
         std::string               reader_message;
         CheckedTriangulation<dim> checked_mesh(file);
         try

@@ -34,8 +34,8 @@ namespace ViscoContact
     // The first line of time_series.csv: what the columns are. After the
     // counts and the force, the size of the contact zone (width in 2D,
     // area in 3D) and the peak pressure, with several contact zones the
-    // contact force of each, then per Dirichlet part the components of the
-    // force it exerts on the body.
+    // contact force of each, then per Dirichlet part and plane of symmetry
+    // the components of the force it exerts on the body.
     template <int dim>
     std::string
     time_series_header(const std::vector<unsigned int> &contact_zone_numbers,
@@ -225,14 +225,14 @@ namespace ViscoContact
           output_folder->stage(
             "time_series.csv",
             time_series_header<dim>(contact_zone_numbers(),
-                                    dirichlet_part_names,
+                                    reaction_part_names(),
                                     frictional_zone_numbers()));
       }
     output_folder->commit();
     if (parameters.resume)
       truncate_time_series(*output_folder,
                            time_series_header<dim>(contact_zone_numbers(),
-                                                   dirichlet_part_names,
+                                                   reaction_part_names(),
                                                    frictional_zone_numbers()),
                            resume_step);
   }
@@ -738,15 +738,17 @@ namespace ViscoContact
 
 
 
-  // @sect4{ViscoplasticContact::print_peak_memory}
+  // @sect4{ViscoplasticContact::record_peak_memory}
   //
   // The high-water mark of each rank's resident memory up to now (VmHWM):
   // the sum over the ranks, the largest rank, and on simplex meshes
   // the largest group root (which held the whole mesh during set-up,
-  // mesh.cc) and the largest other rank apart.
+  // mesh.cc) and the largest other rank apart. Measured now (collective),
+  // printed with the run summary, so that the start of a run shows the scene
+  // and its steps.
   template <int dim>
   void
-  ViscoplasticContact<dim>::print_peak_memory(const std::string &when) const
+  ViscoplasticContact<dim>::record_peak_memory(const std::string &when)
   {
     Utilities::System::MemoryStats memory;
     Utilities::System::get_memory_stats(memory);
@@ -769,7 +771,7 @@ namespace ViscoContact
         else
           line << "none";
       }
-    pcout << line.str() << std::endl;
+    peak_memory_lines.push_back(line.str());
   }
 
 
@@ -854,7 +856,10 @@ namespace ViscoContact
     // build a preconditioner the run did not need.
     if (parameters.print_timing_summary)
       {
-        print_peak_memory("over the run");
+        record_peak_memory("over the run");
+        for (const std::string &line : peak_memory_lines)
+          pcout << line << '\n';
+        pcout << std::flush;
         print_cost_measurement();
       }
   }

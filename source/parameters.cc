@@ -177,7 +177,10 @@ namespace ViscoContact
           "Lengths",
           lengths,
           "Edge lengths L1, L2 (, L3) of the rectangular body "
-          "(0,L1)x(0,L2)(x(0,L3)), one per dimension, each > 0.",
+          "(0,L1)x(0,L2)(x(0,L3)), one per dimension, each > 0; the "
+          "expressions of the file may use them as the constants L1, L2, L3. "
+          "With a Mesh file the mesh gives the geometry: Lengths then only "
+          "sets those constants (2 or 3 values, whatever the Dimension).",
           Patterns::List(Patterns::Double(0), 2, 3));
         prm.add_parameter("Subdivisions",
                           subdivisions,
@@ -271,12 +274,17 @@ namespace ViscoContact
     {
       prm.enter_subsection("Geometry");
       {
-        require(lengths.size() == dimension,
+        // A mesh file gives the geometry itself: then Lengths only sets the
+        // constants L1, L2(, L3) of the expressions, as many as it has.
+        require(lengths.size() == dimension || !mesh_file.empty(),
                 "Geometry",
                 "Lengths",
                 prm.get("Lengths"),
                 "exactly one length per space dimension ("
-                  + std::to_string(dimension) + " values)");
+                  + std::to_string(dimension)
+                  + " values) for the generated box (with a Mesh file, "
+                    "Lengths only sets the constants L1, L2, L3 of the "
+                    "expressions and may have 2 or 3 values)");
         for (const double l : lengths)
           require(l > 0,
                   "Geometry",
@@ -388,14 +396,26 @@ namespace ViscoContact
     Contact::direction_vector() const
     {
       std::vector<double> d;
+      double              largest = 0;
       for (const std::string &x : Utilities::split_string_list(gap_direction))
         {
           char        *end   = nullptr;
           const double value = std::strtod(x.c_str(), &end);
-          if (x.empty() || end != x.c_str() + x.size())
+          if (x.empty() || end != x.c_str() + x.size() || !std::isfinite(value))
             return {};
           d.push_back(value);
+          largest = std::max(largest, std::abs(value));
         }
+      if (!(largest > 0))
+        return {};
+      double length = 0;
+      for (double &x : d)
+        {
+          x /= largest;
+          length += x * x;
+        }
+      for (double &x : d)
+        x /= std::sqrt(length);
       return d;
     }
 
@@ -850,12 +870,7 @@ namespace ViscoContact
       {
         if (gap_direction != "normal")
           {
-            const std::vector<double> d      = direction_vector();
-            double                    length = 0;
-            for (const double x : d)
-              length += x * x;
-            require(d.size() == dim && std::sqrt(length) > 0
-                      && std::isfinite(length),
+            require(direction_vector().size() == dim,
                     subsection,
                     "Gap direction",
                     gap_direction,

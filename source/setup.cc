@@ -67,7 +67,7 @@ namespace ViscoContact
           pcout << " (one rank in every " << group_size
                 << " builds the whole mesh and hands out the parts)";
         pcout << std::endl;
-        print_peak_memory("after the mesh");
+        record_peak_memory("after the mesh");
       }
   }
 
@@ -103,16 +103,16 @@ namespace ViscoContact
     setup_memory_reported = true;
     setup_system();
     if (report_memory)
-      print_peak_memory("after the operator");
+      record_peak_memory("after the operator");
     setup_stress_points();
     setup_dirichlet_dofs();
     check_rigid_motions();
     setup_contact();
     if (report_memory)
-      print_peak_memory("after the stress points and contact nodes");
+      record_peak_memory("after the stress points and contact nodes");
     setup_back_end();
     if (report_memory)
-      print_peak_memory("after the back end");
+      record_peak_memory("after the back end");
   }
 
 
@@ -933,65 +933,65 @@ namespace ViscoContact
 
 
 
+  // @sect4{symmetry_plane_normal}
+  //
+  // The mean of the part's faces' normals, weighted by their areas. A face
+  // whose normal differs from the mean by more than 1e-8 makes the part
+  // not planar.
+  template <int dim>
+  Tensor<1, dim>
+  symmetry_plane_normal(const Mapping<dim>      &mapping,
+                        const DoFHandler<dim>   &dof_handler,
+                        const types::boundary_id id,
+                        const MPI_Comm           communicator)
+  {
+    const ReferenceCell cell_type = dof_handler.get_fe().reference_cell();
+    FEFaceValues<dim>   face_values(
+      mapping,
+      dof_handler.get_fe(),
+      cell_type.face_reference_cell(0)
+        .template get_gauss_type_quadrature<dim - 1>(1),
+      update_normal_vectors | update_JxW_values | update_quadrature_points);
+    std::vector<std::pair<Tensor<1, dim>, Point<dim>>> faces;
+    Tensor<1, dim>                                     sum;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary()
+              && cell->face(f)->boundary_id() == id)
+            {
+              face_values.reinit(cell, f);
+              sum += face_values.normal_vector(0) * face_values.JxW(0);
+              faces.emplace_back(face_values.normal_vector(0),
+                                 face_values.quadrature_point(0));
+            }
+    Tensor<1, dim> normal = Utilities::MPI::sum(sum, communicator);
+    normal /= normal.norm();
+    for (unsigned int c = 0; c < dim; ++c)
+      if (std::abs(normal[c]) < 1e-12)
+        normal[c] = 0;
+    normal /= normal.norm();
+    std::string problem;
+    for (const auto &[face_normal, center] : faces)
+      if (problem.empty() && (face_normal - normal).norm() > 1e-8)
+        {
+          std::ostringstream message;
+          message << "Invalid parameter <Symmetry boundary ids> in "
+                     "subsection <Boundary>: boundary id "
+                  << int(id) << " is not planar (its face at (" << center
+                  << ") has the normal (" << face_normal
+                  << "), the part's mean normal is (" << normal
+                  << ")); accepted: planar boundary parts.";
+          problem = message.str();
+        }
+    FileOutput::agree_on_problem(problem, communicator);
+    return normal;
+  }
+
+
+
   namespace
   {
-    // The unit normal of a planar boundary part: the mean of its faces'
-    // normals (weighted by their areas, over all ranks), components at
-    // rounding level set to zero. A part that is not planar (a face whose
-    // normal differs from the mean by more than 1e-8) is refused on every
-    // rank, naming the entry, the id and the face.
-    template <int dim>
-    Tensor<1, dim>
-    plane_normal(const Mapping<dim>      &mapping,
-                 const DoFHandler<dim>   &dof_handler,
-                 const types::boundary_id id,
-                 const MPI_Comm           communicator)
-    {
-      const ReferenceCell cell_type = dof_handler.get_fe().reference_cell();
-      FEFaceValues<dim>   face_values(
-        mapping,
-        dof_handler.get_fe(),
-        cell_type.face_reference_cell(0)
-          .template get_gauss_type_quadrature<dim - 1>(1),
-        update_normal_vectors | update_JxW_values | update_quadrature_points);
-      std::vector<std::pair<Tensor<1, dim>, Point<dim>>> faces;
-      Tensor<1, dim>                                     sum;
-      for (const auto &cell : dof_handler.active_cell_iterators())
-        if (cell->is_locally_owned())
-          for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary()
-                && cell->face(f)->boundary_id() == id)
-              {
-                face_values.reinit(cell, f);
-                sum += face_values.normal_vector(0) * face_values.JxW(0);
-                faces.emplace_back(face_values.normal_vector(0),
-                                   face_values.quadrature_point(0));
-              }
-      Tensor<1, dim> normal = Utilities::MPI::sum(sum, communicator);
-      normal /= normal.norm();
-      for (unsigned int c = 0; c < dim; ++c)
-        if (std::abs(normal[c]) < 1e-12)
-          normal[c] = 0;
-      normal /= normal.norm();
-      std::string problem;
-      for (const auto &[face_normal, center] : faces)
-        if (problem.empty() && (face_normal - normal).norm() > 1e-8)
-          {
-            std::ostringstream message;
-            message << "Invalid parameter <Symmetry boundary ids> in "
-                       "subsection <Boundary>: boundary id "
-                    << int(id) << " is not planar (its face at (" << center
-                    << ") has the normal (" << face_normal
-                    << "), the part's mean normal is (" << normal
-                    << ")); accepted: planar boundary parts.";
-            problem = message.str();
-          }
-      FileOutput::agree_on_problem(problem, communicator);
-      return normal;
-    }
-
-
-
     // u.n = 0 at every vertex of the symmetry parts, from the normals n of
     // the planes the vertex lies on: on one plane, the component k with the
     // largest |n_k| is constrained, u_k = -sum_{j != k} n_j / n_k u_j (just
@@ -1014,7 +1014,8 @@ namespace ViscoContact
       const MPI_Comm              communicator = dof_handler.get_communicator();
       std::vector<Tensor<1, dim>> normals;
       for (const auto id : symmetry_ids)
-        normals.push_back(plane_normal(mapping, dof_handler, id, communicator));
+        normals.push_back(
+          symmetry_plane_normal(mapping, dof_handler, id, communicator));
       // The planes of every vertex (by its x-dof): parallel parts count once.
       std::map<types::global_dof_index,
                std::pair<std::array<types::global_dof_index, dim>,
@@ -1161,6 +1162,16 @@ namespace ViscoContact
                                 const IndexSet &,
                                 AffineConstraints<double> &,
                                 AffineConstraints<double> *);
+  template Tensor<1, 2>
+  symmetry_plane_normal(const Mapping<2> &,
+                        const DoFHandler<2> &,
+                        const types::boundary_id,
+                        const MPI_Comm);
+  template Tensor<1, 3>
+  symmetry_plane_normal(const Mapping<3> &,
+                        const DoFHandler<3> &,
+                        const types::boundary_id,
+                        const MPI_Comm);
   template void
   make_displacement_constraints(const Mapping<3> &,
                                 const DoFHandler<3> &,

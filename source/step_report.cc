@@ -6,6 +6,7 @@
 
 #include "step_report.h"
 
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -40,16 +41,19 @@ namespace ViscoContact
   // One line per step for a verbose run: the step, the time, the active-set
   // iterations, the contact states (rigid limit, normal compliance, no
   // contact, as ContactNodes::count_states() returns them) and the total
-  // contact force. The regression tests compare these lines, so their format
-  // is fixed. Each line is flushed, so that a log file shows the progress of
-  // a batch job as it happens.
+  // contact force; then, in brackets, the progress of the run
+  // (RunProgress::text()). The regression tests compare these lines up to
+  // the brackets (whose times differ from run to run), so that part of
+  // their format is fixed. Each line is flushed, so that a log file shows
+  // the progress of a batch job as it happens.
   void
   print_step_line(ConditionalOStream                &out,
                   const unsigned int                 step,
                   const double                       time,
                   const unsigned int                 iterations,
                   const std::array<unsigned int, 3> &contact_states,
-                  const double                       total_contact_force)
+                  const double                       total_contact_force,
+                  const std::string                 &progress)
   {
     print_step_line_start(out,
                           step,
@@ -57,7 +61,7 @@ namespace ViscoContact
                           iterations,
                           contact_states,
                           total_contact_force);
-    out << std::endl;
+    out << "  " << progress << std::endl;
   }
 
 
@@ -72,9 +76,10 @@ namespace ViscoContact
                            const double                       time,
                            const unsigned int                 iterations,
                            const std::array<unsigned int, 3> &contact_states,
-                           const double total_contact_force,
-                           const double time_step,
-                           const double error_estimate)
+                           const double       total_contact_force,
+                           const double       time_step,
+                           const double       error_estimate,
+                           const std::string &progress)
   {
     print_step_line_start(out,
                           step,
@@ -83,7 +88,83 @@ namespace ViscoContact
                           contact_states,
                           total_contact_force);
     out << "  k " << std::setprecision(6) << time_step << "  estimate "
-        << std::setprecision(3) << error_estimate << std::endl;
+        << std::setprecision(3) << error_estimate << "  " << progress
+        << std::endl;
+  }
+
+
+
+  // @sect4{RunProgress}
+  RunProgress::RunProgress(const unsigned int first_step,
+                           const double       start_time,
+                           const double       earlier_wall_time)
+    : first_step(first_step)
+    , start_time(start_time)
+    , earlier_wall_time(earlier_wall_time)
+  {}
+
+
+
+  double
+  RunProgress::wall_time() const
+  {
+    return earlier_wall_time + timer.wall_time();
+  }
+
+
+
+  // The time left is the time of this process's steps so far, scaled by
+  // what is left of the run: steps with fixed steps, simulated time with
+  // adaptive ones (whose step lengths are not known ahead).
+  std::string
+  RunProgress::text(const unsigned int step,
+                    const unsigned int n_steps,
+                    const double       time,
+                    const double       end_time) const
+  {
+    std::ostringstream line;
+    line << std::setprecision(6) << '[';
+    if (n_steps > 0)
+      line << "step " << step << " of " << n_steps;
+    else
+      line << "t " << time << " of " << end_time;
+    line << ", " << format_duration(wall_time());
+    const double elapsed = timer.wall_time();
+    const double done
+      = n_steps > 0 ? double(step - first_step) : time - start_time;
+    const double left = n_steps > 0 ? double(n_steps) - step : end_time - time;
+    // One step says little of the rate (it has the cold start and the set-up
+    // of solvers); from the second on the estimate is printed.
+    if (step > first_step + 1 && done > 0 && left > 0)
+      line << ", about " << format_duration(elapsed / done * left) << " left";
+    line << ']';
+    return line.str();
+  }
+
+
+
+  // @sect4{format_duration}
+  std::string
+  format_duration(const double seconds)
+  {
+    std::ostringstream text;
+    if (!std::isfinite(seconds))
+      return "?";
+    if (!(seconds < 60))
+      {
+        const long total = std::lround(seconds);
+        if (total < 3600)
+          text << total / 60 << " min " << std::setw(2) << std::setfill('0')
+               << total % 60 << " s";
+        else
+          text << total / 3600 << " h " << std::setw(2) << std::setfill('0')
+               << (total % 3600) / 60 << " min";
+      }
+    else if (seconds < 10)
+      text << std::setprecision(2) << std::fixed << seconds << " s";
+    else
+      text << std::lround(seconds) << " s";
+    return text.str();
   }
 
 

@@ -203,7 +203,7 @@ namespace ViscoContact
             Tensor<1, dim>            direction;
             for (unsigned int c = 0; c < dim; ++c)
               direction[c] = d[c];
-            description.direction = direction / direction.norm();
+            description.direction = direction;
           }
         std::unique_ptr<FunctionParser<dim>> gap;
         if (!is_zero_expression(entries.initial_gap))
@@ -659,15 +659,17 @@ namespace ViscoContact
     // The time loop. Only the steps count as compute time; output is timed
     // apart. The wall time written per step counts from the start of the
     // original run: a resumed run adds the time the interrupted run had
-    // spent up to its checkpoint (loop_time_offset).
-    Timer loop_timer;
+    // spent up to its checkpoint (loop_time_offset). The step lines say how
+    // far the run is and estimate the time left (progress).
+    progress.emplace(schedule.step_number(),
+                     schedule.current_time(),
+                     loop_time_offset);
     while (!schedule.is_at_end())
       {
         Timer                 step_timer;
         const ActiveSetResult result = do_time_step();
         time_loop_compute_time += step_timer.wall_time();
-        if (!finish_time_step(result,
-                              loop_time_offset + loop_timer.wall_time()))
+        if (!finish_time_step(result, progress->wall_time()))
           break;
       }
 
@@ -761,13 +763,19 @@ namespace ViscoContact
     // The iteration history is read under its step's line.
     const bool step_line
       = parameters.verbose || parameters.print_iteration_history;
+    const std::string progress_text
+      = progress->text(n,
+                       schedule.is_adaptive() ? 0 : schedule.n_steps(),
+                       t,
+                       schedule.end_time());
     if (step_line && !schedule.is_adaptive())
       print_step_line(pcout,
                       n,
                       t,
                       result.iterations(),
                       count_contact_states(),
-                      total_contact_force());
+                      total_contact_force(),
+                      progress_text);
     if (step_line && schedule.is_adaptive())
       print_adaptive_step_line(pcout,
                                n,
@@ -776,7 +784,8 @@ namespace ViscoContact
                                count_contact_states(),
                                total_contact_force(),
                                k,
-                               error_estimate);
+                               error_estimate,
+                               progress_text);
     if (parameters.print_iteration_history)
       {
         if (!coarser_step_result.history.empty())

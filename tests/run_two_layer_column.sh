@@ -7,7 +7,9 @@
 #   M = E/(1 - nu^2) (plane stress), E(1-nu)/((1+nu)(1-2nu)) (3D),
 # which the discrete solution reproduces to round-off: in every step the
 # contact force is p A (A = 1), the peak pressure p, the reaction of the top
-# -p A and every node of the profiles has p, in each variant:
+# -p A, that of each roller (a side of area 1) sigma_xx = nu p (plane
+# stress) or nu / (1 - nu) p (3D, plane strain) into the body, and every
+# node of the profiles has p, in each variant:
 #  - the materials as regions of a function of the cell centre, on triangles
 #    (condensed, 1 rank), quadrilaterals (full space, 2 ranks, one global
 #    refinement: the children inherit the ids), tetrahedra and hexahedra;
@@ -35,14 +37,27 @@ check_exact() {
     function modulus(E, nu) { return model == "stress" ? E / (1 - nu * nu) : E * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) }
     function near(a, b) { d = a - b; if (d < 0) d = -d
                           m = b < 0 ? -b : b; return d <= tol * (m > 1 ? m : 1) }
-    BEGIN { c = 0.5 / modulus(1000, 0.3) + 0.5 / modulus(100, 0.3) }
+    BEGIN { c = 0.5 / modulus(1000, 0.3) + 0.5 / modulus(100, 0.3)
+            ratio = model == "stress" ? 0.3 : 0.3 / 0.7 }
     FNR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
     { t = $col["time"]; p = 0.01 * (t < 2 - t ? t : 2 - t) / c }
     FILENAME ~ /time_series/ {
       if (!near($col["total_contact_force"], p) || !near($col["peak_pressure"], p) \
           || !near($col["reaction_prescribed_1_y"], -p) || $col["no_contact_nodes"] != 0) {
         print name ": at t = " t " force " $col["total_contact_force"] ", peak " $col["peak_pressure"] \
-              ", reaction of the top " $col["reaction_prescribed_1_y"] "; expected p = " p; exit 1 } }
+              ", reaction of the top " $col["reaction_prescribed_1_y"] "; expected p = " p; exit 1 }
+      # Each roller (a side of area 1) holds sigma_xx = ratio sigma_yy,
+      # pushing into the body: its normal component is ratio p, every
+      # other 0; two rollers per direction balance.
+      pushing = 0
+      for (c in col)
+        if (c ~ /^reaction_symmetry_/) {
+          r = $col[c] < 0 ? -$col[c] : $col[c]
+          if (near(r + p, p)) continue
+          if (!near(r, ratio * p)) {
+            print name ": at t = " t " the roller reaction " c " is " $col[c] ", not 0 or " ratio * p " in magnitude"; exit 1 }
+          pushing += $col[c] }
+      if (!near(pushing + p, p)) { print name ": at t = " t " the rollers do not balance (" pushing ")"; exit 1 } }
     FILENAME ~ /profile/ {
       if (!near($col["contact_pressure"], p)) {
         print name ": pressure " $col["contact_pressure"] " at t = " t " in " FILENAME ", not " p; exit 1 } }

@@ -15,14 +15,16 @@ namespace ViscoContact
 
   // The checks of a Gmsh file (robustness/mesh_checks.cc), each stopping with a
   // message that names the Mesh file entry, the file and what is wrong:
-  // every node id defined once; on the cells the reader hands to the
+  // the counts of the $Nodes and $Elements sections whole numbers within
+  // what the file can hold, every node id defined once; on the cells the
+  // reader hands to the
   // triangulation, before it builds anything, finite coordinates of a sane
   // extent, simplices or hypercubes only (no wedges or pyramids), distinct
   // nodes and positive, non-negligible Jacobians at every corner; and on the
   // mesh built, no coincident nodes (a crack) and conforming faces (no hanging
   // node).
   void
-  check_gmsh_node_ids(const std::string &file);
+  check_gmsh_sections(const std::string &file);
   // The number of nodes a Gmsh file declares at the head of its $Nodes
   // section (0 if the file has none or cannot be read; the reader then says
   // why): a few lines are read, for the memory estimate before a run.

@@ -23,6 +23,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <map>
@@ -144,18 +146,58 @@ namespace ViscoContact
 
 
 
-  // @sect4{check_gmsh_node_ids}
+  // @sect4{check_gmsh_sections}
   //
-  // The $Nodes section of an ASCII Gmsh file, format 2 (one "id x y z" line
-  // per node) or 4 (blocks: a line "dim tag parametric n", n ids, then n
-  // coordinate lines). Only the ids are collected.
+  // The counts at the heads of the $Nodes and $Elements sections of an ASCII
+  // Gmsh file, then the node ids. Format 2: "$Nodes" then the count, one
+  // "id x y z" line per node, "$Elements" then the count; format 4: blocks
+  // ("numEntityBlocks numNodes minTag maxTag", then per block a line "dim
+  // tag parametric n", n ids, then n coordinate lines), "$Elements" then
+  // "numEntityBlocks numElements minTag maxTag". deal.II's reader sizes its
+  // arrays by these counts before it reads a node: a negative count (read
+  // as a huge unsigned one) or one far beyond what the file holds would end
+  // in an allocation failure instead of a message. Every count must be a
+  // whole number no larger than the file's size in bytes (a node or cell
+  // takes more than one byte).
+  namespace
+  {
+    // A count of the file: read as a number, which must be a whole one in
+    // [0, bound]; the message names what it counts.
+    long long
+    read_count(std::istream      &in,
+               const double       bound,
+               const std::string &what,
+               const std::string &file)
+    {
+      std::string token;
+      in >> token;
+      char              *end   = nullptr;
+      const double       value = std::strtod(token.c_str(), &end);
+      std::ostringstream message;
+      message << invalid_mesh(file) << what << " is <" << token.substr(0, 40)
+              << ">; accepted: a whole number from 0 to " << bound
+              << " (the size of the file in bytes).";
+      AssertThrow(!token.empty() && end == token.c_str() + token.size()
+                    && value >= 0 && value <= bound
+                    && value == std::floor(value),
+                  ExcMessage(message.str()));
+      return static_cast<long long>(value);
+    }
+  } // namespace
+
+
+
   void
-  check_gmsh_node_ids(const std::string &file)
+  check_gmsh_sections(const std::string &file)
   {
     std::ifstream in(file);
     const double  version = skip_to_gmsh_nodes(in);
     if (!in)
       return; // the reader itself says what is missing
+    std::error_code error;
+    const double    bound = std::filesystem::file_size(file, error);
+    if (error)
+      return;
     std::set<long long> ids;
     long long           duplicate = -1;
     const auto          note      = [&](const long long id) {
@@ -164,8 +206,8 @@ namespace ViscoContact
     };
     if (version < 4)
       {
-        long long n = 0;
-        in >> n;
+        const long long n
+          = read_count(in, bound, "the node count of its $Nodes section", file);
         for (long long i = 0; i < n && in; ++i)
           {
             long long id;
@@ -176,13 +218,23 @@ namespace ViscoContact
       }
     else
       {
-        long long n_blocks = 0, n_nodes = 0, min_tag = 0, max_tag = 0;
-        in >> n_blocks >> n_nodes >> min_tag >> max_tag;
+        const long long n_blocks
+          = read_count(in,
+                       bound,
+                       "the number of blocks of its $Nodes section",
+                       file);
+        read_count(in, bound, "the node count of its $Nodes section", file);
+        long long min_tag = 0, max_tag = 0;
+        in >> min_tag >> max_tag;
         for (long long b = 0; b < n_blocks && in; ++b)
           {
-            int       entity_dim = 0, entity_tag = 0, parametric = 0;
-            long long n = 0;
-            in >> entity_dim >> entity_tag >> parametric >> n;
+            int entity_dim = 0, entity_tag = 0, parametric = 0;
+            in >> entity_dim >> entity_tag >> parametric;
+            const long long n
+              = read_count(in,
+                           bound,
+                           "the node count of a block of its $Nodes section",
+                           file);
             for (long long i = 0; i < n && in; ++i)
               {
                 long long id;
@@ -202,6 +254,17 @@ namespace ViscoContact
       ExcMessage(invalid_mesh(file) + "the node id " + std::to_string(duplicate)
                  + " is defined twice in its $Nodes section; "
                    "accepted: a mesh whose nodes have distinct ids."));
+    std::string token;
+    while (in >> token && token != "$Elements")
+      ;
+    if (!in)
+      return;
+    if (version >= 4)
+      read_count(in,
+                 bound,
+                 "the number of blocks of its $Elements section",
+                 file);
+    read_count(in, bound, "the element count of its $Elements section", file);
   }
 
 

@@ -19,6 +19,8 @@ fails):
   twisted_hexahedron.msh a hexahedron with two nodes of its top swapped
   wedge.msh              the unit cube as two wedges (prisms), a cell type
                          the program does not support
+  negative_node_count.msh      the good 2D mesh announcing -5 nodes
+  huge_element_count.msh       the good 2D mesh announcing 1e12 elements
 
 Run from anywhere: python3 tests/bad_input/meshes/make_bad_meshes.py
 """
@@ -44,6 +46,16 @@ def write(name, nodes, cells, faces, cell_type, face_type):
                     % (k, cell_type, " ".join(map(str, ids))))
             k += 1
         f.write("$EndElements\n")
+
+
+def recount(source, name, section, count):
+    """The file source with the count at the head of section replaced."""
+    folder = os.path.dirname(os.path.abspath(__file__))
+    with open(os.path.join(folder, source)) as f:
+        lines = f.read().split("\n")
+    lines[lines.index(section) + 1] = count
+    with open(os.path.join(folder, name), "w") as f:
+        f.write("\n".join(lines))
 
 
 def triangles(n, scale=1.0, squash=False):
@@ -97,6 +109,8 @@ TRIANGLE, QUADRILATERAL, HEXAHEDRON, LINE, WEDGE = 2, 3, 5, 1, 6
 
 nodes, cells, lines = triangles(2)
 write("good_2d.msh", nodes, cells, lines, TRIANGLE, LINE)
+recount("good_2d.msh", "negative_node_count.msh", "$Nodes", "-5")
+recount("good_2d.msh", "huge_element_count.msh", "$Elements", "1000000000000")
 write("repeated_vertex.msh", nodes,
       [(cells[0][0], cells[0][0], cells[0][2])] + cells[1:], lines,
       TRIANGLE, LINE)

@@ -20,9 +20,12 @@ The contact pressure is p = -sigma_zz (the contact force on the unit
 support). --check runs the program with both updates, in 3D and as a 2D
 plane-strain square (the same uniaxial strain), and requires p and the
 von Mises stress of every step to agree with this recursion to 1e-9
-relative; --order runs k = 0.05 ... 0.00625 and prints the error of p at
-t = 1 against the solution of the ODE d sigma / dt = E d eps / dt +
-G(sigma) (RK4 with k = 1e-4), with its observed order.
+relative; --order (also part of --check) runs k = 0.05 ... 0.00625 and
+prints the error of p at t = 1 against the solution of the ODE
+d sigma / dt = E d eps / dt + G(sigma) (RK4 with k = 1e-4), with its
+observed order; --check requires the last order (observed 0.92 explicit,
+1.07 implicit) within [0.8, 1.2] and the last error within 1.5 times the
+observed one (1.31e-5, 1.45e-5).
 
     benchmarks/run_perzyna_column.py [--executable build/viscoplastic_contact]
         [--check] [--order]
@@ -185,7 +188,7 @@ def main():
                                  % (name, t, quantity, value, expected))
             print("%s: 40 steps (loading, unloading, lift-off) agree with the "
                   "recursion to %.1e" % (name, worst))
-    if arguments.order:
+    if arguments.order or arguments.check:
         exact = ode_pressure_at(1.0)
         print("p(1) of the ODE: %.10f" % exact)
         print("| k | explicit p(1) | error | implicit p(1) | error |")
@@ -206,6 +209,21 @@ def main():
             orders = [math.log(errors[update][i - 1] / errors[update][i], 2)
                       for i in range(1, len(steps))]
             print("%s, observed orders: %s" % (update, ", ".join("%.2f" % o for o in orders)))
+            # --check: first order in k, observed 0.92 (explicit) and 1.07
+            # (implicit) from k = 0.0125 to 0.00625, errors 1.31e-5 and
+            # 1.45e-5 there: the order within [0.8, 1.2], the error at most
+            # 1.5 times the observed one.
+            if arguments.check:
+                bound = 1.5 * {"explicit": 1.31e-5, "implicit": 1.45e-5}[update]
+                if not 0.8 <= orders[-1] <= 1.2 or errors[update][-1] > bound:
+                    sys.exit("%s: p(1) converges to the ODE with order %.2f "
+                             "(expected 0.8 to 1.2), error %.2e at k = %g "
+                             "(bound %.2e)." % (update, orders[-1],
+                                               errors[update][-1], steps[-1],
+                                               bound))
+        if arguments.check:
+            print("Both updates converge to the stress ODE at first order in "
+                  "k (p(1) at k = 0.05 ... 0.00625).")
 
 
 if __name__ == "__main__":

@@ -59,7 +59,7 @@ namespace ViscoContact
     double
     wall_time() const;
 
-    // "[step 3 of 16, 0.41 s, about 1.8 s left]" after step n (n_steps
+    // "[step 3 of 16, 0.41 s, about 1.80 s left]" after step n (n_steps
     // steps in all), or with adaptive steps (n_steps = 0) "[t 0.25 of 1,
     // ...]"; the estimate is left out after the first step and at the end.
     std::string
@@ -75,7 +75,8 @@ namespace ViscoContact
     Timer        timer;
   };
 
-  // A duration for a person: "0.41 s", "12 s", "3 min 05 s", "2 h 07 min".
+  // A duration for a person: "0.41 s", "1.80 s", "12 s", "3 min 05 s",
+  // "2 h 07 min".
   std::string
   format_duration(const double seconds);
 

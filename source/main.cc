@@ -238,10 +238,21 @@ main(int argc, char **argv)
   StopSignals::install();
   const bool several_ranks
     = (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1);
-  // An error may happen on one rank only, while the others wait in a
-  // collective call that will never complete; MPI_Abort ends them all. On
-  // one rank returning an error code is enough.
-  const auto stop_all_ranks = [&]() {
+  // An error that every rank raised (most errors: the checks agree on
+  // their outcome) ends all ranks in order, with the message printed by
+  // rank 0. An error on some ranks only, while the others wait in a
+  // collective call that will never complete, is found by a barrier that
+  // does not complete within a few seconds: then MPI_Abort ends them all.
+  // On one rank returning an error code is enough.
+  const MPITools::ErrorAgreement error_agreement;
+  const auto stop_all_ranks = [&](const std::string &message) {
+    if (several_ranks && error_agreement.all_ranks_stopped(5.))
+      {
+        if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+          report_error(message);
+        return 1;
+      }
+    report_error(message);
     if (several_ranks)
       {
         // MPI_Abort runs no destructors: the output folders' temporaries
@@ -322,21 +333,18 @@ main(int argc, char **argv)
       // its value and what is accepted; where in the code is of no use here.
       std::ostringstream message;
       exc.print_info(message);
-      report_error("\n" + message.str());
-      return stop_all_ranks();
+      return stop_all_ranks("\n" + message.str());
     }
   catch (std::exception &exc)
     {
       // Other exceptions (from the standard library, say) keep their own
       // text.
-      report_error(std::string(" ") + exc.what());
-      return stop_all_ranks();
+      return stop_all_ranks(std::string(" ") + exc.what() + "\n");
     }
   catch (...)
     {
       // Anything else: at least say that the run did not succeed.
-      std::cerr << "\nUnknown exception. Aborting." << std::endl;
-      return stop_all_ranks();
+      return stop_all_ranks(" an unknown exception.\n");
     }
   return 0;
 }

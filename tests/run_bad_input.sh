@@ -3,7 +3,7 @@
 # fail (non-zero exit status), write nothing into its output directory, and
 # print the message given on the file's first line as "# expect: MESSAGE"
 # (and the text of any further line "# expect also: TEXT", which deal.II's
-# messages on several lines need).
+# messages on several lines need), once, without MPI_Abort on several ranks.
 # A line "# ranks: N" runs it on N MPI ranks.
 # With a third argument "failing-solve" the run may have written output
 # before it stopped (a solve that fails during the time loop), and it must
@@ -37,6 +37,13 @@ for text in "$expected" "${also[@]}"; do
 done
 if [ "$kind" = bad-input ] && [ -e results ]; then
   echo "The rejected run wrote into its output directory."
+  exit 1
+fi
+# All ranks stop on the error in order: the message once, no MPI_Abort
+# (Open MPI's banner).
+if [ "$(grep -c '^Error:' stderr.txt)" -ne 1 ] || grep -q MPI_ABORT stderr.txt; then
+  echo "The error is not reported once, or the ranks were aborted:"
+  cat stderr.txt
   exit 1
 fi
 # A failed solve writes the last accepted state for inspection.

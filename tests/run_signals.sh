@@ -7,8 +7,9 @@
 #    run (identical on 1 rank; numdiff -a 1e-10 -r 1e-8 on 2, where MUMPS
 #    and the parallel sums are not bit-reproducible);
 #  - on 2 ranks: SIGTERM to rank 1 alone (both ranks must agree on the step)
-#    and SIGUSR1 to mpirun (which forwards it; Open MPI's mpirun ends a job
-#    at once on SIGTERM or SIGINT itself, see doc/robustness.md);
+#    and SIGUSR1 to mpirun (which forwards it); SIGINT and SIGTERM to
+#    mpirun, which ends the job at once itself (doc/robustness.md): one note
+#    from rank 0 that says so, and the next run into the folder works;
 #  - two signals in a row (1 rank): the run ends at once, without the
 #    orderly stop;
 #  - a signal during the set-up (1 rank): the run stops after the phase it
@@ -133,7 +134,7 @@ if [ "$ranks" -eq 1 ]; then
   wait $pid
   status=$?
   [ $status -eq 143 ] || fail "Two SIGTERMs: exit status $status, not 143."
-  grep -q "^Signal received: the run stops after the current time step" stopped/err.txt \
+  grep -q "^Signal received: the run stops at the end of the current time step" stopped/err.txt \
     || fail "Two SIGTERMs: the first was not taken by the handler."
   ! grep -q "^Stopped after step\|^Run summary" stopped/out.txt \
     || fail "Two SIGTERMs: the run did not end at once."
@@ -155,4 +156,23 @@ if [ "$ranks" -eq 1 ]; then
 else
   interrupt rank1 TERM; check_stop_and_resume "SIGTERM to rank 1 of $ranks" 15
   interrupt run USR1;   check_stop_and_resume "SIGUSR1 to mpirun" 10
+  # SIGINT or SIGTERM to mpirun: Open MPI kills the ranks right after
+  # passing a SIGTERM on (its exit status is its own). Rank 0 says so
+  # once, and how to stop with a checkpoint; the next run into the folder
+  # (Overwrite) works and leaves no folder of temporaries behind.
+  for signal in INT TERM; do
+    interrupt run $signal
+    [ $status -ne 0 ] || fail "SIG$signal to mpirun: exit status 0."
+    [ "$(grep -c '^Signal received' stopped/err.txt)" -eq 1 ] \
+      || fail "SIG$signal to mpirun: not one note: $(cat stopped/err.txt)"
+    grep -q "If it was sent to mpirun, Open MPI ends the job at once.*send SIGUSR1 to mpirun" stopped/err.txt \
+      || fail "SIG$signal to mpirun: the note does not say what mpirun does: $(cat stopped/err.txt)"
+    sed -e 's/^\( *set Overwrite *=\).*/\1 true/' scene.prm > overwrite.prm
+    grep -q "Overwrite *= *true" overwrite.prm || sed -i 's/^\(subsection Output\)$/\1\n  set Overwrite = true/' overwrite.prm
+    (cd stopped && "$here/run_mpi.sh" "$ranks" "$executable" ../overwrite.prm > again.txt 2> err.txt) \
+      || fail "SIG$signal to mpirun: the next run into the folder failed: $(cat stopped/err.txt)"
+    ! ls -d stopped/results/.viscoplastic_contact.tmp.* > /dev/null 2>&1 \
+      || fail "SIG$signal to mpirun: a folder of temporaries was left behind."
+    echo "SIG$signal to mpirun: the job ended (status $status) with one note on what mpirun does; the next run works."
+  done
 fi

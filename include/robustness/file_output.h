@@ -3,6 +3,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <cstddef>
 #include <string>
 
 namespace ViscoContact
@@ -46,6 +47,27 @@ namespace ViscoContact
     // the message of the lowest such rank; otherwise nothing happens.
     void
     agree_on_problem(const std::string &problem, const MPI_Comm communicator);
+
+    // A file the program wrote and reads back (a manifest, checkpoint.info,
+    // the time series) is untrusted input: something else may have put a
+    // link, a named pipe, another account's file or a huge sparse file
+    // under its name. read_own_file() opens name below the folder
+    // descriptor base (AT_FDCWD: name is a path) without following a link
+    // and without blocking, and reads it only if it is a regular file of
+    // this account of at most max_size bytes. Otherwise content is empty
+    // and reason says why ("is a named pipe, not a regular file", ...).
+    enum class ReadResult
+    {
+      read,
+      missing,
+      refused
+    };
+    ReadResult
+    read_own_file(const int          base,
+                  const std::string &name,
+                  const std::size_t  max_size,
+                  std::string       &content,
+                  std::string       &reason);
   } // namespace FileOutput
 } // namespace ViscoContact
 

@@ -110,6 +110,31 @@ namespace ViscoContact
     // ExcOnAllRanks with that of the lowest such rank.
     void
     agree_on_failure(const std::string &failure, const MPI_Comm communicator);
+
+    // @sect4{Ending all ranks after an error}
+    //
+    // An error that every rank raised at the same point (most are: a
+    // message agreed on by agree_on_problem(), a check every rank makes)
+    // lets every rank end in order, with the message printed once; only an
+    // error on some ranks, while the others wait in a collective call that
+    // will never complete, needs MPI_Abort (and gets Open MPI's banner).
+    // main() holds an ErrorAgreement for the whole run: it duplicates
+    // MPI_COMM_WORLD at the start (collective), so that its non-blocking
+    // barrier never meets another collective call of the program.
+    class ErrorAgreement
+    {
+    public:
+      ErrorAgreement();
+      ~ErrorAgreement();
+
+      // Whether every rank has called this within timeout seconds (each
+      // after its own error).
+      bool
+      all_ranks_stopped(const double timeout) const;
+
+    private:
+      MPI_Comm communicator = MPI_COMM_NULL;
+    };
   } // namespace MPITools
 } // namespace ViscoContact
 

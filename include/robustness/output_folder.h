@@ -25,6 +25,16 @@ namespace ViscoContact
   //    not create, never the parameter file being run. A file with a name
   //    the program writes but no manifest entry is in the way: the run is
   //    refused with the list.
+  //  - What the program reads back is untrusted: the manifest (and the
+  //    checkpoint's files and the time series of a resumed run) is read
+  //    only as a regular file of this account of bounded size, never a
+  //    link or a named pipe, and a manifest line that names anything but
+  //    the program's own plain names (a '/' only below checkpoint/ and
+  //    runs/, no "..", no absolute path, not the lock or the manifest) makes
+  //    the folder refused. Removals go through the folder's descriptor,
+  //    follow no link, and touch only regular files and folders of this
+  //    account; the folder of temporaries is emptied through its own
+  //    descriptor, and removed by name only while the name is still it.
   //  - Files are created, not followed. A file is written into a private
   //    folder of temporaries that the run creates (mode 0700, a random name;
   //    no other account can put anything into it), created there exclusively
@@ -35,7 +45,9 @@ namespace ViscoContact
   //    (RENAME_NOREPLACE).
   //  - One run per folder: rank 0 holds an advisory lock (flock) on
   //    .viscoplastic_contact.lock for the whole run; a second run into the
-  //    folder is refused at once, naming the process that holds it.
+  //    folder is refused at once, naming the process that holds it (one
+  //    printable line of the lock file). A lock file that is not a regular
+  //    file of this account with one name is refused, not written.
   //  - Writes are verified, not trusted: a file counts as written only when
   //    every rank's own write (every byte counted), fsync and close
   //    succeeded. The files all ranks write together (the .vtu pieces, the
@@ -202,6 +214,10 @@ namespace ViscoContact
     append_to_manifest(const std::string &kind, const std::string &name);
     std::string
     failure(const std::string &name, const int error_number) const;
+    // An empty string if the file open at descriptor is a regular file of
+    // this account with one name, else the message.
+    std::string
+    own_regular_file(const int descriptor, const std::string &name) const;
     // What both stage_collectively() share: write_block(descriptor, offset)
     // writes this rank's local_size bytes at offset, returning 0 or the
     // errno.

@@ -205,8 +205,10 @@ namespace ViscoContact
                    const MPI_Comm               communicator,
                    const std::function<void()> &check_header)
   {
+    // Not following a link, not blocking on a named pipe; only a regular
+    // file is read.
     const int descriptor
-      = ::open(file.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+      = ::open(file.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
     int error = descriptor < 0 ? errno : 0;
     // Closed on every way out, also where a check or the caller throws.
     const std::unique_ptr<const int, void (*)(const int *)> closer(
@@ -218,6 +220,8 @@ namespace ViscoContact
     struct stat status;
     if (error == 0 && ::fstat(descriptor, &status) != 0)
       error = errno;
+    if (error == 0 && !S_ISREG(status.st_mode))
+      error = EINVAL;
     agree_on_errors(error, file, "Opening", communicator);
     const std::uint64_t file_size = status.st_size;
 
@@ -350,9 +354,24 @@ namespace ViscoContact
   {
     const std::filesystem::path info
       = std::filesystem::path(output_directory) / checkpoint_info;
-    std::ifstream    in(info);
-    CheckpointRecord record;
-    std::string      key_step, key_time, key_ranks, key_dofs;
+    // Untrusted input: a regular file of this account of at most 1 MB (a
+    // few hundred entries), never a link or a named pipe.
+    std::string content, reason;
+    const auto  result = FileOutput::read_own_file(AT_FDCWD,
+                                                  info.string(),
+                                                  std::size_t(1) << 20,
+                                                  content,
+                                                  reason);
+    AssertThrow(result != FileOutput::ReadResult::refused,
+                ExcMessage("Invalid parameter <Resume> in subsection "
+                           "<Checkpoint>: value <true>, but "
+                           + info.string() + " " + reason
+                           + "; accepted: true only when the Output directory "
+                             "holds a complete checkpoint of an earlier run "
+                             "of this scene, as the program wrote it."));
+    std::istringstream in(content);
+    CheckpointRecord   record;
+    std::string        key_step, key_time, key_ranks, key_dofs;
     in >> key_step >> record.step >> key_time >> record.time >> key_ranks
       >> record.n_ranks >> key_dofs >> record.n_dofs;
     AssertThrow(in && key_step == "step" && key_ranks == "ranks"
@@ -422,20 +441,24 @@ namespace ViscoContact
                        const unsigned int step)
   {
     const std::string name = "time_series.csv";
+    std::string       problem;
     if (Utilities::MPI::this_mpi_process(folder.get_communicator()) == 0)
       {
-        std::string content;
-        const int   descriptor = ::open(folder.path(name).c_str(),
-                                      O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
-        char        buffer[65536];
-        ssize_t     n = 0;
-        while (descriptor >= 0
-               && ((n = ::read(descriptor, buffer, sizeof(buffer))) > 0
-                   || (n < 0 && errno == EINTR)))
-          if (n > 0)
-            content.append(buffer, n);
-        if (descriptor >= 0)
-          ::close(descriptor);
+        // Untrusted input: a regular file of this account, never a link or
+        // a named pipe, of at most 1 GB (rows of a few hundred bytes for
+        // millions of steps).
+        std::string content, reason;
+        if (FileOutput::read_own_file(AT_FDCWD,
+                                      folder.path(name),
+                                      std::size_t(1) << 30,
+                                      content,
+                                      reason)
+            == FileOutput::ReadResult::refused)
+          problem = "Invalid parameter <Resume> in subsection <Checkpoint>: "
+                    "value <true>, but "
+                    + folder.path(name) + " " + reason
+                    + "; accepted: the time series as the program wrote it "
+                      "(or none).";
         std::istringstream lines(content);
         std::string        line, text;
         bool               first = true;
@@ -449,7 +472,7 @@ namespace ViscoContact
               text += line + '\n';
             first = false;
           }
-        if (text.empty())
+        if (text.empty() && problem.empty())
           {
             std::cerr << "Warning: " << folder.path(name)
                       << " was missing or empty; it starts again with its "
@@ -457,8 +480,10 @@ namespace ViscoContact
                       << step << " are lost." << std::endl;
             text = header;
           }
-        folder.stage(name, text, OutputFolder::Replace::own);
+        if (problem.empty())
+          folder.stage(name, text, OutputFolder::Replace::own);
       }
+    FileOutput::agree_on_problem(problem, folder.get_communicator());
     folder.commit();
   }
 } // namespace ViscoContact

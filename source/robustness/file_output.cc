@@ -8,6 +8,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
@@ -41,6 +42,73 @@ namespace ViscoContact
         return false;
       static unsigned int n_matching_writes = 0;
       return ++n_matching_writes >= first;
+    }
+
+
+
+    // @sect4{read_own_file}
+    //
+    // O_NONBLOCK makes the open of a named pipe return at once (a regular
+    // file ignores it); fstat() on the descriptor then says what was opened,
+    // so nothing is read from what is not a regular file of this account.
+    // The size is checked before anything is allocated.
+    ReadResult
+    read_own_file(const int          base,
+                  const std::string &name,
+                  const std::size_t  max_size,
+                  std::string       &content,
+                  std::string       &reason)
+    {
+      content.clear();
+      reason.clear();
+      const int descriptor
+        = ::openat(base,
+                   name.c_str(),
+                   O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+      if (descriptor < 0)
+        {
+          if (errno == ENOENT)
+            return ReadResult::missing;
+          reason = errno == ELOOP ? "is a symbolic link"
+                                  : std::string("cannot be opened (")
+                                      + std::strerror(errno) + ")";
+          return ReadResult::refused;
+        }
+      struct stat status;
+      if (::fstat(descriptor, &status) != 0)
+        reason
+          = std::string("cannot be examined (") + std::strerror(errno) + ")";
+      else if (S_ISFIFO(status.st_mode))
+        reason = "is a named pipe, not a regular file";
+      else if (!S_ISREG(status.st_mode))
+        reason = "is not a regular file";
+      else if (status.st_uid != ::geteuid())
+        reason = "belongs to another account";
+      else if (static_cast<std::uint64_t>(status.st_size) > max_size)
+        reason = "has " + std::to_string(status.st_size)
+                 + " bytes, more than the " + std::to_string(max_size)
+                 + " this program writes there";
+      if (!reason.empty())
+        {
+          ::close(descriptor);
+          return ReadResult::refused;
+        }
+      content.resize(status.st_size);
+      std::size_t done = 0;
+      while (done < content.size())
+        {
+          const ssize_t n
+            = ::read(descriptor, content.data() + done, content.size() - done);
+          if (n < 0 && errno == EINTR)
+            continue;
+          if (n <= 0)
+            break;
+          done += n;
+        }
+      // A file that shrank while it was read keeps what was there.
+      content.resize(done);
+      ::close(descriptor);
+      return ReadResult::read;
     }
 
 

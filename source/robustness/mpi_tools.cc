@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <unistd.h>
 
 namespace ViscoContact
 {
@@ -188,6 +189,44 @@ namespace ViscoContact
       if (first_failing < n_ranks)
         throw ExcOnAllRanks(
           Utilities::MPI::broadcast(communicator, failure, first_failing));
+    }
+
+
+
+    // @sect4{ErrorAgreement}
+    ErrorAgreement::ErrorAgreement()
+    {
+      const int error = MPI_Comm_dup(MPI_COMM_WORLD, &communicator);
+      AssertThrowMPI(error);
+    }
+
+
+
+    // Freed before MPI_Finalize (main() holds the object inside the scope of
+    // MPI_InitFinalize); collective, so only where every rank gets here.
+    ErrorAgreement::~ErrorAgreement()
+    {
+      if (communicator != MPI_COMM_NULL)
+        MPI_Comm_free(&communicator);
+    }
+
+
+
+    // A non-blocking barrier, polled until it completes or the time is up.
+    // A barrier that does not complete cannot be taken back; the caller
+    // then ends the ranks with MPI_Abort (and the destructor is never run).
+    bool
+    ErrorAgreement::all_ranks_stopped(const double timeout) const
+    {
+      MPI_Request request;
+      if (MPI_Ibarrier(communicator, &request) != MPI_SUCCESS)
+        return false;
+      const double start = MPI_Wtime();
+      int          done  = 0;
+      while (MPI_Test(&request, &done, MPI_STATUS_IGNORE) == MPI_SUCCESS
+             && !done && MPI_Wtime() - start < timeout)
+        ::usleep(1000);
+      return done != 0;
     }
   } // namespace MPITools
 } // namespace ViscoContact

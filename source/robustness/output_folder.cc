@@ -14,6 +14,7 @@
 #include "robustness/output_folder.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstdint>
@@ -133,38 +134,45 @@ namespace ViscoContact
                       O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
     }
 
-    // Reads a whole small file below base (not following links); false if
-    // it cannot be read.
+    // The largest manifest the program reads: a line of about 40 bytes per
+    // file, with at most 10000 .vtu records of at most 9 files each, a
+    // profile per Profile time and a checkpoint per step, is far below it.
+    constexpr std::size_t max_manifest_size = std::size_t(256) << 20;
+
+    // Whether a manifest line names something the program makes, by kind:
+    // a file of its own name (no '/', no "..", no absolute path, no other
+    // file of the folder: not the manifest, not the lock), a folder it
+    // creates (checkpoint/, runs/ of a study and the runs in it), or a
+    // folder of temporaries. Everything else was put there by something
+    // else, and the program obeys none of it.
     bool
-    read_file(const int base, const std::string &name, std::string &content)
+    is_manifest_entry(const std::string &kind, const std::string &name)
     {
-      const int descriptor
-        = ::openat(base, name.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
-      if (descriptor < 0)
-        return false;
-      content.clear();
-      char buffer[65536];
-      for (;;)
-        {
-          const ssize_t n = ::read(descriptor, buffer, sizeof(buffer));
-          if (n < 0 && errno == EINTR)
-            continue;
-          if (n <= 0)
-            break;
-          content.append(buffer, n);
-        }
-      ::close(descriptor);
-      return true;
+      static const std::regex files(
+        "parameters\\.prm|solution\\.pvd|time_series\\.csv|convergence\\."
+        "csv|(solution|failed_step)_[0-9]+(\\.[0-9]+)?\\.(vtu|pvtu)|"
+        "contact_profile_[0-9]+\\.csv|checkpoint/(step_[0-9]+\\.bin|"
+        "checkpoint\\.info)");
+      static const std::regex folders(
+        "checkpoint|runs|runs/(reference|h_1_[0-9]+_k_[0-9][0-9.e+-]*)");
+      static const std::regex temporaries(
+        "\\.viscoplastic_contact\\.tmp\\.[a-z0-9]{10}");
+      return name.size() < 256
+             && ((kind == "file" && std::regex_match(name, files))
+                 || (kind == "folder" && std::regex_match(name, folders))
+                 || (kind == "temporary"
+                     && std::regex_match(name, temporaries)));
     }
 
     // The manifest's entries: "KIND NAME" per line, KIND one of file,
     // folder, temporary. A last line without its newline is an append that
     // did not complete and is ignored.
-    std::vector<std::pair<std::string, std::string>>
+    using Manifest = std::vector<std::pair<std::string, std::string>>;
+    Manifest
     parse_manifest(const std::string &content)
     {
-      std::vector<std::pair<std::string, std::string>> entries;
-      std::size_t                                      start = 0;
+      Manifest    entries;
+      std::size_t start = 0;
       while (start < content.size())
         {
           const std::size_t end = content.find('\n', start);
@@ -173,12 +181,60 @@ namespace ViscoContact
           const std::string line  = content.substr(start, end - start);
           start                   = end + 1;
           const std::size_t space = line.find(' ');
-          if (line.empty() || line[0] == '#' || space == std::string::npos)
+          if (line.empty() || line[0] == '#')
             continue;
-          entries.emplace_back(line.substr(0, space), line.substr(space + 1));
+          if (space == std::string::npos)
+            entries.emplace_back(line, "");
+          else
+            entries.emplace_back(line.substr(0, space), line.substr(space + 1));
         }
       return entries;
     }
+
+    // The manifest below base, read as untrusted input
+    // (FileOutput::read_own_file()) and every line checked
+    // (is_manifest_entry()). Returns an empty string (entries: the
+    // manifest's, none if there is none) or what is wrong with it, for
+    // "its manifest NAME ...".
+    std::string
+    read_manifest(const int base, Manifest &entries)
+    {
+      entries.clear();
+      std::string content, reason;
+      if (FileOutput::read_own_file(base,
+                                    OutputFolder::manifest_name,
+                                    max_manifest_size,
+                                    content,
+                                    reason)
+          == FileOutput::ReadResult::refused)
+        return reason;
+      entries = parse_manifest(content);
+      for (const auto &[kind, name] : entries)
+        if (!is_manifest_entry(kind, name))
+          {
+            std::string line = kind + " " + name;
+            if (line.size() > 80)
+              line = line.substr(0, 80) + "...";
+            for (char &c : line)
+              if (!std::isprint(static_cast<unsigned char>(c)))
+                c = '?';
+            entries.clear();
+            return "has the line <" + line
+                   + ">, a name this program never writes there";
+          }
+      return "";
+    }
+
+    // Whether a file or folder that a manifest lists may be removed: this
+    // account's (a folder shared with others may hold their files under
+    // the names a manifest lists).
+    bool
+    owned(const struct stat &status)
+    {
+      return status.st_uid == ::geteuid();
+    }
+
+
 
     // The entries of a folder (without . and ..), sorted.
     std::vector<std::string>
@@ -221,9 +277,30 @@ namespace ViscoContact
       return found;
     }
 
-    // Removes every regular file of a folder of temporaries, then the
-    // folder. It is the run's own (mode 0700): whatever is in it was put
-    // there by the program.
+    // Removes a folder of temporaries: the entries of the folder that
+    // descriptor holds, then its name below base, if the name still is that
+    // folder. Only a folder of this account with mode 0700 is touched (the
+    // program creates them so: nobody else can have put anything into it).
+    // Everything goes through the descriptor, so a folder moved away and
+    // replaced by another under its name during the run loses nothing.
+    void
+    remove_temporary_folder_at(const int          base,
+                               const std::string &name,
+                               const int          descriptor)
+    {
+      struct stat folder, named;
+      if (::fstat(descriptor, &folder) != 0 || !S_ISDIR(folder.st_mode)
+          || !owned(folder) || (folder.st_mode & 0077) != 0)
+        return;
+      for (const std::string &entry : folder_entries(descriptor))
+        ::unlinkat(descriptor, entry.c_str(), 0);
+      if (::fstatat(base, name.c_str(), &named, AT_SYMLINK_NOFOLLOW) == 0
+          && named.st_dev == folder.st_dev && named.st_ino == folder.st_ino)
+        ::unlinkat(base, name.c_str(), AT_REMOVEDIR);
+    }
+
+    // The same for a folder of temporaries known by its name only (one of a
+    // killed run, listed in the manifest).
     void
     remove_temporary_folder(const int base, const std::string &name)
     {
@@ -231,13 +308,10 @@ namespace ViscoContact
         = ::openat(base,
                    name.c_str(),
                    O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
-      if (descriptor >= 0)
-        {
-          for (const std::string &entry : folder_entries(descriptor))
-            ::unlinkat(descriptor, entry.c_str(), 0);
-          ::close(descriptor);
-        }
-      ::unlinkat(base, name.c_str(), AT_REMOVEDIR);
+      if (descriptor < 0)
+        return;
+      remove_temporary_folder_at(base, name, descriptor);
+      ::close(descriptor);
     }
 
     // Removes what the manifest of the folder below base lists (the folder
@@ -245,23 +319,24 @@ namespace ViscoContact
     // except the file with the identity protected (the parameter file being
     // run). Files first, in reverse order of listing, then the folders that
     // are empty then; a listed name that is no longer a regular file (or a
-    // folder) is not the run's any more and stays. Then the manifest itself,
-    // and in a folder inside (a run of a study) a stale lock file; the lock
-    // of the top folder is the one this run holds.
+    // folder) of this account is not the run's any more and stays. Then the
+    // manifest itself, and in a folder inside (a run of a study) a stale lock
+    // file; the lock of the top folder is the one this run holds. A manifest
+    // that is not the program's (read_manifest()) removes nothing; the top
+    // one has been checked (check_entries()).
     void
     remove_listed(const int          base,
                   const struct stat *protected_file,
                   const bool         inner_folder)
     {
-      std::string content;
-      if (!read_file(base, OutputFolder::manifest_name, content))
+      Manifest entries;
+      if (!read_manifest(base, entries).empty())
         return;
-      const auto entries = parse_manifest(content);
       for (auto entry = entries.rbegin(); entry != entries.rend(); ++entry)
         {
           const auto &[kind, name] = *entry;
           struct stat status;
-          if (!status_of(base, name, status))
+          if (!status_of(base, name, status) || !owned(status))
             continue;
           std::string leaf;
           const int   parent = open_parent(base, name, leaf);
@@ -292,8 +367,15 @@ namespace ViscoContact
           if (parent != base)
             ::close(parent);
         }
+      struct stat status;
       ::unlinkat(base, OutputFolder::manifest_name, 0);
-      if (inner_folder)
+      if (inner_folder
+          && ::fstatat(base,
+                       OutputFolder::lock_name,
+                       &status,
+                       AT_SYMLINK_NOFOLLOW)
+               == 0
+          && S_ISREG(status.st_mode) && owned(status))
         ::unlinkat(base, OutputFolder::lock_name, 0);
     }
 
@@ -391,10 +473,17 @@ namespace ViscoContact
     open_folders().erase(this);
     for (const StagedFile &file : staged)
       ::unlinkat(temporary_descriptor, file.temporary.c_str(), 0);
+    if (root && folder_descriptor >= 0 && !temporary_folder.empty())
+      {
+        if (temporary_descriptor >= 0)
+          remove_temporary_folder_at(folder_descriptor,
+                                     temporary_folder,
+                                     temporary_descriptor);
+        else
+          remove_temporary_folder(folder_descriptor, temporary_folder);
+      }
     if (temporary_descriptor >= 0)
       ::close(temporary_descriptor);
-    if (root && folder_descriptor >= 0 && !temporary_folder.empty())
-      remove_temporary_folder(folder_descriptor, temporary_folder);
     if (manifest_descriptor >= 0)
       ::close(manifest_descriptor);
     if (root)
@@ -488,39 +577,68 @@ namespace ViscoContact
 
   // @sect4{OutputFolder::lock}
   //
-  // flock() on the lock file, without waiting. After taking the lock, the
-  // descriptor must still be the file under the name: a run that ended
-  // between our open() and flock() may have removed it (each run removes its
-  // lock file at its end, while it still holds the lock), and a lock on a
-  // removed file keeps nobody out.
+  // flock() on the lock file, without waiting. The file is opened without
+  // following a link and without blocking (a named pipe under its name), and
+  // it must be a regular file of this account with no other name (a hard
+  // link planted under the name would otherwise have its target truncated
+  // and overwritten). After taking the lock, the descriptor must still be
+  // the file under the name: a run that ended between our open() and flock()
+  // may have removed it (each run removes its lock file at its end, while it
+  // still holds the lock), and a lock on a removed file keeps nobody out.
   std::string
   OutputFolder::lock()
   {
+    const std::string entry_name
+      = "Invalid parameter <Output directory> in subsection <Output>: value <"
+        + folder + ">";
     for (unsigned int attempt = 0; attempt < 100; ++attempt)
       {
-        const int descriptor
-          = ::openat(folder_descriptor,
-                     lock_name,
-                     O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC,
-                     0644);
+        const int descriptor = ::openat(folder_descriptor,
+                                        lock_name,
+                                        O_RDWR | O_CREAT | O_NOFOLLOW
+                                          | O_NONBLOCK | O_CLOEXEC | O_NOCTTY,
+                                        0644);
         if (descriptor < 0)
-          return "Invalid parameter <Output directory> in subsection "
-                 "<Output>: value <"
-                 + folder + ">; its lock file " + path(lock_name)
-                 + " cannot be created (" + std::strerror(errno) + ").";
+          return entry_name + "; its lock file " + path(lock_name)
+                 + " cannot be created or opened ("
+                 + (errno == ELOOP ? std::string("it is a symbolic link")
+                                   : std::string(std::strerror(errno)))
+                 + "); accepted: a folder whose lock file, if any, is one "
+                   "this program made (remove it if no run is using the "
+                   "folder).";
+        struct stat opened;
+        if (::fstat(descriptor, &opened) != 0 || !S_ISREG(opened.st_mode)
+            || opened.st_nlink != 1 || opened.st_uid != ::geteuid())
+          {
+            const bool fifo = S_ISFIFO(opened.st_mode);
+            ::close(descriptor);
+            return entry_name + "; its lock file " + path(lock_name) + " is "
+                   + (fifo                           ? "a named pipe"
+                      : !S_ISREG(opened.st_mode)     ? "not a regular file"
+                      : opened.st_uid != ::geteuid() ? "another account's file"
+                                                     : "a link to another file")
+                   + ", not one this program made, and the run does not "
+                     "write into it; accepted: a folder without it (remove "
+                     "it if no run is using the folder, or choose another "
+                     "Output directory).";
+          }
         if (::flock(descriptor, LOCK_EX | LOCK_NB) != 0)
           {
             const int error = errno;
             if (error == EWOULDBLOCK)
               {
-                std::string holder;
-                read_file(folder_descriptor, lock_name, holder);
+                // Who holds it, as that run wrote it: a line of it at most,
+                // printable characters only (the file is not trusted).
+                char          buffer[201] = {};
+                const ssize_t n
+                  = ::pread(descriptor, buffer, sizeof(buffer) - 1, 0);
                 ::close(descriptor);
-                while (!holder.empty() && holder.back() == '\n')
-                  holder.pop_back();
-                return "Invalid parameter <Output directory> in subsection "
-                       "<Output>: value <"
-                       + folder + ">; another run is writing into it ("
+                std::string holder(buffer, n > 0 ? n : 0);
+                holder = holder.substr(0, holder.find('\n'));
+                for (char &c : holder)
+                  if (!std::isprint(static_cast<unsigned char>(c)))
+                    c = '?';
+                return entry_name + "; another run is writing into it ("
                        + (holder.empty() ? "process unknown" : holder)
                        + "); accepted: a folder no other run is using. Wait "
                          "for that run to end, or choose another Output "
@@ -533,14 +651,10 @@ namespace ViscoContact
                       << "); make sure that no other run writes into it."
                       << std::endl;
           }
-        struct stat locked, named;
-        if (::fstat(descriptor, &locked) != 0
-            || ::fstatat(folder_descriptor,
-                         lock_name,
-                         &named,
-                         AT_SYMLINK_NOFOLLOW)
-                 != 0
-            || locked.st_dev != named.st_dev || locked.st_ino != named.st_ino)
+        struct stat named;
+        if (::fstatat(folder_descriptor, lock_name, &named, AT_SYMLINK_NOFOLLOW)
+              != 0
+            || opened.st_dev != named.st_dev || opened.st_ino != named.st_ino)
           {
             ::close(descriptor);
             continue;
@@ -560,23 +674,26 @@ namespace ViscoContact
         lock_descriptor = descriptor;
         return "";
       }
-    return "Invalid parameter <Output directory> in subsection <Output>: "
-           "value <"
-           + folder
-           + ">; its lock file keeps changing; accepted: a folder no "
-             "other run is using.";
+    return entry_name
+           + "; its lock file keeps changing; accepted: a folder no other run "
+             "is using.";
   }
 
 
 
   // The lock file is removed while it is still locked (see lock()), then
-  // released.
+  // released; a file that has taken its name meanwhile stays.
   void
   OutputFolder::unlock()
   {
     if (lock_descriptor < 0)
       return;
-    ::unlinkat(folder_descriptor, lock_name, 0);
+    struct stat locked, named;
+    if (::fstat(lock_descriptor, &locked) == 0
+        && ::fstatat(folder_descriptor, lock_name, &named, AT_SYMLINK_NOFOLLOW)
+             == 0
+        && locked.st_dev == named.st_dev && locked.st_ino == named.st_ino)
+      ::unlinkat(folder_descriptor, lock_name, 0);
     ::close(lock_descriptor);
     lock_descriptor = -1;
   }
@@ -592,11 +709,49 @@ namespace ViscoContact
   std::string
   OutputFolder::check_entries() const
   {
-    std::string manifest;
+    const std::string entry_name
+      = "Invalid parameter <Output directory> in subsection <Output>: value <"
+        + folder + ">";
+    // The manifest is obeyed only as the program wrote it, and so are those
+    // of the runs of a study in the folders it lists.
+    Manifest    entries;
+    struct stat status;
     const bool  has_manifest
-      = read_file(folder_descriptor, manifest_name, manifest);
+      = status_of(folder_descriptor, manifest_name, status);
+    std::string manifest_problem = read_manifest(folder_descriptor, entries);
+    std::string manifest_path    = path(manifest_name);
+    for (const auto &[kind, name] : entries)
+      if (manifest_problem.empty() && kind == "folder"
+          && name.rfind("runs/", 0) == 0)
+        {
+          std::string leaf;
+          const int   parent = open_parent(folder_descriptor, name, leaf);
+          const int   inner
+            = parent < 0
+                ? -1
+                : ::openat(parent,
+                           leaf.c_str(),
+                           O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+          Manifest inner_entries;
+          if (inner >= 0)
+            {
+              manifest_problem = read_manifest(inner, inner_entries);
+              manifest_path    = path(name + "/" + manifest_name);
+              ::close(inner);
+            }
+          if (parent >= 0 && parent != folder_descriptor)
+            ::close(parent);
+        }
+    if (!manifest_problem.empty())
+      return entry_name + "; its manifest " + manifest_path + " "
+             + manifest_problem
+             + ": it is not as this program wrote it, and the run neither "
+               "reads nor removes anything by it; accepted: a folder whose "
+               "manifest is this program's (move the folder's files away "
+               "yourself and remove the manifest, or choose another Output "
+               "directory).";
     std::set<std::string> listed_names;
-    for (const auto &entry : parse_manifest(manifest))
+    for (const auto &entry : entries)
       listed_names.insert(entry.second);
 
     std::vector<std::string> in_the_way, earlier_run;
@@ -635,9 +790,6 @@ namespace ViscoContact
           }
       }
 
-    const std::string entry_name
-      = "Invalid parameter <Output directory> in subsection <Output>: value <"
-        + folder + ">";
     std::sort(in_the_way.begin(), in_the_way.end());
     if (!in_the_way.empty())
       return entry_name
@@ -776,9 +928,9 @@ namespace ViscoContact
         remove_listed(folder_descriptor, protected_file, false);
         return "";
       }
-    std::string content;
-    read_file(folder_descriptor, manifest_name, content);
-    for (const auto &[kind, name] : parse_manifest(content))
+    Manifest entries;
+    read_manifest(folder_descriptor, entries);
+    for (const auto &[kind, name] : entries)
       {
         const long step = step_of(name);
         if (kind == "temporary")
@@ -794,7 +946,7 @@ namespace ViscoContact
             if (parent >= 0
                 && ::fstatat(parent, leaf.c_str(), &status, AT_SYMLINK_NOFOLLOW)
                      == 0
-                && S_ISREG(status.st_mode))
+                && S_ISREG(status.st_mode) && owned(status))
               ::unlinkat(parent, leaf.c_str(), 0);
             if (parent >= 0 && parent != folder_descriptor)
               ::close(parent);
@@ -819,9 +971,9 @@ namespace ViscoContact
     listed.clear();
     if (mode == Mode::resume)
       {
-        std::string old;
-        read_file(folder_descriptor, manifest_name, old);
-        for (const auto &[kind, name] : parse_manifest(old))
+        Manifest old;
+        read_manifest(folder_descriptor, old);
+        for (const auto &[kind, name] : old)
           {
             struct stat status;
             if (kind != "temporary"
@@ -859,10 +1011,33 @@ namespace ViscoContact
     manifest_descriptor
       = ::openat(folder_descriptor,
                  manifest_name,
-                 O_WRONLY | O_APPEND | O_NOFOLLOW | O_CLOEXEC);
+                 O_WRONLY | O_APPEND | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
     if (manifest_descriptor < 0)
       return failure(manifest_name, errno);
-    return "";
+    return own_regular_file(manifest_descriptor, manifest_name);
+  }
+
+
+
+  // A file the run writes into by name (the manifest, the time series)
+  // must still be the run's: a regular file of this account with no other
+  // name. Anything else has been put there meanwhile, and nothing is
+  // written into it.
+  std::string
+  OutputFolder::own_regular_file(const int          descriptor,
+                                 const std::string &name) const
+  {
+    struct stat status;
+    if (::fstat(descriptor, &status) != 0)
+      return failure(name, errno);
+    if (S_ISREG(status.st_mode) && status.st_nlink == 1 && owned(status))
+      return "";
+    return "The file " + path(name)
+           + " is not the one this run wrote (it has been replaced by "
+           + (S_ISREG(status.st_mode) ? "a file with another name or owner"
+                                      : "something that is not a file")
+           + "); the run does not write into it. Make sure that nothing "
+             "else writes into the Output directory.";
   }
 
 
@@ -1231,13 +1406,19 @@ namespace ViscoContact
   std::string
   OutputFolder::append(const std::string &name, const std::string &text)
   {
-    const int descriptor
-      = ::openat(folder_descriptor,
-                 name.c_str(),
-                 O_WRONLY | O_APPEND | O_CREAT | O_NOFOLLOW | O_CLOEXEC,
-                 0644);
+    const int descriptor = ::openat(folder_descriptor,
+                                    name.c_str(),
+                                    O_WRONLY | O_APPEND | O_CREAT | O_NOFOLLOW
+                                      | O_NONBLOCK | O_CLOEXEC,
+                                    0644);
     if (descriptor < 0)
       return failure(name, errno);
+    const std::string problem = own_regular_file(descriptor, name);
+    if (!problem.empty())
+      {
+        ::close(descriptor);
+        return problem;
+      }
     struct stat status;
     const off_t old_size
       = (::fstat(descriptor, &status) == 0 ? status.st_size : -1);
@@ -1264,7 +1445,7 @@ namespace ViscoContact
       return;
     struct stat status;
     if (::fstatat(parent, leaf.c_str(), &status, AT_SYMLINK_NOFOLLOW) == 0
-        && S_ISREG(status.st_mode))
+        && S_ISREG(status.st_mode) && owned(status))
       ::unlinkat(parent, leaf.c_str(), 0);
     if (parent != folder_descriptor)
       ::close(parent);

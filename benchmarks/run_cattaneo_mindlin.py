@@ -40,12 +40,13 @@ and mean, those of the same steps without friction, and whether any step
 failed or cycled, against N.
 
 With --check (the ctest): on N = 16, 32, 64 no free node shows a slip,
-the stick half-width lies within 15% of the closed form and the
-traction's difference to N = 128 falls with an observed order of at
-least 0.5; on the ramp (N = 16, 64) no
-step fails, and the mean iterations per step exceed those of the same
-steps without friction by at most 2 (the normal contact's own active set
-takes most of them: its front advances by a few nodes per iteration).
+the stick half-width lies within 1.5 times its observed distance to the
+closed form (about 6%: the midpoint between nodes, and beta = 0.091) and
+the traction's difference to N = 128 falls with 0.8 times its observed
+orders (1.08, 1.32); on the ramp (N = 16, 64) no step fails, and the mean
+iterations per step exceed those of the same steps without friction by at
+most 1.5 times the observed 0.50 and 0.80 (the normal contact's own active
+set takes most of them: its front advances by a few nodes per iteration).
 
     benchmarks/run_cattaneo_mindlin.py [--executable build/viscoplastic_contact]
         [--meshes 16,32,64,128] [--reference 256] [--poisson 0.3,0.4,0.45]
@@ -314,33 +315,48 @@ def main():
         figure.savefig(arguments.figure, dpi=100)
 
     if arguments.check:
+        # Observed on N = 16, 32, 64: c 6.5%, 6.0%, 6.1% below the closed
+        # form (the midpoint between nodes, and beta = 0.091 instead of 0);
+        # the traction's difference to N = 128 falling with orders 1.08 and
+        # 1.32; friction adding 0.50 and 0.80 iterations per step to the
+        # ramp on N = 16, 64. Bounds: 1.5 times the errors and the added
+        # iterations, 0.8 times the orders.
+        c_bounds = {16: 0.098, 32: 0.090, 64: 0.092}
+        order_bounds = {32: 0.86, 64: 1.06}
         for r in results:
             if r["free slip"] != 0:
                 sys.exit("N = %d: a node out of contact shows the slip %g."
                          % (r["N"], r["free slip"]))
-            if abs(r["c"] - r["c exact"]) > 0.15 * r["c exact"]:
-                sys.exit("N = %d: the stick half-width %.4f is not within 15%% "
-                         "of the closed form %.4f." % (r["N"], r["c"],
-                                                       r["c exact"]))
+            if abs(r["c"] - r["c exact"]) > c_bounds[r["N"]] * r["c exact"]:
+                sys.exit("N = %d: the stick half-width %.4f is not within "
+                         "%.1f%% of the closed form %.4f." % (
+                             r["N"], r["c"], 100 * c_bounds[r["N"]],
+                             r["c exact"]))
         for r in results[1:]:
-            if r["order"] < 0.5:
+            if r["order"] < order_bounds[r["N"]]:
                 sys.exit("N = %d: the traction's difference to N = %d falls "
-                         "with order %.2f, below 0.5." % (
-                             r["N"], fine["N"], r["order"]))
+                         "with order %.2f, below %.2f." % (
+                             r["N"], fine["N"], r["order"],
+                             order_bounds[r["N"]]))
         for r in ramps:
             if r["failed"]:
                 sys.exit("The ramp on N = %d failed:\n%s" % (r["N"],
                                                             r["message"]))
+        added_bounds = {16: 0.75, 64: 1.2}
         for r, p in zip(ramps, plain):
-            if mean(r["iterations"]) > mean(p["iterations"]) + 2:
+            added = mean(r["iterations"]) - mean(p["iterations"])
+            if added > added_bounds[r["N"]]:
                 sys.exit("The ramp on N = %d takes %.2f active-set iterations "
-                         "per step with friction, more than 2 above the %.2f "
-                         "without." % (r["N"], mean(r["iterations"]),
-                                       mean(p["iterations"])))
-        print("Cattaneo-Mindlin: the stick zone within 15%% of the closed "
-              "form, the traction converging (order >= 0.5 against N = %d); "
-              "on the ramp friction adds at most 2 active-set iterations per "
-              "step to those of the frictionless steps (N = %s)." % (
+                         "per step with friction, more than %.2f above the "
+                         "%.2f without." % (r["N"], mean(r["iterations"]),
+                                            added_bounds[r["N"]],
+                                            mean(p["iterations"])))
+        print("Cattaneo-Mindlin: the stick zone within 1.5 times its observed "
+              "distance to the closed form (9.8%%, 9.0%%, 9.2%% on N = 16, "
+              "32, 64), the traction's difference to N = %d falling with 0.8 "
+              "times the observed orders; on the ramp friction adds at most "
+              "1.5 times the observed iterations per step to the "
+              "frictionless steps' (N = %s)." % (
                   fine["N"], ", ".join(str(r["N"]) for r in ramps)))
 
 

@@ -22,11 +22,12 @@ measure that converges. Prints the markdown tables of doc/benchmarks.md;
 --figure
 FILE draws the force-indentation curves and the errors against the mesh
 size and the run time (the program's wall clock). --check (the ctest):
-N = 12 and 16 on both cell types, bounds on the errors, the error in p0
-falling, the L2 error of the pressure on hexahedra N = 8, 16, 24 falling
-with an observed order of at least 0.8 in each refinement, and 2-rank
-runs on N = 8 (full space back end) equal to the 1-rank ones (condensed)
-to 1e-6.
+N = 8, 12, 16, 24 on both cell types, each error in a, p0 and F(d) within
+1.5 times its observed value (OBSERVED), the L2 error of the pressure
+falling from N = 8 to 16 to 24 with 0.8 times its observed orders on both
+cell types, F(d) on a block of edge 40 a (hexahedra, N = 24) within 1.5
+times its observed 0.73%, and 2-rank runs on N = 8 (full space back end)
+equal to the 1-rank ones (condensed) to 1e-6.
 
 --cost N,M,... --methods "full space,condensed" --ranks 1: the cost of the
 moving obstacle on hexahedra at N cells per edge (N = 68: 985k dofs), from
@@ -40,6 +41,12 @@ table (doc/benchmarks.md, "Cost of a moving-obstacle step").
         [--meshes 8,16,24,32] [--cells hexahedron,tetrahedron]
         [--figure doc/figures/hertz_sphere.png] [--check]
         [--cost 68 [--methods "full space,condensed"] [--ranks 1]]
+        [--recovery 16,24,32,48]
+
+--recovery N,M,...: the nodal pressure along the symmetry axes as the
+program writes it (lumped, z_i / w_i), averaged over each node's
+neighbours, and recovered consistently (M p = z), on hexahedra and on
+tetrahedra of both splits of the cubes, against Hertz (recovery_study()).
 """
 
 import argparse
@@ -60,20 +67,42 @@ from vc_scripts import set_prm_entries  # noqa: E402
 from make_hertz_sphere_meshes import hertz_sphere_block  # noqa: E402
 E, NU, R, D = 1000.0, 0.3, 1.0, 0.01
 E_STAR = E / (1 - NU ** 2)
-# The bounds of --check on its coarse meshes (N = 12, 16), with a margin.
-BOUNDS = {"a": 0.12, "p0": 0.06, "F": 0.2}
+# --check: the errors observed on N = 8, 12, 16, 24 (doc/benchmarks.md),
+# each bound 1.5 times its observed error; the errors in a and p0 do not
+# fall monotonically (which nodes are in contact changes with N), that of
+# F(d) is the finite block's (10 a).
+OBSERVED = {
+    "hexahedron": {
+        8: {"F": 9.07e-2, "a": 1.946e-1, "p0": 8.37e-3},
+        12: {"F": 4.25e-2, "a": 1.031e-1, "p0": 3.21e-2},
+        16: {"F": 7.08e-2, "a": 1.51e-3, "p0": 5.61e-3},
+        24: {"F": 6.61e-2, "a": 3.06e-2, "p0": 3.98e-3}},
+    "tetrahedron": {
+        8: {"F": 3.061e-1, "a": 1.457e-1, "p0": 3.27e-2},
+        12: {"F": 1.463e-1, "a": 3.04e-2, "p0": 5.56e-2},
+        16: {"F": 1.275e-1, "a": 2.40e-2, "p0": 3.53e-2},
+        24: {"F": 9.75e-2, "a": 2.33e-2, "p0": 2.15e-2}}}
+# The observed orders of the pressure's L2 error against Hertz from N = 8
+# to 16 and from 16 to 24; --check requires 0.8 times each.
+OBSERVED_ORDERS = {"hexahedron": (1.06, 1.65), "tetrahedron": (1.93, 1.18)}
+# F(d) on a block of edge 40 a (length 4, hexahedra, N = 24), where the
+# finite block's error is small: observed 7.34e-3.
+LARGE_BLOCK = {"length": 4.0, "N": 24, "F": 7.34e-3}
 
 
 def hertz_force(d):
     return 4.0 / 3.0 * E_STAR * math.sqrt(R) * d ** 1.5
 
 
-def run(executable, n, cells, ranks, folder, method=None, report=None):
-    """Runs the scene on N, returns the output folder and the wall time;
-    report (a dict) receives the program's standard output."""
+def run(executable, n, cells, ranks, folder, method=None, report=None,
+        length=1.0, mirrored=False):
+    """Runs the scene on N (a block of edge length; tetrahedra split around
+    the other diagonal if mirrored), returns the output folder and the wall
+    time; report (a dict) receives the program's standard output."""
     mesh = os.path.join(folder, "hertz_sphere.msh")
     with open(mesh, "w") as f:
-        f.write(hertz_sphere_block(n, cells == "tetrahedron"))
+        f.write(hertz_sphere_block(n, cells == "tetrahedron", length,
+                                   mirrored))
     entries = {(("Geometry",), "Mesh file"): mesh,
                (("Geometry",), "Cell type"):
                    "simplex" if cells == "tetrahedron" else "hypercube",
@@ -187,6 +216,111 @@ def print_cost(results):
                   r["setups"], r["memory"] / 1000, r["wall"]))
 
 
+def recovered_pressures(rows, n, simplex, mirrored):
+    """The nodal pressure of the top face three ways, by (x index, z
+    index) of the graded grid: lumped, z_i / w_i (the program's
+    contact_pressure); averaged, the force of the node and its neighbours
+    in the grid over their weights; consistent, M p = z with the mass
+    matrix of the top face's triangles (P1: the diagonal of each square as
+    the mesh cuts it) or squares (Q1)."""
+    import numpy as np
+    graded = [(k / n) ** 2 for k in range(n + 1)]
+    index = lambda x: min(range(n + 1), key=lambda i: abs(graded[i] - x))
+    force, weight = {}, {}
+    for r in rows:
+        key = (index(float(r["x"])), index(float(r["z"])))
+        force[key] = float(r["nodal_force"])
+        weight[key] = float(r["weight"])
+    lumped = {key: force[key] / weight[key] for key in force}
+    averaged = {}
+    for (i, k) in force:
+        patch = [(i + a, k + b) for a in (-1, 0, 1) for b in (-1, 0, 1)
+                 if (i + a, k + b) in force]
+        averaged[(i, k)] = (sum(force[q] for q in patch)
+                            / sum(weight[q] for q in patch))
+    number = lambda i, k: k * (n + 1) + i
+    mass = np.zeros(((n + 1) ** 2, (n + 1) ** 2))
+    for k in range(n):
+        for i in range(n):
+            dx, dz = graded[i + 1] - graded[i], graded[k + 1] - graded[k]
+            corners = [(i, k), (i + 1, k), (i + 1, k + 1), (i, k + 1)]
+            if not simplex:
+                # Q1 on a rectangle: (dx dz / 36) (1 + [a, b adjacent]) (1 +
+                # [same x]) ... as the tensor product of 1D mass matrices.
+                for a in corners:
+                    for b in corners:
+                        mx = dx / 6 * (2 if a[0] == b[0] else 1)
+                        mz = dz / 6 * (2 if a[1] == b[1] else 1)
+                        mass[number(*a), number(*b)] += mx * mz
+                continue
+            triangles = ([(corners[1], corners[0], corners[3]),
+                          (corners[1], corners[2], corners[3])] if mirrored
+                         else [(corners[0], corners[1], corners[2]),
+                               (corners[0], corners[3], corners[2])])
+            for triangle in triangles:
+                area = dx * dz / 2
+                for a in triangle:
+                    for b in triangle:
+                        mass[number(*a), number(*b)] += area / 12 * (2 if a == b else 1)
+    loads = np.zeros((n + 1) ** 2)
+    for (i, k), f in force.items():
+        loads[number(i, k)] = f
+    solution = np.linalg.solve(mass, loads)
+    consistent = {key: solution[number(*key)] for key in force}
+    return {"lumped": lumped, "averaged": averaged, "consistent": consistent}
+
+
+def recovery_study(executable, meshes):
+    """--recovery: the nodal pressure on the symmetry axes (x and z, within
+    a / 2 of the contact point) against Hertz for the computed force, for
+    each recovery of recovered_pressures(), on hexahedra and on tetrahedra
+    of both splits (meshes/make_hertz_sphere_meshes.py): the largest error
+    relative to p0 (signed) on each axis for the lumped pressure and its
+    observed order, the largest on either axis for the others, and the L2
+    error of the lumped pressure over the face. Prints the markdown table of
+    doc/benchmarks.md."""
+    print("| cells | N | lumped, x axis | lumped, z axis | order | averaged | "
+          "consistent | L2 over the face (lumped) |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+    for cells, mirrored in (("hexahedron", False), ("tetrahedron", False),
+                            ("tetrahedron", True)):
+        previous = None
+        for n in meshes:
+            with tempfile.TemporaryDirectory() as folder:
+                output, _ = run(executable, n, cells, 1, folder,
+                                mirrored=mirrored)
+                result = analyse(output)
+                profile = sorted(glob.glob(os.path.join(
+                    output, "contact_profile_*.csv")))[-1]
+                with open(profile) as f:
+                    rows = list(csv.DictReader(f))
+            pressures = recovered_pressures(rows, n, cells == "tetrahedron",
+                                            mirrored)
+            a, p0 = result["a Hertz"], result["p0 Hertz"]
+            graded = [(k / n) ** 2 for k in range(n + 1)]
+
+            def worst(name, on_axis):
+                errors = [(p - p0 * math.sqrt(1 - (graded[i] ** 2
+                                                   + graded[k] ** 2) / a ** 2))
+                          / p0
+                          for (i, k), p in pressures[name].items()
+                          if on_axis(i, k)
+                          and graded[i] ** 2 + graded[k] ** 2 <= (a / 2) ** 2]
+                return max(errors, key=abs)
+            x_axis = worst("lumped", lambda i, k: k == 0)
+            z_axis = worst("lumped", lambda i, k: i == 0)
+            largest = max(abs(x_axis), abs(z_axis))
+            order = ("%.2f" % (math.log(previous[0] / largest)
+                               / math.log(n / previous[1]))
+                     if previous else "")
+            axes = lambda i, k: i == 0 or k == 0
+            print("| %s | %d | %+.2e | %+.2e | %s | %+.2e | %+.2e | %.2e |" % (
+                cells + (", other split" if mirrored else ""), n, x_axis,
+                z_axis, order, worst("averaged", axes),
+                worst("consistent", axes), result["L2 error"]))
+            previous = (largest, n)
+
+
 def run_all(executable, meshes, cell_types, ranks):
     runs = {}
     for cells in cell_types:
@@ -211,7 +345,12 @@ def main():
     parser.add_argument("--cost")
     parser.add_argument("--methods", default="full space,condensed")
     parser.add_argument("--ranks", type=int, default=1)
+    parser.add_argument("--recovery")
     arguments = parser.parse_args()
+    if arguments.recovery:
+        recovery_study(arguments.executable,
+                       [int(n) for n in arguments.recovery.split(",")])
+        return
     if arguments.cost:
         results = []
         for n in arguments.cost.split(","):
@@ -222,7 +361,7 @@ def main():
         print()
         print_cost(results)
         return
-    meshes = [12, 16] if arguments.check else [
+    meshes = [8, 12, 16, 24] if arguments.check else [
         int(n) for n in arguments.meshes.split(",")]
     cell_types = arguments.cells.split(",")
     runs = run_all(arguments.executable, meshes, cell_types, 1)
@@ -300,25 +439,39 @@ def main():
         for cells, results in runs.items():
             for r in results:
                 for key in ("a", "p0", "F"):
-                    if r[key + " error"] > BOUNDS[key]:
+                    bound = 1.5 * OBSERVED[cells][r["N"]][key]
+                    if r[key + " error"] > bound:
                         sys.exit("%s, N = %d: the error in %s is %.2e, above "
-                                 "%.2e." % (cells, r["N"], key,
-                                            r[key + " error"], BOUNDS[key]))
-            if results[1]["p0 error"] >= results[0]["p0 error"]:
-                sys.exit("%s: the error in p0 does not fall from N = 12 to "
-                         "16." % cells)
-        # The L2 error of the pressure profile on hexahedra: at least order
-        # 0.8 in h from N = 8 to 16 and from 16 to 24 (observed: 1.06, 1.65).
-        ladder = run_all(arguments.executable, [8, 16, 24], ["hexahedron"],
-                         1)["hexahedron"]
-        for coarse, fine in zip(ladder, ladder[1:]):
-            order = (math.log(coarse["L2 error"] / fine["L2 error"])
-                     / math.log(fine["N"] / coarse["N"]))
-            if order < 0.8:
-                sys.exit("hexahedron: the L2 error of the pressure falls with "
-                         "order %.2f from N = %d to %d (%.3e, %.3e), below "
-                         "0.8." % (order, coarse["N"], fine["N"],
-                                   coarse["L2 error"], fine["L2 error"]))
+                                 "%.2e (1.5 times the observed %.2e)." % (
+                                     cells, r["N"], key, r[key + " error"],
+                                     bound, OBSERVED[cells][r["N"]][key]))
+            # The L2 error of the pressure profile from N = 8 to 16 and from
+            # 16 to 24.
+            ladder = [r for r in results if r["N"] in (8, 16, 24)]
+            for i, (coarse, fine) in enumerate(zip(ladder, ladder[1:])):
+                order = (math.log(coarse["L2 error"] / fine["L2 error"])
+                         / math.log(fine["N"] / coarse["N"]))
+                bound = 0.8 * OBSERVED_ORDERS[cells][i]
+                if order < bound:
+                    sys.exit("%s: the L2 error of the pressure falls with "
+                             "order %.2f from N = %d to %d (%.3e, %.3e), below "
+                             "%.2f (0.8 times the observed %.2f)." % (
+                                 cells, order, coarse["N"], fine["N"],
+                                 coarse["L2 error"], fine["L2 error"], bound,
+                                 OBSERVED_ORDERS[cells][i]))
+        # F(d) on a large block.
+        with tempfile.TemporaryDirectory() as folder:
+            output, _ = run(arguments.executable, LARGE_BLOCK["N"],
+                            "hexahedron", 1, folder,
+                            length=LARGE_BLOCK["length"])
+            large = analyse(output)
+        print("Block of edge %g (hexahedra, N = %d): F(d) error %.2e." % (
+            LARGE_BLOCK["length"], LARGE_BLOCK["N"], large["F error"]))
+        if large["F error"] > 1.5 * LARGE_BLOCK["F"]:
+            sys.exit("On the block of edge %g, F(d) is %.2e off Hertz, above "
+                     "%.2e (1.5 times the observed %.2e)." % (
+                         LARGE_BLOCK["length"], large["F error"],
+                         1.5 * LARGE_BLOCK["F"], LARGE_BLOCK["F"]))
         # Two ranks (the full space back end) against one (condensed).
         serial = run_all(arguments.executable, [8], cell_types, 1)
         parallel = run_all(arguments.executable, [8], cell_types, 2)
@@ -331,12 +484,12 @@ def main():
             if abs(one["p0"] - two["p0"]) > 1e-6 * one["p0"]:
                 sys.exit("%s, N = 8: p0 %.10g on 1 rank, %.10g on 2."
                          % (cells, one["p0"], two["p0"]))
-        print("Hertz sphere (%s): a, p0 and F(d) within %.0f%%, %.0f%% and "
-              "%.0f%% of the closed form on N = 12, 16, the error in p0 "
-              "falling, the L2 error of the pressure on hexahedra of order "
-              "0.8 or more on N = 8, 16, 24; 2 ranks agree with 1." % (
-                  ", ".join(cell_types), 100 * BOUNDS["a"],
-                  100 * BOUNDS["p0"], 100 * BOUNDS["F"]))
+        print("Hertz sphere (%s): a, p0 and F(d) within 1.5 times their "
+              "observed errors on N = 8, 12, 16, 24, the L2 error of the "
+              "pressure falling with 0.8 times its observed orders from N = 8 "
+              "to 16 to 24, F(d) within %.1f%% of Hertz on a block of edge "
+              "40 a; 2 ranks agree with 1." % (
+                  ", ".join(cell_types), 150 * LARGE_BLOCK["F"]))
 
 
 if __name__ == "__main__":

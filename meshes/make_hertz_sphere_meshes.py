@@ -37,7 +37,11 @@ def signed_volume(points):
             + u[2] * (v[0] * w[1] - v[1] * w[0]))
 
 
-def hertz_sphere_block(n, simplex=False, length=L):
+def hertz_sphere_block(n, simplex=False, length=L, mirrored=False):
+    """mirrored: the tetrahedra around the other diagonal in x of each
+    hexahedron (from its corner (1, 0, 0) to (0, 1, 1)), the faces cut to
+    match: the same mesh reflected in its cells' x index, a second
+    conforming split to compare with."""
     graded = [length * (k / n) ** 2 for k in range(n + 1)]
     coordinate = (lambda i: graded[i], lambda j: length - graded[n - j], lambda k: graded[k])
     index = lambda i, j, k: (k * (n + 1) + j) * (n + 1) + i + 1
@@ -59,7 +63,12 @@ def hertz_sphere_block(n, simplex=False, length=L):
                     ijk = [0, 0, 0]
                     ijk[axis], ijk[others[0]], ijk[others[1]] = fixed, p + dp, q + dq
                     corners[(dp, dq)] = index(*ijk)
-                if simplex:
+                if simplex and mirrored and axis != 0:
+                    # x is the face's first direction: the diagonal from
+                    # (1, 0) to (0, 1).
+                    for middle in ((0, 0), (1, 1)):
+                        boundary.append((2, tag, corners[(1, 0)], corners[middle], corners[(0, 1)]))
+                elif simplex:
                     # Kuhn's diagonal of the face: lowest to highest corner.
                     for middle in ((1, 0), (0, 1)):
                         boundary.append((2, tag, corners[(0, 0)], corners[middle], corners[(1, 1)]))
@@ -70,6 +79,8 @@ def hertz_sphere_block(n, simplex=False, length=L):
         for j in range(n):
             for i in range(n):
                 v = lambda a, b, c: index(i + a, j + b, k + c)
+                if simplex and mirrored:
+                    v = lambda a, b, c: index(i + 1 - a, j + b, k + c)
                 if not simplex:
                     cells.append((5, 10, v(0, 0, 0), v(1, 0, 0), v(1, 1, 0), v(0, 1, 0),
                                   v(0, 0, 1), v(1, 0, 1), v(1, 1, 1), v(0, 1, 1)))

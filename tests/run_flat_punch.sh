@@ -6,8 +6,10 @@
 #  - every node under the punch's face (x <= b) is at the rigid limit and
 #    none beside it;
 #  - away from the edges (x <= b / 2) the pressure has Sadowsky's shape,
-#    p(x) pi sqrt(b^2 - x^2) / P within 3% of 1 (the finite block and the
-#    lumped edge node, which carries the singular part, make 1.5-2%);
+#    p(x) pi sqrt(b^2 - x^2) / P within 1.5 times the observed deviation
+#    from 1: 2.0% on quadrilaterals, 3.1% on triangles (observed 1.36% and
+#    2.04%, which the finite block and the lumped edge node, carrying the
+#    singular part, make);
 #  - elastic, so P(t = 1) = 2 P(t = 0.5) to 1e-9;
 # on quadrilaterals (condensed, 1 rank) and triangles (full space, 2 ranks).
 #   run_flat_punch.sh EXECUTABLE
@@ -16,7 +18,9 @@ here=$(cd "$(dirname "$0")" && pwd)
 source "$here/robustness/helpers.sh"
 executable=$1
 
-for variant in "hypercube condensed 1" "simplex full_space 2"; do
+# The last field: 1.5 times the largest observed deviation from
+# Sadowsky's shape at x <= b / 2.
+for variant in "hypercube condensed 1 0.0204" "simplex full_space 2 0.0306"; do
   set -- $variant
   name="flat punch, $1, ${2/_/ }, $3 rank(s)"
   # Triangles have no hanging nodes in deal.II 9.4: a uniform mesh of h =
@@ -39,9 +43,12 @@ for variant in "hypercube condensed 1" "simplex full_space 2"; do
       if (x > 0.25 + 1e-9 && s != 0) { print name ": the node at x = " x " touches beside the punch"; exit 1 }
       if (x <= 0.125 + 1e-9) {
         shape = p * 3.141592653589793 * sqrt(0.0625 - x * x) / P
-        if (shape < 0.97 || shape > 1.03) { print name ": p pi sqrt(b^2 - x^2) / P = " shape " at x = " x; exit 1 }
+        deviation = shape > 1 ? shape - 1 : 1 - shape
+        if (deviation > largest) largest = deviation
+        if (deviation > bound) { print name ": p pi sqrt(b^2 - x^2) / P = " shape " at x = " x ", more than " bound " from 1"; exit 1 }
         ++n } }
-    END { if (n < 8) { print name ": only " n " nodes with x <= b / 2"; exit 1 } }' \
-    results/contact_profile_*.csv || exit 1
+    END { if (n < 8) { print name ": only " n " nodes with x <= b / 2"; exit 1 }
+          printf "%s: the shape within %.4f of 1 (bound %.4f).\n", name, largest, bound }' \
+    bound=$4 results/contact_profile_*.csv || exit 1
 done
-echo "Flat punch: the contact is the punch face, the pressure has Sadowsky's shape away from the edges (3%), the force is linear in d (quadrilaterals condensed, triangles full space on 2 ranks)."
+echo "Flat punch: the contact is the punch face, the pressure has Sadowsky's shape away from the edges (within 1.5 times the observed 1.4% and 2.0%), the force is linear in d (quadrilaterals condensed, triangles full space on 2 ranks)."

@@ -52,10 +52,11 @@ run work/new.prm
 [ $status -eq 0 ] || fail "The first run failed: $(cat err.txt)"
 cp -a results work/earlier
 
-# A planted folder of temporaries outside: even a new run (Overwrite =
-# false), which removes the temporaries of killed runs, refuses it.
-rm -rf results && cp -a work/earlier results
-echo "temporary ../precious" >> "results/$manifest"
+# A planted folder of temporaries outside, in a folder with nothing but
+# the manifest: even a new run (Overwrite = false), which removes the
+# temporaries of killed runs, refuses it.
+rm -rf results && mkdir results
+printf 'temporary ../precious\n' > "results/$manifest"
 run work/new.prm
 refused "temporary ../precious" "has the line <temporary ../precious>"
 

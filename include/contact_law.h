@@ -122,6 +122,10 @@ namespace ViscoContact
     TangentialLaw type        = TangentialLaw::frictionless;
     double        coefficient = 0; // mu, Coulomb only
 
+    // The law of a zone's Tangential law and Friction coefficient.
+    static FrictionLaw
+    from_parameters(const Parameters::Contact &contact);
+
     bool
     has_friction() const
     {

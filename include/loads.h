@@ -2,7 +2,16 @@
 #define viscoplastic_contact_loads_h
 
 #include <deal.II/base/function_parser.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/types.h>
 
+#include <deal.II/lac/vector.h>
+
+#include "parameters.h"
+
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -29,6 +38,64 @@ namespace ViscoContact
                   const std::string         &entry,
                   const std::string         &expression,
                   const std::vector<double> &lengths);
+
+  // @sect3{The loads of a scene}
+  //
+  // The body force f_0 and the loads on parts of the boundary (the Surface
+  // traction of subsection Loads on the Loaded boundary ids first, then
+  // each Surface load N on its own ids: a traction, or a pressure acting as
+  // -p n along the outward normal n), built from the parameters once (a bad
+  // expression stops the run here, naming the entry). Two facts save work
+  // in every step: a body force that is the literal zero is not integrated
+  // at all, and loads that do not mention t are assembled once.
+  template <int dim>
+  class Loads
+  {
+  public:
+    explicit Loads(const Parameters::AllParameters &parameters);
+
+    // The time at which the values are taken.
+    void
+    set_time(const double time);
+    double
+    get_time() const;
+    bool
+    depend_on_time() const;
+    bool
+    body_force_is_zero() const;
+
+    // The surface load parts, and the part of a boundary id
+    // (numbers::invalid_unsigned_int if the id carries no load).
+    unsigned int
+    n_surface_parts() const;
+    unsigned int
+    surface_part_of(const types::boundary_id id) const;
+
+    // The body force at a point, and the traction of a surface part at a
+    // point with outward normal: an empty string, or the message naming the
+    // entry, its value, the point and the time if a value is not finite.
+    std::string
+    body_force(const Point<dim> &point, Vector<double> &value) const;
+    std::string
+    surface_load(const unsigned int    part,
+                 const Point<dim>     &point,
+                 const Tensor<1, dim> &normal,
+                 Vector<double>       &value) const;
+
+  private:
+    struct SurfacePart
+    {
+      std::unique_ptr<FunctionParser<dim>> function;
+      bool                                 pressure;
+      std::string                          subsection, entry, expression;
+    };
+    FunctionParser<dim>                        body;
+    std::string                                body_expression;
+    bool                                       body_is_zero;
+    bool                                       time_dependent;
+    std::vector<SurfacePart>                   surface_parts;
+    std::map<types::boundary_id, unsigned int> part_of_id;
+  };
 } // namespace ViscoContact
 
 #endif

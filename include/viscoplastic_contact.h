@@ -30,6 +30,9 @@
 #include "constraints.h"
 #include "contact_nodes.h"
 #include "contact_set.h"
+#include "contact_zones.h"
+#include "dirichlet_parts.h"
+#include "loads.h"
 #include "elastic_operator.h"
 #include "material.h"
 #include "parameters.h"
@@ -248,11 +251,6 @@ namespace ViscoContact
 
     // @sect4{Prescribed displacements (boundary_conditions.cc)}
     //
-    // The Dirichlet parts in the order their constraints are made: the
-    // clamped ids (all components), then every Prescribed displacement
-    // entry with its components.
-    std::vector<DirichletPart>
-    dirichlet_parts() const;
     // Per mesh: the owned dofs of every Dirichlet part, with their support
     // points and the part's function, and the owned cells whose dofs the
     // lifting or a reaction touches. Refuses a scene whose constraints
@@ -759,31 +757,10 @@ namespace ViscoContact
     double
     explicit_stability_limit() const;
 
-    FunctionParser<dim> body_force;
-    bool                body_force_is_zero;
-    bool                loads_depend_on_time;
-    // The loads on boundary parts: the Surface traction of subsection Loads
-    // on the Loaded boundary ids first, then each Surface load N; and the
-    // load of each boundary id that has one.
-    struct SurfaceLoadPart
-    {
-      std::unique_ptr<FunctionParser<dim>> function;
-      bool                                 pressure;
-      std::string                          subsection, entry, expression;
-    };
-    std::vector<SurfaceLoadPart>               surface_loads;
-    std::map<types::boundary_id, unsigned int> surface_load_of_id;
-    // The load of a boundary part at a time (set_time() of its function)
-    // and a point with outward normal n: the traction, or -p n.
-    void
-    surface_load_value(const SurfaceLoadPart &load,
-                       const Point<dim>      &point,
-                       const Tensor<1, dim>  &normal,
-                       Vector<double>        &value) const;
+    // The loads of the scene (loads.h).
+    Loads<dim> loads;
 
-    // The Dirichlet parts (dirichlet_parts()): their names in the time
-    // series ("clamped", "prescribed_N"), the function of each prescribed
-    // one (null for clamped) and the components it prescribes; per mesh
+    // The Dirichlet parts of the scene (dirichlet_parts.h); per mesh
     // the locally relevant dofs of the parts (a dof belongs to the first
     // part that constrains it; the values of ghost dofs enter the
     // constraints of owned hanging nodes) and the owned cells (k) the
@@ -802,11 +779,7 @@ namespace ViscoContact
     // entry if it is not finite (else empty).
     std::pair<double, std::string>
     prescribed_value(const DirichletDof &dof, const double time) const;
-    std::vector<std::string>                          dirichlet_part_names;
-    std::vector<std::unique_ptr<FunctionParser<dim>>> dirichlet_functions;
-    std::vector<std::vector<unsigned int>>            dirichlet_components;
-    bool                      has_prescribed_values            = false;
-    bool                      prescribed_values_depend_on_time = false;
+    DirichletParts<dim>       dirichlet;
     std::vector<DirichletDof> dirichlet_dofs;
     std::vector<unsigned int> lifting_cells;
     std::vector<unsigned int> reaction_cells;
@@ -863,22 +836,9 @@ namespace ViscoContact
     // then the step problem is a single linear solve.
     bool            contact_enabled = false;
     ContactSet<dim> contact_set;
-    // The contact zones (subsection Contact and the numbered Contact zone
-    // N that name boundary parts, without those whose law is void), and the
-    // obstacle of each: the gap s(x, t) along the zone's direction (or the
-    // normals), nullptr where it is zero (the nodes keep s = 0).
-    std::vector<ContactZoneDescription<dim>>          contact_zones;
-    std::vector<std::unique_ptr<FunctionParser<dim>>> zone_gap_functions;
-    // Tresca's Slip bound of each zone (nullptr in the others).
-    std::vector<std::unique_ptr<FunctionParser<dim>>> zone_slip_bounds;
-    bool                                              has_gap = false;
-    bool gap_depends_on_time                                  = false;
-    std::vector<Function<dim> *>
-    zone_gaps() const;
-    std::vector<unsigned int>
-    contact_zone_numbers() const;
-    std::vector<unsigned int>
-    frictional_zone_numbers() const;
+    // The contact zones of the scene, with their laws and obstacles
+    // (contact_zones.h).
+    ContactZones<dim> contact_zones;
     // The gaps of the contact nodes at the given time (collective: a value
     // that is not finite stops all ranks, naming the entry).
     void

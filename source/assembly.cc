@@ -18,44 +18,6 @@
 
 namespace ViscoContact
 {
-  namespace
-  {
-    // The message of a load that is not finite at a point and a time: the
-    // entry, its value, the point and the time, and what is accepted.
-    template <int dim>
-    std::string
-    non_finite_load(const std::string    &subsection,
-                    const std::string    &entry,
-                    const std::string    &expression,
-                    const Vector<double> &value,
-                    const Point<dim>     &point,
-                    const double          time)
-    {
-      const auto list = [](const auto &values, const unsigned int n) {
-        std::ostringstream text;
-        for (unsigned int d = 0; d < n; ++d)
-          text << (d > 0 ? ", " : "") << values[d];
-        return text.str();
-      };
-      return "Invalid parameter <" + entry + "> in subsection <" + subsection
-             + ">: value <" + expression + "> is not finite at the point ("
-             + list(point, dim)
-             + ") at t = " + list(std::vector<double>{time}, 1) + " (it gives "
-             + list(value, value.size())
-             + "); accepted: expressions with a finite value at every load "
-               "point of the mesh and every time of the run.";
-    }
-
-    template <int dim>
-    bool
-    is_finite(const Vector<double> &value)
-    {
-      for (const double v : value)
-        if (!std::isfinite(v))
-          return false;
-      return true;
-    }
-  } // namespace
 
 
 
@@ -199,7 +161,7 @@ namespace ViscoContact
     // The levels t_m = m k, m < N, and t_N = T.
     const std::uint64_t n_steps
       = n_fixed_steps(parameters.end_time, parameters.time_step);
-    const std::uint64_t n_levels = loads_depend_on_time ? n_steps + 1 : 1;
+    const std::uint64_t n_levels = loads.depend_on_time() ? n_steps + 1 : 1;
     const auto          level    = [&](const std::uint64_t m) {
       return m < n_steps ? m * parameters.time_step : parameters.end_time;
     };
@@ -207,7 +169,7 @@ namespace ViscoContact
     // points of each surface load come with their normals.
     std::vector<Point<dim>> body_points;
     std::vector<std::vector<std::pair<Point<dim>, Tensor<1, dim>>>>
-                      surface_points(surface_loads.size());
+                      surface_points(loads.n_surface_parts());
     FEValues<dim>     fe_values(mapping,
                             *fe,
                             load_quadrature,
@@ -219,7 +181,7 @@ namespace ViscoContact
                                        | update_normal_vectors);
     for (const auto &cell : owned_cells)
       {
-        if (!body_force_is_zero)
+        if (!loads.body_force_is_zero())
           {
             fe_values.reinit(cell);
             for (const unsigned int q : fe_values.quadrature_point_indices())
@@ -228,14 +190,14 @@ namespace ViscoContact
         for (const unsigned int f : cell->face_indices())
           if (cell->face(f)->at_boundary())
             {
-              const auto part
-                = surface_load_of_id.find(cell->face(f)->boundary_id());
-              if (part == surface_load_of_id.end())
+              const unsigned int part
+                = loads.surface_part_of(cell->face(f)->boundary_id());
+              if (part == numbers::invalid_unsigned_int)
                 continue;
               fe_face_values.reinit(cell, f);
               for (const unsigned int q :
                    fe_face_values.quadrature_point_indices())
-                surface_points[part->second].emplace_back(
+                surface_points[part].emplace_back(
                   fe_face_values.quadrature_point(q),
                   fe_face_values.normal_vector(q));
             }
@@ -249,47 +211,28 @@ namespace ViscoContact
     };
     std::string    problem;
     Vector<double> value(dim);
-    for (unsigned int l = 0; l < surface_loads.size(); ++l)
+    for (unsigned int l = 0; l < loads.n_surface_parts(); ++l)
       {
-        const SurfaceLoadPart &load   = surface_loads[l];
-        const auto            &points = surface_points[l];
-        const std::size_t      stride = stride_of(points.size());
+        const auto       &points = surface_points[l];
+        const std::size_t stride = stride_of(points.size());
         for (std::uint64_t m = 0; m < n_levels && problem.empty(); ++m)
           {
-            load.function->set_time(level(m));
+            loads.set_time(level(m));
             for (std::size_t i = 0; i < points.size() && problem.empty();
                  i += stride)
-              {
-                surface_load_value(load,
-                                   points[i].first,
-                                   points[i].second,
-                                   value);
-                if (!is_finite<dim>(value))
-                  problem = non_finite_load(load.subsection,
-                                            load.entry,
-                                            load.expression,
-                                            value,
-                                            points[i].first,
-                                            level(m));
-              }
+              problem = loads.surface_load(l,
+                                           points[i].first,
+                                           points[i].second,
+                                           value);
           }
       }
     const std::size_t stride = stride_of(body_points.size());
     for (std::uint64_t m = 0; m < n_levels && problem.empty(); ++m)
       {
-        body_force.set_time(level(m));
+        loads.set_time(level(m));
         for (std::size_t i = 0; i < body_points.size() && problem.empty();
              i += stride)
-          {
-            body_force.vector_value(body_points[i], value);
-            if (!is_finite<dim>(value))
-              problem = non_finite_load("Loads",
-                                        "Body force",
-                                        parameters.body_force,
-                                        value,
-                                        body_points[i],
-                                        level(m));
-          }
+          problem = loads.body_force(body_points[i], value);
       }
     // One outcome for all ranks: the message of the lowest rank that found
     // a point.
@@ -317,15 +260,15 @@ namespace ViscoContact
     TimerOutput::Scope t(computing_timer, "Assemble right-hand side");
     // The first call always assembles (the counter is still 0); later calls
     // only if f_0 or f_2 mention t.
-    if (loads_depend_on_time || n_external_load_assemblies == 0)
+    if (loads.depend_on_time() || n_external_load_assemblies == 0)
       assemble_external_load(time);
     set_dirichlet_values(time);
-    if (gap_depends_on_time)
+    if (contact_zones.gap_depends_on_time())
       set_gaps(time);
     system_rhs = external_load;
     // The lifting of the prescribed displacements (the implicit update has
     // them in its iterate instead).
-    if (has_prescribed_values && !implicit_update())
+    if (dirichlet.has_values() && !implicit_update())
       system_rhs += lifting_load;
     // Without plasticity H_n = sigma_0 - E eps(u_0) = 0 for all n, and
     // history_load stays zero; with the implicit update the history enters
@@ -351,9 +294,7 @@ namespace ViscoContact
     // external_load = 0 also clears the ghost entries, into which the cells add
     // the contributions to dofs other ranks own.
     external_load = 0;
-    body_force.set_time(time);
-    for (SurfaceLoadPart &load : surface_loads)
-      load.function->set_time(time);
+    loads.set_time(time);
     const unsigned int                   dofs_per_cell = fe->n_dofs_per_cell();
     Vector<double>                       cell_rhs(dofs_per_cell);
     std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
@@ -416,19 +357,15 @@ namespace ViscoContact
     Vector<double>     load_value(dim);
     cell_rhs       = 0;
     bool has_loads = false;
-    if (!body_force_is_zero)
+    if (!loads.body_force_is_zero())
       {
         fe_values.reinit(cell);
         for (const unsigned int q : fe_values.quadrature_point_indices())
           {
-            body_force.vector_value(fe_values.quadrature_point(q), load_value);
-            if (problem.empty() && !is_finite<dim>(load_value))
-              problem = non_finite_load(std::string("Loads"),
-                                        std::string("Body force"),
-                                        parameters.body_force,
-                                        load_value,
-                                        fe_values.quadrature_point(q),
-                                        body_force.get_time());
+            const std::string message
+              = loads.body_force(fe_values.quadrature_point(q), load_value);
+            if (problem.empty())
+              problem = message;
             for (unsigned int i = 0; i < dofs_per_cell; ++i)
               cell_rhs(i) += load_value(fe->system_to_component_index(i).first)
                              * fe_values.shape_value(i, q) * fe_values.JxW(q);
@@ -438,25 +375,20 @@ namespace ViscoContact
     for (const unsigned int f : cell->face_indices())
       if (cell->face(f)->at_boundary())
         {
-          const auto part
-            = surface_load_of_id.find(cell->face(f)->boundary_id());
-          if (part == surface_load_of_id.end())
+          const unsigned int part
+            = loads.surface_part_of(cell->face(f)->boundary_id());
+          if (part == numbers::invalid_unsigned_int)
             continue;
-          const SurfaceLoadPart &load = surface_loads[part->second];
           fe_face_values.reinit(cell, f);
           for (const unsigned int q : fe_face_values.quadrature_point_indices())
             {
-              surface_load_value(load,
-                                 fe_face_values.quadrature_point(q),
-                                 fe_face_values.normal_vector(q),
-                                 load_value);
-              if (problem.empty() && !is_finite<dim>(load_value))
-                problem = non_finite_load(load.subsection,
-                                          load.entry,
-                                          load.expression,
-                                          load_value,
-                                          fe_face_values.quadrature_point(q),
-                                          load.function->get_time());
+              const std::string message
+                = loads.surface_load(part,
+                                     fe_face_values.quadrature_point(q),
+                                     fe_face_values.normal_vector(q),
+                                     load_value);
+              if (problem.empty())
+                problem = message;
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 cell_rhs(i)
                   += load_value(fe->system_to_component_index(i).first)
@@ -465,29 +397,6 @@ namespace ViscoContact
           has_loads = true;
         }
     return has_loads;
-  }
-
-
-
-  // @sect4{ViscoplasticContact::surface_load_value}
-  //
-  // A pressure p acts along the inward normal: the traction is -p n with the
-  // outward normal n of the face, on curved parts too.
-  template <int dim>
-  void
-  ViscoplasticContact<dim>::surface_load_value(const SurfaceLoadPart &load,
-                                               const Point<dim>      &point,
-                                               const Tensor<1, dim>  &normal,
-                                               Vector<double> &value) const
-  {
-    if (load.pressure)
-      {
-        const double p = load.function->value(point);
-        for (unsigned int d = 0; d < dim; ++d)
-          value(d) = -p * normal[d];
-      }
-    else
-      load.function->vector_value(point, value);
   }
 
 

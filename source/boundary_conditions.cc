@@ -35,31 +35,6 @@
 
 namespace ViscoContact
 {
-  // @sect4{ViscoplasticContact::dirichlet_parts}
-  //
-  // The clamped ids (all components), then every used Prescribed
-  // displacement entry with its components: the order of
-  // dirichlet_part_names, in which the constraints are made.
-  template <int dim>
-  std::vector<DirichletPart>
-  ViscoplasticContact<dim>::dirichlet_parts() const
-  {
-    std::vector<DirichletPart> parts;
-    if (!parameters.clamped_ids.empty())
-      parts.push_back({parameters.clamped_ids, ComponentMask()});
-    for (const auto &[number, entry] :
-         parameters.used_prescribed_displacements())
-      {
-        std::vector<bool> mask(dim, false);
-        for (const unsigned int c : entry->component_indices())
-          mask[c] = true;
-        parts.push_back({entry->boundary_ids, ComponentMask(mask)});
-      }
-    return parts;
-  }
-
-
-
   // @sect4{ViscoplasticContact::setup_dirichlet_dofs}
   //
   // The dofs of each part, found as interpolate_boundary_values() finds them
@@ -78,9 +53,9 @@ namespace ViscoContact
     // The values of the old mesh (set_dirichlet_values() sets them anew).
     current_constraints.clear();
     dirichlet_values.reinit(solution);
-    if (has_prescribed_values)
+    if (dirichlet.has_values())
       lifting_load.reinit(solution);
-    const std::vector<DirichletPart>   parts = dirichlet_parts();
+    const std::vector<DirichletPart>  &parts = dirichlet.parts();
     const Utilities::MPI::Partitioner &partitioner
       = *solution.get_partitioner();
     std::vector<bool> taken(partitioner.locally_owned_size()
@@ -102,7 +77,7 @@ namespace ViscoContact
                              face->boundary_id())
                      != parts[p].boundary_ids.end())
               for (const unsigned int v : face->vertex_indices())
-                for (const unsigned int c : dirichlet_components[p])
+                for (const unsigned int c : dirichlet.components(p))
                   {
                     const types::global_dof_index index
                       = face->vertex_dof_index(v, c);
@@ -162,12 +137,12 @@ namespace ViscoContact
     // The lifting needs the cells where g_n may be nonzero: the constraints
     // with the value 1 at every prescribed dof, closed and distributed,
     // mark them (hanging nodes and symmetry constraints included).
-    if (has_prescribed_values)
+    if (dirichlet.has_values())
       {
         AffineConstraints<double> ones;
         ones.copy_from(open_constraints);
         for (const DirichletDof &dof : dirichlet_dofs)
-          if (dirichlet_functions[dof.part])
+          if (dirichlet.prescribes_function(dof.part))
             ones.set_inhomogeneity(dof.index, 1.);
         ones.close();
         marker = 0;
@@ -239,7 +214,9 @@ namespace ViscoContact
   std::vector<std::string>
   ViscoplasticContact<dim>::reaction_part_names() const
   {
-    std::vector<std::string> names = dirichlet_part_names;
+    std::vector<std::string> names;
+    for (unsigned int part = 0; part < dirichlet.size(); ++part)
+      names.push_back(dirichlet.name(part));
     for (const auto id : parameters.symmetry_ids)
       names.push_back("symmetry_" + std::to_string(id));
     return names;
@@ -291,9 +268,8 @@ namespace ViscoContact
   {
     const std::uint64_t n_steps
       = n_fixed_steps(parameters.end_time, parameters.time_step);
-    const std::uint64_t n_levels
-      = prescribed_values_depend_on_time ? n_steps + 1 : 1;
-    const std::size_t stride
+    const std::uint64_t n_levels = dirichlet.depend_on_time() ? n_steps + 1 : 1;
+    const std::size_t   stride
       = std::max<std::size_t>(1,
                               std::size_t(double(dirichlet_dofs.size())
                                           * n_levels / 2e7));
@@ -301,7 +277,7 @@ namespace ViscoContact
       return m < n_steps ? m * parameters.time_step : parameters.end_time;
     };
     std::string problem;
-    if (has_prescribed_values)
+    if (dirichlet.has_values())
       for (std::uint64_t m = 0; m < n_levels && problem.empty(); ++m)
         for (std::size_t d = 0; d < dirichlet_dofs.size() && problem.empty();
              d += stride)
@@ -309,19 +285,20 @@ namespace ViscoContact
     // The obstacle's gap at the contact nodes, at every level (or every
     // stride-th on long runs with many nodes), then again at the current
     // time.
-    if (has_gap && contact_enabled)
+    if (contact_zones.has_gap() && contact_enabled)
       {
         const std::uint64_t n_gap_levels
-          = gap_depends_on_time ? n_steps + 1 : 1;
+          = contact_zones.gap_depends_on_time() ? n_steps + 1 : 1;
         const std::uint64_t gap_stride
           = std::max<std::uint64_t>(1,
                                     std::uint64_t(double(contact_set.size())
                                                   * n_gap_levels / 2e7));
         for (std::uint64_t m = 0; m < n_gap_levels && problem.empty();
              m += gap_stride)
-          problem = contact_set.set_gaps(zone_gaps(), level(m));
+          problem = contact_set.set_gaps(contact_zones.gaps(), level(m));
         if (problem.empty())
-          problem = contact_set.set_gaps(zone_gaps(), schedule.current_time());
+          problem = contact_set.set_gaps(contact_zones.gaps(),
+                                         schedule.current_time());
       }
     FileOutput::agree_on_problem(problem, mpi_communicator);
   }
@@ -335,25 +312,7 @@ namespace ViscoContact
   ViscoplasticContact<dim>::prescribed_value(const DirichletDof &dof,
                                              const double        time) const
   {
-    FunctionParser<dim> &function   = *dirichlet_functions[dof.part];
-    const auto          &components = dirichlet_components[dof.part];
-    function.set_time(time);
-    const double value = function.value(dof.location,
-                                        std::find(components.begin(),
-                                                  components.end(),
-                                                  dof.component)
-                                          - components.begin());
-    if (std::isfinite(value))
-      return {value, ""};
-    std::ostringstream message;
-    message << "Invalid parameter <Displacement> in subsection "
-            << "<Boundary/Prescribed displacement "
-            << dirichlet_part_names[dof.part].substr(11) << ">: its component "
-            << "xyz"[dof.component] << " is not finite at the point ("
-            << dof.location << ") at t = " << time
-            << "; accepted: expressions with a finite value at every point "
-               "of the part and every time of the run.";
-    return {value, message.str()};
+    return dirichlet.value(dof.part, dof.component, dof.location, time);
   }
 
 
@@ -371,15 +330,15 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::set_dirichlet_values(const double time)
   {
-    if (!has_prescribed_values
-        || (!prescribed_values_depend_on_time
+    if (!dirichlet.has_values()
+        || (!dirichlet.depend_on_time()
             && current_constraints.n_constraints() > 0))
       return;
     TimerOutput::Scope t(computing_timer, "Assemble prescribed displacement");
     current_constraints.copy_from(open_constraints);
     std::string problem;
     for (const DirichletDof &dof : dirichlet_dofs)
-      if (dirichlet_functions[dof.part])
+      if (dirichlet.prescribes_function(dof.part))
         {
           const auto [value, message] = prescribed_value(dof, time);
           if (problem.empty())
@@ -417,15 +376,6 @@ namespace ViscoContact
 
 
   // The gap functions of the zones, nullptr where the gap is zero.
-  template <int dim>
-  std::vector<Function<dim> *>
-  ViscoplasticContact<dim>::zone_gaps() const
-  {
-    std::vector<Function<dim> *> gaps;
-    for (const auto &gap : zone_gap_functions)
-      gaps.push_back(gap.get());
-    return gaps;
-  }
 
 
 
@@ -434,9 +384,10 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::set_gaps(const double time)
   {
-    if (!has_gap || !contact_enabled)
+    if (!contact_zones.has_gap() || !contact_enabled)
       return;
-    FileOutput::agree_on_problem(contact_set.set_gaps(zone_gaps(), time),
+    FileOutput::agree_on_problem(contact_set.set_gaps(contact_zones.gaps(),
+                                                      time),
                                  mpi_communicator);
   }
 
@@ -451,7 +402,7 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::apply_constraints(VectorType &u) const
   {
-    if (has_prescribed_values)
+    if (dirichlet.has_values())
       current_constraints.distribute(u);
     else
       constraints.distribute(u);
@@ -473,7 +424,7 @@ namespace ViscoContact
   std::vector<Tensor<1, dim>>
   ViscoplasticContact<dim>::reaction_forces(const double time)
   {
-    std::vector<Tensor<1, dim>> forces(dirichlet_part_names.size()
+    std::vector<Tensor<1, dim>> forces(dirichlet.size()
                                        + parameters.symmetry_ids.size());
     if (forces.empty())
       return forces;
@@ -494,9 +445,7 @@ namespace ViscoContact
                                      update_values | update_quadrature_points
                                        | update_normal_vectors
                                        | update_JxW_values);
-    body_force.set_time(time);
-    for (SurfaceLoadPart &load : surface_loads)
-      load.function->set_time(time);
+    loads.set_time(time);
     std::string problem;
     double     *values = residual.get_values(); // owned entries, then ghosts
     for (const unsigned int k : reaction_cells)
@@ -544,8 +493,7 @@ namespace ViscoContact
         forces[dof.part][dof.component]
           += residual.local_element(dof.local_index);
     add_roller_reactions(residual,
-                         make_array_view(forces.begin()
-                                           + dirichlet_part_names.size(),
+                         make_array_view(forces.begin() + dirichlet.size(),
                                          forces.end()));
     for (Tensor<1, dim> &force : forces)
       force = Utilities::MPI::sum(force, mpi_communicator);

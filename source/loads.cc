@@ -13,6 +13,7 @@
 
 #include "loads.h"
 
+#include <cmath>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -117,6 +118,199 @@ namespace ViscoContact
                            + parser_message));
   }
 
+
+  namespace
+  {
+    // The message of a load that is not finite at a point and a time: the
+    // entry, its value, the point and the time, and what is accepted; empty
+    // if every component is finite.
+    template <int dim>
+    std::string
+    non_finite_load(const std::string    &subsection,
+                    const std::string    &entry,
+                    const std::string    &expression,
+                    const Vector<double> &value,
+                    const Point<dim>     &point,
+                    const double          time)
+    {
+      bool finite = true;
+      for (const double v : value)
+        finite = finite && std::isfinite(v);
+      if (finite)
+        return "";
+      const auto list = [](const auto &values, const unsigned int n) {
+        std::ostringstream text;
+        for (unsigned int d = 0; d < n; ++d)
+          text << (d > 0 ? ", " : "") << values[d];
+        return text.str();
+      };
+      return "Invalid parameter <" + entry + "> in subsection <" + subsection
+             + ">: value <" + expression + "> is not finite at the point ("
+             + list(point, dim)
+             + ") at t = " + list(std::vector<double>{time}, 1) + " (it gives "
+             + list(value, value.size())
+             + "); accepted: expressions with a finite value at every load "
+               "point of the mesh and every time of the run.";
+    }
+  } // namespace
+
+
+
+  // @sect4{Loads::Loads}
+  //
+  // The parameters name each boundary id once, so a boundary id has at most
+  // one part.
+  template <int dim>
+  Loads<dim>::Loads(const Parameters::AllParameters &parameters)
+    : body(dim)
+    , body_expression(parameters.body_force)
+    , body_is_zero(is_zero_expression(parameters.body_force))
+    , time_dependent(mentions_time(parameters.body_force))
+  {
+    initialize_load(body,
+                    "Loads",
+                    "Body force",
+                    parameters.body_force,
+                    parameters.lengths);
+    const auto add_part = [&](const std::vector<types::boundary_id> &ids,
+                              const bool                             pressure,
+                              const std::string                     &subsection,
+                              const std::string                     &entry,
+                              const std::string &expression) {
+      SurfacePart part{std::make_unique<FunctionParser<dim>>(pressure ? 1
+                                                                      : dim),
+                       pressure,
+                       subsection,
+                       entry,
+                       expression};
+      initialize_load(*part.function,
+                      subsection,
+                      entry,
+                      expression,
+                      parameters.lengths);
+      time_dependent = time_dependent || mentions_time(expression);
+      for (const auto id : ids)
+        part_of_id[id] = surface_parts.size();
+      surface_parts.push_back(std::move(part));
+    };
+    add_part(parameters.loaded_ids,
+             false,
+             "Loads",
+             "Surface traction",
+             parameters.surface_traction);
+    for (const auto &[number, load] : parameters.used_surface_loads())
+      add_part(load->boundary_ids,
+               load->type == Parameters::SurfaceLoadType::pressure,
+               "Loads/Surface load " + std::to_string(number),
+               "Value",
+               load->value);
+  }
+
+
+
+  template <int dim>
+  void
+  Loads<dim>::set_time(const double time)
+  {
+    body.set_time(time);
+    for (SurfacePart &part : surface_parts)
+      part.function->set_time(time);
+  }
+
+
+
+  template <int dim>
+  double
+  Loads<dim>::get_time() const
+  {
+    return body.get_time();
+  }
+
+
+
+  template <int dim>
+  bool
+  Loads<dim>::depend_on_time() const
+  {
+    return time_dependent;
+  }
+
+
+
+  template <int dim>
+  bool
+  Loads<dim>::body_force_is_zero() const
+  {
+    return body_is_zero;
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  Loads<dim>::n_surface_parts() const
+  {
+    return surface_parts.size();
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  Loads<dim>::surface_part_of(const types::boundary_id id) const
+  {
+    const auto part = part_of_id.find(id);
+    return part == part_of_id.end() ? numbers::invalid_unsigned_int
+                                    : part->second;
+  }
+
+
+
+  template <int dim>
+  std::string
+  Loads<dim>::body_force(const Point<dim> &point, Vector<double> &value) const
+  {
+    body.vector_value(point, value);
+    return non_finite_load("Loads",
+                           "Body force",
+                           body_expression,
+                           value,
+                           point,
+                           body.get_time());
+  }
+
+
+
+  // A pressure p acts along the inward normal: the traction is -p n with the
+  // outward normal n of the face, on curved parts too.
+  template <int dim>
+  std::string
+  Loads<dim>::surface_load(const unsigned int    part_number,
+                           const Point<dim>     &point,
+                           const Tensor<1, dim> &normal,
+                           Vector<double>       &value) const
+  {
+    const SurfacePart &part = surface_parts[part_number];
+    if (part.pressure)
+      {
+        const double p = part.function->value(point);
+        for (unsigned int d = 0; d < dim; ++d)
+          value(d) = -p * normal[d];
+      }
+    else
+      part.function->vector_value(point, value);
+    return non_finite_load(part.subsection,
+                           part.entry,
+                           part.expression,
+                           value,
+                           point,
+                           part.function->get_time());
+  }
+
+
+
+  template class Loads<2>;
+  template class Loads<3>;
 
   template void
   initialize_load(FunctionParser<2> &,

@@ -224,45 +224,18 @@ namespace ViscoContact
         if (!parameters.resume)
           output_folder->stage(
             "time_series.csv",
-            time_series_header<dim>(contact_zone_numbers(),
+            time_series_header<dim>(contact_zones.numbers(),
                                     reaction_part_names(),
-                                    frictional_zone_numbers()));
+                                    contact_zones.frictional_numbers()));
       }
     output_folder->commit();
     if (parameters.resume)
-      truncate_time_series(*output_folder,
-                           time_series_header<dim>(contact_zone_numbers(),
-                                                   reaction_part_names(),
-                                                   frictional_zone_numbers()),
-                           resume_step);
-  }
-
-
-
-  // The numbers of the contact zones (1 for subsection Contact, N for
-  // Contact zone N), in the order of contact_zones.
-  template <int dim>
-  std::vector<unsigned int>
-  ViscoplasticContact<dim>::contact_zone_numbers() const
-  {
-    std::vector<unsigned int> numbers;
-    for (const auto &zone : contact_zones)
-      numbers.push_back(zone.number);
-    return numbers;
-  }
-
-
-
-  // Those of the zones with friction.
-  template <int dim>
-  std::vector<unsigned int>
-  ViscoplasticContact<dim>::frictional_zone_numbers() const
-  {
-    std::vector<unsigned int> numbers;
-    for (const auto &zone : contact_zones)
-      if (zone.friction.has_friction())
-        numbers.push_back(zone.number);
-    return numbers;
+      truncate_time_series(
+        *output_folder,
+        time_series_header<dim>(contact_zones.numbers(),
+                                reaction_part_names(),
+                                contact_zones.frictional_numbers()),
+        resume_step);
   }
 
 
@@ -291,8 +264,9 @@ namespace ViscoContact
     const double peak
       = contact_enabled ? contact_set.peak_pressure(mpi_communicator) : 0.;
     const std::vector<double> zone_forces
-      = contact_enabled ? contact_set.zone_forces(mpi_communicator)
-                        : std::vector<double>(contact_zones.size(), 0.);
+      = contact_enabled
+          ? contact_set.zone_forces(mpi_communicator)
+          : std::vector<double>(contact_zones.descriptions().size(), 0.);
     const std::vector<Tensor<1, dim>> reactions = reaction_forces(time);
     const bool friction = contact_enabled && contact_set.has_friction();
     const std::array<unsigned int, 2> friction_counts
@@ -327,8 +301,9 @@ namespace ViscoContact
         if (friction)
           {
             row << ',' << friction_counts[0] << ',' << friction_counts[1];
-            for (unsigned int zone = 0; zone < contact_zones.size(); ++zone)
-              if (contact_zones[zone].friction.has_friction())
+            const auto &zones = contact_zones.descriptions();
+            for (unsigned int zone = 0; zone < zones.size(); ++zone)
+              if (zones[zone].friction.has_friction())
                 for (unsigned int c = 0; c < dim; ++c)
                   row << ','
                       << (std::abs(tangential_forces[zone][c]) > 1e-12 * scale

@@ -161,12 +161,12 @@ namespace ViscoContact
       // where the mesh is refined toward Gamma_3.
       make_displacement_constraints(mapping,
                                     dof_handler,
-                                    dirichlet_parts(),
+                                    dirichlet.parts(),
                                     parameters.symmetry_ids,
                                     locally_relevant_dofs,
                                     constraints,
-                                    has_prescribed_values ? &open_constraints
-                                                          : nullptr);
+                                    dirichlet.has_values() ? &open_constraints
+                                                           : nullptr);
 
       choose_back_end();
 
@@ -515,7 +515,7 @@ namespace ViscoContact
     if (!contact_enabled)
       return;
     TimerOutput::Scope t(computing_timer, "Setup: contact nodes");
-    contact_set.setup(contact_zones,
+    contact_set.setup(contact_zones.descriptions(),
                       mapping,
                       dof_handler,
                       scalar_dof_handler,
@@ -526,10 +526,8 @@ namespace ViscoContact
     set_gaps(schedule.current_time());
     // Tresca's bounds at the nodes (collective: a negative or infinite
     // value stops all ranks, naming the entry).
-    std::vector<const Function<dim> *> slip_bounds;
-    for (const auto &bound : zone_slip_bounds)
-      slip_bounds.push_back(bound.get());
-    FileOutput::agree_on_problem(contact_set.set_slip_bounds(slip_bounds),
+    FileOutput::agree_on_problem(contact_set.set_slip_bounds(
+                                   contact_zones.slip_bounds()),
                                  mpi_communicator);
     if (!matrix_free())
       contact_set.set_operator(stiffness_matrix);
@@ -631,7 +629,7 @@ namespace ViscoContact
              AffineConstraints<double> &level_constraints) {
         make_displacement_constraints(mapping,
                                       level_dofs,
-                                      dirichlet_parts(),
+                                      dirichlet.parts(),
                                       parameters.symmetry_ids,
                                       relevant,
                                       level_constraints);
@@ -727,8 +725,8 @@ namespace ViscoContact
                "<Boundary> names no boundary part (nor does any subsection "
                "Contact zone N), so the body has no contact boundary and the "
                "contact law is not used.\n";
-    else if (contact_zones.size() > 1)
-      pcout << "Contact zones: " << contact_zones.size() << '\n';
+    else if (contact_zones.descriptions().size() > 1)
+      pcout << "Contact zones: " << contact_zones.descriptions().size() << '\n';
     pcout << "Back end: " << contact_solver->description() << " ("
           << back_end.reason << ")\n"
           << "Parallel: " << Utilities::MPI::n_mpi_processes(mpi_communicator)
@@ -800,7 +798,7 @@ namespace ViscoContact
     const double softening = contact_set.laws().steepest_softening();
     if (softening <= 0)
       pcout << "Uniqueness: the contact law"
-            << (contact_zones.size() > 1 ? "s do" : " does")
+            << (contact_zones.descriptions().size() > 1 ? "s do" : " does")
             << " not soften, so the step problem has one solution\n";
     else
       {
@@ -815,8 +813,8 @@ namespace ViscoContact
                  "normal boundary mass) = "
               << eigenvalue << (from_checkpoint ? " (from the checkpoint)" : "")
               << ", steepest softening of the contact law"
-              << (contact_zones.size() > 1 ? "s" : "") << " = " << softening
-              << '\n';
+              << (contact_zones.descriptions().size() > 1 ? "s" : "") << " = "
+              << softening << '\n';
         // Several solutions possible: a predicted start must not move the
         // run to another branch (predict_step_start()).
         pieces_predictable = eigenvalue > softening;

@@ -135,7 +135,7 @@ namespace ViscoContact
           start_from_coarser_mesh();
         // The step starts with the displacement prescribed at t_n (the
         // implicit update's first Newton iterate must have it).
-        if (has_prescribed_values)
+        if (dirichlet.has_values())
           {
             apply_constraints(solution);
             solution.update_ghost_values();

@@ -102,7 +102,8 @@ namespace ViscoContact
   // 2 for the cell type), and the face quadrature is built on the reference
   // face of the cell type (all faces of a cell have the same shape here).
   // Nothing is done with the mesh yet: the constructor creates the element and
-  // the quadratures and parses the loads, and run() builds everything else.
+  // the quadratures, and builds the scene from the parameters (materials,
+  // loads, Dirichlet parts, contact zones); run() builds everything else.
   template <int dim>
   ViscoplasticContact<dim>::ViscoplasticContact(
     const Parameters::AllParameters &parameters,
@@ -130,147 +131,13 @@ namespace ViscoContact
                         .template get_gauss_type_quadrature<dim - 1>(2))
     , materials(make_materials<dim>(parameters))
     , material_index(material_numbers(parameters))
-    , body_force(dim)
+    , loads(parameters)
+    , dirichlet(parameters)
+    , contact_zones(parameters)
   {
     // main() instantiates the class for the Dimension the parameter file names;
     // a mismatch is a programming error.
     AssertThrow(parameters.dimension == dim, ExcInternalError());
-    // The load expressions of subsection Loads, parsed once (a bad expression
-    // stops the run here, naming the entry). Two facts about them save work in
-    // every step: a body force that is the literal zero is not integrated at
-    // all, and loads that do not mention t are assembled only once
-    // (assemble_right_hand_side()).
-    initialize_load(body_force,
-                    "Loads",
-                    "Body force",
-                    parameters.body_force,
-                    parameters.lengths);
-    body_force_is_zero   = is_zero_expression(parameters.body_force);
-    loads_depend_on_time = mentions_time(parameters.body_force);
-    // The loads on boundary parts, and the part of each boundary id (the
-    // parameters name each id once).
-    const auto add_surface_load
-      = [&](const std::vector<types::boundary_id> &ids,
-            const bool                             pressure,
-            const std::string                     &subsection,
-            const std::string                     &entry,
-            const std::string                     &expression) {
-          SurfaceLoadPart load{std::make_unique<FunctionParser<dim>>(
-                                 pressure ? 1 : dim),
-                               pressure,
-                               subsection,
-                               entry,
-                               expression};
-          initialize_load(*load.function,
-                          subsection,
-                          entry,
-                          expression,
-                          parameters.lengths);
-          loads_depend_on_time
-            = loads_depend_on_time || mentions_time(expression);
-          for (const auto id : ids)
-            surface_load_of_id[id] = surface_loads.size();
-          surface_loads.push_back(std::move(load));
-        };
-    add_surface_load(parameters.loaded_ids,
-                     false,
-                     "Loads",
-                     "Surface traction",
-                     parameters.surface_traction);
-    for (const auto &[number, load] : parameters.used_surface_loads())
-      add_surface_load(load->boundary_ids,
-                       load->type == Parameters::SurfaceLoadType::pressure,
-                       "Loads/Surface load " + std::to_string(number),
-                       "Value",
-                       load->value);
-    // The contact zones, each with its law, its obstacle's gap and its
-    // direction. A zone whose law does nothing (no layer, no rigid limit)
-    // has no contact nodes.
-    for (const Parameters::ContactZone &zone : parameters.used_contact_zones())
-      {
-        const Parameters::Contact  &entries = *zone.contact;
-        ContactZoneDescription<dim> description{zone.number,
-                                                zone.subsection,
-                                                ContactLaw::from_parameters(
-                                                  entries),
-                                                zone.boundary_ids,
-                                                {}};
-        if (description.law.is_void())
-          continue;
-        if (entries.gap_direction != "normal")
-          {
-            const std::vector<double> d = entries.direction_vector();
-            Tensor<1, dim>            direction;
-            for (unsigned int c = 0; c < dim; ++c)
-              direction[c] = d[c];
-            description.direction = direction;
-          }
-        std::unique_ptr<FunctionParser<dim>> gap;
-        if (!is_zero_expression(entries.initial_gap))
-          {
-            gap = std::make_unique<FunctionParser<dim>>(1);
-            initialize_load(*gap,
-                            zone.subsection,
-                            "Initial gap",
-                            entries.initial_gap,
-                            parameters.lengths);
-            has_gap = true;
-            gap_depends_on_time
-              = gap_depends_on_time || mentions_time(entries.initial_gap);
-          }
-        // Friction: the law, and Tresca's bound as a function of position.
-        const std::map<Parameters::TangentialLawType, TangentialLaw> laws
-          = {{Parameters::TangentialLawType::frictionless,
-              TangentialLaw::frictionless},
-             {Parameters::TangentialLawType::tresca, TangentialLaw::tresca},
-             {Parameters::TangentialLawType::coulomb, TangentialLaw::coulomb}};
-        description.friction
-          = {laws.at(entries.tangential_law), entries.friction_coefficient};
-        std::unique_ptr<FunctionParser<dim>> slip_bound;
-        if (entries.tangential_law == Parameters::TangentialLawType::tresca)
-          {
-            slip_bound = std::make_unique<FunctionParser<dim>>(1);
-            initialize_load(*slip_bound,
-                            zone.subsection,
-                            "Slip bound",
-                            entries.slip_bound,
-                            parameters.lengths);
-          }
-        contact_zones.push_back(std::move(description));
-        zone_gap_functions.push_back(std::move(gap));
-        zone_slip_bounds.push_back(std::move(slip_bound));
-      }
-    // The Dirichlet parts: clamped first (u = 0), then the prescribed
-    // displacements with their functions, in the order of
-    // dirichlet_parts(). Only nonzero values need a lifting.
-    if (!parameters.clamped_ids.empty())
-      {
-        dirichlet_part_names.emplace_back("clamped");
-        dirichlet_functions.emplace_back();
-        std::vector<unsigned int> all(dim);
-        for (unsigned int c = 0; c < dim; ++c)
-          all[c] = c;
-        dirichlet_components.push_back(all);
-      }
-    for (const auto &[number, entry] :
-         parameters.used_prescribed_displacements())
-      {
-        dirichlet_part_names.push_back("prescribed_" + std::to_string(number));
-        dirichlet_components.push_back(entry->component_indices());
-        dirichlet_functions.push_back(
-          std::make_unique<FunctionParser<dim>>(entry->components.size()));
-        initialize_load(*dirichlet_functions.back(),
-                        "Boundary/Prescribed displacement "
-                          + std::to_string(number),
-                        "Displacement",
-                        entry->displacement,
-                        parameters.lengths);
-        has_prescribed_values
-          = has_prescribed_values || !is_zero_expression(entry->displacement);
-        prescribed_values_depend_on_time
-          = prescribed_values_depend_on_time
-            || mentions_time(entry->displacement);
-      }
   }
 
 

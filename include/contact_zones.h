@@ -1,0 +1,67 @@
+#ifndef viscoplastic_contact_contact_zones_h
+#define viscoplastic_contact_contact_zones_h
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/function_parser.h>
+
+#include "contact_set.h"
+#include "parameters.h"
+
+#include <memory>
+#include <vector>
+
+namespace ViscoContact
+{
+  using namespace dealii;
+
+  // @sect3{The contact zones of a scene}
+  //
+  // The contact zones (subsection Contact and the numbered Contact zone N
+  // that name boundary parts), built from the parameters once: each with
+  // its normal law (ContactLaw::from_parameters()), its direction (a unit
+  // vector from the body into the obstacle, or the boundary's normals),
+  // its tangential law (FrictionLaw::from_parameters()), the obstacle's gap
+  // s(x, t) along the direction, and Tresca's slip bound as functions of x
+  // (and t) where they are given. A zone whose law does nothing (no layer,
+  // no rigid limit) has no contact nodes and is left out. A bad expression
+  // stops the run here, naming the zone's subsection and the entry.
+  template <int dim>
+  class ContactZones
+  {
+  public:
+    explicit ContactZones(const Parameters::AllParameters &parameters);
+
+    bool
+    empty() const;
+    const std::vector<ContactZoneDescription<dim>> &
+    descriptions() const;
+    // The zone numbers (1 for subsection Contact, N for Contact zone N), of
+    // all zones and of those with friction.
+    std::vector<unsigned int>
+    numbers() const;
+    std::vector<unsigned int>
+    frictional_numbers() const;
+
+    // The gap function of each zone (nullptr where it is zero: the nodes
+    // keep s = 0), and Tresca's slip bound of each zone (nullptr in the
+    // others).
+    std::vector<Function<dim> *>
+    gaps() const;
+    std::vector<const Function<dim> *>
+    slip_bounds() const;
+    // Whether some zone has a gap, and whether a gap depends on t.
+    bool
+    has_gap() const;
+    bool
+    gap_depends_on_time() const;
+
+  private:
+    std::vector<ContactZoneDescription<dim>>          zones;
+    std::vector<std::unique_ptr<FunctionParser<dim>>> gap_functions;
+    std::vector<std::unique_ptr<FunctionParser<dim>>> slip_bound_functions;
+    bool                                              any_gap = false;
+    bool time_dependent_gap                                   = false;
+  };
+} // namespace ViscoContact
+
+#endif

@@ -38,6 +38,7 @@
 #include "parameters.h"
 #include "robustness/checkpoint_file.h"
 #include "robustness/output_folder.h"
+#include "run/run_report.h"
 #include "step_report.h"
 #include "time_schedule.h"
 
@@ -405,12 +406,6 @@ namespace ViscoContact
     // A compute node's memory divided by the ranks on it (0 if unknown),
     // for the cost model of Method = auto.
     double memory_per_rank = 0;
-    // Collective: the peak memory of the ranks up to now, for the run
-    // summary (peak_memory_lines); when names the moment ("after the mesh",
-    // ..., "over the run").
-    void
-                             record_peak_memory(const std::string &when);
-    std::vector<std::string> peak_memory_lines;
     // The .vtu records of n_steps steps fit on the disk of the output folder
     // (a lower estimate of their size), or all ranks stop with the entries
     // that make them.
@@ -449,8 +444,10 @@ namespace ViscoContact
     write_contact_profile(const unsigned int step, const double time);
     void
     print_run_summary();
-    void
-    print_cost_measurement();
+    // The reference costs of the run summary, measured after the run: one
+    // solve with the step operator and no contact, one stress update.
+    RunReport::CostMeasurement
+    measure_reference_costs();
 
     // @sect4{Mesh adaptation}
     //
@@ -534,10 +531,9 @@ namespace ViscoContact
                     const bool        with_friction = false);
     struct CoarserStepProblem;
     std::shared_ptr<CoarserStepProblem> coarser_step_problem;
-    // The active-set iterations on the coarser meshes: of the last step
-    // (for the iteration history) and of the run.
+    // The active-set iterations on the coarser meshes of the last step (for
+    // the iteration history).
     ActiveSetResult coarser_step_result;
-    unsigned int    step_cycle_iterations = 0;
 
     // @sect4{Checkpoints}
     //
@@ -631,17 +627,15 @@ namespace ViscoContact
     double
     total_contact_force() const;
 
-    // Run control, console (pcout prints on rank 0 only) and timing.
+    // Run control, console (pcout prints on rank 0 only) and the report of
+    // the run (counts, timers, progress, summary: run/run_report.h).
     const Parameters::AllParameters parameters;
     const MPI_Comm                  mpi_communicator;
     // Whether this rank builds the whole mesh for its group (simplex
     // meshes, mesh_group_size()).
     const bool         mesh_group_root;
     ConditionalOStream pcout;
-    TimerOutput        computing_timer;
-    // Whether the set-up's peak memory has been reported (the first set-up
-    // only; adaptive meshes set up again).
-    bool setup_memory_reported = false;
+    RunReport          report;
 
 
     // Mesh, finite elements, quadratures, degrees of freedom. The reference
@@ -675,15 +669,12 @@ namespace ViscoContact
     AffineConstraints<double> hanging_node_constraints;
 
     // The elastic operator K (assembled once per run) and, for the implicit
-    // update, the tangent and internal force of the current Newton iterate. The
-    // counters appear in the run summary, where a change that re-assembles more
-    // often than intended shows up.
-    MatrixType   stiffness_matrix;
-    MatrixType   tangent_matrix;
-    VectorType   internal_force;
-    unsigned int n_operator_assemblies      = 0;
-    unsigned int n_external_load_assemblies = 0;
-    unsigned int total_newton_iterations    = 0;
+    // update, the tangent and internal force of the current Newton iterate.
+    // The report counts the assemblies: the run summary shows a change that
+    // re-assembles more often than intended.
+    MatrixType stiffness_matrix;
+    MatrixType tangent_matrix;
+    VectorType internal_force;
 
     // How the step problems are solved: the method and why (for the
     // header), and the back end that implements it.
@@ -842,13 +833,7 @@ namespace ViscoContact
     // The gaps of the contact nodes at the given time (collective: a value
     // that is not finite stops all ranks, naming the entry).
     void
-                 set_gaps(const double time);
-    unsigned int total_active_set_iterations = 0;
-    unsigned int total_inner_iterations      = 0;
-    // Those of the solves of the initial cycles on the coarser meshes, which
-    // total_active_set_iterations does not count.
-    unsigned int initial_cycle_iterations = 0;
-    unsigned int n_initial_cycles         = 0;
+    set_gaps(const double time);
 
     // Called after every accepted step (set_step_observer()).
     std::function<void(const unsigned int, const double)> step_observer;
@@ -858,15 +843,10 @@ namespace ViscoContact
     TimeSchedule schedule;
 
     // The output folder (created by run() before the set-up, which checks
-    // and locks it), the .pvd list (kept on rank 0), the time spent in the
-    // time loop without output, the wall time of the run a resumed run
-    // continues, the progress of the time loop (for the step lines), and
-    // the step of the last checkpoint.
+    // and locks it), the .pvd list (kept on rank 0), and the step of the
+    // last checkpoint.
     std::unique_ptr<OutputFolder>               output_folder;
     std::vector<std::pair<double, std::string>> times_and_names;
-    double                                      time_loop_compute_time = 0;
-    double                                      loop_time_offset       = 0;
-    std::optional<RunProgress>                  progress;
     unsigned int last_checkpoint_step = numbers::invalid_unsigned_int;
   };
 } // namespace ViscoContact

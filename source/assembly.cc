@@ -257,10 +257,10 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::assemble_right_hand_side(const double time)
   {
-    TimerOutput::Scope t(computing_timer, "Assemble right-hand side");
+    TimerOutput::Scope t(report.timer(), "Assemble right-hand side");
     // The first call always assembles (the counter is still 0); later calls
     // only if f_0 or f_2 mention t.
-    if (loads.depend_on_time() || n_external_load_assemblies == 0)
+    if (loads.depend_on_time() || report.n_external_load_assemblies() == 0)
       assemble_external_load(time);
     set_dirichlet_values(time);
     if (contact_zones.gap_depends_on_time())
@@ -331,7 +331,7 @@ namespace ViscoContact
     // vector then holds owned entries only.
     external_load.compress(VectorOperation::add);
     FileOutput::agree_on_problem(problem, mpi_communicator);
-    ++n_external_load_assemblies;
+    report.count_external_load_assembly();
   }
 
 
@@ -463,7 +463,7 @@ namespace ViscoContact
     const VectorType &displacement,
     const double      time_step)
   {
-    TimerOutput::Scope t(computing_timer, "Assemble tangent system");
+    TimerOutput::Scope t(report.timer(), "Assemble tangent system");
     // Reset values only; the sparsity pattern of K is kept.
     tangent_matrix                               = 0;
     internal_force                               = 0;
@@ -561,7 +561,7 @@ namespace ViscoContact
     // their owners.
     tangent_matrix.compress(VectorOperation::add);
     internal_force.compress(VectorOperation::add);
-    ++n_operator_assemblies;
+    report.count_operator_assembly();
   }
 
 

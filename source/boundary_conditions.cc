@@ -334,7 +334,7 @@ namespace ViscoContact
         || (!dirichlet.depend_on_time()
             && current_constraints.n_constraints() > 0))
       return;
-    TimerOutput::Scope t(computing_timer, "Assemble prescribed displacement");
+    TimerOutput::Scope t(report.timer(), "Assemble prescribed displacement");
     current_constraints.copy_from(open_constraints);
     std::string problem;
     for (const DirichletDof &dof : dirichlet_dofs)

@@ -67,7 +67,7 @@ namespace ViscoContact
   ViscoplasticContact<dim>::write_checkpoint(const double wall_time)
   {
     const unsigned int step = schedule.step_number();
-    TimerOutput::Scope t(computing_timer, "Checkpoint");
+    TimerOutput::Scope t(report.timer(), "Checkpoint");
     // The folder and the two files go into the manifest before they exist.
     output_folder->create_folder(checkpoint_folder);
     output_folder->record_files({checkpoint_name(step), checkpoint_info});
@@ -121,11 +121,7 @@ namespace ViscoContact
     header.write<std::uint32_t>(dim);
     header.write<std::uint32_t>(schedule.step_number());
     schedule.save(header);
-    header.write(wall_time);
-    header.write(time_loop_compute_time);
-    header.write<std::uint32_t>(total_active_set_iterations);
-    header.write<std::uint32_t>(total_newton_iterations);
-    header.write<std::uint32_t>(total_inner_iterations);
+    report.save(header, wall_time);
     header.write(max_von_mises);
     header.write<std::uint64_t>(times_and_names.size());
     for (const auto &[time, name] : times_and_names)
@@ -327,12 +323,8 @@ namespace ViscoContact
     header.check(header.read<std::uint32_t>() == step);
     schedule.load(header);
     header.check(schedule.step_number() == step);
-    loop_time_offset            = header.read<double>();
-    time_loop_compute_time      = header.read<double>();
-    total_active_set_iterations = header.read<std::uint32_t>();
-    total_newton_iterations     = header.read<std::uint32_t>();
-    total_inner_iterations      = header.read<std::uint32_t>();
-    max_von_mises               = header.read<double>();
+    report.load(header);
+    max_von_mises = header.read<double>();
     times_and_names.clear();
     const std::uint64_t n_records = header.read<std::uint64_t>();
     for (std::uint64_t i = 0; i < n_records; ++i)

@@ -266,7 +266,7 @@ namespace ViscoContact
   {
     // The timer's sections: the whole adaptation and, within it, its parts
     // (the set-up on the new mesh has its own sections).
-    TimerOutput::Scope t(computing_timer, "Mesh adaptation");
+    TimerOutput::Scope t(report.timer(), "Mesh adaptation");
     const auto         cells_before = triangulation->n_global_active_cells();
     const auto         dofs_before  = dof_handler.n_dofs();
     if (!mark_cells_by_indicators())
@@ -301,7 +301,7 @@ namespace ViscoContact
   bool
   ViscoplasticContact<dim>::mark_cells_by_indicators()
   {
-    TimerOutput::Scope t(computing_timer,
+    TimerOutput::Scope t(report.timer(),
                          "Mesh adaptation: indicators and marking");
     auto &mesh = dynamic_cast<parallel::distributed::Triangulation<dim> &>(
       *triangulation);
@@ -386,7 +386,7 @@ namespace ViscoContact
     auto &mesh = dynamic_cast<parallel::distributed::Triangulation<dim> &>(
       *triangulation);
     std::optional<TimerOutput::Scope> part;
-    part.emplace(computing_timer, "Mesh adaptation: transfer");
+    part.emplace(report.timer(), "Mesh adaptation: transfer");
     solution.update_ghost_values();
 
     // The nodal fields: u and the contact pressure z_i / w_i at the x-dof of
@@ -454,7 +454,7 @@ namespace ViscoContact
     mesh.execute_coarsening_and_refinement();
     part.reset();
     setup_on_mesh();
-    part.emplace(computing_timer, "Mesh adaptation: transfer");
+    part.emplace(report.timer(), "Mesh adaptation: transfer");
 
     // u on the new mesh, then the constraints of its hanging nodes.
     VectorType new_pressure(solution);
@@ -528,7 +528,7 @@ namespace ViscoContact
   ViscoplasticContact<dim>::rebuild_and_transfer(const unsigned int coarsenings)
   {
     std::optional<TimerOutput::Scope> part;
-    part.emplace(computing_timer, "Mesh adaptation: transfer");
+    part.emplace(report.timer(), "Mesh adaptation: transfer");
     // The back end and the matrices of this mesh go first: the group root
     // of the next mesh holds it whole while it is built.
     contact_solver.reset();
@@ -603,7 +603,7 @@ namespace ViscoContact
     triangulation = std::move(next_mesh);
     part.reset();
     setup_on_mesh();
-    part.emplace(computing_timer, "Mesh adaptation: transfer");
+    part.emplace(report.timer(), "Mesh adaptation: transfer");
 
     // The values at the owned dofs, then the boundary values and the
     // constraints.
@@ -717,23 +717,17 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::solve_initial_cycles()
   {
-    TimerOutput::Scope t(computing_timer, "Initial cycles");
+    TimerOutput::Scope t(report.timer(), "Initial cycles");
     const bool         global
       = parameters.initial_refinement == Parameters::InitialRefinement::global;
     for (unsigned int cycle = 0; cycle < first_step_cycles; ++cycle)
       {
-        const TimeSchedule                run_schedule = schedule;
-        const std::array<unsigned int, 3> counts_before{
-          {total_active_set_iterations,
-           total_newton_iterations,
-           total_inner_iterations}};
-        const ActiveSetResult result
+        const TimeSchedule                run_schedule  = schedule;
+        const std::array<unsigned int, 3> counts_before = report.step_counts();
+        const ActiveSetResult             result
           = solve_step_with_recovery(save_step_start());
-        initial_cycle_iterations += result.iterations();
-        ++n_initial_cycles;
-        total_active_set_iterations = counts_before[0];
-        total_newton_iterations     = counts_before[1];
-        total_inner_iterations      = counts_before[2];
+        report.count_initial_cycle(result.iterations());
+        report.restore_step_counts(counts_before);
         if (parameters.verbose || parameters.print_iteration_history)
           pcout << "Initial cycle " << cycle << ": "
                 << triangulation->n_global_active_cells() << " cells, "

@@ -373,7 +373,7 @@ namespace ViscoContact
                                            const double       time,
                                            const std::string &stem)
   {
-    TimerOutput::Scope t(computing_timer, "Output");
+    TimerOutput::Scope t(report.timer(), "Output");
     // The cell fields have one entry per active cell of this rank's view of the
     // mesh (owned, ghost and artificial cells), indexed by active_cell_index()
     // as DataOut expects; only the entries of owned cells are set, and only
@@ -713,59 +713,20 @@ namespace ViscoContact
 
 
 
-  // @sect4{ViscoplasticContact::record_peak_memory}
-  //
-  // The high-water mark of each rank's resident memory up to now (VmHWM):
-  // the sum over the ranks, the largest rank, and on simplex meshes
-  // the largest group root (which held the whole mesh during set-up,
-  // mesh.cc) and the largest other rank apart. Measured now (collective),
-  // printed with the run summary, so that the start of a run shows the scene
-  // and its steps.
-  template <int dim>
-  void
-  ViscoplasticContact<dim>::record_peak_memory(const std::string &when)
-  {
-    Utilities::System::MemoryStats memory;
-    Utilities::System::get_memory_stats(memory);
-    const double peak = memory.VmHWM / 1024.;
-    // A stream of its own: the console keeps its precision.
-    std::ostringstream line;
-    line << std::setprecision(5) << "  peak memory " << when
-         << " [MB]: sum over ranks "
-         << Utilities::MPI::sum(peak, mpi_communicator) << ", largest rank "
-         << Utilities::MPI::max(peak, mpi_communicator);
-    if (parameters.cell_type == Parameters::CellType::simplex)
-      {
-        const double root_peak
-          = Utilities::MPI::max(mesh_group_root ? peak : 0., mpi_communicator);
-        const double member_peak
-          = Utilities::MPI::max(mesh_group_root ? 0. : peak, mpi_communicator);
-        line << ", largest group root " << root_peak << ", largest member ";
-        if (member_peak > 0)
-          line << member_peak;
-        else
-          line << "none";
-      }
-    peak_memory_lines.push_back(line.str());
-  }
-
-
-
   // @sect4{ViscoplasticContact::print_run_summary}
   //
-  // What a user checks after a run: norms of the final state, iteration
-  // counts, how often the operator was assembled and set up by the back end
-  // (once and once for the explicit update), and, with the timing summary,
-  // the cost of an average step relative to the work every step has
-  // without contact, measured now in the same process: one solve with the
-  // step operator (the back end's, no contact) and one stress update with
-  // the history load. These ratios are what the benchmarks report.
+  // The final state as the summary shows it (run/run_report.h): the L2 norms
+  // of eps(u) and sigma with the stress quadrature (each rank sums over its
+  // own stress points, and only the two sums are reduced), the contact, the
+  // norms of u, and what the back end did. With the timing summary, the
+  // cost of an average step relative to the work every step has without
+  // contact, measured now in the same process: one solve with the step
+  // operator (the back end's, no contact) and one stress update with the
+  // history load. These ratios are what the benchmarks report.
   template <int dim>
   void
   ViscoplasticContact<dim>::print_run_summary()
   {
-    // The L2 norms of eps(u) and sigma with the stress quadrature: each rank
-    // sums over its own stress points, and only the two sums are reduced.
     const unsigned int n_q         = stress_quadrature.size();
     double             strain_norm = 0, stress_norm = 0;
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
@@ -779,80 +740,47 @@ namespace ViscoContact
           strain_norm += (strain * strain) * JxW;
           stress_norm += (sigma * sigma) * JxW;
         }
-    strain_norm = std::sqrt(Utilities::MPI::sum(strain_norm, mpi_communicator));
-    stress_norm = std::sqrt(Utilities::MPI::sum(stress_norm, mpi_communicator));
     // All collective (global norms, sums over the ranks): every rank computes
     // them, rank 0 prints.
-    const double l2_norm    = solution.l2_norm();
-    const double max_norm   = solution.linfty_norm();
-    const auto   states     = count_contact_states();
-    const double force      = total_contact_force();
-    const auto  &statistics = contact_solver->statistics();
-
-    pcout << std::setprecision(8) << "\nRun summary\n"
-          << "  final state: ||eps(u)||_L2 = " << strain_norm
-          << ", ||sigma||_L2 = " << stress_norm
-          << ", max von Mises = " << max_von_mises << '\n'
-          << "  final contact: " << states[0] << " unilateral, " << states[1]
-          << " compliance, " << states[2]
-          << " no contact, total force = " << force << '\n';
-    if (implicit_update())
-      pcout << "  Newton iterations (implicit scheme): "
-            << total_newton_iterations << '\n';
-    pcout << "  active-set iterations: " << total_active_set_iterations
-          << " in " << schedule.step_number() << " steps\n";
-    // The solves of step 1 on the coarser meshes of the initial cycles (not
-    // in the count above, which is that of the recorded steps).
-    if (n_initial_cycles > 0)
-      pcout << "  initial cycles: " << initial_cycle_iterations
-            << " active-set iterations on " << n_initial_cycles
-            << " coarser meshes\n";
-    // The solves of the steps on the coarser meshes of the Step cycles.
-    if (step_cycles_dropped())
-      pcout << "  step cycles: none (Method = auto chose the condensed back "
-               "end for the mesh of the run)\n";
-    else if (n_step_cycles > 0)
-      pcout << "  step cycles: " << step_cycle_iterations
-            << " active-set iterations on " << n_step_cycles << " coarser mesh"
-            << (n_step_cycles > 1 ? "es" : "") << '\n';
-    if (parameters.time_step_control == Parameters::TimeStepControl::adaptive)
-      pcout << "  adaptive time steps: " << schedule.n_steps() << " accepted, "
-            << schedule.n_rejected_steps() << " rejected\n";
-    pcout << "  operator: assembled " << n_operator_assemblies
-          << "x, set up by the back end " << statistics.operator_setups
-          << "x; external load assembled " << n_external_load_assemblies
-          << "x\n"
-          << "  back end: " << statistics.solves << " solves, "
-          << statistics.inner_iterations << " Krylov iterations\n"
-          << "Final displacement: l2 norm " << l2_norm << ", max norm "
-          << max_norm << '\n';
-
+    const auto                 &statistics = contact_solver->statistics();
+    const RunReport::FinalState state{
+      implicit_update(),
+      std::sqrt(Utilities::MPI::sum(strain_norm, mpi_communicator)),
+      std::sqrt(Utilities::MPI::sum(stress_norm, mpi_communicator)),
+      max_von_mises,
+      count_contact_states(),
+      total_contact_force(),
+      solution.l2_norm(),
+      solution.linfty_norm(),
+      schedule.step_number(),
+      schedule.n_rejected_steps(),
+      n_step_cycles,
+      step_cycles_dropped(),
+      statistics.operator_setups,
+      statistics.solves,
+      statistics.inner_iterations};
     // The peak memory before the cost measurement, whose extra solves may
     // build a preconditioner the run did not need.
     if (parameters.print_timing_summary)
+      report.record_peak_memory("over the run");
+    report.print_summary(state);
+    if (parameters.print_timing_summary)
       {
-        record_peak_memory("over the run");
-        for (const std::string &line : peak_memory_lines)
-          pcout << line << '\n';
-        pcout << std::flush;
-        print_cost_measurement();
+        report.print_timer_summary();
+        report.print_cost_measurement(measure_reference_costs());
       }
   }
 
 
 
-  // @sect4{ViscoplasticContact::print_cost_measurement}
+  // @sect4{ViscoplasticContact::measure_reference_costs}
   //
-  // With Print timing summary: deal.II's timer summary, then the reference
-  // costs a step is compared with.
+  // The reference costs, measured now (the run is over, so the state may
+  // be overwritten) and taken as the maximum over the ranks.
   template <int dim>
-  void
-  ViscoplasticContact<dim>::print_cost_measurement()
+  RunReport::CostMeasurement
+  ViscoplasticContact<dim>::measure_reference_costs()
   {
-    computing_timer.print_summary();
-
-    // The reference costs, measured now (the run is over, so the state may
-    // be overwritten) and taken as the maximum over the ranks.
     VectorType reference(solution);
     // The solve with the operator the back end holds at the end of the run (K
     // for the explicit update, the last tangent for the implicit one), on the
@@ -889,40 +817,20 @@ namespace ViscoContact
       update_stresses(parameters.time_step, parameters.time_step);
     const double update_time
       = Utilities::MPI::max(timer.wall_time() / repetitions, mpi_communicator);
-    // The average compute time of the steps of this run (solve and stress
-    // update, without output), again the maximum over the ranks.
-    const double step_time
-      = Utilities::MPI::max(time_loop_compute_time, mpi_communicator)
-        / std::max<double>(1, schedule.step_number());
-
-    // The threads of each rank: the stress update's and the solves', and
-    // the BLAS's in the sparse factorisation (1 where the BLAS has none).
+    // The threads of the BLAS in the sparse factorisation (1 where the BLAS
+    // has none).
     unsigned int factorisation_threads = 1;
     {
       const BlasThreadsOfRank threads;
       factorisation_threads = blas_threads();
     }
-    pcout << std::setprecision(4)
-          << "Cost measurement (wall time, maximum over the ranks):\n"
-          << "  threads per rank: " << MultithreadInfo::n_threads()
-          << " (BLAS in the sparse factorisation: " << factorisation_threads
-          << ")\n"
-          << "  average time step (without output): " << step_time * 1e3
-          << " ms\n"
-          << "  one solve with the step operator, no contact: "
-          << solve_time * 1e3 << " ms (" << krylov_iterations / repetitions
-          << " Krylov iterations)"
-          << (holding_load ? " on the load K u of the final displacement" : "")
-          << "\n"
-          << "  one stress update with the history load: " << update_time * 1e3
-          << " ms\n"
-          << "  ratio step / solve: " << step_time / solve_time << '\n'
-          << "  ratio step / (solve + stress update): "
-          << step_time / (solve_time + update_time) << '\n'
-          << "  per dof and step: " << step_time / dof_handler.n_dofs() * 1e6
-          << " us\n"
-          << "  time loop (without output): " << time_loop_compute_time
-          << " s\n";
+    return {schedule.step_number(),
+            solve_time,
+            krylov_iterations / repetitions,
+            holding_load,
+            update_time,
+            factorisation_threads,
+            double(dof_handler.n_dofs())};
   }
 
 

@@ -52,7 +52,7 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::make_grid()
   {
-    TimerOutput::Scope        t(computing_timer, "Setup: mesh");
+    TimerOutput::Scope        t(report.timer(), "Setup: mesh");
     Parameters::AllParameters first_mesh = parameters;
     if (parameters.initial_refinement == Parameters::InitialRefinement::global)
       first_mesh = parameters.coarsened(first_step_cycles);
@@ -67,7 +67,7 @@ namespace ViscoContact
           pcout << " (one rank in every " << group_size
                 << " builds the whole mesh and hands out the parts)";
         pcout << std::endl;
-        record_peak_memory("after the mesh");
+        report.record_peak_memory("after the mesh");
       }
   }
 
@@ -98,21 +98,20 @@ namespace ViscoContact
     coarser_step_problem.reset();
     contact_solver.reset();
     // The peak memory after each phase, on the first set-up.
-    const bool report_memory
-      = parameters.print_timing_summary && !setup_memory_reported;
-    setup_memory_reported = true;
+    const bool report_memory = report.reports_set_up_memory();
+    report.set_up_done();
     setup_system();
     if (report_memory)
-      record_peak_memory("after the operator");
+      report.record_peak_memory("after the operator");
     setup_stress_points();
     setup_dirichlet_dofs();
     check_rigid_motions();
     setup_contact();
     if (report_memory)
-      record_peak_memory("after the stress points and contact nodes");
+      report.record_peak_memory("after the stress points and contact nodes");
     setup_back_end();
     if (report_memory)
-      record_peak_memory("after the back end");
+      report.record_peak_memory("after the back end");
   }
 
 
@@ -129,7 +128,7 @@ namespace ViscoContact
   ViscoplasticContact<dim>::setup_system()
   {
     {
-      TimerOutput::Scope t(computing_timer, "Setup: dofs and constraints");
+      TimerOutput::Scope t(report.timer(), "Setup: dofs and constraints");
       // Two DoFHandlers on the same mesh: the vector-valued one of the
       // displacement, and a scalar one with one dof per vertex for the nodal
       // contact fields of the output.
@@ -236,14 +235,14 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::assemble_elastic_operator()
   {
-    TimerOutput::Scope t(computing_timer, "Setup: assemble elastic operator");
+    TimerOutput::Scope t(report.timer(), "Setup: assemble elastic operator");
     ViscoContact::assemble_elastic_operator(mapping,
                                             dof_handler,
                                             stress_quadrature,
                                             cell_elasticity(),
                                             constraints,
                                             stiffness_matrix);
-    ++n_operator_assemblies;
+    report.count_operator_assembly();
   }
 
 
@@ -411,7 +410,7 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::setup_stress_points()
   {
-    TimerOutput::Scope t(computing_timer, "Setup: stress points");
+    TimerOutput::Scope t(report.timer(), "Setup: stress points");
     // The list of owned cells fixes the numbering k used by every stress-point
     // array (and by the checkpoints and the convergence study). Ghost and
     // artificial cells have no stress points here: their stresses belong to the
@@ -514,7 +513,7 @@ namespace ViscoContact
     contact_enabled = !contact_zones.empty();
     if (!contact_enabled)
       return;
-    TimerOutput::Scope t(computing_timer, "Setup: contact nodes");
+    TimerOutput::Scope t(report.timer(), "Setup: contact nodes");
     contact_set.setup(contact_zones.descriptions(),
                       mapping,
                       dof_handler,
@@ -586,13 +585,13 @@ namespace ViscoContact
     // adaptive meshes may stop early, on a mesh that then runs every step:
     // their meshes are costed for the whole run.
     const bool cycle_mesh = !parameters.resume
-                            && n_initial_cycles < first_step_cycles
+                            && report.n_initial_cycles() < first_step_cycles
                             && parameters.initial_refinement
                                  == Parameters::InitialRefinement::global;
     if (cycle_mesh)
       scene.steps = 1;
     scene.nested_iteration
-      = first_step_cycles > 0 && (!cycle_mesh || n_initial_cycles > 0);
+      = first_step_cycles > 0 && (!cycle_mesh || report.n_initial_cycles() > 0);
     // The mesh of the run holds the coarser problems of the step cycles too.
     scene.step_cycles = cycle_mesh ? 0 : n_step_cycles;
     back_end          = choose_method(parameters.method, scene);
@@ -644,7 +643,7 @@ namespace ViscoContact
     // compliance S (from the factor's last block) of the condensed back end, or
     // the AMG hierarchy of the full space one. K is symmetric (the argument
     // true), so the back end may use CG and a symmetric factorisation.
-    TimerOutput::Scope t(computing_timer, "Setup: back end for K");
+    TimerOutput::Scope t(report.timer(), "Setup: back end for K");
     contact_solver->set_operator(stiffness_matrix, true, contact_set);
   }
 
@@ -805,7 +804,7 @@ namespace ViscoContact
         const bool from_checkpoint = uniqueness_eigenvalue.has_value();
         if (!from_checkpoint)
           {
-            TimerOutput::Scope t(computing_timer, "Setup: uniqueness margin");
+            TimerOutput::Scope t(report.timer(), "Setup: uniqueness margin");
             uniqueness_eigenvalue = smallest_uniqueness_eigenvalue();
           }
         const double eigenvalue = *uniqueness_eigenvalue;

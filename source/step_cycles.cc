@@ -282,7 +282,7 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::set_up_coarser_step_problem()
   {
-    TimerOutput::Scope        t(computing_timer, "Setup: step cycles");
+    TimerOutput::Scope        t(report.timer(), "Setup: step cycles");
     Parameters::AllParameters coarse_parameters = parameters.nested_coarsened();
     coarse_parameters.step_cycles_entry    = std::to_string(n_step_cycles - 1);
     coarse_parameters.initial_cycles_entry = "0";
@@ -360,7 +360,7 @@ namespace ViscoContact
   {
     if (!coarser_step_problem)
       set_up_coarser_step_problem();
-    TimerOutput::Scope        t(computing_timer, "Solve: step cycles");
+    TimerOutput::Scope        t(report.timer(), "Solve: step cycles");
     ViscoplasticContact<dim> &coarse   = *coarser_step_problem->problem;
     const CoarserStepProblem &transfer = *coarser_step_problem;
     std::vector<unsigned int> all_components(dim);
@@ -400,12 +400,14 @@ namespace ViscoContact
     coarse.set_pieces_from(coarse_pressure);
 
     // The coarser problem's own coarser meshes first, then its solve.
-    const unsigned int deeper_iterations = coarse.step_cycle_iterations;
+    const unsigned int deeper_iterations
+      = coarse.report.step_cycle_iterations();
     if (coarse.step_cycles_due())
       coarse.start_from_coarser_mesh();
     coarser_step_result = coarse.solve_contact_problem(coarse.system_rhs);
-    step_cycle_iterations += coarser_step_result.iterations()
-                             + coarse.step_cycle_iterations - deeper_iterations;
+    report.count_step_cycle_iterations(coarser_step_result.iterations()
+                                       + coarse.report.step_cycle_iterations()
+                                       - deeper_iterations);
     if (!coarser_step_result.converged)
       return;
 

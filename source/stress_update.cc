@@ -50,7 +50,7 @@ namespace ViscoContact
   ViscoplasticContact<dim>::update_stresses(const double current_time_step,
                                             const double next_time_step)
   {
-    TimerOutput::Scope t(computing_timer, "Stress update");
+    TimerOutput::Scope t(report.timer(), "Stress update");
     // With plasticity off the stresses are elastic and the history stays zero.
     // The history of the next step is only needed if there is a next step
     // (next_time_step > 0); the run summary calls this function again for its
@@ -363,7 +363,7 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::advance_history(const double next_time_step)
   {
-    TimerOutput::Scope t(computing_timer, "Stress update");
+    TimerOutput::Scope t(report.timer(), "Stress update");
     for (QuadraturePointHistory<dim> &state : quadrature_point_history)
       {
         state.history += next_time_step * state.rate;

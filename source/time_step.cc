@@ -371,7 +371,7 @@ namespace ViscoContact
   ActiveSetResult
   ViscoplasticContact<dim>::solve_contact_problem(const VectorType &rhs)
   {
-    TimerOutput::Scope t(computing_timer, "Solve: contact problem");
+    TimerOutput::Scope t(report.timer(), "Solve: contact problem");
     ActiveSetResult    result;
     // The back ends work on the locally owned entries; the ghosts are imported
     // again once the displacement is final. Ghost entries would be stale while
@@ -413,7 +413,7 @@ namespace ViscoContact
         if (result.converged)
           contact_solver->finish(contact_set, solution);
       }
-    total_inner_iterations += result.inner_iterations();
+    report.count_inner_iterations(result.inner_iterations());
     if (!result.converged)
       return result;
 
@@ -445,7 +445,7 @@ namespace ViscoContact
   ViscoplasticContact<dim>::solve_explicit_step()
   {
     const ActiveSetResult result = solve_contact_problem(system_rhs);
-    total_active_set_iterations += result.iterations();
+    report.count_active_set_iterations(result.iterations());
     return result;
   }
 
@@ -491,7 +491,7 @@ namespace ViscoContact
         // is passed as unsymmetric: in 2D plane stress it is, and GMRES or an
         // LU factorisation work in either case.
         {
-          TimerOutput::Scope t(computing_timer, "Solve: set up tangent");
+          TimerOutput::Scope t(report.timer(), "Solve: set up tangent");
           if (contact_enabled)
             contact_set.set_operator(tangent_matrix);
           contact_solver->set_operator(tangent_matrix, false, contact_set);
@@ -510,7 +510,7 @@ namespace ViscoContact
         result.history   = linearised.history;
         result.converged = linearised.converged;
         result.failure   = linearised.failure;
-        ++total_newton_iterations;
+        report.count_newton_iteration();
         if (!linearised.converged)
           {
             if (parameters.verbose)
@@ -588,7 +588,7 @@ namespace ViscoContact
             solution = iterate;
             solution.update_ghost_values();
             result.converged = true;
-            total_active_set_iterations += result.iterations();
+            report.count_active_set_iterations(result.iterations());
             return result;
           }
       }

@@ -115,10 +115,7 @@ namespace ViscoContact
                              % mesh_group_size(parameters, communicator)
                            == 0)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
-    , computing_timer(communicator,
-                      pcout,
-                      TimerOutput::never,
-                      TimerOutput::wall_times)
+    , report(parameters, communicator, pcout, mesh_group_root)
     , reference_cell(reference_cell_of<dim>(parameters))
     , mapping(reference_cell.template get_default_linear_mapping<dim>())
     , fe(std::make_unique<FESystem<dim>>(*linear_element<dim>(reference_cell),
@@ -526,17 +523,15 @@ namespace ViscoContact
     // The time loop. Only the steps count as compute time; output is timed
     // apart. The wall time written per step counts from the start of the
     // original run: a resumed run adds the time the interrupted run had
-    // spent up to its checkpoint (loop_time_offset). The step lines say how
-    // far the run is and estimate the time left (progress).
-    progress.emplace(schedule.step_number(),
-                     schedule.current_time(),
-                     loop_time_offset);
+    // spent up to its checkpoint. The step lines say how far the run is and
+    // estimate the time left.
+    report.start_time_loop(schedule.step_number(), schedule.current_time());
     while (!schedule.is_at_end())
       {
         Timer                 step_timer;
         const ActiveSetResult result = do_time_step();
-        time_loop_compute_time += step_timer.wall_time();
-        if (!finish_time_step(result, progress->wall_time()))
+        report.add_compute_time(step_timer.wall_time());
+        if (!finish_time_step(result, report.wall_time()))
           break;
       }
 
@@ -631,10 +626,10 @@ namespace ViscoContact
     const bool step_line
       = parameters.verbose || parameters.print_iteration_history;
     const std::string progress_text
-      = progress->text(n,
-                       schedule.is_adaptive() ? 0 : schedule.n_steps(),
-                       t,
-                       schedule.end_time());
+      = report.progress(n,
+                        schedule.is_adaptive() ? 0 : schedule.n_steps(),
+                        t,
+                        schedule.end_time());
     if (step_line && !schedule.is_adaptive())
       print_step_line(pcout,
                       n,

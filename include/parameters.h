@@ -499,9 +499,13 @@ namespace ViscoContact
       // material ids.
       std::vector<std::pair<std::string, const Material *>>
       used_materials() const;
-      // Whether any material that is used is viscoplastic.
+      // Whether any material that is used is viscoplastic, and whether the
+      // steps run the implicit (backward Euler) update: only with plasticity
+      // (without it, both updates are the elastic problem).
       bool
       any_plasticity() const;
+      bool
+      implicit_update() const;
       // The contact zones "Contact zone 2", "Contact zone 3", ...: sized like
       // further_materials.
       std::vector<Contact> further_contact_zones = std::vector<Contact>(1);

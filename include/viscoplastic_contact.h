@@ -38,6 +38,7 @@
 #include "parameters.h"
 #include "robustness/checkpoint_file.h"
 #include "robustness/output_folder.h"
+#include "run/run_plan.h"
 #include "run/run_report.h"
 #include "step_report.h"
 #include "time_schedule.h"
@@ -164,7 +165,7 @@ namespace ViscoContact
     bool
     matrix_free() const
     {
-      return back_end.method == Parameters::Method::matrix_free;
+      return plan.back_end().method == Parameters::Method::matrix_free;
     }
     // The elasticity tensor of a cell's material.
     ElasticityOfCell<dim>
@@ -385,36 +386,6 @@ namespace ViscoContact
     // 0) or each rank's own part of one file (written collectively).
     void
     check_output_directory();
-    // What the cost model knows of the run apart from the mesh: dimension,
-    // cell type, update, friction, ranks, the steps of the parameter file
-    // and the memory per rank.
-    SceneSize
-    scene_of_run() const;
-    // The same with the size of the parameter file's mesh, before it is
-    // built (cells as well); collective.
-    SceneSize
-    estimate_scene(double &cells) const;
-    void
-    check_memory_estimate();
-    // The number of initial cycles: as set, or for Initial cycles = auto
-    // chosen from the back end the cost model expects.
-    void
-                 choose_initial_cycles();
-    unsigned int first_step_cycles = 0;
-    // Why auto chose first_step_cycles (for the header; empty if set).
-    std::string initial_cycles_reason;
-    // A compute node's memory divided by the ranks on it (0 if unknown),
-    // for the cost model of Method = auto.
-    double memory_per_rank = 0;
-    // The .vtu records of n_steps steps fit on the disk of the output folder
-    // (a lower estimate of their size), or all ranks stop with the entries
-    // that make them.
-    void
-    check_output_volume(const unsigned int n_steps) const;
-    // Step n (starting at time) is within Maximum number of steps, and its
-    // record within the bound on .vtu records.
-    void
-    check_step_count(const unsigned int n, const double time) const;
     void
     prepare_output_directory(const unsigned int resume_step);
     void
@@ -509,17 +480,8 @@ namespace ViscoContact
     // prolongated, are where the active-set iteration here starts. The
     // coarser problem and the transfer are built at their first use and
     // dropped with every new mesh (setup_on_mesh()).
-    // Step cycles = auto: one coarser mesh where the cost model expects an
-    // iterative back end and the coarser mesh keeps 40000 dofs or more.
-    void
-                 choose_step_cycles();
-    unsigned int n_step_cycles = 0;
-    // Why auto chose n_step_cycles (for the header; empty if set).
-    std::string step_cycles_reason;
     bool
     step_cycles_due() const;
-    bool
-    step_cycles_dropped() const;
     void
     set_up_coarser_step_problem();
     void
@@ -636,6 +598,9 @@ namespace ViscoContact
     const bool         mesh_group_root;
     ConditionalOStream pcout;
     RunReport          report;
+    // The plan of the run: memory, nested iteration and back end
+    // (run/run_plan.h).
+    RunPlan<dim> plan;
 
 
     // Mesh, finite elements, quadratures, degrees of freedom. The reference
@@ -676,9 +641,7 @@ namespace ViscoContact
     MatrixType tangent_matrix;
     VectorType internal_force;
 
-    // How the step problems are solved: the method and why (for the
-    // header), and the back end that implements it.
-    MethodChoice                        back_end;
+    // The back end that solves the step problems (the plan chose it).
     std::unique_ptr<ContactSolver<dim>> contact_solver;
 
     // u_n (with ghost entries), f_n, -(H_n, eps(v)), their sum. All four share

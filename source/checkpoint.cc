@@ -259,7 +259,7 @@ namespace ViscoContact
     // The records of an adaptive run are those of its adapted mesh, which is
     // rebuilt first (mesh_adaptation.cc); so are those of a run with initial
     // cycles, whose mesh is not the one make_grid() starts from.
-    if (parameters.adaptive_refinement || first_step_cycles > 0)
+    if (parameters.adaptive_refinement || plan.initial_cycles() > 0)
       restore_checkpoint_mesh();
     const CheckpointRecord checkpoint
       = read_checkpoint_record(parameters.directory,

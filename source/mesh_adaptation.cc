@@ -720,7 +720,7 @@ namespace ViscoContact
     TimerOutput::Scope t(report.timer(), "Initial cycles");
     const bool         global
       = parameters.initial_refinement == Parameters::InitialRefinement::global;
-    for (unsigned int cycle = 0; cycle < first_step_cycles; ++cycle)
+    for (unsigned int cycle = 0; cycle < plan.initial_cycles(); ++cycle)
       {
         const TimeSchedule                run_schedule  = schedule;
         const std::array<unsigned int, 3> counts_before = report.step_counts();
@@ -746,7 +746,7 @@ namespace ViscoContact
           {
             // A simplex mesh is built anew, one coarsening less.
             schedule = run_schedule;
-            rebuild_and_transfer(first_step_cycles - cycle - 1);
+            rebuild_and_transfer(plan.initial_cycles() - cycle - 1);
             assemble_external_load(schedule.next_time());
             continue;
           }
@@ -776,11 +776,11 @@ namespace ViscoContact
           << " cells, " << dof_handler.n_dofs() << " dofs, "
           << (contact_enabled ? contact_set.n_global_nodes() : 0)
           << " contact nodes for step 1; back end: "
-          << contact_solver->description() << " (" << back_end.reason << ")"
-          << std::endl;
+          << contact_solver->description() << " (" << plan.back_end().reason
+          << ")" << std::endl;
     // The header announced the step cycles auto chose from its estimate;
     // with the condensed back end on this mesh none run.
-    if (step_cycles_dropped())
+    if (plan.step_cycles_dropped())
       pcout << "Step cycles: none after all (Step cycles = auto: Method = "
                "auto chose the condensed back end for this mesh)"
             << std::endl;

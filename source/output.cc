@@ -93,109 +93,6 @@ namespace ViscoContact
 
 
 
-  // @sect4{ViscoplasticContact::check_output_volume}
-  //
-  // Before anything is written: do the .vtu records of the run fit on the
-  // disk? Their size follows from the mesh: deal.II writes every field at
-  // every vertex of every cell (3 coordinates, the displacement, two stress
-  // tensors, five scalar fields and the contact status, as 4-byte floats),
-  // plus the connectivity. zlib compresses that by a factor 1.5 to 3 on
-  // these fields; a quarter of the raw size is taken as a lower estimate, so
-  // that only output that certainly does not fit is refused. With adaptive
-  // steps the number of records is not known before the run.
-  template <int dim>
-  void
-  ViscoplasticContact<dim>::check_output_volume(
-    const unsigned int n_steps) const
-  {
-    if (!parameters.write_vtu
-        || parameters.time_step_control
-             == Parameters::TimeStepControl::adaptive)
-      return;
-    const double records
-      = 2 + std::floor(n_steps / double(parameters.interval));
-    const double cells     = triangulation->n_global_active_cells();
-    const double per_point = 3 + dim + dim * (dim + 1) + 6;
-    const double raw_bytes
-      = cells * reference_cell.n_vertices() * (4 * per_point + 8) + 9 * cells;
-    const double bytes = records * raw_bytes / 4;
-
-    std::string problem;
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-      {
-        // The file system of the folder, or of its nearest existing parent.
-        std::filesystem::path folder
-          = std::filesystem::absolute(parameters.directory);
-        std::error_code error;
-        while (!std::filesystem::exists(folder, error)
-               && folder.has_parent_path() && folder != folder.parent_path())
-          folder = folder.parent_path();
-        struct statvfs status;
-        if (::statvfs(folder.c_str(), &status) == 0)
-          {
-            const double available
-              = double(status.f_bavail) * double(status.f_frsize);
-            if (bytes > available)
-              {
-                std::ostringstream message;
-                message << std::setprecision(3)
-                        << "Invalid parameter <Output interval> in subsection "
-                           "<Output>: value <"
-                        << parameters.interval
-                        << ">; with Time step = " << parameters.time_step
-                        << " and End time = " << parameters.end_time
-                        << " the run writes " << records
-                        << " .vtu records of at least " << raw_bytes / 4e6
-                        << " MB each, " << bytes / 1e9
-                        << " GB, but the file system of <"
-                        << parameters.directory << "> has " << available / 1e9
-                        << " GB free; accepted: output that fits (a larger "
-                           "Output interval, or Write vtu = false).";
-                problem = message.str();
-              }
-          }
-      }
-    FileOutput::agree_on_problem(problem, mpi_communicator);
-  }
-
-
-
-  // @sect4{ViscoplasticContact::check_step_count}
-  //
-  // Adaptive steps and cut steps make schedules whose length is only known
-  // as the run goes; they are held to the same bounds as fixed schedules.
-  // Every rank has the same n, so all ranks throw together.
-  template <int dim>
-  void
-  ViscoplasticContact<dim>::check_step_count(const unsigned int n,
-                                             const double       time) const
-  {
-    std::ostringstream message;
-    message << std::setprecision(6);
-    if (n > parameters.max_steps)
-      message << "Invalid parameter <Maximum number of steps> in subsection "
-                 "<Time>: value <"
-              << parameters.max_steps << ">; step " << n
-              << " (from t = " << time
-              << ") would exceed it before End time = " << parameters.end_time
-              << "; accepted: a bound the run reaches End time within (a "
-                 "larger Maximum number of steps, or for adaptive steps a "
-                 "larger Error tolerance or Minimum time step).";
-    else if (parameters.write_vtu
-             && 2 + n / parameters.interval > Parameters::max_output_records)
-      message << "Invalid parameter <Output interval> in subsection "
-                 "<Output>: value <"
-              << parameters.interval << ">; step " << n
-              << " would write more than " << Parameters::max_output_records
-              << " .vtu records; accepted: at most "
-              << Parameters::max_output_records
-              << " records in a run (a larger Output interval, or Write vtu "
-                 "= false).";
-    AssertThrow(message.str().empty(), ExcMessage(message.str()));
-  }
-
-
-
   // @sect4{ViscoplasticContact::prepare_output_directory}
   //
   // Called once the input is known to be good (parameters parsed, mesh,
@@ -754,8 +651,8 @@ namespace ViscoContact
       solution.linfty_norm(),
       schedule.step_number(),
       schedule.n_rejected_steps(),
-      n_step_cycles,
-      step_cycles_dropped(),
+      plan.step_cycles(),
+      plan.step_cycles_dropped(),
       statistics.operator_setups,
       statistics.solves,
       statistics.inner_iterations};

@@ -1695,6 +1695,12 @@ namespace ViscoContact
       return false;
     }
 
+    bool
+    AllParameters::implicit_update() const
+    {
+      return any_plasticity() && stress_update == StressUpdate::implicit_euler;
+    }
+
     // Each material id belongs to one material; with several materials,
     // subsection Material names its ids too (its empty list means "every
     // cell" only when it is the only material). Plane strain is a 2D model,

@@ -55,7 +55,7 @@ namespace ViscoContact
     TimerOutput::Scope        t(report.timer(), "Setup: mesh");
     Parameters::AllParameters first_mesh = parameters;
     if (parameters.initial_refinement == Parameters::InitialRefinement::global)
-      first_mesh = parameters.coarsened(first_step_cycles);
+      first_mesh = parameters.coarsened(plan.initial_cycles());
     Timer timer;
     triangulation = create_distributed_mesh<dim>(first_mesh, mpi_communicator);
     if (parameters.print_timing_summary)
@@ -547,19 +547,15 @@ namespace ViscoContact
 
   // @sect4{ViscoplasticContact::choose_back_end}
   //
-  // The cost model needs the scene's size before anything of a back end is
-  // built (the matrix-free back end assembles no matrix): the dofs, the
-  // vertices of the contact boundary (each counted by the rank that owns its
-  // first dof, constrained ones too), the steps left in the run (with
-  // adaptive steps as many as the last step length would give), and the
-  // memory of a rank (its compute node's divided by the ranks on it). All of
-  // them are the same on every rank, so every rank takes the same back end.
+  // The plan's choice for this mesh (run/run_plan.h), from its dofs, the
+  // vertices of the contact boundary (the contact nodes to be), and once the
+  // schedule exists (a later mesh) the steps it has left. A coarser mesh of
+  // the initial cycles solves the first step only.
   template <int dim>
   void
   ViscoplasticContact<dim>::choose_back_end()
   {
-    SceneSize scene = scene_of_run();
-    scene.dofs      = dof_handler.n_dofs();
+    double                                contact_nodes = 0;
     const std::vector<types::boundary_id> contact_ids
       = parameters.all_contact_ids();
     if (!contact_ids.empty())
@@ -571,30 +567,24 @@ namespace ViscoContact
               std::set<types::boundary_id>(contact_ids.begin(),
                                            contact_ids.end()))
             & locally_owned_dofs;
-        scene.contact_nodes
+        contact_nodes
           = Utilities::MPI::sum(on_contact.n_elements(), mpi_communicator);
       }
-    // Once the schedule exists (a later mesh), the steps it has left.
+    double steps_left = 0;
     if (schedule.end_time() > 0)
-      scene.steps
+      steps_left
         = std::max(1.,
                    std::round((schedule.end_time() - schedule.current_time())
                               / std::max(schedule.step_length(), 1e-300)));
-    // A coarser mesh of the initial cycles solves the first step only; every
-    // mesh after the first of them has its cold step warm-started. Cycles of
-    // adaptive meshes may stop early, on a mesh that then runs every step:
-    // their meshes are costed for the whole run.
     const bool cycle_mesh = !parameters.resume
-                            && report.n_initial_cycles() < first_step_cycles
+                            && report.n_initial_cycles() < plan.initial_cycles()
                             && parameters.initial_refinement
                                  == Parameters::InitialRefinement::global;
-    if (cycle_mesh)
-      scene.steps = 1;
-    scene.nested_iteration
-      = first_step_cycles > 0 && (!cycle_mesh || report.n_initial_cycles() > 0);
-    // The mesh of the run holds the coarser problems of the step cycles too.
-    scene.step_cycles = cycle_mesh ? 0 : n_step_cycles;
-    back_end          = choose_method(parameters.method, scene);
+    plan.choose_back_end(dof_handler.n_dofs(),
+                         contact_nodes,
+                         steps_left,
+                         cycle_mesh,
+                         report.n_initial_cycles());
   }
 
 
@@ -633,7 +623,7 @@ namespace ViscoContact
                                       relevant,
                                       level_constraints);
       }};
-    contact_solver = create_contact_solver<dim>(back_end.method,
+    contact_solver = create_contact_solver<dim>(plan.back_end().method,
                                                 parameters,
                                                 mapping,
                                                 dof_handler,
@@ -668,34 +658,35 @@ namespace ViscoContact
       pcout << n_steps << " time steps\n";
     // With initial cycles the mesh above is the first of them (a resumed run
     // starts on the checkpoint's mesh and runs none).
-    if (first_step_cycles > 0 && !parameters.resume)
-      pcout << "Initial cycles: step 1 on " << first_step_cycles
+    if (plan.initial_cycles() > 0 && !parameters.resume)
+      pcout << "Initial cycles: step 1 on " << plan.initial_cycles()
             << " coarser meshes first, from this one, "
             << (reference_cell.is_simplex() ? "each finer one built anew"
                 : parameters.initial_refinement
                     == Parameters::InitialRefinement::global
                   ? "refined globally"
                   : "refined adaptively")
-            << (initial_cycles_reason.empty()
+            << (plan.initial_cycles_reason().empty()
                   ? ""
-                  : " (Initial cycles = auto: " + initial_cycles_reason + ")")
+                  : " (Initial cycles = auto: " + plan.initial_cycles_reason()
+                      + ")")
             << '\n';
-    else if (!initial_cycles_reason.empty())
+    else if (!plan.initial_cycles_reason().empty())
       pcout << "Initial cycles: none (Initial cycles = auto: "
-            << initial_cycles_reason << ")\n";
+            << plan.initial_cycles_reason() << ")\n";
     const std::string step_cycles_auto
-      = step_cycles_reason.empty()
+      = plan.step_cycles_reason().empty()
           ? ""
-          : " (Step cycles = auto: " + step_cycles_reason + ")";
+          : " (Step cycles = auto: " + plan.step_cycles_reason() + ")";
     // Without initial cycles the back end is already that of the run's mesh.
-    if (step_cycles_dropped() && first_step_cycles == 0)
+    if (plan.step_cycles_dropped() && plan.initial_cycles() == 0)
       pcout << "Step cycles: none (Step cycles = auto: Method = auto chose "
                "the condensed back end)\n";
-    else if (n_step_cycles > 0)
+    else if (plan.step_cycles() > 0)
       pcout << "Step cycles: every step"
-            << (first_step_cycles > 0 ? " after the first" : "")
-            << " solved on " << n_step_cycles << " coarser mesh"
-            << (n_step_cycles > 1 ? "es" : "")
+            << (plan.initial_cycles() > 0 ? " after the first" : "")
+            << " solved on " << plan.step_cycles() << " coarser mesh"
+            << (plan.step_cycles() > 1 ? "es" : "")
             << " first, whose contact zone starts it on the mesh of the run "
                "where it moved further than the predicted start"
             << step_cycles_auto << '\n';
@@ -727,7 +718,7 @@ namespace ViscoContact
     else if (contact_zones.descriptions().size() > 1)
       pcout << "Contact zones: " << contact_zones.descriptions().size() << '\n';
     pcout << "Back end: " << contact_solver->description() << " ("
-          << back_end.reason << ")\n"
+          << plan.back_end().reason << ")\n"
           << "Parallel: " << Utilities::MPI::n_mpi_processes(mpi_communicator)
           << " MPI rank(s), "
           << (reference_cell.is_simplex() ? "fully distributed" : "p4est")

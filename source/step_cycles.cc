@@ -160,112 +160,9 @@ namespace ViscoContact
   bool
   ViscoplasticContact<dim>::step_cycles_due() const
   {
-    return n_step_cycles > 0 && contact_enabled && pieces_predictable
-           && !(schedule.step_number() == 0 && first_step_cycles > 0)
-           && !step_cycles_dropped();
-  }
-
-
-
-  // @sect4{ViscoplasticContact::step_cycles_dropped}
-  //
-  // Step cycles = auto chose them from the cost model's estimate of the
-  // scene, but Method = auto chose the condensed back end for the mesh of the
-  // run from its actual size: then none run.
-  template <int dim>
-  bool
-  ViscoplasticContact<dim>::step_cycles_dropped() const
-  {
-    return n_step_cycles > 0 && !parameters.step_cycles().has_value()
-           && back_end.method == Parameters::Method::condensed;
-  }
-
-
-
-  // @sect4{ViscoplasticContact::choose_step_cycles}
-  //
-  // Step cycles = auto. As for the initial cycles, the coarser solve pays
-  // where an active-set iteration is a Krylov solve on the whole mesh, and
-  // only on large meshes. On the cube at k = 1/32 one coarser mesh took the
-  // eight steps in which the contact zone forms from 3.5 to 2.5 active-set
-  // iterations per step at 353k dofs and from 4.1 to 2.9 at 824k, 1.2 and
-  // 1.35 times faster (doc/performance.md, "Step cycles"); but over the
-  // shipped run's 32 steps, most of them after the zone formed, where the
-  // predicted start is right and the coarser solve is pure cost, they were
-  // 6 to 8% slower at 20k, 47k and 108k dofs. So auto takes a coarser mesh
-  // where it keeps 40000 dofs or more (320k on the mesh of the run in 3D),
-  // and only one: a second saved no further iteration. None with the
-  // condensed back end (an iteration is a dense solve on the contact
-  // nodes), and none where the coarser problem would not be the step
-  // problem restricted (see
-  // Parameters::AllParameters::check_step_cycles()). None on simplices: on
-  // the tetrahedral cube refined once the prolongated zone was wrong at
-  // more nodes, and the iterations fell by a fifth only (27 to 23 at 108k
-  // dofs, 31 to 25 at 353k), for no gain in time.
-  template <int dim>
-  void
-  ViscoplasticContact<dim>::choose_step_cycles()
-  {
-    constexpr unsigned int smallest_coarser_dofs = 40000;
-    const std::string      smallest = std::to_string(smallest_coarser_dofs);
-    if (const std::optional<unsigned int> set = parameters.step_cycles())
-      {
-        n_step_cycles = *set;
-        return;
-      }
-    n_step_cycles = 0;
-    if (parameters.used_contact_zones().empty() || parameters.study_enabled)
-      return;
-    const auto frictional = [](const Parameters::ContactZone &zone) {
-      return zone.contact->tangential_law
-             != Parameters::TangentialLawType::frictionless;
-    };
-    const auto zones = parameters.used_contact_zones();
-    if (reference_cell.is_simplex())
-      step_cycles_reason = "on simplices they saved a fifth of the "
-                           "iterations and no time where measured; set "
-                           "Step cycles to run them";
-    else if (parameters.adaptive_refinement
-             || parameters.contact_refinements > 0
-             || parameters.nested_coarsenings() == 0
-             || (first_step_cycles > 0
-                 && parameters.initial_refinement
-                      == Parameters::InitialRefinement::adaptive))
-      step_cycles_reason = "they need a mesh that can be coarsened uniformly "
-                           "(Global refinements, or a generated box with "
-                           "even Subdivisions, no Contact refinement levels, "
-                           "no Adaptive refinement or adaptive Initial "
-                           "refinement)";
-    else if (implicit_update())
-      step_cycles_reason = "the implicit update";
-    else if (std::any_of(zones.begin(), zones.end(), frictional))
-      step_cycles_reason = "friction";
-    if (!step_cycles_reason.empty())
-      return;
-    double    cells           = 0;
-    SceneSize scene           = estimate_scene(cells);
-    scene.nested_iteration    = first_step_cycles > 0;
-    const MethodChoice choice = choose_method(parameters.method, scene);
-    if (choice.method == Parameters::Method::condensed)
-      step_cycles_reason = "the condensed back end is expected, whose "
-                           "active-set iterations are dense solves on the "
-                           "contact nodes";
-    else if (scene.dofs / std::pow(2., dim) < smallest_coarser_dofs)
-      step_cycles_reason = "the coarser mesh would have fewer than " + smallest
-                           + " dofs; below that they cost more in the steps "
-                             "after the contact zone formed than they save "
-                             "while it forms";
-    else
-      {
-        n_step_cycles = 1;
-        step_cycles_reason
-          = "the "
-            + std::string(choice.method == Parameters::Method::matrix_free
-                            ? "matrix-free"
-                            : "full space")
-            + " back end is expected, and the coarser mesh keeps " + smallest
-            + " dofs or more";
-      }
+    return plan.step_cycles() > 0 && contact_enabled && pieces_predictable
+           && !(schedule.step_number() == 0 && plan.initial_cycles() > 0)
+           && !plan.step_cycles_dropped();
   }
 
 
@@ -284,13 +181,14 @@ namespace ViscoContact
   {
     TimerOutput::Scope        t(report.timer(), "Setup: step cycles");
     Parameters::AllParameters coarse_parameters = parameters.nested_coarsened();
-    coarse_parameters.step_cycles_entry    = std::to_string(n_step_cycles - 1);
+    coarse_parameters.step_cycles_entry
+      = std::to_string(plan.step_cycles() - 1);
     coarse_parameters.initial_cycles_entry = "0";
     // The back end of this mesh: the cost model of Method = auto would
     // choose for the coarser mesh alone, without the memory this one holds
     // (a matrix-based back end there could take more than the matrix-free
     // one here).
-    coarse_parameters.method                  = back_end.method;
+    coarse_parameters.method                  = plan.back_end().method;
     coarse_parameters.verbose                 = false;
     coarse_parameters.print_iteration_history = false;
     coarse_parameters.print_timing_summary    = false;
@@ -304,7 +202,7 @@ namespace ViscoContact
                                                    mpi_communicator);
     ViscoplasticContact<dim> &coarse = *coarser_step_problem->problem;
     coarse.pcout.set_condition(false);
-    coarse.n_step_cycles = n_step_cycles - 1;
+    coarse.plan.choose_step_cycles(reference_cell.is_simplex());
     coarse.make_grid();
     coarse.setup_on_mesh();
     AssertThrow(coarse.contact_enabled == contact_enabled

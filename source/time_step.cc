@@ -37,8 +37,8 @@ namespace ViscoContact
     const unsigned int n = schedule.step_number() + 1;
     // Adaptive and cut steps are not counted before the run: their number
     // is bounded here (fixed schedules were checked with the parameters).
-    check_step_count(n, schedule.current_time());
-    if (n == 1 && first_step_cycles > 0)
+    plan.check_step_count(n, schedule.current_time());
+    if (n == 1 && plan.initial_cycles() > 0)
       solve_initial_cycles();
 
     StepStartState  start         = save_step_start();

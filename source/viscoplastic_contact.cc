@@ -115,7 +115,8 @@ namespace ViscoContact
                              % mesh_group_size(parameters, communicator)
                            == 0)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
-    , report(parameters, communicator, pcout, mesh_group_root)
+    , report(this->parameters, communicator, pcout, mesh_group_root)
+    , plan(this->parameters, communicator, mesh_group_root)
     , reference_cell(reference_cell_of<dim>(parameters))
     , mapping(reference_cell.template get_default_linear_mapping<dim>())
     , fe(std::make_unique<FESystem<dim>>(*linear_element<dim>(reference_cell),
@@ -161,9 +162,7 @@ namespace ViscoContact
   bool
   ViscoplasticContact<dim>::implicit_update() const
   {
-    return parameters.any_plasticity()
-           && parameters.stress_update
-                == Parameters::StressUpdate::implicit_euler;
+    return parameters.implicit_update();
   }
 
 
@@ -197,300 +196,6 @@ namespace ViscoContact
 
 
 
-  // @sect4{ViscoplasticContact::estimate_scene}
-  //
-  // The size of the parameter file's mesh, before it is built, for the
-  // decisions taken before the mesh exists. The generated box of N
-  // Subdivisions and r Global refinements has (N 2^r)^dim squares (cubes),
-  // each cut into the simplices of its pattern, and (N 2^r + 1)^dim vertices
-  // (the five-tetrahedra pattern has no more; crossed adds a centre per
-  // square). A Gmsh file is known by the node count V at the head of its
-  // $Nodes section (read by rank 0, a few lines): a mesh of V vertices has at
-  // least V - dim simplices or V / 2^(dim-1) - 1 hypercubes, refinement
-  // multiplies the cells by 2^dim per level, and a fine mesh has about 2
-  // triangles, 6.5 tetrahedra or 1 hypercube per vertex. Each contact
-  // boundary part is taken as one side of the body: V^((dim-1)/dim)
-  // vertices. Collective (rank 0 reads the file).
-  template <int dim>
-  SceneSize
-  ViscoplasticContact<dim>::estimate_scene(double &cells) const
-  {
-    const bool simplex
-      = (parameters.cell_type == Parameters::CellType::simplex);
-    double vertices = 0;
-    if (parameters.mesh_file.empty())
-      {
-        const double edge = parameters.subdivisions
-                            * std::pow(2., parameters.global_refinements);
-        vertices = std::pow(edge + 1, dim);
-        cells    = std::pow(edge, dim);
-        if (simplex)
-          switch (parameters.simplex_pattern)
-            {
-              case Parameters::SimplexPattern::crossed:
-                vertices += cells;
-                cells *= 4;
-                break;
-              case Parameters::SimplexPattern::five_tetrahedra:
-                cells *= 5;
-                break;
-              default:
-                cells *= (dim == 2 ? 2 : 6);
-            }
-      }
-    else
-      {
-        // Rank 0 is a group root: it opens the file anyway.
-        const double file_vertices = Utilities::MPI::broadcast(
-          mpi_communicator,
-          Utilities::MPI::this_mpi_process(mpi_communicator) == 0
-            ? gmsh_node_count(parameters.mesh_file)
-            : 0.);
-        const double file_cells = simplex
-                                    ? file_vertices - dim
-                                    : file_vertices / std::pow(2., dim - 1) - 1;
-        cells                   = std::max(0., file_cells)
-                * std::pow(2., dim * parameters.global_refinements);
-        vertices = cells / (simplex ? (dim == 2 ? 2 : 6.5) : 1);
-      }
-    SceneSize scene     = scene_of_run();
-    scene.dofs          = dim * vertices;
-    scene.contact_nodes = parameters.all_contact_ids().size()
-                          * std::pow(vertices, (dim - 1.) / dim);
-    return scene;
-  }
-
-
-
-  template <int dim>
-  SceneSize
-  ViscoplasticContact<dim>::scene_of_run() const
-  {
-    SceneSize scene;
-    scene.dim     = dim;
-    scene.simplex = parameters.cell_type == Parameters::CellType::simplex;
-    scene.implicit_update = implicit_update();
-    for (const auto &zone : parameters.used_contact_zones())
-      if (zone.contact->tangential_law
-          != Parameters::TangentialLawType::frictionless)
-        scene.node_unknowns = dim;
-    scene.ranks = Utilities::MPI::n_mpi_processes(mpi_communicator);
-    scene.steps
-      = std::max(1.,
-                 std::round(parameters.end_time
-                            / std::max(parameters.time_step, 1e-300)));
-    scene.memory_per_rank = memory_per_rank;
-    return scene;
-  }
-
-
-
-  // @sect4{ViscoplasticContact::check_memory_estimate}
-  //
-  // A lower estimate of the memory a run needs on each compute node, so that
-  // a mesh is refused only if it certainly does not fit, from the size
-  // estimate_scene() expects.
-  //
-  // What a rank needs for the run is the cost model's estimate
-  // (cost_model.h: the libraries, and the rank's share of the dofs times the
-  // bytes per dof of the back end, measured on the benchmark scenes), for
-  // the back end the run will use; with Method = auto for the one of least
-  // memory that can run the scene, which auto takes when the faster ones do
-  // not fit. A group root of a simplex mesh (mesh.cc) holds the whole
-  // refined mesh during set-up, before the run's data exist: about 400 bytes
-  // per cell (405 to 444 measured on tetrahedra, doc/scaling.md). The set-up
-  // and the run are summed over the ranks of each node apart, and the larger
-  // sum is compared with the node's physical memory (MemTotal of
-  // /proc/meminfo). A node's memory divided by its ranks is kept for the
-  // cost model's choices (memory_per_rank).
-  template <int dim>
-  void
-  ViscoplasticContact<dim>::check_memory_estimate()
-  {
-    double    cells = 0;
-    SceneSize scene = estimate_scene(cells);
-    // A lower estimate: no dense problem (the contact nodes of a Gmsh mesh
-    // are a guess) and a factor no fuller per dof than measured.
-    scene.contact_nodes  = 0;
-    scene.lower_estimate = true;
-    // Step cycles set by hand (auto chooses later, from the memory found
-    // here, and a lower estimate need not count them).
-    scene.step_cycles             = parameters.step_cycles().value_or(0);
-    const bool         simplex    = scene.simplex;
-    const double       dofs       = scene.dofs;
-    const unsigned int n_ranks    = scene.ranks;
-    double             rank_bytes = std::numeric_limits<double>::max();
-    for (const BackEndCost &cost : estimate_costs(scene))
-      if (cost.unavailable.empty()
-          && (parameters.method == Parameters::Method::automatic
-              || parameters.method == cost.method))
-        rank_bytes = std::min(rank_bytes, cost.bytes_per_rank);
-    const double libraries  = library_bytes_per_rank;
-    const double root_bytes = libraries + cells * 400;
-
-    // The physical memory of this rank's node, and the set-up and run
-    // estimates of the ranks on it.
-    double node_memory = 0;
-    {
-      std::ifstream meminfo("/proc/meminfo");
-      std::string   key;
-      double        kilobytes = 0;
-      while (meminfo >> key >> kilobytes)
-        {
-          if (key == "MemTotal:")
-            {
-              node_memory = kilobytes * 1024;
-              break;
-            }
-          meminfo.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
-        }
-    }
-    MPI_Comm node_communicator;
-    MPI_Comm_split_type(mpi_communicator,
-                        MPI_COMM_TYPE_SHARED,
-                        0,
-                        MPI_INFO_NULL,
-                        &node_communicator);
-    const double setup_need
-      = Utilities::MPI::sum(mesh_group_root ? root_bytes : libraries,
-                            node_communicator);
-    const double run_need = Utilities::MPI::sum(rank_bytes, node_communicator);
-    // The least memory per rank of any node (nodes may differ, and so may
-    // their rank counts): every rank must see the same number, since the
-    // choices made from it must agree. Nodes that do not know theirs do
-    // not count; if none does, 0.
-    const double rank_share = Utilities::MPI::min(
-      node_memory > 0
-        ? node_memory / Utilities::MPI::n_mpi_processes(node_communicator)
-        : std::numeric_limits<double>::max(),
-      mpi_communicator);
-    memory_per_rank
-      = rank_share < std::numeric_limits<double>::max() ? rank_share : 0;
-    MPI_Comm_free(&node_communicator);
-    // The node that lacks most; without /proc/meminfo (not Linux) there is
-    // nothing to compare with.
-    const double shortfall
-      = Utilities::MPI::max(node_memory > 0
-                              ? std::max(setup_need, run_need) - node_memory
-                              : -1.,
-                            mpi_communicator);
-    if (shortfall <= 0)
-      return;
-
-    std::ostringstream message;
-    message << std::setprecision(3) << "Invalid parameter <"
-            << (parameters.mesh_file.empty() ? "Subdivisions" : "Mesh file")
-            << "> in subsection <Geometry>: value <"
-            << (parameters.mesh_file.empty()
-                  ? std::to_string(parameters.subdivisions)
-                  : parameters.mesh_file)
-            << ">";
-    if (parameters.global_refinements > 0)
-      message << " with <Global refinements> = "
-              << parameters.global_refinements;
-    message << "; the mesh would have about " << dofs
-            << " displacement dofs and need at least " << rank_bytes / 1e9
-            << " GB of memory per rank (" << n_ranks
-            << (n_ranks == 1 ? " rank)" : " ranks)");
-    if (simplex)
-      message << ", and " << root_bytes / 1e9
-              << " GB on each group root while it builds the whole mesh "
-                 "(<Mesh group size>)";
-    message << "; a compute node of this run lacks " << shortfall / 1e9
-            << " GB; accepted: a mesh that fits (fewer "
-            << (parameters.mesh_file.empty() ? "Subdivisions or " : "")
-            << "Global refinements, or more nodes).";
-    AssertThrow(false, ExcMessage(message.str()));
-  }
-
-
-
-  // @sect4{ViscoplasticContact::choose_initial_cycles}
-  //
-  // Initial cycles = auto. Nested iteration pays where an active-set
-  // iteration is a Krylov solve on the whole mesh (the full space and
-  // matrix-free back ends): a cold first step takes 9 to 12 of them on the
-  // fine mesh and 2 after the cycles, whose meshes cost a quarter (an eighth
-  // in 3D) of the next one (doc/performance.md, "Nested iteration"). With
-  // the condensed back end an iteration is a dense solve on the contact
-  // nodes, and the coarse meshes' set-ups cost what the cycles save. So the
-  // cycles run when the cost model expects an iterative back end for the
-  // parameter file's mesh (from estimate_scene(); the back end of each mesh
-  // is chosen again from its own size), down to a mesh of about 2000 dofs
-  // (below that a cold step is cheap anyway) and at most 4 levels. None on a
-  // resumed run (its first step is not a cold start), without contact, and
-  // where the cycles' meshes would not be the parameter file's mesh
-  // coarsened: graded and adaptive meshes, convergence studies.
-  template <int dim>
-  void
-  ViscoplasticContact<dim>::choose_initial_cycles()
-  {
-    if (const std::optional<unsigned int> set = parameters.initial_cycles())
-      {
-        // A resumed simplex run starts on the checkpoint's mesh, the last
-        // of the cycles, which the parameter file describes (p4est meshes
-        // are rebuilt from the first one: restore_checkpoint_mesh()).
-        first_step_cycles
-          = (parameters.resume
-             && parameters.cell_type == Parameters::CellType::simplex)
-              ? 0
-              : *set;
-        return;
-      }
-    first_step_cycles = 0;
-    if (parameters.resume || parameters.used_contact_zones().empty())
-      return;
-    if (parameters.adaptive_refinement
-        || parameters.initial_refinement
-             != Parameters::InitialRefinement::global)
-      {
-        initial_cycles_reason = "the mesh adapts; set Initial cycles to run "
-                                "them";
-        return;
-      }
-    if (parameters.contact_refinements > 0
-        || parameters.uniform_coarsenings() == 0)
-      {
-        initial_cycles_reason = "they need a mesh that can be coarsened "
-                                "uniformly (Global refinements, or a "
-                                "generated box with even Subdivisions, no "
-                                "Contact refinement levels)";
-        return;
-      }
-    double    cells = 0;
-    SceneSize scene = estimate_scene(cells);
-    // The iterative back ends' estimate with the cycles they would run.
-    scene.nested_iteration    = true;
-    const MethodChoice choice = choose_method(parameters.method, scene);
-    if (choice.method == Parameters::Method::condensed)
-      {
-        initial_cycles_reason = "the condensed back end is expected, whose "
-                                "active-set iterations are dense solves on the "
-                                "contact nodes";
-        return;
-      }
-    const unsigned int most_levels
-      = std::min(parameters.uniform_coarsenings(), 4u);
-    while (first_step_cycles < most_levels
-           && scene.dofs / std::pow(2., dim * (first_step_cycles + 1)) >= 2000)
-      ++first_step_cycles;
-    if (first_step_cycles == 0)
-      {
-        initial_cycles_reason = "a coarser mesh would have fewer than about "
-                                "2000 dofs, where a cold step is cheap";
-        return;
-      }
-    initial_cycles_reason
-      = "the "
-        + std::string(choice.method == Parameters::Method::matrix_free
-                        ? "matrix-free"
-                        : "full space")
-        + " back end is expected, and the coarsest mesh "
-          "keeps about 2000 dofs or more";
-  }
-
-
-
   // @sect4{ViscoplasticContact::run}
   //
   // The algorithm of doc/model.md, section 2, as the reader would write it
@@ -509,9 +214,9 @@ namespace ViscoContact
     // scheduler's signal during the set-up stops the run between its phases
     // (there is no step to save yet).
     check_output_directory();
-    check_memory_estimate();
-    choose_initial_cycles();
-    choose_step_cycles();
+    plan.check_memory();
+    plan.choose_initial_cycles();
+    plan.choose_step_cycles(reference_cell.is_simplex());
     make_grid();
     StopSignals::stop_if_received(mpi_communicator, "after the mesh");
     setup_on_mesh();
@@ -586,7 +291,9 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::prepare_output()
   {
-    check_output_volume(schedule.n_steps());
+    plan.check_output_volume(triangulation->n_global_active_cells(),
+                             reference_cell.n_vertices(),
+                             schedule.n_steps());
     StopSignals::stop_if_received(mpi_communicator,
                                   "before the output folder was prepared");
     prepare_output_directory(schedule.step_number());

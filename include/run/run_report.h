@@ -165,24 +165,24 @@ namespace ViscoContact
     load(ByteReader &reader);
 
   private:
-    const Parameters::AllParameters &parameters;
-    MPI_Comm                         communicator;
-    ConditionalOStream              &pcout;
-    const bool                       mesh_group_root;
-    TimerOutput                      computing_timer;
-    bool                             set_up_reported = false;
-    std::vector<std::string>         peak_memory_lines;
-    unsigned int                     operator_assemblies      = 0;
-    unsigned int                     external_load_assemblies = 0;
-    unsigned int                     newton_iterations        = 0;
-    unsigned int                     active_set_iterations    = 0;
-    unsigned int                     inner_iterations         = 0;
-    unsigned int                     initial_cycle_iterations = 0;
-    unsigned int                     initial_cycles           = 0;
-    unsigned int                     step_cycles_iterations   = 0;
-    double                           compute_time             = 0;
-    double                           earlier_wall_time        = 0;
-    std::optional<RunProgress>       loop_progress;
+    const Parameters::AllParameters parameters;
+    MPI_Comm                        communicator;
+    ConditionalOStream             &pcout;
+    const bool                      mesh_group_root;
+    TimerOutput                     computing_timer;
+    bool                            set_up_reported = false;
+    std::vector<std::string>        peak_memory_lines;
+    unsigned int                    operator_assemblies      = 0;
+    unsigned int                    external_load_assemblies = 0;
+    unsigned int                    newton_iterations        = 0;
+    unsigned int                    active_set_iterations    = 0;
+    unsigned int                    inner_iterations         = 0;
+    unsigned int                    initial_cycle_iterations = 0;
+    unsigned int                    initial_cycles           = 0;
+    unsigned int                    step_cycles_iterations   = 0;
+    double                          compute_time             = 0;
+    double                          earlier_wall_time        = 0;
+    std::optional<RunProgress>      loop_progress;
   };
 } // namespace ViscoContact
 

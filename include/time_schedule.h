@@ -37,9 +37,12 @@ namespace ViscoContact
     static TimeSchedule
     fixed_steps(const double end_time, const double time_step);
     // Adaptive steps to the last of targets (sorted; the last is End time),
-    // the first step proposed as first_step.
+    // the first step proposed as first_step; grid_step is the step of the
+    // grid at which the loads are checked before the run (grid_level()).
     static TimeSchedule
-    adaptive_steps(const std::vector<double> &targets, const double first_step);
+    adaptive_steps(const std::vector<double> &targets,
+                   const double               first_step,
+                   const double               grid_step);
 
     bool
     is_adaptive() const;
@@ -74,6 +77,16 @@ namespace ViscoContact
     // The end time of the run.
     double
     end_time() const;
+    // The grid of the run's Time step k: the levels t_m = m k, m < N, and
+    // t_N = T, m = 0, ..., N (n_grid_levels() = N + 1), and k. Fixed steps
+    // are its levels (and those cuts insert); with adaptive steps it is
+    // the sample of times at which the loads are checked before the run.
+    std::uint64_t
+    n_grid_levels() const;
+    double
+    grid_level(const std::uint64_t m) const;
+    double
+    grid_step_length() const;
 
     // Halve the step being solved: t_{n-1} + k/2 becomes the new t_n, the old
     // t_n the level after it (with fixed steps; with adaptive steps the
@@ -100,10 +113,10 @@ namespace ViscoContact
     // For a resumed run, whose End time (and Profile times) may differ from
     // the interrupted run's: the levels up to current_time() stay those of
     // the interrupted run, the next ones are those of a run to the new end
-    // (fixed steps: the grid of time_step, only if End time changed;
+    // (fixed steps: the grid of its step, only if End time changed;
     // adaptive steps: the proposed step fitted to the new targets).
     void
-    continue_to(const std::vector<double> &targets, const double time_step);
+    continue_to(const std::vector<double> &targets);
 
     // Whether current_time() is the level of the whole schedule closest to
     // time (the first one, if two are equally close): the step whose contact
@@ -118,9 +131,6 @@ namespace ViscoContact
     load(ByteReader &reader);
 
   private:
-    // The grid level m of fixed steps (m <= n_grid_steps).
-    double
-    grid_level(const std::uint64_t m) const;
     // The level after next_time() of the current plan (fixed steps), or a
     // negative number after the last one.
     double
@@ -199,7 +209,11 @@ namespace ViscoContact
 
   // The number of steps ceil(T/k) of a fixed schedule, with a relative margin
   // of 1e-12 so that a T that is a multiple of k up to rounding does not get a
-  // spurious last step of length almost zero.
+  // spurious last step of length almost zero; in floating point (for the
+  // checks of the parameters, before the count is known to fit a counter)
+  // and as the counter.
+  double
+  fixed_step_count(const double end_time, const double time_step);
   std::uint64_t
   n_fixed_steps(const double end_time, const double time_step);
 } // namespace ViscoContact

@@ -158,13 +158,11 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::check_loads()
   {
-    // The levels t_m = m k, m < N, and t_N = T.
-    const std::uint64_t n_steps
-      = n_fixed_steps(parameters.end_time, parameters.time_step);
-    const std::uint64_t n_levels = loads.depend_on_time() ? n_steps + 1 : 1;
-    const auto          level    = [&](const std::uint64_t m) {
-      return m < n_steps ? m * parameters.time_step : parameters.end_time;
-    };
+    // The levels of the schedule's grid t_m = m k, m < N, and t_N = T.
+    const std::uint64_t n_levels
+      = loads.depend_on_time() ? schedule.n_grid_levels() : 1;
+    const auto level
+      = [&](const std::uint64_t m) { return schedule.grid_level(m); };
     // The points first, once: the geometry does not change with time. The
     // points of each surface load come with their normals.
     std::vector<Point<dim>> body_points;

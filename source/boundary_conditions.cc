@@ -266,16 +266,16 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::check_prescribed_values()
   {
-    const std::uint64_t n_steps
-      = n_fixed_steps(parameters.end_time, parameters.time_step);
-    const std::uint64_t n_levels = dirichlet.depend_on_time() ? n_steps + 1 : 1;
-    const std::size_t   stride
+    // The levels of the schedule's grid t_m = m k, m < N, and t_N = T.
+    const std::uint64_t n_grid_levels = schedule.n_grid_levels();
+    const std::uint64_t n_levels
+      = dirichlet.depend_on_time() ? n_grid_levels : 1;
+    const std::size_t stride
       = std::max<std::size_t>(1,
                               std::size_t(double(dirichlet_dofs.size())
                                           * n_levels / 2e7));
-    const auto level = [&](const std::uint64_t m) {
-      return m < n_steps ? m * parameters.time_step : parameters.end_time;
-    };
+    const auto level
+      = [&](const std::uint64_t m) { return schedule.grid_level(m); };
     std::string problem;
     if (dirichlet.has_values())
       for (std::uint64_t m = 0; m < n_levels && problem.empty(); ++m)
@@ -288,7 +288,7 @@ namespace ViscoContact
     if (contact_zones.has_gap() && contact_enabled)
       {
         const std::uint64_t n_gap_levels
-          = contact_zones.gap_depends_on_time() ? n_steps + 1 : 1;
+          = contact_zones.gap_depends_on_time() ? n_grid_levels : 1;
         const std::uint64_t gap_stride
           = std::max<std::uint64_t>(1,
                                     std::uint64_t(double(contact_set.size())

@@ -372,7 +372,7 @@ namespace ViscoContact
                            + std::to_string(checkpoint_time)
                            + "; accepted: an End time after the "
                              "checkpoint's time."));
-    schedule.continue_to(landing_targets(), parameters.time_step);
+    schedule.continue_to(landing_targets());
     return {old_next_step, schedule.step_length()};
   }
 

@@ -711,7 +711,7 @@ namespace ViscoContact
     // the assembly of its load): the work every step does besides the solve.
     timer.restart();
     for (unsigned int r = 0; r < repetitions; ++r)
-      update_stresses(parameters.time_step, parameters.time_step);
+      update_stresses(schedule.grid_step_length(), schedule.grid_step_length());
     const double update_time
       = Utilities::MPI::max(timer.wall_time() / repetitions, mpi_communicator);
     // The threads of the BLAS in the sparse factorisation (1 where the BLAS

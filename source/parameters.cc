@@ -2,6 +2,7 @@
 #include <deal.II/base/utilities.h>
 
 #include "parameters.h"
+#include "time_schedule.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -2123,7 +2124,7 @@ namespace ViscoContact
       // before the run, and neither is their number (the time loop bounds
       // them).
       const auto steps_of = [&](const double time_step) {
-        return std::ceil(end_time / time_step * (1 - 1e-12));
+        return fixed_step_count(end_time, time_step);
       };
       const auto require_steps = [&](const double       steps,
                                      const std::string &subsection,

@@ -745,14 +745,14 @@ namespace ViscoContact
     if (implicit_update())
       pcout << "Implicit (backward-Euler) history update: no stability limit "
                "on k (doc/model.md, section 3); k = "
-            << parameters.time_step << " s\n";
+            << schedule.grid_step_length() << " s\n";
     else if (explicit_history_update())
       {
         const double bound = explicit_stability_limit();
         pcout << "Explicit history update: stable for k < 4 lambda / "
                  "lambda_max(E) = "
-              << bound << " s; k = " << parameters.time_step << " s\n";
-        if (parameters.time_step >= bound
+              << bound << " s; k = " << schedule.grid_step_length() << " s\n";
+        if (schedule.grid_step_length() >= bound
             && parameters.time_step_control
                  == Parameters::TimeStepControl::fixed)
           pcout << "WARNING: the time step exceeds the stability limit of the "

@@ -198,7 +198,7 @@ namespace ViscoContact
             << explicit_stability_limit()
             << " s (doc/model.md, section 3); <Time step> in subsection "
                "<Time> is "
-            << parameters.time_step << " s.";
+            << schedule.grid_step_length() << " s.";
     AssertThrow(false, ExcMessage(message.str()));
   }
 

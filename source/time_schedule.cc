@@ -13,12 +13,19 @@ namespace ViscoContact
 {
   using namespace dealii;
 
-  // @sect4{n_fixed_steps}
+  // @sect4{fixed_step_count and n_fixed_steps}
+  double
+  fixed_step_count(const double end_time, const double time_step)
+  {
+    return std::ceil(end_time / time_step * (1 - 1e-12));
+  }
+
+
+
   std::uint64_t
   n_fixed_steps(const double end_time, const double time_step)
   {
-    return static_cast<std::uint64_t>(
-      std::ceil(end_time / time_step * (1 - 1e-12)));
+    return static_cast<std::uint64_t>(fixed_step_count(end_time, time_step));
   }
 
 
@@ -44,12 +51,15 @@ namespace ViscoContact
   // @sect4{TimeSchedule::adaptive_steps}
   TimeSchedule
   TimeSchedule::adaptive_steps(const std::vector<double> &targets,
-                               const double               first_step)
+                               const double               first_step,
+                               const double               grid_step)
   {
     Assert(!targets.empty(), ExcInternalError());
     TimeSchedule schedule;
     schedule.adaptive     = true;
     schedule.final_time   = targets.back();
+    schedule.grid_step    = grid_step;
+    schedule.n_grid_steps = n_fixed_steps(schedule.final_time, grid_step);
     schedule.targets      = targets;
     schedule.desired_step = first_step;
     schedule.next         = next_time_level(0., first_step, targets);
@@ -173,6 +183,21 @@ namespace ViscoContact
 
 
 
+  std::uint64_t
+  TimeSchedule::n_grid_levels() const
+  {
+    return n_grid_steps + 1;
+  }
+
+
+
+  double
+  TimeSchedule::grid_step_length() const
+  {
+    return grid_step;
+  }
+
+
   double
   TimeSchedule::grid_level(const std::uint64_t m) const
   {
@@ -258,8 +283,7 @@ namespace ViscoContact
 
   // @sect4{TimeSchedule::continue_to}
   void
-  TimeSchedule::continue_to(const std::vector<double> &new_targets,
-                            const double               time_step)
+  TimeSchedule::continue_to(const std::vector<double> &new_targets)
   {
     const double new_end = new_targets.back();
     if (!adaptive && new_end == final_time)
@@ -278,7 +302,6 @@ namespace ViscoContact
       }
     // The first level of the new grid after the current time (the caller has
     // checked that there is one).
-    grid_step               = time_step;
     n_grid_steps            = n_fixed_steps(final_time, grid_step);
     const double  threshold = current * (1 + 1e-12) + 1e-300;
     std::uint64_t m

@@ -266,7 +266,8 @@ namespace ViscoContact
         schedule                            = TimeSchedule::adaptive_steps(
           landing_targets(),
           std::min(std::max(parameters.time_step, controller.minimum_step),
-                   controller.maximum_step));
+                   controller.maximum_step),
+          parameters.time_step);
       }
     else
       schedule

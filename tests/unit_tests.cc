@@ -2117,6 +2117,26 @@ TEST(TimeSchedule, FixedStepsCutsAndEnd)
   EXPECT_EQ(n_fixed_steps(1e6, 1e-3), 1000000000u);
 }
 
+// The grid of Time step k that every reader of the time levels asks for:
+// t_m = m k, m < N, and t_N = T, N = ceil(T/k); for adaptive steps the grid
+// of the step the loads are checked at.
+TEST(TimeSchedule, GridOfTheTimeStep)
+{
+  const TimeSchedule fixed = TimeSchedule::fixed_steps(1., 0.3);
+  EXPECT_EQ(fixed.n_grid_levels(), 5u);
+  EXPECT_EQ(fixed.grid_level(0), 0.);
+  EXPECT_EQ(fixed.grid_level(3), 3 * 0.3);
+  EXPECT_EQ(fixed.grid_level(4), 1.);
+  EXPECT_EQ(fixed.grid_step_length(), 0.3);
+  EXPECT_EQ(fixed_step_count(1., 0.25), 4.);
+  EXPECT_EQ(n_fixed_steps(1., 0.3), 4u);
+  const TimeSchedule adaptive
+    = TimeSchedule::adaptive_steps({0.5, 1.}, 0.2, 0.25);
+  EXPECT_EQ(adaptive.n_grid_levels(), 5u);
+  EXPECT_EQ(adaptive.grid_level(2), 0.5);
+  EXPECT_EQ(adaptive.grid_step_length(), 0.25);
+}
+
 TEST(TimeSchedule, ClosestLevelAndResume)
 {
   TimeSchedule               schedule = TimeSchedule::fixed_steps(1., 0.1);
@@ -2146,7 +2166,7 @@ TEST(TimeSchedule, ClosestLevelAndResume)
   restored.load(reader);
   EXPECT_EQ(restored.step_number(), 4u);
   EXPECT_EQ(restored.current_time(), 4 * 0.1);
-  restored.continue_to({1.25}, 0.1);
+  restored.continue_to({1.25});
   EXPECT_EQ(restored.next_time(), 5 * 0.1);
   EXPECT_EQ(restored.n_steps(), 13u);
   while (!restored.is_at_end())
@@ -2157,7 +2177,7 @@ TEST(TimeSchedule, ClosestLevelAndResume)
 
 TEST(TimeSchedule, AdaptiveStepsLandRejectAndResume)
 {
-  TimeSchedule schedule = TimeSchedule::adaptive_steps({0.5, 1.}, 0.2);
+  TimeSchedule schedule = TimeSchedule::adaptive_steps({0.5, 1.}, 0.2, 0.2);
   EXPECT_TRUE(schedule.is_adaptive());
   EXPECT_NEAR(schedule.next_time(), 0.2, 1e-15);
   EXPECT_EQ(schedule.following_step_length(), 0.);
@@ -2177,7 +2197,7 @@ TEST(TimeSchedule, AdaptiveStepsLandRejectAndResume)
   EXPECT_EQ(schedule.current_time(), 0.5);
   EXPECT_EQ(schedule.n_steps(), 3u);
   // Resumed with End time 0.6: the next level lands on it.
-  schedule.continue_to({0.6}, 0.);
+  schedule.continue_to({0.6});
   EXPECT_EQ(schedule.next_time(), 0.6);
   schedule.advance_time(0.3);
   EXPECT_TRUE(schedule.is_at_end());

@@ -9,6 +9,7 @@
 #include "robustness/file_output.h"
 #include "robustness/mesh_checks.h"
 #include "run/run_plan.h"
+#include "time_schedule.h"
 
 #include <algorithm>
 #include <cmath>
@@ -157,8 +158,8 @@ namespace ViscoContact
     scene.ranks = Utilities::MPI::n_mpi_processes(communicator);
     scene.steps
       = std::max(1.,
-                 std::round(parameters.end_time
-                            / std::max(parameters.time_step, 1e-300)));
+                 fixed_step_count(parameters.end_time,
+                                  std::max(parameters.time_step, 1e-300)));
     scene.memory_per_rank = memory_per_rank;
     return scene;
   }

@@ -83,16 +83,32 @@ def top_displacement(t):
     return 0.01 * min(t, 2 - t)
 
 
-def recursion(k, end_time, implicit):
-    """p_n and the von Mises stress of every step of the scheme."""
+def hardening_update(trial, alpha, modulus):
+    """The radial return of von Mises plasticity with linear isotropic
+    hardening (modulus H): sigma and the new equivalent plastic strain."""
+    s = deviator(trial)
+    q = math.sqrt(1.5 * np.sum(s ** 2))
+    f = q - (YIELD + modulus * alpha)
+    if f <= 0:
+        return trial, alpha
+    d_gamma = f / (3 * MU + modulus)
+    return trial - 3 * MU * d_gamma * s / q, alpha + d_gamma
+
+
+def recursion(k, end_time, implicit, hardening=None):
+    """p_n and the von Mises stress of every step of the scheme (with
+    hardening = H: of the rate-independent law with hardening modulus H)."""
     n_steps = int(round(end_time / k))
     history = np.zeros((3, 3))  # H_n (explicit); sigma_{n-1} - E eps_{n-1}
+    alpha = 0.0
     results = []
     for n in range(1, n_steps + 1):
         t = n * k if n < n_steps else end_time
 
         def stress(e):
             trial = hooke(strain(e)) + history
+            if hardening is not None:
+                return hardening_update(trial, alpha, hardening)[0]
             return implicit_update(trial, k / (2 * VISCOSITY)) if implicit else trial
 
         e = -top_displacement(t)
@@ -108,7 +124,10 @@ def recursion(k, end_time, implicit):
             e = 0.5 * (lower + upper)
             sigma = stress(e)
         results.append((t, -sigma[2, 2], von_mises(sigma)))
-        history = sigma - hooke(strain(e)) if implicit else history + k * rate(sigma)
+        if hardening is not None:
+            alpha = hardening_update(hooke(strain(e)) + history, alpha, hardening)[1]
+        history = (sigma - hooke(strain(e)) if implicit or hardening is not None
+                   else history + k * rate(sigma))
     return results
 
 
@@ -138,9 +157,19 @@ def plane_strain(text):
     return text
 
 
-def run(executable, update, time_step, end_time, folder, two_d=False):
+def run(executable, update, time_step, end_time, folder, two_d=False,
+        material=None):
+    """The column on the program; material: entries of subsection Material
+    to set (name: value)."""
     with open(os.path.join(TOP, "parameters", "perzyna_column.prm")) as f:
         text = f.read()
+    for entry, value in (material or {}).items():
+        pattern = r"(?m)^(\s*set %s\s*=)[^#\n]*" % re.escape(entry)
+        if re.search(pattern, text):
+            text = re.sub(pattern, r"\g<1> %s " % value, text)
+        else:
+            text = re.sub(r"(?m)^(subsection Material)$",
+                          r"\g<1>\n  set %s = %s" % (entry, value), text)
     if two_d:
         text = plane_strain(text)
     text = re.sub(r"(?m)^(\s*set Time step\s*=).*$", r"\g<1> %r" % time_step, text)
@@ -167,6 +196,7 @@ def main():
     parser.add_argument("--executable", default=os.path.join(TOP, "build", "viscoplastic_contact"))
     parser.add_argument("--check", action="store_true")
     parser.add_argument("--order", action="store_true")
+    parser.add_argument("--hardening", action="store_true")
     arguments = parser.parse_args()
     if arguments.check:
         for update, two_d in (("explicit", False), ("implicit", False),
@@ -188,6 +218,64 @@ def main():
                                  % (name, t, quantity, value, expected))
             print("%s: 40 steps (loading, unloading, lift-off) agree with the "
                   "recursion to %.1e" % (name, worst))
+    if arguments.check or arguments.hardening:
+        # Law = hardening plasticity (H = 50, implicit update only): every
+        # step against the radial return of the same law, in 3D and in 2D
+        # plane strain.
+        hardening = {"Law": "hardening plasticity", "Hardening modulus": 50}
+        for two_d in (False, True):
+            name = "hardening plasticity, " + ("2D plane strain" if two_d else "3D")
+            with tempfile.TemporaryDirectory() as folder:
+                program = run(arguments.executable, "implicit", 0.05, 2.0,
+                              folder, two_d, hardening)
+            reference = recursion(0.05, 2.0, True, hardening=50.)
+            worst = 0.0
+            for (t, p, vm), (t_ref, p_ref, vm_ref) in zip(program, reference):
+                for value, expected in ((p, p_ref), (vm, vm_ref)):
+                    error = abs(value - expected) / (1 + abs(expected))
+                    worst = max(worst, error)
+            if len(program) != len(reference) or worst > 1e-9:
+                sys.exit("%s: %d steps, expected %d; largest difference to the "
+                         "radial return %.2e (bound 1e-9)"
+                         % (name, len(program), len(reference), worst))
+            print("%s: 40 steps agree with the radial return to %.1e"
+                  % (name, worst))
+        # Perzyna's law (implicit update) approaching perfect plasticity
+        # (hardening plasticity with H = 0) as the viscosity falls: p(1) at
+        # k = 0.05, the difference falling like the viscosity.
+        with tempfile.TemporaryDirectory() as folder:
+            limit = run(arguments.executable, "implicit", 0.05, 1.0, folder,
+                        material={"Law": "hardening plasticity",
+                                  "Hardening modulus": 0})[-1][1]
+        exact = recursion(0.05, 1.0, True, hardening=0.)[-1][1]
+        print("perfect plasticity: p(1) = %.10f (the radial return: %.10f)"
+              % (limit, exact))
+        print("| viscosity | Perzyna p(1) | difference to perfect plasticity "
+              "| observed order in the viscosity |")
+        print("| --- | --- | --- | --- |")
+        differences = []
+        viscosities = (50., 5., 0.5, 0.05)
+        for viscosity in viscosities:
+            with tempfile.TemporaryDirectory() as folder:
+                p = run(arguments.executable, "implicit", 0.05, 1.0, folder,
+                        material={"Viscosity": viscosity})[-1][1]
+            differences.append(abs(p - limit) / limit)
+            order = ("%.2f" % math.log10(differences[-2] / differences[-1])
+                     if len(differences) > 1 else "")
+            print("| %g | %.10f | %.3e | %s |" % (viscosity, p, differences[-1],
+                                                order))
+        if abs(limit - exact) > 1e-9 * exact:
+            sys.exit("Perfect plasticity: p(1) %.12g, the radial return gives "
+                     "%.12g." % (limit, exact))
+        # Observed: first order in the viscosity once it is below the
+        # loading's time scale (orders 0.99, 1.00 from 5 to 0.05).
+        if arguments.check:
+            last = math.log10(differences[-2] / differences[-1])
+            if not 0.8 <= last <= 1.2:
+                sys.exit("Perzyna's p(1) approaches perfect plasticity with "
+                         "order %.2f in the viscosity, expected 0.8 to 1.2."
+                         % last)
+
     if arguments.order or arguments.check:
         exact = ode_pressure_at(1.0)
         print("p(1) of the ODE: %.10f" % exact)

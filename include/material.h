@@ -3,6 +3,8 @@
 
 #include <deal.II/base/symmetric_tensor.h>
 
+#include "material_law.h"
+
 #include <memory>
 
 namespace ViscoContact
@@ -33,11 +35,10 @@ namespace ViscoContact
     SymmetricTensor<2, dim> stress;  // sigma_n
     SymmetricTensor<2, dim> history; // H_{n+1}: the history part of the
                                      // stress of the next step
-    double plastic_multiplier = 0;   // of the last projection onto K, the
-                                     // next projection's starting guess
-    SymmetricTensor<2, dim> rate;    // G(sigma_n): the history rate of the
-                                     // last update, for the error estimate
-                                     // (doc/adaptivity.md)
+    double                  internal_variable = 0; // the law's (material_law.h)
+    SymmetricTensor<2, dim> rate; // G(sigma_n): the history rate of the
+                                  // last update, for the error estimate
+                                  // (doc/adaptivity.md)
   };
 
   // @sect3{The Perzyna viscoplastic material}
@@ -52,7 +53,7 @@ namespace ViscoContact
   // a Lagrange multiplier, solved to machine precision; in 3D, for isotropic
   // E, it is the radial return of the deviator.
   template <int dim>
-  class PerzynaMaterial
+  class PerzynaMaterial : public MaterialLaw<dim>
   {
   public:
     // plasticity = false: an elastic material (G = 0), whose stress points
@@ -66,7 +67,31 @@ namespace ViscoContact
                     const bool   plane_strain = false);
 
     const SymmetricTensor<4, dim> &
-    elasticity_tensor() const;
+    elasticity_tensor() const override;
+
+    // @sect4{As a MaterialLaw}
+    //
+    // The interface of material_law.h: the rate G(sigma) of the explicit
+    // update with the multiplier of the projection as the internal variable
+    // (a starting guess), and the implicit update with a = k/(2 lambda).
+    bool
+    has_rate_form() const override;
+    double
+    explicit_stability_limit() const override;
+    SymmetricTensor<2, dim>
+    rate(const SymmetricTensor<2, dim> &sigma,
+         const double                   sigma_zz,
+         double                        &rate_zz,
+         double                        &internal_variable) const override;
+    SymmetricTensor<2, dim>
+    implicit_update(const SymmetricTensor<2, dim> &trial,
+                    const double                   trial_zz,
+                    const double                   time_step,
+                    double                        &stress_zz,
+                    SymmetricTensor<4, dim>       *tangent,
+                    double &internal_variable) const override;
+    bool
+    internal_variable_is_guess() const override;
 
     // The von Mises equivalent stress; tau is in K iff it is <= sigma_Y.
     double
@@ -83,10 +108,11 @@ namespace ViscoContact
     bool
     is_plane_strain() const;
     double
-    out_of_plane_elastic_stress(const SymmetricTensor<2, dim> &strain) const;
+    out_of_plane_elastic_stress(
+      const SymmetricTensor<2, dim> &strain) const override;
     double
     equivalent_stress(const SymmetricTensor<2, dim> &tau,
-                      const double                   tau_zz) const;
+                      const double                   tau_zz) const override;
     SymmetricTensor<2, dim>
     viscoplastic_rate(const SymmetricTensor<2, dim> &sigma,
                       const double                   sigma_zz,
@@ -102,7 +128,7 @@ namespace ViscoContact
     // (E^-1 tau, tau), for the error estimate's norm.
     double
     complementary_energy(const SymmetricTensor<2, dim> &tau,
-                         const double                   tau_zz) const;
+                         const double                   tau_zz) const override;
 
     // P_K tau in the inner product (E a, b). If given, *multiplier is on
     // input a guess of the Lagrange multiplier of the constraint (e.g. the
@@ -137,14 +163,14 @@ namespace ViscoContact
     // The largest eigenvalue of E: it sets the stability limit of the
     // explicit history update.
     double
-    largest_elastic_eigenvalue() const;
+    largest_elastic_eigenvalue() const override;
 
     double
     viscosity() const;
     double
-    yield_stress() const;
+    yield_stress() const override;
     bool
-    is_plastic() const;
+    is_plastic() const override;
 
   private:
     double                  young_modulus;

@@ -228,14 +228,25 @@ namespace ViscoContact
     // The material of the cells with the given material ids: subsection
     // "Material" (whose empty list means every cell of a mesh with one
     // material id) and the numbered "Material N", N >= 2 (empty: not used).
+    // How a material leaves the elastic range (material_law.h): Perzyna's
+    // viscoplastic law (the paper's), or rate-independent von Mises
+    // plasticity with linear isotropic hardening.
+    enum class MaterialLawType
+    {
+      perzyna,
+      hardening_plasticity
+    };
+
     struct Material
     {
       std::vector<types::material_id> material_ids;
+      MaterialLawType                 law           = MaterialLawType::perzyna;
       double                          young_modulus = 1000;
       double                          poisson_ratio = 0.4;
       double                          viscosity     = 50;
       double                          yield_stress  = 2;
-      bool                            plasticity    = true;
+      double                          hardening_modulus = 0;
+      bool                            plasticity        = true;
 
       void
       add_parameters(ParameterHandler &prm, const std::string &subsection);

@@ -327,8 +327,7 @@ namespace ViscoContact
                     const double next_time_step);
     // What update_stresses() does at every stress point of a step: which
     // update, whether the history of the next step and the error estimate
-    // are computed, the two step lengths, the viscous parameter
-    // a = k_n/(2 lambda) of the implicit update.
+    // are computed, and the two step lengths.
     struct StressUpdateStep
     {
       bool   implicit;
@@ -336,8 +335,6 @@ namespace ViscoContact
       bool   estimate;
       double current_time_step;
       double next_time_step;
-      // Per material: a = k/(2 lambda).
-      std::vector<double> viscous_parameters;
     };
     StressUpdateStep
     stress_update_step(const double current_time_step,
@@ -673,27 +670,27 @@ namespace ViscoContact
     bool                  pieces_predictable = true;
 
     // Materials, loads, and the state at the stress points of the locally
-    // owned cells. materials holds those of subsection Material and of the
-    // numbered ones that are used, in that order; material_index the index
-    // of each material id (empty with one material for every cell),
-    // cell_material that of each owned cell k (material_of(k)).
-    // quadrature_point_history is a flat array: the record of stress point q
-    // of the k-th owned cell is entry k * n_q + q, with n_q =
-    // stress_quadrature.size(), holding sigma_n, the history H_{n+1} of the
-    // next step and the last plastic multiplier. max_von_mises is the maximum
-    // over all ranks of the last stress update.
-    std::vector<PerzynaMaterial<dim>>          materials;
-    std::map<types::material_id, unsigned int> material_index;
-    std::vector<unsigned int>                  cell_material;
+    // owned cells. materials holds the laws (material_law.h) of subsection
+    // Material and of the numbered ones that are used, in that order;
+    // material_index the index of each material id (empty with one material
+    // for every cell), cell_material that of each owned cell k
+    // (material_of(k)). quadrature_point_history is a flat array: the record
+    // of stress point q of the k-th owned cell is entry k * n_q + q, with n_q
+    // = stress_quadrature.size(), holding sigma_n, the history H_{n+1} of
+    // the next step and the law's internal variable. max_von_mises is the
+    // maximum over all ranks of the last stress update.
+    std::vector<std::unique_ptr<const MaterialLaw<dim>>> materials;
+    std::map<types::material_id, unsigned int>           material_index;
+    std::vector<unsigned int>                            cell_material;
     unsigned int
     material_number(const types::material_id id) const
     {
       return material_index.empty() ? 0 : material_index.at(id);
     }
-    const PerzynaMaterial<dim> &
+    const MaterialLaw<dim> &
     material_of(const unsigned int k) const
     {
-      return materials[cell_material[k]];
+      return *materials[cell_material[k]];
     }
     // The von Mises stress of a record of the k-th owned cell (with its
     // sigma_zz in 2D plane strain).
@@ -707,7 +704,7 @@ namespace ViscoContact
       return material_of(k).equivalent_stress(state.stress, stress_zz);
     }
     // The largest step of the explicit history update that is stable: the
-    // smallest 4 lambda / lambda_max(E) of the viscoplastic materials.
+    // smallest of the materials' (4 lambda / lambda_max(E) for Perzyna's).
     double
     explicit_stability_limit() const;
 

@@ -479,11 +479,10 @@ namespace ViscoContact
 
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
       {
-        const PerzynaMaterial<dim>    &material = material_of(k);
+        const MaterialLaw<dim>        &material = material_of(k);
         const SymmetricTensor<4, dim> &E        = material.elasticity_tensor();
-        const double a = time_step / (2 * material.viscosity());
-        cell_matrix    = 0;
-        cell_force     = 0;
+        cell_matrix                             = 0;
+        cell_force                              = 0;
         for (unsigned int q = 0; q < n_q; ++q)
           {
             // The stored geometry of stress point q of cell k: JxW and the
@@ -497,13 +496,13 @@ namespace ViscoContact
             // The trial stress is E eps(u) plus the history
             // sigma_{n-1} - E eps(u_{n-1}) stored at the point, and the
             // backward-Euler update returns sigma and its derivative with
-            // respect to the strain. The multiplier of this projection is
-            // written back only as the starting guess of the next one; sigma_n
-            // itself is stored by update_stresses() once the step has
-            // converged. In an elastic material the stress is elastic and
-            // the tangent is E. In 2D plane strain the trial stress has its
-            // zz component (lambda tr eps + H_zz) too, and the update gives
-            // the in-plane consistent tangent C = d sigma / d eps.
+            // respect to the strain. The internal variable is written back
+            // only where it is a starting guess (Perzyna's multiplier);
+            // sigma_n and the law's state are stored by update_stresses()
+            // once the step has converged. In an elastic material the stress is
+            // elastic and the tangent is E. In 2D plane strain the trial stress
+            // has its zz component (lambda tr eps + H_zz) too, and the update
+            // gives the in-plane consistent tangent C = d sigma / d eps.
             QuadraturePointHistory<dim> &state
               = quadrature_point_history[point];
             const SymmetricTensor<2, dim> strain
@@ -511,15 +510,19 @@ namespace ViscoContact
             double history_zz = 0, stress_zz = 0;
             if constexpr (dim == 2)
               history_zz = state.history_zz;
-            SymmetricTensor<4, dim>       C = E;
+            SymmetricTensor<4, dim> C        = E;
+            double                  internal = state.internal_variable;
+            double &internal_variable = material.internal_variable_is_guess()
+                                          ? state.internal_variable
+                                          : internal;
             const SymmetricTensor<2, dim> stress
-              = (material.is_plastic() ? material.implicit_stress_update(
+              = (material.is_plastic() ? material.implicit_update(
                    E * strain + state.history,
                    material.out_of_plane_elastic_stress(strain) + history_zz,
-                   a,
+                   time_step,
                    stress_zz,
                    &C,
-                   &state.plastic_multiplier)
+                   internal_variable)
                                        : E * strain);
 
             // The cell dof i is (vertex ai, component ci), in the order of

@@ -567,6 +567,70 @@ namespace ViscoContact
 
 
 
+  // @sect4{PerzynaMaterial as a MaterialLaw}
+  template <int dim>
+  bool
+  PerzynaMaterial<dim>::has_rate_form() const
+  {
+    return true;
+  }
+
+
+
+  // Forward Euler on the relaxation is stable for k < 4 lambda /
+  // lambda_max(E) (doc/model.md, section 3); an elastic material sets no
+  // limit.
+  template <int dim>
+  double
+  PerzynaMaterial<dim>::explicit_stability_limit() const
+  {
+    return plastic ? 4 * lambda_viscosity / largest_elastic_eigenvalue()
+                   : std::numeric_limits<double>::infinity();
+  }
+
+
+
+  template <int dim>
+  SymmetricTensor<2, dim>
+  PerzynaMaterial<dim>::rate(const SymmetricTensor<2, dim> &sigma,
+                             const double                   sigma_zz,
+                             double                        &rate_zz,
+                             double &internal_variable) const
+  {
+    return viscoplastic_rate(sigma, sigma_zz, rate_zz, &internal_variable);
+  }
+
+
+
+  template <int dim>
+  SymmetricTensor<2, dim>
+  PerzynaMaterial<dim>::implicit_update(const SymmetricTensor<2, dim> &trial,
+                                        const double                   trial_zz,
+                                        const double             time_step,
+                                        double                  &stress_zz,
+                                        SymmetricTensor<4, dim> *tangent,
+                                        double &internal_variable) const
+  {
+    return implicit_stress_update(trial,
+                                  trial_zz,
+                                  time_step / (2 * lambda_viscosity),
+                                  stress_zz,
+                                  tangent,
+                                  &internal_variable);
+  }
+
+
+
+  // The multiplier only starts the next projection: any value is right.
+  template <int dim>
+  bool
+  PerzynaMaterial<dim>::internal_variable_is_guess() const
+  {
+    return true;
+  }
+
+
+
   template class PerzynaMaterial<2>;
   template class PerzynaMaterial<3>;
 } // namespace ViscoContact

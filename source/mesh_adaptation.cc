@@ -86,7 +86,7 @@ namespace ViscoContact
           out[n + i]     = state.history.access_raw_entry(i);
           out[2 * n + i] = state.rate.access_raw_entry(i);
         }
-      out[3 * n] = state.plastic_multiplier;
+      out[3 * n] = state.internal_variable;
       if constexpr (dim == 2)
         {
           out[3 * n + 1] = state.stress_zz;
@@ -109,7 +109,7 @@ namespace ViscoContact
         }
       // The multiplier is only the starting guess of the next projection; a
       // fitted value below zero (the multiplier is >= 0) starts from zero.
-      state.plastic_multiplier = std::max(in[3 * n], 0.);
+      state.internal_variable = std::max(in[3 * n], 0.);
       if constexpr (dim == 2)
         {
           state.stress_zz  = in[3 * n + 1];
@@ -188,8 +188,8 @@ namespace ViscoContact
       {
         for (unsigned int k = 0; k < owned_cells.size(); ++k)
           {
-            const PerzynaMaterial<dim> &material = material_of(k);
-            bool                        plastic = false, elastic = false;
+            const MaterialLaw<dim> &material = material_of(k);
+            bool                    plastic = false, elastic = false;
             for (unsigned int q = 0; q < n_q; ++q)
               (material.is_plastic()
                    && von_mises_stress(

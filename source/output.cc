@@ -442,7 +442,7 @@ namespace ViscoContact
     const unsigned int n_q          = stress_quadrature.size();
     for (unsigned int k = 0; k < owned_cells.size(); ++k)
       {
-        const PerzynaMaterial<dim>    &material = material_of(k);
+        const MaterialLaw<dim>        &material = material_of(k);
         const SymmetricTensor<4, dim> &E        = material.elasticity_tensor();
         const unsigned int             c = owned_cells[k]->active_cell_index();
         subdomain[c]                     = owned_cells[k]->subdomain_id();

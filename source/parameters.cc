@@ -589,6 +589,19 @@ namespace ViscoContact
             : "The material ids of the cells of this material (empty: this "
               "material is not used). Each id is named by one material only.",
           Patterns::List(Patterns::Integer(0)));
+        add_selection(
+          prm,
+          "Law",
+          law,
+          {{"Perzyna", MaterialLawType::perzyna},
+           {"hardening plasticity", MaterialLawType::hardening_plasticity}},
+          "How the material leaves the elastic range (with Plasticity = "
+          "true): Perzyna, the viscoplastic law G = -(1/(2 lambda)) E "
+          "(sigma - P_K sigma) of the paper (Viscosity, Yield stress); or "
+          "hardening plasticity, rate-independent von Mises plasticity with "
+          "linear isotropic hardening (Yield stress, Hardening modulus), "
+          "which needs Stress update = implicit and, in 2D, Plane model = "
+          "plane strain.");
         prm.add_parameter("Young's modulus",
                           young_modulus,
                           "E > 0 [N/m^2].",
@@ -607,6 +620,14 @@ namespace ViscoContact
                           yield_stress,
                           "sigma_Y > 0 [N/m^2] of the von Mises set K.",
                           Patterns::Double());
+        prm.add_parameter("Hardening modulus",
+                          hardening_modulus,
+                          "H >= 0 [N/m^2] of Law = hardening plasticity: the "
+                          "yield stress grows to sigma_Y + H alpha with the "
+                          "equivalent plastic strain alpha (0: perfect "
+                          "plasticity, the limit of Perzyna's law as the "
+                          "viscosity goes to 0).",
+                          Patterns::Double(0));
         prm.add_parameter("Plasticity",
                           plasticity,
                           "false: linear elasticity (G = 0): the cells of "
@@ -1727,6 +1748,27 @@ namespace ViscoContact
             }
         }
       const auto materials = used_materials();
+      // A rate-independent law has no rate for the explicit history update,
+      // and its return mapping is the radial one of 3D (plane strain).
+      for (const auto &[name, material] : materials)
+        if (material->plasticity
+            && material->law == MaterialLawType::hardening_plasticity)
+          {
+            require(stress_update == StressUpdate::implicit_euler,
+                    "Time",
+                    "Stress update",
+                    "explicit",
+                    "implicit when subsection <" + name
+                      + "> has Law = hardening plasticity (a "
+                        "rate-independent law has no rate for the explicit "
+                        "history update)");
+            require(dimension == 3 || plane_model == PlaneModel::plane_strain,
+                    "",
+                    "Plane model",
+                    "plane stress",
+                    "plane strain in 2D when subsection <" + name
+                      + "> has Law = hardening plasticity");
+          }
       if (materials.size() > 1)
         require(!material_ids.empty(),
                 "Material",

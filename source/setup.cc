@@ -254,7 +254,7 @@ namespace ViscoContact
     return [this](const typename DoFHandler<dim>::active_cell_iterator &cell)
              -> const SymmetricTensor<4, dim> & {
       return materials[material_number(cell->material_id())]
-        .elasticity_tensor();
+        ->elasticity_tensor();
     };
   }
 
@@ -611,7 +611,7 @@ namespace ViscoContact
       dof_handler,
       constraints,
       [this](const types::material_id id) -> const SymmetricTensor<4, dim> & {
-        return materials[material_number(id)].elasticity_tensor();
+        return materials[material_number(id)]->elasticity_tensor();
       },
       [this](const DoFHandler<dim>     &level_dofs,
              const IndexSet            &relevant,
@@ -692,16 +692,23 @@ namespace ViscoContact
             << step_cycles_auto << '\n';
     else if (!step_cycles_auto.empty())
       pcout << "Step cycles: none" << step_cycles_auto << '\n';
+    // A rate-independent law has no rate form (hardening plasticity).
+    const auto rate_independent
+      = [](const auto &m) { return m->is_plastic() && !m->has_rate_form(); };
+    const bool any_rate_independent
+      = std::any_of(materials.begin(), materials.end(), rate_independent);
     pcout << "Model: "
-          << (parameters.any_plasticity() ? "viscoplastic" : "elastic");
+          << (!parameters.any_plasticity() ? "elastic"
+              : any_rate_independent       ? "plastic (hardening plasticity)"
+                                           : "viscoplastic");
     if (parameters.plane_model == Parameters::PlaneModel::plane_strain)
       pcout << " plane strain";
     if (materials.size() > 1)
       pcout << " (" << materials.size() << " materials, "
             << std::count_if(materials.begin(),
                              materials.end(),
-                             [](const auto &m) { return m.is_plastic(); })
-            << " viscoplastic)";
+                             [](const auto &m) { return m->is_plastic(); })
+            << (any_rate_independent ? " plastic)" : " viscoplastic)");
     pcout << ", contact " << (contact_enabled ? "on" : "off") << ", "
           << (parameters.stress_update
                   == Parameters::StressUpdate::explicit_euler

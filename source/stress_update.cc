@@ -158,25 +158,20 @@ namespace ViscoContact
 
   // @sect4{ViscoplasticContact::stress_update_step}
   //
-  // E^-1 (for the estimate's norm) is inverted at unit scale: the inverse of
-  // E itself would overflow in its intermediate products for a Young's
-  // modulus near the largest double.
+  // What the stress points do in this update: which update, whether the
+  // history of the next step is computed (explicit update with a next
+  // step), and whether the error estimate is.
   template <int dim>
   typename ViscoplasticContact<dim>::StressUpdateStep
   ViscoplasticContact<dim>::stress_update_step(
     const double current_time_step,
     const double next_time_step) const
   {
-    StressUpdateStep step{implicit_update(),
-                          explicit_history_update() && next_time_step > 0,
-                          parameters.any_plasticity() && current_time_step > 0,
-                          current_time_step,
-                          next_time_step,
-                          {}};
-    for (const PerzynaMaterial<dim> &material : materials)
-      step.viscous_parameters.push_back(current_time_step
-                                        / (2 * material.viscosity()));
-    return step;
+    return {implicit_update(),
+            explicit_history_update() && next_time_step > 0,
+            parameters.any_plasticity() && current_time_step > 0,
+            current_time_step,
+            next_time_step};
   }
 
 
@@ -231,8 +226,7 @@ namespace ViscoContact
     const unsigned int           n_q = stress_quadrature.size();
     QuadraturePointHistory<dim> &state
       = quadrature_point_history[std::size_t(k) * n_q + q];
-    const unsigned int          m        = cell_material[k];
-    const PerzynaMaterial<dim> &material = materials[m];
+    const MaterialLaw<dim> &material = material_of(k);
     // E eps(u_n), from the ghosted u_n (solve_contact_problem() has
     // imported the ghosts).
     const SymmetricTensor<2, dim> strain
@@ -252,13 +246,12 @@ namespace ViscoContact
     double                  rate_zz = 0;
     if (plastic && step.implicit)
       {
-        state.stress
-          = material.implicit_stress_update(elastic_stress + state.history,
-                                            elastic_zz + zz.history_zz,
-                                            step.viscous_parameters[m],
-                                            zz.stress_zz,
-                                            nullptr,
-                                            &state.plastic_multiplier);
+        state.stress = material.implicit_update(elastic_stress + state.history,
+                                                elastic_zz + zz.history_zz,
+                                                step.current_time_step,
+                                                zz.stress_zz,
+                                                nullptr,
+                                                state.internal_variable);
         const SymmetricTensor<2, dim> new_history
           = state.stress - elastic_stress;
         const double new_history_zz = zz.stress_zz - elastic_zz;
@@ -284,10 +277,10 @@ namespace ViscoContact
                               ? std::max(max_von_mises_of_cell, von_mises)
                               : std::numeric_limits<double>::infinity();
     if (plastic && !step.implicit && (step.update_history || step.estimate))
-      rate = material.viscoplastic_rate(state.stress,
-                                        zz.stress_zz,
-                                        rate_zz,
-                                        &state.plastic_multiplier);
+      rate = material.rate(state.stress,
+                           zz.stress_zz,
+                           rate_zz,
+                           state.internal_variable);
     if (plastic && step.update_history)
       {
         state.history += step.next_time_step * rate;

@@ -631,12 +631,11 @@ namespace ViscoContact
             double stress_zz = 0, rate_zz = 0;
             if constexpr (dim == 2)
               stress_zz = state.stress_zz;
-            state.history
-              += (new_step - old_step)
-                 * material_of(k).viscoplastic_rate(state.stress,
-                                                    stress_zz,
-                                                    rate_zz,
-                                                    &state.plastic_multiplier);
+            state.history += (new_step - old_step)
+                             * material_of(k).rate(state.stress,
+                                                   stress_zz,
+                                                   rate_zz,
+                                                   state.internal_variable);
             if constexpr (dim == 2)
               state.history_zz += (new_step - old_step) * rate_zz;
           }

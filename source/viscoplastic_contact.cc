@@ -15,6 +15,7 @@
 #include "robustness/mesh_checks.h"
 #include "robustness/stop_signals.h"
 #include "step_report.h"
+#include "hardening_plasticity.h"
 #include "viscoplastic_contact.h"
 
 #include <algorithm>
@@ -57,18 +58,30 @@ namespace ViscoContact
     // number of each material id among them (none with one material for
     // every cell, whose subsection Material has no ids).
     template <int dim>
-    std::vector<PerzynaMaterial<dim>>
+    std::vector<std::unique_ptr<const MaterialLaw<dim>>>
     make_materials(const Parameters::AllParameters &parameters)
     {
-      std::vector<PerzynaMaterial<dim>> materials;
+      const bool plane_strain
+        = parameters.plane_model == Parameters::PlaneModel::plane_strain;
+      std::vector<std::unique_ptr<const MaterialLaw<dim>>> materials;
       for (const auto &[name, material] : parameters.used_materials())
-        materials.emplace_back(material->young_modulus,
-                               material->poisson_ratio,
-                               material->viscosity,
-                               material->yield_stress,
-                               material->plasticity,
-                               parameters.plane_model
-                                 == Parameters::PlaneModel::plane_strain);
+        if (material->plasticity
+            && material->law
+                 == Parameters::MaterialLawType::hardening_plasticity)
+          materials.push_back(std::make_unique<HardeningPlasticity<dim>>(
+            material->young_modulus,
+            material->poisson_ratio,
+            material->yield_stress,
+            material->hardening_modulus,
+            plane_strain));
+        else
+          materials.push_back(
+            std::make_unique<PerzynaMaterial<dim>>(material->young_modulus,
+                                                   material->poisson_ratio,
+                                                   material->viscosity,
+                                                   material->yield_stress,
+                                                   material->plasticity,
+                                                   plane_strain));
       return materials;
     }
 
@@ -178,19 +191,16 @@ namespace ViscoContact
 
   // @sect4{ViscoplasticContact::explicit_stability_limit}
   //
-  // Forward Euler on the relaxation of each viscoplastic material is stable
-  // for k < 4 lambda / lambda_max(E) (doc/model.md, section 3); an elastic
-  // material sets no limit.
+  // The smallest limit of the materials (forward Euler on the relaxation of
+  // a viscoplastic material is stable for k < 4 lambda / lambda_max(E),
+  // doc/model.md, section 3; an elastic material sets no limit).
   template <int dim>
   double
   ViscoplasticContact<dim>::explicit_stability_limit() const
   {
     double limit = std::numeric_limits<double>::infinity();
-    for (const PerzynaMaterial<dim> &material : materials)
-      if (material.is_plastic())
-        limit = std::min(limit,
-                         4 * material.viscosity()
-                           / material.largest_elastic_eigenvalue());
+    for (const auto &material : materials)
+      limit = std::min(limit, material->explicit_stability_limit());
     return limit;
   }
 

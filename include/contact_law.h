@@ -1,7 +1,10 @@
 #ifndef viscoplastic_contact_contact_law_h
 #define viscoplastic_contact_contact_law_h
 
+#include "tangential_law.h"
+
 #include <limits>
+#include <memory>
 #include <vector>
 
 namespace ViscoContact
@@ -100,38 +103,9 @@ namespace ViscoContact
     double                       gap_value;
   };
 
-  // @sect3{The tangential law of a contact zone}
-  //
-  // Friction acts on the slip increment of a time step, s - s_{n-1} (the
-  // tangential displacement since the last accepted step), with exact stick:
-  // a sticking node has no slip increment and a tangential force of at most
-  // the bound g, a slipping node carries the force g along its slip
-  // (doc/model.md, section 7). Tresca: g = w_i times the zone's Slip bound at
-  // the node, on every node of the zone whether it touches or not (the given
-  // friction of the variational literature, a convex term); Coulomb:
-  // g = mu z_i with the node's normal force z_i of the step.
-  enum class TangentialLaw
-  {
-    frictionless,
-    tresca,
-    coulomb
-  };
-
-  struct FrictionLaw
-  {
-    TangentialLaw type        = TangentialLaw::frictionless;
-    double        coefficient = 0; // mu, Coulomb only
-
-    // The law of a zone's Tangential law and Friction coefficient.
-    static FrictionLaw
-    from_parameters(const Parameters::Contact &contact);
-
-    bool
-    has_friction() const
-    {
-      return type != TangentialLaw::frictionless;
-    }
-  };
+  // The tangential law of a contact zone (tangential_law.h), shared by the
+  // zone's description and the contact nodes.
+  using FrictionLaw = std::shared_ptr<const TangentialLaw>;
 
 
 

@@ -55,7 +55,7 @@ namespace ViscoContact
     ContactLaw                      law;
     std::vector<types::boundary_id> boundary_ids;
     std::optional<Tensor<1, dim>>   direction;
-    FrictionLaw                     friction = {};
+    FrictionLaw                     friction = std::make_shared<Frictionless>();
   };
 
   // @sect3{The contact set}

@@ -20,7 +20,7 @@ namespace ViscoContact
   // that name boundary parts), built from the parameters once: each with
   // its normal law (ContactLaw::from_parameters()), its direction (a unit
   // vector from the body into the obstacle, or the boundary's normals),
-  // its tangential law (FrictionLaw::from_parameters()), the obstacle's gap
+  // its tangential law (TangentialLaw::from_parameters()), the obstacle's gap
   // s(x, t) along the direction, and Tresca's slip bound as functions of x
   // (and t) where they are given. A zone whose law does nothing (no layer,
   // no rigid limit) has no contact nodes and is left out. A bad expression

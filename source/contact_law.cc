@@ -145,22 +145,6 @@ namespace ViscoContact
 
 
 
-  FrictionLaw
-  FrictionLaw::from_parameters(const Parameters::Contact &contact)
-  {
-    switch (contact.tangential_law)
-      {
-        case Parameters::TangentialLawType::tresca:
-          return {TangentialLaw::tresca, contact.friction_coefficient};
-        case Parameters::TangentialLawType::coulomb:
-          return {TangentialLaw::coulomb, contact.friction_coefficient};
-        default:
-          return {TangentialLaw::frictionless, contact.friction_coefficient};
-      }
-  }
-
-
-
   // The pieces, in order from r = -infinity.
   unsigned int
   ContactLaw::n_pieces() const

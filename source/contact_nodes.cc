@@ -113,7 +113,8 @@ namespace ViscoContact
     z.assign(w.size(), 0.);
     node_pieces.assign(w.size(), 0);
     placed = false;
-    set_friction(std::vector<FrictionLaw>(laws.n_zones()),
+    set_friction(std::vector<FrictionLaw>(laws.n_zones(),
+                                          std::make_shared<Frictionless>()),
                  std::vector<unsigned int>(w.size(), 0),
                  std::vector<double>(w.size(), 0.));
   }
@@ -343,14 +344,13 @@ namespace ViscoContact
           }
         return result;
       }
-    const Tangential  &d     = slip_direction[i];
-    const FrictionLaw &law   = zone_friction[node_zones[i]];
-    NodeDirection     &along = result.direction[1];
-    along.frame              = {{0, d[0], d[1]}};
-    if (law.type == TangentialLaw::coulomb)
-      along.coupling = law.coefficient;
-    else
-      along.value = bounds[i];
+    const Tangential &d     = slip_direction[i];
+    NodeDirection    &along = result.direction[1];
+    along.frame             = {{0, d[0], d[1]}};
+    const TangentialLaw::SlipForce force
+      = zone_friction[node_zones[i]]->slip_force(bounds[i]);
+    along.value    = force.value;
+    along.coupling = force.coupling;
     if (k == 2)
       {
         NodeDirection &across = result.direction[2];
@@ -449,10 +449,7 @@ namespace ViscoContact
   double
   ContactNodes::bound_of(const unsigned int i) const
   {
-    const FrictionLaw &law = zone_friction[node_zones[i]];
-    return law.type == TangentialLaw::tresca
-             ? tresca_bound[i]
-             : law.coefficient * std::max(z[i], 0.);
+    return zone_friction[node_zones[i]]->bound(z[i], tresca_bound[i]);
   }
 
 
@@ -781,7 +778,7 @@ namespace ViscoContact
   ContactNodes::has_friction() const
   {
     for (const FrictionLaw &law : zone_friction)
-      if (law.has_friction())
+      if (law->has_friction())
         return true;
     return false;
   }

@@ -470,7 +470,7 @@ namespace ViscoContact
                   // couple a slipping node's tangential force to its normal
                   // one along them), which an oblique plane of symmetry
                   // breaks.
-                  if (zones[zone].friction.has_friction())
+                  if (zones[zone].friction->has_friction())
                     {
                       node.n_tangents   = frame.n_tangents;
                       node.tangent_rows = frame.tangent_rows;
@@ -924,8 +924,7 @@ namespace ViscoContact
       {
         tangents[i]                = geometry[i].n_tangents;
         const Function<dim> *bound = zone_bounds[zone(i)];
-        if (bound == nullptr
-            || zone_friction[zone(i)].type != TangentialLaw::tresca)
+        if (bound == nullptr || !zone_friction[zone(i)]->uses_node_bounds())
           continue;
         const double value = bound->value(geometry[i].location);
         if (!(value >= 0) || !std::isfinite(value))

@@ -20,7 +20,7 @@ namespace ViscoContact
           ContactLaw::from_parameters(entries),
           zone.boundary_ids,
           {},
-          FrictionLaw::from_parameters(entries)};
+          TangentialLaw::from_parameters(entries)};
         if (description.law.is_void())
           continue;
         if (entries.gap_direction != "normal")
@@ -98,7 +98,7 @@ namespace ViscoContact
   {
     std::vector<unsigned int> result;
     for (const auto &zone : zones)
-      if (zone.friction.has_friction())
+      if (zone.friction->has_friction())
         result.push_back(zone.number);
     return result;
   }

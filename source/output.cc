@@ -200,7 +200,7 @@ namespace ViscoContact
             row << ',' << friction_counts[0] << ',' << friction_counts[1];
             const auto &zones = contact_zones.descriptions();
             for (unsigned int zone = 0; zone < zones.size(); ++zone)
-              if (zones[zone].friction.has_friction())
+              if (zones[zone].friction->has_friction())
                 for (unsigned int c = 0; c < dim; ++c)
                   row << ','
                       << (std::abs(tangential_forces[zone][c]) > 1e-12 * scale

@@ -654,7 +654,7 @@ TEST(Friction, StickSlipRuleOfOneNode)
   const ContactLaws signorini(ContactLaw({}, {0.}, {}, true, 0.));
   ContactNodes      nodes;
   nodes.reinit(signorini, {0}, {0.5});
-  nodes.set_friction({{TangentialLaw::coulomb, 0.3}}, {1}, {0.});
+  nodes.set_friction({std::make_shared<CoulombFriction>(0.3)}, {1}, {0.});
   nodes.set_parameters({100.});
   // Stuck at the start: the tangential direction is fixed at s_{n-1} = 0.
   EXPECT_EQ(nodes.friction_state(0), ContactNodes::stick);
@@ -735,7 +735,7 @@ TEST(Friction, TransverseStiffnessOfA3DSlip)
   const ContactLaws signorini(ContactLaw({}, {0.}, {}, true, 0.));
   ContactNodes      nodes;
   nodes.reinit(signorini, {0}, {0.5});
-  nodes.set_friction({{TangentialLaw::tresca, 0.}}, {2}, {1.});
+  nodes.set_friction({std::make_shared<TrescaFriction>()}, {2}, {1.});
   nodes.set_parameters({100.});
   nodes.z[0] = 10;
   nodes.t[0] = {{3, 4}};

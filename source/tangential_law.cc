@@ -1,0 +1,135 @@
+// The tangential laws of the contact zones (tangential_law.h).
+
+#include "tangential_law.h"
+
+#include "parameters.h"
+
+#include <algorithm>
+
+namespace ViscoContact
+{
+  std::shared_ptr<const TangentialLaw>
+  TangentialLaw::from_parameters(const Parameters::Contact &contact)
+  {
+    switch (contact.tangential_law)
+      {
+        case Parameters::TangentialLawType::tresca:
+          return std::make_shared<TrescaFriction>();
+        case Parameters::TangentialLawType::coulomb:
+          return std::make_shared<CoulombFriction>(
+            contact.friction_coefficient);
+        default:
+          return std::make_shared<Frictionless>();
+      }
+  }
+
+
+
+  bool
+  Frictionless::has_friction() const
+  {
+    return false;
+  }
+
+
+
+  bool
+  Frictionless::uses_node_bounds() const
+  {
+    return false;
+  }
+
+
+
+  double
+  Frictionless::bound(const double, const double) const
+  {
+    return 0;
+  }
+
+
+
+  TangentialLaw::SlipForce
+  Frictionless::slip_force(const double) const
+  {
+    return {0, 0};
+  }
+
+
+
+  bool
+  TrescaFriction::has_friction() const
+  {
+    return true;
+  }
+
+
+
+  bool
+  TrescaFriction::uses_node_bounds() const
+  {
+    return true;
+  }
+
+
+
+  double
+  TrescaFriction::bound(const double, const double node_bound) const
+  {
+    return node_bound;
+  }
+
+
+
+  TangentialLaw::SlipForce
+  TrescaFriction::slip_force(const double bound) const
+  {
+    return {bound, 0};
+  }
+
+
+
+  CoulombFriction::CoulombFriction(const double coefficient)
+    : mu(coefficient)
+  {}
+
+
+
+  bool
+  CoulombFriction::has_friction() const
+  {
+    return true;
+  }
+
+
+
+  bool
+  CoulombFriction::uses_node_bounds() const
+  {
+    return false;
+  }
+
+
+
+  double
+  CoulombFriction::bound(const double z, const double) const
+  {
+    return mu * std::max(z, 0.);
+  }
+
+
+
+  TangentialLaw::SlipForce
+  CoulombFriction::slip_force(const double) const
+  {
+    return {0, mu};
+  }
+
+
+
+  double
+  CoulombFriction::coefficient() const
+  {
+    return mu;
+  }
+} // namespace ViscoContact

@@ -45,7 +45,7 @@ namespace ViscoContact
               = time_dependent_gap || mentions_time(entries.initial_gap);
           }
         std::unique_ptr<FunctionParser<dim>> slip_bound;
-        if (entries.tangential_law == Parameters::TangentialLawType::tresca)
+        if (description.friction->uses_node_bounds())
           {
             slip_bound = std::make_unique<FunctionParser<dim>>(1);
             initialize_load(*slip_bound,

@@ -2046,6 +2046,7 @@ TEST(OutputFolder, CollectiveFileInRankOrder)
                                           "blocks.txt",
                                           "foreign.txt",
                                           "pieces.txt"}));
+      std::filesystem::remove_all(directory);
     }
 }
 

@@ -1,6 +1,7 @@
 #ifndef viscoplastic_contact_contact_set_h
 #define viscoplastic_contact_contact_set_h
 
+#include <deal.II/base/array_view.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/quadrature.h>
@@ -132,20 +133,51 @@ namespace ViscoContact
     std::string
     set_slip_bounds(const std::vector<const Function<dim> *> &zone_bounds);
 
-    // The row of node i's frame direction a on its dofs:
-    // a_0 n_i + sum_j a_j t_ij.
+    // @sect4{Contact rows}
+    //
+    // Row j of node i (j = 0 the normal n_i, j = 1, ..., n_tangential(i)
+    // the tangents t_ij): the row of N that the back ends see, a short
+    // sparse vector over dofs, r_i = n_i . u as a sum over its entries.
+    // Today every row lies on the node's own dofs (its nonzero components
+    // in component order); contact between two bodies makes a row span
+    // dofs of both sides, and a back end that only uses rows (the
+    // condensed one) needs no change for it.
+    struct RowEntry
+    {
+      types::global_dof_index dof;
+      // The dof as an index into the local storage of the displacement
+      // vectors (owned entries first, then ghosts).
+      unsigned int local_dof;
+      double       value;
+    };
+    ArrayView<const RowEntry>
+    row(const unsigned int i, const unsigned int j) const;
+    // row(i, j) . u and v += value row(i, j), on the local entries.
+    double
+    row_component(const VectorType  &u,
+                  const unsigned int i,
+                  const unsigned int j) const;
+    void
+    add_to_row(VectorType        &v,
+               const unsigned int i,
+               const unsigned int j,
+               const double       value) const;
+
+    // The full space back end works in each node's frame on the node's own
+    // dim dofs (NodeGeometry::dofs): the row of the frame direction a,
+    // a_0 n_i + sum_j a_j t_ij, as a vector of the node's components, and
+    // row . u_i and v_i += value row on the locally owned entries.
     Tensor<1, dim>
     frame_row(const unsigned int i, const std::array<double, 3> &a) const;
-    // row . u_i and v_i += value row, on the locally owned entries.
     double
-    row_component(const VectorType     &u,
-                  const unsigned int    i,
-                  const Tensor<1, dim> &row) const;
+    node_component(const VectorType     &u,
+                   const unsigned int    i,
+                   const Tensor<1, dim> &row) const;
     void
-    add_row(VectorType           &v,
-            const unsigned int    i,
-            const Tensor<1, dim> &row,
-            const double          value) const;
+    add_to_node(VectorType           &v,
+                const unsigned int    i,
+                const Tensor<1, dim> &row,
+                const double          value) const;
     // The tangential displacements s_ij = t_ij . u of every node (zero
     // where the zone is frictionless).
     std::vector<Tangential>
@@ -234,7 +266,17 @@ namespace ViscoContact
                const Utilities::MPI::Partitioner &partitioner,
                const VectorType                  &weighted_normals);
 
+    // The entries of the rows of all nodes from their geometry (after the
+    // nodes are sorted).
+    void
+    make_rows();
+
     std::vector<NodeGeometry> geometry;
+    // Row j of node i: row_entries[row_begin[node_first_row[i] + j]] up to
+    // row_begin[node_first_row[i] + j + 1].
+    std::vector<RowEntry>     row_entries;
+    std::vector<unsigned int> row_begin;
+    std::vector<unsigned int> node_first_row;
     std::vector<std::string>  zone_subsections;
     std::vector<unsigned int> zone_numbers;
     std::vector<double>       gaps; // empty: no obstacle gap (s = 0)

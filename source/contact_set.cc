@@ -225,6 +225,7 @@ namespace ViscoContact
     zone_friction.clear();
     for (const ContactZoneDescription<dim> &zone : zones)
       zone_friction.push_back(zone.friction);
+    make_rows();
     std::vector<unsigned int> tangents(geometry.size());
     for (unsigned int i = 0; i < geometry.size(); ++i)
       tangents[i] = geometry[i].n_tangents;
@@ -591,22 +592,85 @@ namespace ViscoContact
 
 
 
-  // @sect4{ContactSet::normal_component and add_normal}
+  // @sect4{ContactSet::make_rows and the rows}
   //
-  // The two operations that connect a node to the displacement vectors:
-  // r_i = nu_i . u_i, and v_i += value nu_i (with value = z_i this assembles
-  // N^T z). Both use the node's local indices, i.e. the owned entries of the
-  // vector; no communication is involved.
+  // The rows of every node on its own dofs: the normal, then the tangents,
+  // each with the components in which it is not zero (a component
+  // constrained by a plane of symmetry has none).
+  template <int dim>
+  void
+  ContactSet<dim>::make_rows()
+  {
+    row_entries.clear();
+    row_begin.assign(1, 0);
+    node_first_row.assign(1, 0);
+    for (const NodeGeometry &node : geometry)
+      {
+        for (unsigned int j = 0; j < 1 + node.n_tangents; ++j)
+          {
+            const Tensor<1, dim> &vector
+              = (j == 0 ? node.normal : node.tangent_rows[j - 1]);
+            for (unsigned int c = 0; c < dim; ++c)
+              if (vector[c] != 0.)
+                row_entries.push_back(
+                  RowEntry{node.dofs[c], node.local_dofs[c], vector[c]});
+            row_begin.push_back(row_entries.size());
+          }
+        node_first_row.push_back(node_first_row.back() + 1 + node.n_tangents);
+      }
+  }
+
+
+
+  template <int dim>
+  ArrayView<const typename ContactSet<dim>::RowEntry>
+  ContactSet<dim>::row(const unsigned int i, const unsigned int j) const
+  {
+    AssertIndexRange(j, node_first_row[i + 1] - node_first_row[i]);
+    const unsigned int k = node_first_row[i] + j;
+    return make_array_view(row_entries.data() + row_begin[k],
+                           row_entries.data() + row_begin[k + 1]);
+  }
+
+
+
+  // The two operations that connect a row to the displacement vectors:
+  // row . u, and v += value row (with the forces z this assembles N^T z).
+  // Both use local indices; no communication is involved.
+  template <int dim>
+  double
+  ContactSet<dim>::row_component(const VectorType  &u,
+                                 const unsigned int i,
+                                 const unsigned int j) const
+  {
+    double value = 0;
+    for (const RowEntry &entry : row(i, j))
+      value += entry.value * u.local_element(entry.local_dof);
+    return value;
+  }
+
+
+
+  template <int dim>
+  void
+  ContactSet<dim>::add_to_row(VectorType        &v,
+                              const unsigned int i,
+                              const unsigned int j,
+                              const double       value) const
+  {
+    for (const RowEntry &entry : row(i, j))
+      v.local_element(entry.local_dof) += value * entry.value;
+  }
+
+
+
+  // r_i = n_i . u and v += value n_i: the rows j = 0.
   template <int dim>
   double
   ContactSet<dim>::normal_component(const VectorType  &u,
                                     const unsigned int i) const
   {
-    double value = 0;
-    for (unsigned int c = 0; c < dim; ++c)
-      value
-        += geometry[i].normal[c] * u.local_element(geometry[i].local_dofs[c]);
-    return value;
+    return row_component(u, i, 0);
   }
 
 
@@ -617,9 +681,7 @@ namespace ViscoContact
                               const unsigned int i,
                               const double       value) const
   {
-    for (unsigned int c = 0; c < dim; ++c)
-      v.local_element(geometry[i].local_dofs[c])
-        += value * geometry[i].normal[c];
+    add_to_row(v, i, 0, value);
   }
 
 
@@ -740,11 +802,11 @@ namespace ViscoContact
 
 
 
-  // @sect4{ContactSet::frame_row, row_component and add_row}
+  // @sect4{ContactSet::frame_row, node_component and add_to_node}
   //
-  // The rows of a node's frame directions on its dofs, and the two
+  // The rows of a node's frame directions on its own dofs, and the two
   // operations that connect them to the displacement vectors (on the owned
-  // entries; no communication).
+  // entries; no communication), for the full space back end.
   template <int dim>
   Tensor<1, dim>
   ContactSet<dim>::frame_row(const unsigned int           i,
@@ -760,9 +822,9 @@ namespace ViscoContact
 
   template <int dim>
   double
-  ContactSet<dim>::row_component(const VectorType     &u,
-                                 const unsigned int    i,
-                                 const Tensor<1, dim> &row) const
+  ContactSet<dim>::node_component(const VectorType     &u,
+                                  const unsigned int    i,
+                                  const Tensor<1, dim> &row) const
   {
     double value = 0;
     for (unsigned int c = 0; c < dim; ++c)
@@ -774,10 +836,10 @@ namespace ViscoContact
 
   template <int dim>
   void
-  ContactSet<dim>::add_row(VectorType           &v,
-                           const unsigned int    i,
-                           const Tensor<1, dim> &row,
-                           const double          value) const
+  ContactSet<dim>::add_to_node(VectorType           &v,
+                               const unsigned int    i,
+                               const Tensor<1, dim> &row,
+                               const double          value) const
   {
     for (unsigned int c = 0; c < dim; ++c)
       v.local_element(geometry[i].local_dofs[c]) += value * row[c];
@@ -807,7 +869,7 @@ namespace ViscoContact
     std::vector<Tangential> result(size(), Tangential{{0, 0}});
     for (unsigned int i = 0; i < size(); ++i)
       for (unsigned int j = 0; j < geometry[i].n_tangents; ++j)
-        result[i][j] = row_component(u, i, geometry[i].tangent_rows[j]);
+        result[i][j] = row_component(u, i, 1 + j);
     return result;
   }
 

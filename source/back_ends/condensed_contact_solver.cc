@@ -20,6 +20,8 @@
 #include "back_ends/direct_solver.h"
 
 #include <algorithm>
+#include <map>
+#include <set>
 
 namespace ViscoContact
 {
@@ -96,7 +98,7 @@ namespace ViscoContact
   // A^{-1} b before the active-set iteration and A^{-1} N^T z after it.
   //
   // With friction the contact nodes of frictional zones add their
-  // tangential rows t_j to N (dim rows per node, ContactSet::frame_row()):
+  // tangential rows t_j to N (dim rows per node, ContactSet::row()):
   // S is the compliance of all rows, and the dense problem of the pieces and
   // friction states (solve_frictional()) is factorised afresh in every
   // active-set iteration, (m dim)^3 / 3 operations: its rows change with the
@@ -173,12 +175,7 @@ namespace ViscoContact
     double
     solve_frictional(ContactSet<dim> &contact);
 
-    // Row j of node i's frame (0: the normal).
-    static Tensor<1, dim>
-    frame_row(const ContactSet<dim> &contact,
-              const unsigned int     i,
-              const unsigned int     j);
-    // The frame rows of this rank's node i in the global numbering of rows.
+    // The rows of this rank's node i in the global numbering of rows.
     unsigned int
     first_row(const ContactSet<dim> &contact, const unsigned int i) const;
 
@@ -193,11 +190,9 @@ namespace ViscoContact
     SparseDirectSolver     factorization;
     CondensedContactSystem condensed_system;
 
-    // The contact dofs of this rank's nodes (the components in which a
-    // node's normal is not zero), as local indices, and for each the node
-    // and the component.
-    std::vector<unsigned int>                          contact_dofs;
-    std::vector<std::pair<unsigned int, unsigned int>> contact_dof_node;
+    // The contact dofs of this rank's nodes (the dofs on which a row of N
+    // has an entry), as local indices.
+    std::vector<unsigned int> contact_dofs;
 
     // With the last block: X = L_c^{-1} N_c^T (one row per contact dof, in
     // the factor's order, one column per node) and the last block y_c of
@@ -275,23 +270,31 @@ namespace ViscoContact
     for (unsigned int n = 0; n < all_rows.size(); ++n)
       row_start[n + 1] = row_start[n] + all_rows[n];
 
-    // The contact dofs: a component in which no row of the node has an
-    // entry does not enter N, so an axis-aligned frictionless contact
-    // boundary needs one dof per node.
+    // The contact dofs: the dofs the rows have entries on, node by node
+    // in increasing order, each once (a dof in which no row has an entry
+    // does not enter N, so an axis-aligned frictionless contact boundary
+    // needs one dof per node). The columns of N^T below are written into
+    // the owned entries of a vector, so every entry must be owned.
+    const unsigned int n_owned = free_displacement.locally_owned_size();
     contact_dofs.clear();
-    contact_dof_node.clear();
+    std::set<unsigned int> seen;
     for (unsigned int i = 0; i < contact.size(); ++i)
-      for (unsigned int c = 0; c < dim; ++c)
-        {
-          bool used = false;
-          for (unsigned int j = 0; j < own_rows[i]; ++j)
-            used = used || frame_row(contact, i, j)[c] != 0.;
-          if (used)
+      {
+        std::set<unsigned int> node_dofs;
+        for (unsigned int j = 0; j < own_rows[i]; ++j)
+          for (const auto &entry : contact.row(i, j))
             {
-              contact_dofs.push_back(contact.node(i).local_dofs[c]);
-              contact_dof_node.emplace_back(i, c);
+              AssertThrow(entry.local_dof < n_owned,
+                          ExcMessage("The condensed back end needs the "
+                                     "contact rows on dofs of the rank "
+                                     "that owns the node."));
+              if (seen.insert(entry.local_dof).second)
+                node_dofs.insert(entry.local_dof);
             }
-        }
+        contact_dofs.insert(contact_dofs.end(),
+                            node_dofs.begin(),
+                            node_dofs.end());
+      }
 
     // A new operator replaces the old factorisation (the implicit update
     // calls this once per Newton iteration).
@@ -333,8 +336,8 @@ namespace ViscoContact
   // @sect4{CondensedContactSolver::compliance_from_last_block}
   //
   // S = X^T X with X = L_c^{-1} N_c^T: N_c^T has one row per contact dof, in
-  // the order of the factor's last block, holding the normal's component at
-  // that dof in the column of its node; one dense triangular solve with
+  // the order of the factor's last block, holding the entries of the rows
+  // at that dof in their columns; one dense triangular solve with
   // m columns turns it into X, and one dense product gives S. The last
   // block exists on one rank only, so all nodes are this rank's.
   template <int dim>
@@ -344,14 +347,16 @@ namespace ViscoContact
   {
     const unsigned int               m     = row_start.back();
     const std::vector<unsigned int> &order = factorization.last_block_order();
-    normal_responses.reinit(order.size(), m);
+    // The position in the last block of every contact dof.
+    std::map<unsigned int, unsigned int> position;
     for (unsigned int k = 0; k < order.size(); ++k)
-      {
-        const auto [node, component] = contact_dof_node[order[k]];
-        for (unsigned int j = 0; j < row_start[node + 1] - row_start[node]; ++j)
-          normal_responses(k, row_start[node] + j)
-            = frame_row(contact, node, j)[component];
-      }
+      position[contact_dofs[order[k]]] = k;
+    normal_responses.reinit(order.size(), m);
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      for (unsigned int j = 0; j < row_start[i + 1] - row_start[i]; ++j)
+        for (const auto &entry : contact.row(i, j))
+          normal_responses(position.at(entry.local_dof), row_start[i] + j)
+            = entry.value;
     factorization.last_block_factor().solve(normal_responses);
     LAPACKFullMatrix<double> S(m, m);
     normal_responses.Tmmult(S, normal_responses);
@@ -404,10 +409,11 @@ namespace ViscoContact
                row < first_row(contact, i + 1);
                ++row)
             if (row >= first_column && row < first_column + n_columns)
-              for (unsigned int c = 0; c < dim; ++c)
+              for (const auto &entry :
+                   contact.row(i, row - first_row(contact, i)))
                 columns[std::size_t(row - first_column) * n_local
-                        + contact.node(i).local_dofs[c]]
-                  = frame_row(contact, i, row - first_row(contact, i))[c];
+                        + entry.local_dof]
+                  = entry.value;
         // One collective solve overwrites the columns with A^{-1} N^T e_j.
         factorization.solve(columns, n_columns);
         this->counts.solves += n_columns;
@@ -421,10 +427,10 @@ namespace ViscoContact
               for (unsigned int row = first_row(contact, i);
                    row < first_row(contact, i + 1);
                    ++row)
-                for (unsigned int c = 0; c < dim; ++c)
+                for (const auto &entry :
+                     contact.row(i, row - first_row(contact, i)))
                   own_rows[std::size_t(row - first) * m + first_column + j]
-                    += frame_row(contact, i, row - first_row(contact, i))[c]
-                       * response[contact.node(i).local_dofs[c]];
+                    += entry.value * response[entry.local_dof];
           }
       }
 
@@ -471,9 +477,8 @@ namespace ViscoContact
     std::vector<double> own;
     for (unsigned int i = 0; i < contact.size(); ++i)
       for (unsigned int j = 0; j < 1 + contact.n_tangential(i); ++j)
-        own.push_back(
-          contact.row_component(free_displacement, i, frame_row(contact, i, j))
-          - (friction || j > 0 ? 0. : contact.gap(i)));
+        own.push_back(contact.row_component(free_displacement, i, j)
+                      - (friction || j > 0 ? 0. : contact.gap(i)));
     const std::vector<double> all = gather_on_all_ranks(own, communicator);
     d.reinit(all.size());
     std::copy(all.begin(), all.end(), d.begin());
@@ -646,19 +651,7 @@ namespace ViscoContact
 
 
 
-  // @sect4{CondensedContactSolver::frame_row and first_row}
-  template <int dim>
-  Tensor<1, dim>
-  CondensedContactSolver<dim>::frame_row(const ContactSet<dim> &contact,
-                                         const unsigned int     i,
-                                         const unsigned int     j)
-  {
-    return (j == 0 ? contact.node(i).normal
-                   : contact.node(i).tangent_rows[j - 1]);
-  }
-
-
-
+  // @sect4{CondensedContactSolver::first_row}
   template <int dim>
   unsigned int
   CondensedContactSolver<dim>::first_row(const ContactSet<dim> &contact,
@@ -703,10 +696,10 @@ namespace ViscoContact
         for (unsigned int row = first_row(contact, i);
              row < first_row(contact, i + 1);
              ++row)
-          contact.add_row(forces,
-                          i,
-                          frame_row(contact, i, row - first_row(contact, i)),
-                          z_all[row]);
+          contact.add_to_row(forces,
+                             i,
+                             row - first_row(contact, i),
+                             z_all[row]);
       else
         contact.add_normal(forces, i, contact.z[i]);
     factorization.solve(response, forces);

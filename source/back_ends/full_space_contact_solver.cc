@@ -924,12 +924,12 @@ namespace ViscoContact
     for (unsigned int i = 0; i < contact.size(); ++i)
       for_each_coupled_fixed_normal(i, [&](const unsigned int k) {
         const Tensor<1, dim> &n = terms[i].rows[0];
-        contact.add_row(step_rhs,
-                        i,
-                        terms[i].rows[k],
-                        -terms[i].directions.direction[k].coupling
-                          * contact.row_component(step_rhs, i, n)
-                          / n.norm_square());
+        contact.add_to_node(step_rhs,
+                            i,
+                            terms[i].rows[k],
+                            -terms[i].directions.direction[k].coupling
+                              * contact.node_component(step_rhs, i, n)
+                              / n.norm_square());
       });
 
     const Apply preconditioner = step_preconditioner(contact);
@@ -1007,7 +1007,7 @@ namespace ViscoContact
                   = direction.value
                     + (normal.fixed ? 0. : direction.coupling * normal.value);
                 if (load != 0)
-                  contact.add_row(step_rhs, i, node.rows[k], -load);
+                  contact.add_to_node(step_rhs, i, node.rows[k], -load);
               }
           }
         if (node.n_fixed == 0)
@@ -1033,10 +1033,10 @@ namespace ViscoContact
             double coefficient = 0;
             for (unsigned int c = 0; c < node.n_fixed; ++c)
               coefficient += node.gram_inverse[a][c] * values[c];
-            contact.add_row(u0,
-                            i,
-                            node.rows[node.fixed_directions[a]],
-                            coefficient);
+            contact.add_to_node(u0,
+                                i,
+                                node.rows[node.fixed_directions[a]],
+                                coefficient);
           }
       }
   }
@@ -1071,7 +1071,7 @@ namespace ViscoContact
       for (unsigned int a = 0; a < terms[i].n_fixed; ++a)
         {
           const Tensor<1, dim> &q = terms[i].fixed_basis[a];
-          contact.add_row(v, i, q, -contact.row_component(v, i, q));
+          contact.add_to_node(v, i, q, -contact.node_component(v, i, q));
         }
   }
 
@@ -1101,7 +1101,7 @@ namespace ViscoContact
         for (unsigned int a = 0; a < terms[i].n_fixed; ++a)
           {
             const Tensor<1, dim> &q = terms[i].fixed_basis[a];
-            contact.add_row(dst, i, q, contact.row_component(src, i, q));
+            contact.add_to_node(dst, i, q, contact.node_component(src, i, q));
           }
     };
   }
@@ -1133,25 +1133,25 @@ namespace ViscoContact
             const Tensor<1, dim> &n = terms[i].rows[0];
             const double          normal_force
               = (normal.fixed
-                   ? -contact.row_component(dst, i, n) / n.norm_square()
-                   : normal.stiffness * contact.row_component(src, i, n));
-            contact.add_row(dst,
-                            i,
-                            terms[i].rows[k],
-                            direction.coupling * normal_force);
+                   ? -contact.node_component(dst, i, n) / n.norm_square()
+                   : normal.stiffness * contact.node_component(src, i, n));
+            contact.add_to_node(dst,
+                                i,
+                                terms[i].rows[k],
+                                direction.coupling * normal_force);
           }
       for (unsigned int i = 0; i < contact.size(); ++i)
         for (unsigned int k = 0; k < terms[i].directions.size; ++k)
           {
             const NodeDirection &direction = terms[i].directions.direction[k];
             if (!direction.fixed && direction.stiffness != 0)
-              contact.add_row(dst,
-                              i,
-                              terms[i].rows[k],
-                              direction.stiffness
-                                * contact.row_component(src,
-                                                        i,
-                                                        terms[i].rows[k]));
+              contact.add_to_node(dst,
+                                  i,
+                                  terms[i].rows[k],
+                                  direction.stiffness
+                                    * contact.node_component(src,
+                                                             i,
+                                                             terms[i].rows[k]));
           }
     };
   }
@@ -1201,16 +1201,16 @@ namespace ViscoContact
         const NodeTerms      &node          = terms[i];
         std::array<double, 3> displacements = {{0, 0, 0}}, forces = {{0, 0, 0}};
         for (unsigned int k = 0; k < node.directions.size; ++k)
-          displacements[k] = contact.row_component(u, i, node.rows[k]);
+          displacements[k] = contact.node_component(u, i, node.rows[k]);
         for (unsigned int a = 0; a < node.n_fixed; ++a)
           {
             double force = 0;
             for (unsigned int c = 0; c < node.n_fixed; ++c)
-              force
-                += node.gram_inverse[a][c]
-                   * contact.row_component(residual,
-                                           i,
-                                           node.rows[node.fixed_directions[c]]);
+              force += node.gram_inverse[a][c]
+                       * contact.node_component(
+                         residual,
+                         i,
+                         node.rows[node.fixed_directions[c]]);
             forces[node.fixed_directions[a]] = force;
           }
         contact.store_solution(i,

@@ -1,0 +1,156 @@
+// Unit tests of the contact rows (ContactSet::row()): the rows of N that
+// the back ends see, as short sparse vectors over dofs. Today every row lies
+// on its node's own dofs; these tests pin that down, so that rows spanning
+// several nodes (contact between two bodies) change the rows and nothing
+// the back ends rely on: the entries are the nonzero components of the
+// node's normal and tangents in component order, and the operations on
+// rows agree with those in the node's frame to rounding.
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/distributed/tria.h>
+
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_q.h>
+
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <deal.II/lac/affine_constraints.h>
+
+#include <gtest/gtest.h>
+
+#include "contact_set.h"
+#include "parameters.h"
+
+#include <cmath>
+
+using namespace dealii;
+using namespace ViscoContact;
+
+namespace
+{
+  // The unit square turned by angle, refined twice, with a Coulomb zone on
+  // its bottom edge (boundary id 2): the nodes' normals have one nonzero
+  // component at angle 0 and two otherwise.
+  void
+  check_rows_of_the_bottom_edge(const double angle)
+  {
+    const MPI_Comm                          comm = MPI_COMM_WORLD;
+    parallel::distributed::Triangulation<2> triangulation(comm);
+    GridGenerator::hyper_cube(triangulation, 0, 1, true);
+    GridTools::rotate(angle, triangulation);
+    triangulation.refine_global(2);
+
+    const FESystem<2> fe(FE_Q<2>(1), 2);
+    const FE_Q<2>     scalar_fe(1);
+    DoFHandler<2>     dof_handler(triangulation), scalar_dofs(triangulation);
+    dof_handler.distribute_dofs(fe);
+    scalar_dofs.distribute_dofs(scalar_fe);
+    IndexSet relevant;
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
+    AffineConstraints<double> constraints(relevant);
+    constraints.close();
+    VectorType layout(dof_handler.locally_owned_dofs(), relevant, comm);
+
+    Parameters::Contact entries;
+    entries.tangential_law       = Parameters::TangentialLawType::coulomb;
+    entries.friction_coefficient = 0.3;
+    const std::vector<ContactZoneDescription<2>> zones{
+      {1,
+       "Contact",
+       ContactLaw::from_parameters(entries),
+       {2},
+       std::nullopt,
+       TangentialLaw::from_parameters(entries)}};
+    ContactSet<2> contact;
+    contact.setup(zones,
+                  MappingQ<2>(1),
+                  dof_handler,
+                  scalar_dofs,
+                  QGauss<1>(2),
+                  constraints,
+                  constraints,
+                  layout);
+    EXPECT_EQ(contact.n_global_nodes(), 5u);
+
+    // A displacement with distinct entries.
+    VectorType u(layout);
+    for (unsigned int k = 0; k < u.locally_owned_size(); ++k)
+      u.local_element(k)
+        = std::sin(1. + u.get_partitioner()->local_to_global(k));
+
+    const unsigned int expected_entries = (angle == 0 ? 1 : 2);
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      {
+        const auto &node = contact.node(i);
+        ASSERT_EQ(contact.n_tangential(i), 1u);
+        for (unsigned int j = 0; j < 2; ++j)
+          {
+            const Tensor<1, 2> vector
+              = (j == 0 ? node.normal : node.tangent_rows[0]);
+            const auto row = contact.row(i, j);
+            ASSERT_EQ(row.size(), expected_entries);
+            // The nonzero components in component order, on the node's dofs.
+            unsigned int k = 0;
+            for (unsigned int c = 0; c < 2; ++c)
+              if (vector[c] != 0)
+                {
+                  EXPECT_EQ(row[k].dof, node.dofs[c]);
+                  EXPECT_EQ(row[k].local_dof, node.local_dofs[c]);
+                  EXPECT_EQ(row[k].value, vector[c]);
+                  ++k;
+                }
+            // r = row . u as the node's frame has it.
+            std::array<double, 3> frame{{0, 0, 0}};
+            frame[j] = 1;
+            EXPECT_NEAR(contact.row_component(u, i, j),
+                        contact.node_component(u,
+                                               i,
+                                               contact.frame_row(i, frame)),
+                        1e-15);
+            // v = value row, so that v . u = value (row . u).
+            VectorType v(layout);
+            contact.add_to_row(v, i, j, 2.5);
+            double v_dot_u = 0;
+            for (unsigned int k = 0; k < v.locally_owned_size(); ++k)
+              v_dot_u += v.local_element(k) * u.local_element(k);
+            EXPECT_NEAR(v_dot_u, 2.5 * contact.row_component(u, i, j), 1e-14);
+          }
+        // The normal and the tangent: unit rows, orthogonal.
+        const auto dot = [&](const unsigned int a, const unsigned int b) {
+          double sum = 0;
+          for (const auto &x : contact.row(i, a))
+            for (const auto &y : contact.row(i, b))
+              if (x.dof == y.dof)
+                sum += x.value * y.value;
+          return sum;
+        };
+        EXPECT_NEAR(dot(0, 0), 1, 1e-14);
+        EXPECT_NEAR(dot(1, 1), 1, 1e-14);
+        EXPECT_NEAR(dot(0, 1), 0, 1e-14);
+        EXPECT_EQ(contact.normal_component(u, i),
+                  contact.row_component(u, i, 0));
+      }
+  }
+} // namespace
+
+
+
+TEST(ContactRows, AxisAlignedEdge)
+{
+  check_rows_of_the_bottom_edge(0);
+}
+
+
+
+TEST(ContactRows, TurnedEdge)
+{
+  check_rows_of_the_bottom_edge(0.3);
+}

@@ -372,7 +372,7 @@ namespace ViscoContact
       unsigned int max_iterations = 50;
       double       tolerance = 1e-10; // of every linear solve for fixed pieces
       // Start each step from the state extrapolated from the last two steps
-      // (ViscoplasticContact::predict_step_start()).
+      // (acceleration/predicted_start.h).
       bool predicted_start = true;
 
       void

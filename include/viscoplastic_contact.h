@@ -25,22 +25,24 @@
 
 #include <deal.II/numerics/data_out.h>
 
+#include "acceleration/predicted_start.h"
 #include "back_ends/contact_solver.h"
 #include "back_ends/linear_algebra.h"
 #include "constraints.h"
 #include "contact_nodes.h"
 #include "contact_set.h"
 #include "contact_zones.h"
-#include "dirichlet_parts.h"
 #include "loads.h"
 #include "elastic_operator.h"
 #include "material.h"
 #include "parameters.h"
+#include "prescribed_displacements.h"
 #include "robustness/checkpoint_file.h"
 #include "robustness/output_folder.h"
 #include "run/run_plan.h"
 #include "run/run_report.h"
 #include "step_report.h"
+#include "stress_points.h"
 #include "time_schedule.h"
 
 #include <array>
@@ -213,7 +215,7 @@ namespace ViscoContact
     {
       VectorType                               solution;
       ContactNodes::State                      contact;
-      std::vector<QuadraturePointHistory<dim>> stress_points;
+      std::vector<QuadraturePointHistory<dim>> stress_point_records;
       double                                   step_length;
     };
     StepStartState
@@ -229,11 +231,6 @@ namespace ViscoContact
     solve_step_with_recovery(const StepStartState &start);
     bool
     cut_failed_step(const std::string &failure);
-    // The start of the step extrapolated from the two steps before it
-    // (Predicted start): u and the contact nodes' pieces, from
-    // previous_step_start.
-    void
-    predict_step_start();
     // b_n = (f_n, v) - (H_n, eps(v)) - (E eps(g_n), eps(v)), from its parts.
     void
     assemble_right_hand_side(const double time);
@@ -253,45 +250,17 @@ namespace ViscoContact
 
     // @sect4{Prescribed displacements (boundary_conditions.cc)}
     //
-    // Per mesh: the owned dofs of every Dirichlet part, with their support
-    // points and the part's function, and the owned cells whose dofs the
-    // lifting or a reaction touches. Refuses a scene whose constraints
-    // leave a rigid motion of the body free.
-    void
-    setup_dirichlet_dofs();
-    void
-    check_rigid_motions() const;
-    // g_n, the prescribed displacement at time (zero on free dofs, the
-    // values on the Dirichlet dofs and hanging nodes between them), and the
-    // lifting load -(E eps(g_n), eps(v)) of the explicit update. Nothing
-    // to do without prescribed displacements (g = 0).
+    // The values g_n of the step (with the lifting load of the explicit
+    // update), a check that every prescribed value and gap of the run is
+    // finite (all ranks stop with a message naming the entry, before
+    // anything is written), and the forces every Dirichlet part and then
+    // every plane of symmetry exert on the body at time t_n (collective).
     void
     set_dirichlet_values(const double time);
-    // Every prescribed value finite at the times of the run, or all ranks
-    // stop with a message naming the entry (before anything is written).
     void
     check_prescribed_values();
-    // u's constrained entries from the constraints and g_n.
-    void
-    apply_constraints(VectorType &u) const;
-    // The force every Dirichlet part and then every plane of symmetry
-    // exerts on the body at time t_n, (sigma_n, eps(v)) - (f_n, v) summed
-    // over the part's dofs, per component; reaction_part_names() names
-    // them. Collective.
     std::vector<Tensor<1, dim>>
     reaction_forces(const double time);
-    std::vector<std::string>
-    reaction_part_names() const;
-    // Per mesh: the owned vertices of the planes of symmetry
-    // (roller_vertices), given the local dofs a Dirichlet part takes.
-    void
-    setup_roller_vertices(const std::vector<bool> &dirichlet_dof);
-    // The reactions of the planes of symmetry from the residual at their
-    // owned vertices, added to plane_forces (the residual's contact nodes
-    // are changed).
-    void
-    add_roller_reactions(VectorType                      &residual,
-                         const ArrayView<Tensor<1, dim>> &plane_forces) const;
     // Every load value at the load points and the times of the run is
     // finite, or all ranks stop with a message naming the entry.
     void
@@ -389,19 +358,19 @@ namespace ViscoContact
     output_results(const unsigned int step,
                    const double       time,
                    const std::string &stem = "solution");
-    // The cell fields of the output: sigma_n, its viscoplastic part and the
-    // von Mises stress averaged over each owned cell's stress points, and
-    // the cell's subdomain.
-    void
-    compute_cell_output_fields(std::vector<Vector<float>> &stress,
-                               std::vector<Vector<float>> &viscoplastic,
-                               Vector<float>              &von_mises,
-                               Vector<float>              &subdomain) const;
-    std::string
-    write_vtu_pieces(DataOut<dim>                &data_out,
-                     const DataOutBase::VtkFlags &flags,
-                     const std::string           &stem,
-                     const unsigned int           step);
+    // The fields of a record: per cell (an entry per active cell, set on the
+    // owned ones; material_id and stress_zz empty where not written) and at
+    // the vertices (the contact fields, and with friction the friction
+    // fields; friction_state empty without), with their ghosts.
+    struct OutputFields
+    {
+      std::vector<Vector<float>> stress, viscoplastic;
+      Vector<float>              von_mises, subdomain, material_id, stress_zz;
+      std::vector<VectorType>    contact;
+      VectorType                 tangential_traction, slip, friction_state;
+    };
+    OutputFields
+    compute_output_fields() const;
     void
     write_time_series_row(const unsigned int     step,
                           const double           time,
@@ -467,7 +436,7 @@ namespace ViscoContact
     void
     restore_checkpoint_mesh();
 
-    // @sect4{Step cycles (step_cycles.cc)}
+    // @sect4{Step cycles (acceleration/step_cycles.cc)}
     //
     // Nested iteration in every step (Step cycles = L): the step problem is
     // solved first on the mesh coarsened once, by a ViscoplasticContact of
@@ -502,7 +471,7 @@ namespace ViscoContact
     write_checkpoint(const double wall_time);
     // The header of a checkpoint file (the same on every rank; rank 0's is
     // written); the vectors the records hold besides u, with their ghost
-    // values; and the records of owned_cells[first, end).
+    // values; and the records of stress_points.cells()[first, end).
     ByteWriter
     checkpoint_header(const double wall_time) const;
     std::array<VectorType, 4>
@@ -561,25 +530,6 @@ namespace ViscoContact
     std::size_t
     checkpoint_record_size() const;
 
-    // @sect4{Stress-point helpers}
-    //
-    // The cell loops of the time loop (stress update, history load, tangent)
-    // use the geometry stored by setup_stress_points() instead of FEValues; k
-    // numbers the locally owned cells (owned_cells), q the stress points of a
-    // cell.
-    Tensor<2, dim>
-    displacement_gradient_at(const VectorType  &displacement,
-                             const unsigned int k,
-                             const unsigned int q) const;
-    void
-    add_stress_point_load(const SymmetricTensor<2, dim> &stress,
-                          const unsigned int             k,
-                          const unsigned int             q,
-                          const ArrayView<double>       &cell_vector) const;
-    void
-    distribute_cell_vector(const unsigned int             k,
-                           const ArrayView<const double> &cell_vector,
-                           VectorType                    &target) const;
     // Collective: the counts and the force are sums over all ranks.
     std::array<unsigned int, 3>
     count_contact_states() const;
@@ -622,13 +572,6 @@ namespace ViscoContact
     IndexSet                                           locally_owned_dofs;
     IndexSet                                           locally_relevant_dofs;
     AffineConstraints<double>                          constraints;
-    // With prescribed displacements: the same constraints before closing,
-    // and closed with the values of the current step (set_dirichlet_values()),
-    // which give the constrained entries of u.
-    AffineConstraints<double> open_constraints;
-    AffineConstraints<double> current_constraints;
-    // The hanging nodes alone (for the Dirichlet dofs and the reactions).
-    AffineConstraints<double> hanging_node_constraints;
 
     // The elastic operator K (assembled once per run) and, for the implicit
     // update, the tangent and internal force of the current Newton iterate.
@@ -649,25 +592,15 @@ namespace ViscoContact
     VectorType history_load;
     VectorType system_rhs;
 
-    // u and the contact forces z at the start of the last accepted step
-    // (u_{n-2} and z_{n-2} while step n is solved), which predict_step_start()
-    // extrapolates from; empty on a new mesh, whose first step starts from
-    // u_{n-1}. pieces_predictable: the contact nodes may take the pieces of the
-    // prediction (false where the uniqueness check found the step problem may
-    // have several solutions).
-    struct StepStart
-    {
-      VectorType          displacement;
-      std::vector<double> contact_forces;
-    };
-    std::optional<StepStart> previous_step_start;
+    // The start of each step extrapolated from the two before it, with what
+    // it extrapolates from (acceleration/predicted_start.h).
+    PredictedStart<dim> predicted_start;
     // The smallest eigenvalue of the uniqueness check, once computed (on the
     // first mesh of the run, the coarsest of the initial cycles); a resumed
     // run takes it from the checkpoint, so that it decides as the
     // uninterrupted run did and skips the Lanczos iteration on the fine mesh
     // (567 s of a resume at 10.7M dofs on one rank).
     std::optional<double> uniqueness_eigenvalue;
-    bool                  pieces_predictable = true;
 
     // Materials, loads, and the state at the stress points of the locally
     // owned cells. materials holds the laws (material_law.h) of subsection
@@ -708,78 +641,20 @@ namespace ViscoContact
     double
     explicit_stability_limit() const;
 
-    // The loads of the scene (loads.h).
-    Loads<dim> loads;
-
-    // The Dirichlet parts of the scene (dirichlet_parts.h); per mesh
-    // the locally relevant dofs of the parts (a dof belongs to the first
-    // part that constrains it; the values of ghost dofs enter the
-    // constraints of owned hanging nodes) and the owned cells (k) the
-    // lifting and the reactions integrate over. dirichlet_values holds g_n
-    // (with ghosts), lifting_load -(E eps(g_n), eps(v)) (owned entries).
-    struct DirichletDof
-    {
-      types::global_dof_index index;
-      unsigned int            local_index; // into the vectors' storage
-      bool                    owned;
-      unsigned int            part;
-      unsigned int            component;
-      Point<dim>              location;
-    };
-    // The value of a prescribed dof at a time, and the message naming the
-    // entry if it is not finite (else empty).
-    std::pair<double, std::string>
-    prescribed_value(const DirichletDof &dof, const double time) const;
-    DirichletParts<dim>       dirichlet;
-    std::vector<DirichletDof> dirichlet_dofs;
-    std::vector<unsigned int> lifting_cells;
-    std::vector<unsigned int> reaction_cells;
-    // The owned vertices on the planes of symmetry (rollers), for their
-    // reactions: the vertex's dofs (local storage), the components a
-    // Dirichlet part takes (its reaction has them), and the planes it lies
-    // on (indices into parameters.symmetry_ids and symmetry_normals).
-    struct RollerVertex
-    {
-      std::array<unsigned int, dim> local_dofs;
-      std::array<bool, dim>         dirichlet;
-      std::vector<unsigned int>     planes;
-    };
-    std::vector<RollerVertex>                roller_vertices;
-    std::vector<Tensor<1, dim>>              symmetry_normals;
-    VectorType                               dirichlet_values;
-    VectorType                               lifting_load;
     std::vector<QuadraturePointHistory<dim>> quadrature_point_history;
     double                                   max_von_mises = 0;
     // The relative error estimate of the last stress update.
     double error_estimate = 0;
 
-    // The geometry of the stress points, computed once (the mesh does not
-    // move), so that the cell loops of the time loop need no FEValues: per
-    // locally owned cell k its dofs (vertex a, component c) as indices into the
-    // vectors' local storage, whether any of them is constrained, and per
-    // stress point JxW and the gradients of the scalar shape functions N_a; the
-    // strain is sym(sum_a u_a (x) grad N_a). Cells of the same shape (s =
-    // cell_shape[k], setup_stress_points()) share JxW and the gradients. The
-    // indexing:
-    //   cell_local_dofs[(k * n_cell_vertices + a) * dim + c],
-    //   stress_point_JxW[s * n_q + q] (get_stress_point_weight(k, q)),
-    //   stress_point_gradients[(s * n_q + q) * n_cell_vertices + a]
-    //   (shape_gradients(k, q)[a]).
-    std::vector<typename DoFHandler<dim>::active_cell_iterator> owned_cells;
-    unsigned int                n_cell_vertices = 0;
-    std::vector<unsigned int>   cell_local_dofs;
-    std::vector<bool>           cell_is_constrained;
-    std::vector<unsigned int>   cell_shape;
-    std::vector<Tensor<1, dim>> stress_point_gradients;
-    std::vector<double>         stress_point_JxW;
-    // The gradients grad N_a at stress point q of the k-th owned cell.
-    const Tensor<1, dim> *
-    shape_gradients(const unsigned int k, const unsigned int q) const
-    {
-      return &stress_point_gradients
-        [(std::size_t(cell_shape[k]) * stress_quadrature.size() + q)
-         * n_cell_vertices];
-    }
+    // The loads of the scene (loads.h).
+    Loads<dim> loads;
+
+    // The owned cells, their dofs and the geometry of their stress points
+    // (stress_points.h), for the cell loops of the time loop.
+    StressPointGeometry<dim> stress_points;
+    // The Dirichlet parts and planes of symmetry: constraints, values g_n,
+    // lifting load and reactions (prescribed_displacements.h).
+    PrescribedDisplacements<dim> prescribed;
 
     // Contact: the nodes of Gamma_3 this rank owns, with their pieces, their
     // last (r, z) and their active-set parameters c_i. contact_enabled is false

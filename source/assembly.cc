@@ -177,7 +177,7 @@ namespace ViscoContact
                                      face_quadrature,
                                      update_quadrature_points
                                        | update_normal_vectors);
-    for (const auto &cell : owned_cells)
+    for (const auto &cell : stress_points.cells())
       {
         if (!loads.body_force_is_zero())
           {
@@ -266,8 +266,8 @@ namespace ViscoContact
     system_rhs = external_load;
     // The lifting of the prescribed displacements (the implicit update has
     // them in its iterate instead).
-    if (dirichlet.has_values() && !implicit_update())
-      system_rhs += lifting_load;
+    if (prescribed.has_values() && !implicit_update())
+      system_rhs += prescribed.lifting_load();
     // Without plasticity H_n = sigma_0 - E eps(u_0) = 0 for all n, and
     // history_load stays zero; with the implicit update the history enters
     // through the internal force of implicit_newton().
@@ -310,7 +310,7 @@ namespace ViscoContact
     // The first value that is not finite, if any (check_loads() has checked
     // the loads before the run, possibly only at some of the points).
     std::string problem;
-    for (const auto &cell : owned_cells)
+    for (const auto &cell : stress_points.cells())
       // Cells without any load contribute nothing and are skipped. The
       // constraints drop the entries of Dirichlet dofs and distribute those
       // of hanging nodes.
@@ -418,20 +418,22 @@ namespace ViscoContact
     // of other ranks until compress().
     history_load            = 0;
     const unsigned int  n_q = stress_quadrature.size();
-    std::vector<double> cell_vector(n_cell_vertices * dim);
+    std::vector<double> cell_vector(stress_points.n_vertices() * dim);
     // The history of stress point q of the k-th owned cell is record
     // k * n_q + q; the cells of elastic materials have none.
-    for (unsigned int k = 0; k < owned_cells.size(); ++k)
+    for (unsigned int k = 0; k < stress_points.cells().size(); ++k)
       if (material_of(k).is_plastic())
         {
           std::fill(cell_vector.begin(), cell_vector.end(), 0.);
           for (unsigned int q = 0; q < n_q; ++q)
-            add_stress_point_load(
+            stress_points.add_load(
               -quadrature_point_history[std::size_t(k) * n_q + q].history,
               k,
               q,
               make_array_view(cell_vector));
-          distribute_cell_vector(k, make_array_view(cell_vector), history_load);
+          stress_points.distribute(k,
+                                   make_array_view(cell_vector),
+                                   history_load);
         }
     // Send the ghost contributions to their owners.
     history_load.compress(VectorOperation::add);
@@ -466,18 +468,18 @@ namespace ViscoContact
     tangent_matrix                               = 0;
     internal_force                               = 0;
     const unsigned int                   n_q     = stress_quadrature.size();
-    const unsigned int                   n_a     = n_cell_vertices;
+    const unsigned int                   n_a     = stress_points.n_vertices();
     const unsigned int                   n_local = n_a * dim;
     FullMatrix<double>                   cell_matrix(n_local, n_local);
     Vector<double>                       cell_force(n_local);
     std::vector<types::global_dof_index> global_dofs(n_local);
     // The partitioner turns the stored local dof indices back into global ones,
     // below. The displacement must hold its ghost values (the caller updates
-    // them), since displacement_gradient_at() reads every dof of the owned
-    // cells.
+    // them), since stress_points.displacement_gradient() reads every dof of the
+    // owned cells.
     const auto &partitioner = *displacement.get_partitioner();
 
-    for (unsigned int k = 0; k < owned_cells.size(); ++k)
+    for (unsigned int k = 0; k < stress_points.cells().size(); ++k)
       {
         const MaterialLaw<dim>        &material = material_of(k);
         const SymmetricTensor<4, dim> &E        = material.elasticity_tensor();
@@ -487,11 +489,12 @@ namespace ViscoContact
           {
             // The stored geometry of stress point q of cell k: JxW and the
             // gradients of the scalar shape functions of the cell's vertices.
-            const std::size_t     point     = std::size_t(k) * n_q + q;
-            const Tensor<1, dim> *gradients = shape_gradients(k, q);
-            const double          JxW       = get_stress_point_weight(k, q);
-            const Tensor<2, dim>  displacement_gradient
-              = displacement_gradient_at(displacement, k, q);
+            const std::size_t     point = std::size_t(k) * n_q + q;
+            const Tensor<1, dim> *gradients
+              = stress_points.shape_gradients(k, q);
+            const double         JxW = stress_points.JxW(k, q);
+            const Tensor<2, dim> displacement_gradient
+              = stress_points.displacement_gradient(displacement, k, q);
 
             // The trial stress is E eps(u) plus the history
             // sigma_{n-1} - E eps(u_{n-1}) stored at the point, and the
@@ -549,7 +552,7 @@ namespace ViscoContact
         // The local indices back to global dof numbers, since the matrix (a
         // Trilinos matrix) is addressed globally, and every cell goes through
         // the constraints here.
-        const unsigned int *dofs = &cell_local_dofs[std::size_t(k) * n_local];
+        const unsigned int *dofs = stress_points.local_dofs(k);
         for (unsigned int i = 0; i < n_local; ++i)
           global_dofs[i] = partitioner.local_to_global(dofs[i]);
         constraints.distribute_local_to_global(cell_matrix,

@@ -83,7 +83,7 @@ namespace ViscoContact
       *output_folder,
       checkpoint_name(step),
       header.bytes,
-      owned_cells.size(),
+      stress_points.cells().size(),
       checkpoint_record_size(),
       [&](const std::size_t first, const std::size_t end, char *out) {
         write_cell_records(vectors, first, end, out);
@@ -131,7 +131,7 @@ namespace ViscoContact
       }
     // Whether there is a start of the step to predict from, and whether the
     // back end has a state of its own (both the same on every rank).
-    header.write<std::uint32_t>(previous_step_start.has_value());
+    header.write<std::uint32_t>(predicted_start.has_start());
     // The uniqueness check's eigenvalue, if the run computed one.
     header.write<std::uint32_t>(uniqueness_eigenvalue.has_value());
     header.write(uniqueness_eigenvalue.value_or(0.));
@@ -167,14 +167,14 @@ namespace ViscoContact
     start_displacement = 0;
     node_history       = 0;
     friction_state     = 0;
-    if (previous_step_start)
-      start_displacement = previous_step_start->displacement;
+    if (predicted_start.has_start())
+      start_displacement = predicted_start.displacement();
     for (unsigned int i = 0; i < contact_set.size() && contact_enabled; ++i)
       {
         const auto &dofs = contact_set.node(i).local_dofs;
-        if (previous_step_start)
+        if (predicted_start.has_start())
           node_history.local_element(dofs[0])
-            = previous_step_start->contact_forces[i];
+            = predicted_start.contact_forces()[i];
         friction_state.local_element(dofs[0]) = contact_set.friction_state(i);
         for (unsigned int j = 0; j < contact_set.n_tangential(i); ++j)
           friction_state.local_element(dofs[1 + j]) = contact_set.t[i][j];
@@ -208,15 +208,16 @@ namespace ViscoContact
     const unsigned int                   dofs_per_cell = fe->n_dofs_per_cell();
     const unsigned int                   n_q = stress_quadrature.size();
     std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
-    // The cells in the order of owned_cells; (*vector)(dof) reads owned and
-    // ghost entries alike, which is why the vectors must have their ghost
-    // values here.
+    // The cells in the order of stress_points.cells(); (*vector)(dof) reads
+    // owned and ghost entries alike, which is why the vectors must have their
+    // ghost values here.
     for (std::size_t k = first; k < end; ++k)
       {
-        const Key key = owned_cells[k]->id().template to_binary<dim>();
+        const Key key
+          = stress_points.cells()[k]->id().template to_binary<dim>();
         std::memcpy(out, &key, sizeof(Key));
         out += sizeof(Key);
-        owned_cells[k]->get_dof_indices(dof_indices);
+        stress_points.cells()[k]->get_dof_indices(dof_indices);
         for (const VectorType *vector : std::array<const VectorType *, 5>{
                {&solution, &vectors[0], &vectors[1], &vectors[2], &vectors[3]}})
           for (const types::global_dof_index dof : dof_indices)
@@ -409,12 +410,14 @@ namespace ViscoContact
     const std::size_t  record_size   = checkpoint_record_size();
     const unsigned int n_doubles = (record_size - sizeof(Key)) / sizeof(double);
 
-    // Where the record of each owned cell goes: its place in owned_cells.
+    // Where the record of each owned cell goes: its place in
+    // stress_points.cells().
     std::unordered_map<std::string, unsigned int> place_of;
-    std::vector<std::string>                      requests(owned_cells.size());
-    for (unsigned int k = 0; k < owned_cells.size(); ++k)
+    std::vector<std::string> requests(stress_points.cells().size());
+    for (unsigned int k = 0; k < stress_points.cells().size(); ++k)
       {
-        const Key key = owned_cells[k]->id().template to_binary<dim>();
+        const Key key
+          = stress_points.cells()[k]->id().template to_binary<dim>();
         requests[k].assign(reinterpret_cast<const char *>(&key), sizeof(Key));
         place_of.emplace(requests[k], k);
       }
@@ -428,7 +431,7 @@ namespace ViscoContact
                                     &vectors.friction_state};
     for (VectorType *target : targets)
       *target = 0;
-    std::vector<unsigned int>            times_found(owned_cells.size(), 0);
+    std::vector<unsigned int> times_found(stress_points.cells().size(), 0);
     std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
     bool                                 complete = true;
     const auto                           restore
@@ -441,7 +444,7 @@ namespace ViscoContact
             }
           const unsigned int k = entry->second;
           ++times_found[k];
-          owned_cells[k]->get_dof_indices(dof_indices);
+          stress_points.cells()[k]->get_dof_indices(dof_indices);
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
             if (locally_owned_dofs.is_element(dof_indices[i]))
               for (unsigned int v = 0; v < 5; ++v)
@@ -554,13 +557,14 @@ namespace ViscoContact
   {
     if (flags.has_step_start)
       {
-        previous_step_start.emplace();
-        previous_step_start->displacement = vectors.start_displacement;
-        previous_step_start->displacement.update_ghost_values();
+        VectorType displacement = vectors.start_displacement;
+        displacement.update_ghost_values();
+        std::vector<double> contact_forces;
         for (unsigned int i = 0; i < contact_set.size() && contact_enabled; ++i)
-          previous_step_start->contact_forces.push_back(
-            vectors.node_history.local_element(
-              contact_set.node(i).local_dofs[0]));
+          contact_forces.push_back(vectors.node_history.local_element(
+            contact_set.node(i).local_dofs[0]));
+        predicted_start.remember(std::move(displacement),
+                                 std::move(contact_forces));
       }
   }
 

@@ -186,7 +186,7 @@ namespace ViscoContact
     };
     if (parameters.any_plasticity())
       {
-        for (unsigned int k = 0; k < owned_cells.size(); ++k)
+        for (unsigned int k = 0; k < stress_points.cells().size(); ++k)
           {
             const MaterialLaw<dim> &material = material_of(k);
             bool                    plastic = false, elastic = false;
@@ -199,7 +199,7 @@ namespace ViscoContact
                  ? plastic
                  : elastic)
                 = true;
-            const auto scalar_cell = scalar_cell_of(owned_cells[k]);
+            const auto scalar_cell = scalar_cell_of(stress_points.cells()[k]);
             for (const unsigned int v : scalar_cell->vertex_indices())
               {
                 const auto dof = scalar_cell->vertex_dof_index(v, 0);
@@ -224,10 +224,10 @@ namespace ViscoContact
 
     // The largest Kelly value of the mesh, and the raised cells.
     float largest = 0;
-    for (const auto &cell : owned_cells)
+    for (const auto &cell : stress_points.cells())
       largest = std::max(largest, indicators[cell->active_cell_index()]);
     largest = Utilities::MPI::max(largest, mpi_communicator);
-    for (const auto &cell : owned_cells)
+    for (const auto &cell : stress_points.cells())
       {
         const auto scalar_cell   = scalar_cell_of(cell);
         bool       zone_boundary = false;
@@ -422,11 +422,12 @@ namespace ViscoContact
     if (transfer_stress_points)
       {
         cell_data.resize(mesh.n_active_cells());
-        for (unsigned int k = 0; k < owned_cells.size(); ++k)
+        for (unsigned int k = 0; k < stress_points.cells().size(); ++k)
           for (unsigned int q = 0; q < n_q; ++q)
-            pack_point(quadrature_point_history[std::size_t(k) * n_q + q],
-                       cell_data[owned_cells[k]->active_cell_index()].data()
-                         + q * n_fields);
+            pack_point(
+              quadrature_point_history[std::size_t(k) * n_q + q],
+              cell_data[stress_points.cells()[k]->active_cell_index()].data()
+                + q * n_fields);
         data_transfer.emplace(
           mesh,
           /*transfer_variable_size_data=*/false,
@@ -463,19 +464,21 @@ namespace ViscoContact
     std::vector<VectorType *> nodal_fields{&solution, &new_pressure};
     nodal_transfer.interpolate(nodal_fields);
     set_dirichlet_values(schedule.current_time());
-    apply_constraints(solution);
+    prescribed.distribute(solution, constraints);
     solution.update_ghost_values();
 
-    // The stress points of the new owned cells, in the order of owned_cells.
+    // The stress points of the new owned cells, in the order of
+    // stress_points.cells().
     if (transfer_stress_points)
       {
         cell_data.assign(mesh.n_active_cells(), Record());
         data_transfer->unpack(cell_data);
-        for (unsigned int k = 0; k < owned_cells.size(); ++k)
+        for (unsigned int k = 0; k < stress_points.cells().size(); ++k)
           for (unsigned int q = 0; q < n_q; ++q)
-            unpack_point(cell_data[owned_cells[k]->active_cell_index()].data()
-                           + q * n_fields,
-                         quadrature_point_history[std::size_t(k) * n_q + q]);
+            unpack_point(
+              cell_data[stress_points.cells()[k]->active_cell_index()].data()
+                + q * n_fields,
+              quadrature_point_history[std::size_t(k) * n_q + q]);
       }
 
     if (transfer_stress_points)
@@ -616,7 +619,7 @@ namespace ViscoContact
         new_pressure[point_dofs[p]] = pressure_values[p][point_components[p]];
       }
     set_dirichlet_values(schedule.current_time());
-    apply_constraints(solution);
+    prescribed.distribute(solution, constraints);
     solution.update_ghost_values();
     new_pressure.update_ghost_values();
     set_contact_state_from(new_pressure);
@@ -641,7 +644,7 @@ namespace ViscoContact
         pressure.local_element(contact_set.node(i).local_dofs[0])
           = contact_set.contact_pressure(i);
     pressure.zero_out_ghost_values();
-    hanging_node_constraints.distribute(pressure);
+    prescribed.hanging_node_constraints().distribute(pressure);
     pressure.update_ghost_values();
     return pressure;
   }
@@ -665,16 +668,18 @@ namespace ViscoContact
 #ifdef DEBUG
     const unsigned int n_q = stress_quadrature.size();
     if (implicit_update() && parameters.mesh_file.empty())
-      for (unsigned int k = 0; k < owned_cells.size(); ++k)
-        if (owned_cells[k]->level() > 0
-            && refined_parents.count(owned_cells[k]->parent()->id()) > 0)
+      for (unsigned int k = 0; k < stress_points.cells().size(); ++k)
+        if (stress_points.cells()[k]->level() > 0
+            && refined_parents.count(stress_points.cells()[k]->parent()->id())
+                 > 0)
           for (unsigned int q = 0; q < n_q; ++q)
             {
               const QuadraturePointHistory<dim> &state
                 = quadrature_point_history[std::size_t(k) * n_q + q];
               const SymmetricTensor<2, dim> elastic
                 = material_of(k).elasticity_tensor()
-                  * symmetrize(displacement_gradient_at(solution, k, q));
+                  * symmetrize(
+                    stress_points.displacement_gradient(solution, k, q));
               Assert((state.stress - state.history - elastic).norm()
                        <= 1e-10 * (1 + state.stress.norm()),
                      ExcMessage("The transfer of the stress points does not "

@@ -17,6 +17,7 @@
 #include "robustness/checkpoint_file.h"
 #include "robustness/file_output.h"
 #include "robustness/output_folder.h"
+#include "robustness/vtu_record.h"
 #include "viscoplastic_contact.h"
 
 #include <algorithm>
@@ -122,7 +123,7 @@ namespace ViscoContact
           output_folder->stage(
             "time_series.csv",
             time_series_header<dim>(contact_zones.numbers(),
-                                    reaction_part_names(),
+                                    prescribed.reaction_names(),
                                     contact_zones.frictional_numbers()));
       }
     output_folder->commit();
@@ -130,7 +131,7 @@ namespace ViscoContact
       truncate_time_series(
         *output_folder,
         time_series_header<dim>(contact_zones.numbers(),
-                                reaction_part_names(),
+                                prescribed.reaction_names(),
                                 contact_zones.frictional_numbers()),
         resume_step);
   }
@@ -271,128 +272,69 @@ namespace ViscoContact
                                            const std::string &stem)
   {
     TimerOutput::Scope t(report.timer(), "Output");
-    // The cell fields have one entry per active cell of this rank's view of the
-    // mesh (owned, ghost and artificial cells), indexed by active_cell_index()
-    // as DataOut expects; only the entries of owned cells are set, and only
-    // those are written.
-    const unsigned int         n_components = dim * (dim + 1) / 2;
-    const unsigned int         n_cells      = triangulation->n_active_cells();
-    std::vector<Vector<float>> stress(n_components, Vector<float>(n_cells));
-    std::vector<Vector<float>> viscoplastic(n_components,
-                                            Vector<float>(n_cells));
-    Vector<float>              von_mises(n_cells), subdomain(n_cells);
-    compute_cell_output_fields(stress, viscoplastic, von_mises, subdomain);
+    const OutputFields fields = compute_output_fields();
 
-    // The nodal contact fields live on the scalar DoFHandler.
-    // fill_output_fields() sets the owned entries of this rank's contact nodes;
-    // the ghost import then gives every rank the values at all vertices of its
-    // cells, also those of contact nodes owned by a neighbour.
-    std::vector<VectorType> contact_fields(4, VectorType(scalar_partitioner));
-    if (contact_enabled)
-      contact_set.fill_output_fields(contact_fields[0],
-                                     contact_fields[1],
-                                     contact_fields[2],
-                                     contact_fields[3]);
-    for (VectorType &field : contact_fields)
-      field.update_ghost_values();
-    // With friction: the tangential traction and the slip of the last step
-    // as nodal vector fields (in the displacement's layout), and the
-    // stick/slip state.
-    const bool friction = contact_enabled && contact_set.has_friction();
-    VectorType tangential_traction, step_slip, friction_state;
-    if (friction)
-      {
-        tangential_traction.reinit(solution);
-        step_slip.reinit(solution);
-        friction_state.reinit(scalar_partitioner);
-        contact_set.fill_friction_fields(tangential_traction,
-                                         step_slip,
-                                         friction_state);
-        for (VectorType *field :
-             {&tangential_traction, &step_slip, &friction_state})
-          field->update_ghost_values();
-      }
-
-    // The displacement is one vector field of dim components; the stress
-    // components get names like stress_xy.
+    // The displacement is one vector field of dim components, as are the
+    // tangential traction and the slip; the stress components get names
+    // like stress_xy.
+    const auto vector_field = [](const std::string &name) {
+      return std::make_pair(
+        std::vector<std::string>(dim, name),
+        std::vector<DataComponentInterpretation::DataComponentInterpretation>(
+          dim,
+          DataComponentInterpretation::component_is_part_of_vector));
+    };
     DataOut<dim> data_out;
     data_out.attach_triangulation(*triangulation);
-    data_out.add_data_vector(
-      dof_handler,
-      solution,
-      std::vector<std::string>(dim, "displacement"),
-      std::vector<DataComponentInterpretation::DataComponentInterpretation>(
-        dim,
-        DataComponentInterpretation::component_is_part_of_vector));
+    {
+      const auto [names, interpretation] = vector_field("displacement");
+      data_out.add_data_vector(dof_handler, solution, names, interpretation);
+    }
     const char *axes = "xyz";
-    for (unsigned int i = 0; i < n_components; ++i)
+    for (unsigned int i = 0; i < fields.stress.size(); ++i)
       {
         const auto index
           = SymmetricTensor<2, dim>::unrolled_to_component_indices(i);
         const std::string suffix = {axes[index[0]], axes[index[1]]};
-        data_out.add_data_vector(stress[i],
+        data_out.add_data_vector(fields.stress[i],
                                  "stress_" + suffix,
                                  DataOut<dim>::type_cell_data);
-        data_out.add_data_vector(viscoplastic[i],
+        data_out.add_data_vector(fields.viscoplastic[i],
                                  "viscoplastic_stress_" + suffix,
                                  DataOut<dim>::type_cell_data);
       }
-    data_out.add_data_vector(von_mises,
-                             "von_mises_stress",
-                             DataOut<dim>::type_cell_data);
-    data_out.add_data_vector(subdomain,
-                             "subdomain",
-                             DataOut<dim>::type_cell_data);
-    Vector<float> material_ids;
-    if (materials.size() > 1)
-      {
-        material_ids.reinit(n_cells);
-        for (const auto &cell : owned_cells)
-          material_ids[cell->active_cell_index()] = cell->material_id();
-        data_out.add_data_vector(material_ids,
-                                 "material_id",
-                                 DataOut<dim>::type_cell_data);
-      }
-    // Plane strain: sigma_zz, averaged over the stress points of each cell.
-    Vector<float> stress_zz;
-    if constexpr (dim == 2)
-      if (parameters.plane_model == Parameters::PlaneModel::plane_strain)
-        {
-          const unsigned int n_q = stress_quadrature.size();
-          stress_zz.reinit(n_cells);
-          for (unsigned int k = 0; k < owned_cells.size(); ++k)
-            for (unsigned int q = 0; q < n_q; ++q)
-              stress_zz[owned_cells[k]->active_cell_index()]
-                += quadrature_point_history[std::size_t(k) * n_q + q].stress_zz
-                   / n_q;
-          data_out.add_data_vector(stress_zz,
-                                   "stress_zz",
-                                   DataOut<dim>::type_cell_data);
-        }
+    for (const auto &[field, name] :
+         {std::pair<const Vector<float> *, std::string>{&fields.von_mises,
+                                                        "von_mises_stress"},
+          {&fields.subdomain, "subdomain"},
+          {&fields.material_id, "material_id"},
+          {&fields.stress_zz, "stress_zz"}})
+      if (field->size() > 0)
+        data_out.add_data_vector(*field, name, DataOut<dim>::type_cell_data);
     const char *contact_names[4] = {"contact_pressure",
                                     "compliance_pressure",
                                     "foundation_pressure",
                                     "contact_status"};
     for (unsigned int i = 0; i < 4; ++i)
       data_out.add_data_vector(scalar_dof_handler,
-                               contact_fields[i],
+                               fields.contact[i],
                                contact_names[i]);
-    if (friction)
+    if (fields.friction_state.size() > 0)
       {
         for (const auto &[field, name] :
-             {std::pair<const VectorType *, std::string>{&tangential_traction,
-                                                         "tangential_traction"},
-              {&step_slip, "slip"}})
-          data_out.add_data_vector(
-            dof_handler,
-            *field,
-            std::vector<std::string>(dim, name),
-            std::vector<
-              DataComponentInterpretation::DataComponentInterpretation>(
-              dim,
-              DataComponentInterpretation::component_is_part_of_vector));
+             {std::pair<const VectorType *, std::string>{
+                &fields.tangential_traction,
+                "tangential_traction"},
+              {&fields.slip, "slip"}})
+          {
+            const auto [names, interpretation] = vector_field(name);
+            data_out.add_data_vector(dof_handler,
+                                     *field,
+                                     names,
+                                     interpretation);
+          }
         data_out.add_data_vector(scalar_dof_handler,
-                                 friction_state,
+                                 fields.friction_state,
                                  "friction_state");
       }
     // Time and step number go into the .vtu files themselves; the data are
@@ -404,8 +346,15 @@ namespace ViscoContact
     // rank 0 writes the .pvtu record that lists them; the step number
     // has 4 digits in the file names. Every file goes to a temporary name
     // first, and a failure on any rank stops all ranks with the file and the
-    // reason (write_vtu_pieces()).
-    const std::string record = write_vtu_pieces(data_out, flags, stem, step);
+    // reason (robustness/vtu_record.h).
+    const std::string record = write_vtu_record(data_out,
+                                                flags,
+                                                stem,
+                                                step,
+                                                stress_points.cells(),
+                                                mapping,
+                                                *output_folder,
+                                                mpi_communicator);
     // Only rank 0 keeps the list of records and rewrites solution.pvd with it
     // after every record; the list goes into the checkpoints, so that a resumed
     // run extends the same .pvd file. The record and the .pvd list are
@@ -426,186 +375,100 @@ namespace ViscoContact
 
 
 
-  // @sect4{ViscoplasticContact::compute_cell_output_fields}
+  // @sect4{ViscoplasticContact::compute_output_fields}
   //
-  // Per owned cell the average over its stress points of sigma_n, of its
-  // viscoplastic part and of the von Mises stress, and the cell's subdomain.
+  // The cell fields have one entry per active cell of this rank's view of
+  // the mesh (owned, ghost and artificial cells), indexed by
+  // active_cell_index() as DataOut expects; only the entries of owned cells
+  // are set, and only those are written. Per owned cell: the average over
+  // its stress points of sigma_n, of its viscoplastic part and of the von
+  // Mises stress, its subdomain, with several materials its material id,
+  // and in plane strain sigma_zz. The nodal contact fields live on the
+  // scalar DoFHandler, the friction fields (with friction: the tangential
+  // traction and the slip of the last step, and the stick/slip state) on
+  // the displacement's and the scalar one; the ghost import gives every
+  // rank the values at all vertices of its cells, also those of contact
+  // nodes owned by a neighbour.
   template <int dim>
-  void
-  ViscoplasticContact<dim>::compute_cell_output_fields(
-    std::vector<Vector<float>> &stress,
-    std::vector<Vector<float>> &viscoplastic,
-    Vector<float>              &von_mises,
-    Vector<float>              &subdomain) const
+  typename ViscoplasticContact<dim>::OutputFields
+  ViscoplasticContact<dim>::compute_output_fields() const
   {
-    const unsigned int n_components = stress.size();
+    const unsigned int n_components = dim * (dim + 1) / 2;
+    const unsigned int n_cells      = triangulation->n_active_cells();
     const unsigned int n_q          = stress_quadrature.size();
-    for (unsigned int k = 0; k < owned_cells.size(); ++k)
+    OutputFields       fields;
+    fields.stress.assign(n_components, Vector<float>(n_cells));
+    fields.viscoplastic.assign(n_components, Vector<float>(n_cells));
+    fields.von_mises.reinit(n_cells);
+    fields.subdomain.reinit(n_cells);
+    if (materials.size() > 1)
+      fields.material_id.reinit(n_cells);
+    bool plane_strain = false;
+    if constexpr (dim == 2)
+      plane_strain
+        = (parameters.plane_model == Parameters::PlaneModel::plane_strain);
+    if (plane_strain)
+      fields.stress_zz.reinit(n_cells);
+    for (unsigned int k = 0; k < stress_points.n_cells(); ++k)
       {
-        const MaterialLaw<dim>        &material = material_of(k);
-        const SymmetricTensor<4, dim> &E        = material.elasticity_tensor();
-        const unsigned int             c = owned_cells[k]->active_cell_index();
-        subdomain[c]                     = owned_cells[k]->subdomain_id();
+        const auto                    &cell = stress_points.cells()[k];
+        const unsigned int             c    = cell->active_cell_index();
+        const SymmetricTensor<4, dim> &E = material_of(k).elasticity_tensor();
+        fields.subdomain[c]              = cell->subdomain_id();
+        if (fields.material_id.size() > 0)
+          fields.material_id[c] = cell->material_id();
         for (unsigned int q = 0; q < n_q; ++q)
           {
+            const QuadraturePointHistory<dim> &state
+              = quadrature_point_history[std::size_t(k) * n_q + q];
             // The viscoplastic part is recomputed as sigma_n - E eps(u_n)
             // instead of being read from the stored history, because with the
             // explicit update the stored history is already H_{n+1}, the one of
             // the next step (after every step but the last).
-            const SymmetricTensor<2, dim> &sigma
-              = quadrature_point_history[std::size_t(k) * n_q + q].stress;
             const SymmetricTensor<2, dim> vp
-              = sigma
-                - E * symmetrize(displacement_gradient_at(solution, k, q));
+              = state.stress
+                - E
+                    * symmetrize(
+                      stress_points.displacement_gradient(solution, k, q));
             // Component i of the symmetric tensor, in deal.II's unrolled order
             // (the diagonal first); each stress point contributes 1/n_q of the
             // cell's average.
             for (unsigned int i = 0; i < n_components; ++i)
               {
-                const auto index = sigma.unrolled_to_component_indices(i);
-                stress[i][c] += sigma[index] / n_q;
-                viscoplastic[i][c] += vp[index] / n_q;
+                const auto index
+                  = SymmetricTensor<2, dim>::unrolled_to_component_indices(i);
+                fields.stress[i][c] += state.stress[index] / n_q;
+                fields.viscoplastic[i][c] += vp[index] / n_q;
               }
-            von_mises[c]
-              += von_mises_stress(
-                   k,
-                   quadrature_point_history[std::size_t(k) * n_q + q])
-                 / n_q;
+            fields.von_mises[c] += von_mises_stress(k, state) / n_q;
+            if constexpr (dim == 2)
+              if (plane_strain)
+                fields.stress_zz[c] += state.stress_zz / n_q;
           }
       }
-  }
 
-
-
-  // @sect4{ViscoplasticContact::write_vtu_pieces}
-  //
-  // What DataOut::write_vtu_with_pvtu_record() does, with deal.II's file
-  // names, but through the output folder: deal.II's writes the files under
-  // their final names (with MPI I/O) and throws on the rank that sees an I/O
-  // error, while the others wait in the next collective call (a hang on a
-  // full disk), and it leaves a truncated file behind.
-  //
-  // The ranks form at most 8 groups of consecutive ranks; each group writes
-  // one .vtu file (OutputFolder::stage_collectively(): the XML header from
-  // the group's first rank, the patches of every rank, the footer from the
-  // last rank), and the pieces are committed together. Then rank 0 stages
-  // the .pvtu record that lists them, which output_results() commits with
-  // the .pvd list.
-  template <int dim>
-  std::string
-  ViscoplasticContact<dim>::write_vtu_pieces(DataOut<dim> &data_out,
-                                             const DataOutBase::VtkFlags &flags,
-                                             const std::string           &stem,
-                                             const unsigned int           step)
-  {
-    // DataOut keeps its patches and field names protected; this class only
-    // opens them to the writer below.
-    struct Patches : public DataOut<dim>
-    {
-      using DataOut<dim>::get_patches;
-      using DataOut<dim>::get_dataset_names;
-      using DataOut<dim>::get_nonscalar_data_ranges;
-    };
-    const Patches &patches = static_cast<const Patches &>(data_out);
-
-    const unsigned int n_ranks
-      = Utilities::MPI::n_mpi_processes(mpi_communicator);
-    const unsigned int rank
-      = Utilities::MPI::this_mpi_process(mpi_communicator);
-    const unsigned int n_files = std::min(8u, n_ranks);
-    const unsigned int group   = rank * n_files / n_ranks;
-    const unsigned int n_digits
-      = Utilities::needed_digits(std::max(0, int(n_files) - 1));
-    const std::string record = stem + "_" + Utilities::int_to_string(step, 4);
-    const auto        piece_name = [&](const unsigned int g) {
-      return record + "." + Utilities::int_to_string(g, n_digits) + ".vtu";
-    };
-    std::vector<std::string> pieces;
-    for (unsigned int g = 0; g < n_files; ++g)
-      pieces.push_back(piece_name(g));
-    output_folder->record_files(pieces);
-    output_folder->record_files({record + ".pvtu"});
-
-    // This rank's part of its group's file: the header on the group's first
-    // rank, the patches, the footer on its last rank.
-    MPI_Comm  group_communicator;
-    const int error
-      = MPI_Comm_split(mpi_communicator, group, rank, &group_communicator);
-    AssertThrowMPI(error);
-    const bool first_of_group
-      = (Utilities::MPI::this_mpi_process(group_communicator) == 0);
-    const bool last_of_group
-      = (Utilities::MPI::this_mpi_process(group_communicator) + 1
-         == Utilities::MPI::n_mpi_processes(group_communicator));
-    std::ostringstream header, block;
-    if (first_of_group)
-      DataOutBase::write_vtu_header(header, flags);
-    // The rank's cells in pieces of at most cells_per_piece, each written as
-    // a <Piece> of the file as soon as its patches are built: DataOut's
-    // patches and the reordered copy write_vtu_main() makes of them take
-    // about 2 kB per hexahedron, 0.7 kB per dof, which for all of a rank's
-    // cells at once would add half to the memory of a matrix-free run. The
-    // patches are placed with the mapping of the cell type, the one the
-    // whole program uses; the time and step go into the first piece.
-    constexpr std::size_t cells_per_piece = std::size_t(1) << 18;
-    using CellIterator = typename Triangulation<dim>::cell_iterator;
-    const std::size_t n_pieces
-      = std::max<std::size_t>(1,
-                              (owned_cells.size() + cells_per_piece - 1)
-                                / cells_per_piece);
-    for (std::size_t piece = 0; piece < n_pieces; ++piece)
+    fields.contact.assign(4, VectorType(scalar_partitioner));
+    if (contact_enabled)
+      contact_set.fill_output_fields(fields.contact[0],
+                                     fields.contact[1],
+                                     fields.contact[2],
+                                     fields.contact[3]);
+    for (VectorType &field : fields.contact)
+      field.update_ghost_values();
+    if (contact_enabled && contact_set.has_friction())
       {
-        // DataOut walks the selection from first_cell() to the end several
-        // times, each walk from first_cell().
-        const std::size_t begin = piece * cells_per_piece;
-        const std::size_t end
-          = std::min(owned_cells.size(), begin + cells_per_piece);
-        std::size_t position = begin;
-        const auto  cell_at  = [&](const Triangulation<dim> &mesh) {
-          return position < end ? CellIterator(owned_cells[position])
-                                  : mesh.end();
-        };
-        data_out.set_cell_selection(
-          [&](const Triangulation<dim> &mesh) {
-            position = begin;
-            return cell_at(mesh);
-          },
-          [&](const Triangulation<dim> &mesh, const CellIterator &) {
-            ++position;
-            return cell_at(mesh);
-          });
-        data_out.build_patches(mapping);
-        DataOutBase::VtkFlags piece_flags = flags;
-        if (piece > 0)
-          {
-            piece_flags.time  = std::numeric_limits<double>::min();
-            piece_flags.cycle = std::numeric_limits<unsigned int>::min();
-          }
-        DataOutBase::write_vtu_main(patches.get_patches(),
-                                    patches.get_dataset_names(),
-                                    patches.get_nonscalar_data_ranges(),
-                                    piece_flags,
-                                    block);
+        fields.tangential_traction.reinit(solution);
+        fields.slip.reinit(solution);
+        fields.friction_state.reinit(scalar_partitioner);
+        contact_set.fill_friction_fields(fields.tangential_traction,
+                                         fields.slip,
+                                         fields.friction_state);
+        for (VectorType *field : {&fields.tangential_traction,
+                                  &fields.slip,
+                                  &fields.friction_state})
+          field->update_ghost_values();
       }
-    if (last_of_group)
-      DataOutBase::write_vtu_footer(block);
-    const std::string text = block.str();
-    output_folder->stage_collectively(piece_name(group),
-                                      header.str(),
-                                      text.data(),
-                                      text.size(),
-                                      group_communicator);
-    MPI_Comm_free(&group_communicator);
-    output_folder->commit();
-
-    // The .pvtu record, once every piece is in place.
-    if (rank == 0)
-      {
-        std::ostringstream pvtu;
-        data_out.write_pvtu_record(pvtu, pieces);
-        output_folder->stage(record + ".pvtu", pvtu.str());
-      }
-    return record + ".pvtu";
+    return fields;
   }
 
 
@@ -626,14 +489,14 @@ namespace ViscoContact
   {
     const unsigned int n_q         = stress_quadrature.size();
     double             strain_norm = 0, stress_norm = 0;
-    for (unsigned int k = 0; k < owned_cells.size(); ++k)
+    for (unsigned int k = 0; k < stress_points.cells().size(); ++k)
       for (unsigned int q = 0; q < n_q; ++q)
         {
           const SymmetricTensor<2, dim> strain
-            = symmetrize(displacement_gradient_at(solution, k, q));
+            = symmetrize(stress_points.displacement_gradient(solution, k, q));
           const SymmetricTensor<2, dim> &sigma
             = quadrature_point_history[std::size_t(k) * n_q + q].stress;
-          const double JxW = get_stress_point_weight(k, q);
+          const double JxW = stress_points.JxW(k, q);
           strain_norm += (strain * strain) * JxW;
           stress_norm += (sigma * sigma) * JxW;
         }

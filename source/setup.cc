@@ -84,7 +84,7 @@ namespace ViscoContact
   // r = z = 0): run() starts from it, and after a change of the mesh the
   // caller carries the state over (adapt_mesh(), resume_from_checkpoint()).
   // The start of the previous step is not carried over, so the first step on
-  // a new mesh starts from u_{n-1} (predict_step_start()).
+  // a new mesh starts from u_{n-1} (acceleration/predicted_start.h).
   //
   // The back end of the previous mesh goes first: a factorisation may refer
   // to the matrix it was set up with (Amesos' MUMPS asks it for its
@@ -94,7 +94,7 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::setup_on_mesh()
   {
-    previous_step_start.reset();
+    predicted_start.forget();
     coarser_step_problem.reset();
     contact_solver.reset();
     // The peak memory after each phase, on the first set-up.
@@ -104,8 +104,12 @@ namespace ViscoContact
     if (report_memory)
       report.record_peak_memory("after the operator");
     setup_stress_points();
-    setup_dirichlet_dofs();
-    check_rigid_motions();
+    prescribed.reinit(mapping,
+                      dof_handler,
+                      locally_relevant_dofs,
+                      stress_points,
+                      solution);
+    prescribed.check_rigid_motions(mapping, dof_handler, constraints);
     setup_contact();
     if (report_memory)
       report.record_peak_memory("after the stress points and contact nodes");
@@ -158,14 +162,10 @@ namespace ViscoContact
       // every right-hand side of the run; the prescribed values enter each
       // step as a lifting (set_dirichlet_values()). Hanging nodes appear
       // where the mesh is refined toward Gamma_3.
-      make_displacement_constraints(mapping,
-                                    dof_handler,
-                                    dirichlet.parts(),
-                                    parameters.symmetry_ids,
-                                    locally_relevant_dofs,
-                                    constraints,
-                                    dirichlet.has_values() ? &open_constraints
-                                                           : nullptr);
+      prescribed.make_constraints(mapping,
+                                  dof_handler,
+                                  locally_relevant_dofs,
+                                  constraints);
 
       choose_back_end();
 
@@ -260,235 +260,29 @@ namespace ViscoContact
 
 
 
-  namespace
-  {
-    // @sect4{CellShapes}
-    //
-    // Which owned cells have the same stress-point geometry: JxW and the
-    // scalar shape gradients at every stress point, equal up to rounding
-    // (1e-12 of the largest value of each kind: cells that are translates of
-    // each other, such as those of a box). A hash of a cell's values, each
-    // rounded to 2^-30 of that scale, and of the scales finds the
-    // candidates, and a candidate's
-    // values are computed again to compare, so that only one cell per shape,
-    // its representative, is kept. Cells that match a shape use its values,
-    // which differ from their own by rounding only.
-    template <int dim>
-    class CellShapes
-    {
-    public:
-      CellShapes(
-        const Mapping<dim>       &mapping,
-        const FiniteElement<dim> &fe,
-        const Quadrature<dim>    &quadrature,
-        const std::vector<typename DoFHandler<dim>::active_cell_iterator>
-          &cells)
-        : fe(fe)
-        , cells(cells)
-        , candidate(mapping,
-                    fe,
-                    quadrature,
-                    update_gradients | update_JxW_values)
-      {}
-
-      // The shape of cell k, whose values fe_values holds.
-      unsigned int
-      shape_of(const FEValues<dim> &fe_values, const unsigned int k)
-      {
-        const std::vector<double> values = values_of(fe_values);
-        const std::size_t         hash   = hash_of(values);
-        for (auto [entry, end] = shapes_of_hash.equal_range(hash); entry != end;
-             ++entry)
-          {
-            candidate.reinit(cells[representatives[entry->second]]);
-            if (same(values, values_of(candidate)))
-              return entry->second;
-          }
-        representatives.push_back(k);
-        shapes_of_hash.emplace(hash, representatives.size() - 1);
-        return representatives.size() - 1;
-      }
-
-      // The first cell of every shape.
-      std::vector<unsigned int> representatives;
-
-    private:
-      // The values the stress points store, JxW first, and the largest
-      // magnitude of each kind (JxW, gradient components) at the end.
-      std::vector<double>
-      values_of(const FEValues<dim> &fe_values) const
-      {
-        std::vector<double> values;
-        double              JxW_scale = 0, gradient_scale = 0;
-        for (const unsigned int q : fe_values.quadrature_point_indices())
-          {
-            values.push_back(fe_values.JxW(q));
-            JxW_scale = std::max(JxW_scale, std::abs(fe_values.JxW(q)));
-          }
-        for (const unsigned int q : fe_values.quadrature_point_indices())
-          for (unsigned int a = 0; a < fe.base_element(0).n_dofs_per_cell();
-               ++a)
-            {
-              const Tensor<1, dim> gradient = fe_values.shape_grad_component(
-                fe.component_to_system_index(0, a),
-                q,
-                0);
-              for (unsigned int d = 0; d < dim; ++d)
-                {
-                  values.push_back(gradient[d]);
-                  gradient_scale
-                    = std::max(gradient_scale, std::abs(gradient[d]));
-                }
-            }
-        values.push_back(JxW_scale);
-        values.push_back(gradient_scale);
-        return values;
-      }
-
-      // Each value rounded to 2^-30 of its kind's scale, and the scales
-      // themselves to 2^-30 in their logarithm.
-      std::size_t
-      hash_of(const std::vector<double> &values) const
-      {
-        const std::size_t n_JxW = candidate.n_quadrature_points;
-        const double scales[2]  = {values[values.size() - 2], values.back()};
-        std::size_t  hash       = 0;
-        const auto   add        = [&hash](const long long key) {
-          hash ^= std::hash<long long>()(key) + 0x9e3779b97f4a7c15ULL
-                  + (hash << 6) + (hash >> 2);
-        };
-        for (std::size_t i = 0; i + 2 < values.size(); ++i)
-          {
-            const double scale = scales[i < n_JxW ? 0 : 1];
-            add(std::llround(values[i] / (scale > 0 ? scale : 1.) * (1 << 30)));
-          }
-        for (const double scale : scales)
-          add(std::llround(std::log2(scale > 0 ? scale : 1.) * (1 << 30)));
-        return hash;
-      }
-
-      // Equal up to 1e-12 of each kind's scale.
-      bool
-      same(const std::vector<double> &a, const std::vector<double> &b) const
-      {
-        const std::size_t n_JxW     = candidate.n_quadrature_points;
-        const double      scales[2] = {a[a.size() - 2], a.back()};
-        for (std::size_t i = 0; i < a.size(); ++i)
-          {
-            const double scale
-              = (i + 2 >= a.size() ? a[i] : scales[i < n_JxW ? 0 : 1]);
-            if (std::abs(a[i] - b[i]) > 1e-12 * scale)
-              return false;
-          }
-        return true;
-      }
-
-
-      const FiniteElement<dim>                                          &fe;
-      const std::vector<typename DoFHandler<dim>::active_cell_iterator> &cells;
-      FEValues<dim>                                      candidate;
-      std::unordered_multimap<std::size_t, unsigned int> shapes_of_hash;
-    };
-  } // namespace
-
-
-
   // @sect4{ViscoplasticContact::setup_stress_points}
   //
-  // One record per stress point of the locally owned cells, in a flat
-  // array (as step-18 does); sigma_0 = 0 and u_0 = 0, so H_1 = 0.
-  // Alongside, the stress-point geometry the time loop uses instead of
-  // FEValues: the dofs of each cell as indices into the vectors' local
-  // storage, and JxW and the scalar shape gradients at each stress point.
-  //
-  // Why not FEValues in the time loop: the stress update, the history load and
-  // the tangent visit every stress point in every step, and FEValues would
-  // recompute the same Jacobians and shape gradients each time. The mesh does
-  // not move, so the geometry is stored once; the loops then read u through
-  // local indices (no global-to-local lookup) and need no cell iterators.
+  // The stress-point geometry the time loop uses instead of FEValues
+  // (stress_points.h): the stress update, the history load and the tangent
+  // visit every stress point in every step, and the mesh does not move. Then
+  // one record per stress point of the locally owned cells, in a flat array
+  // (as step-18 does); sigma_0 = 0 and u_0 = 0, so H_1 = 0.
   template <int dim>
   void
   ViscoplasticContact<dim>::setup_stress_points()
   {
     TimerOutput::Scope t(report.timer(), "Setup: stress points");
-    // The list of owned cells fixes the numbering k used by every stress-point
-    // array (and by the checkpoints and the convergence study). Ghost and
-    // artificial cells have no stress points here: their stresses belong to the
-    // rank that owns them.
-    owned_cells.clear();
+    stress_points.reinit(mapping,
+                         dof_handler,
+                         stress_quadrature,
+                         *solution.get_partitioner(),
+                         constraints);
     cell_material.clear();
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          owned_cells.push_back(cell);
-          cell_material.push_back(material_number(cell->material_id()));
-        }
-    const std::size_t  n_cells = owned_cells.size();
-    const unsigned int n_q     = stress_quadrature.size();
-    quadrature_point_history.assign(n_cells * n_q,
+    for (const auto &cell : stress_points.cells())
+      cell_material.push_back(material_number(cell->material_id()));
+    quadrature_point_history.assign(std::size_t(stress_points.n_cells())
+                                      * stress_quadrature.size(),
                                     QuadraturePointHistory<dim>());
-
-    // For the linear elements the scalar dofs of a cell are its vertices, so a
-    // cell has n_cell_vertices * dim displacement dofs.
-    n_cell_vertices = scalar_fe->n_dofs_per_cell();
-    cell_local_dofs.resize(n_cells * n_cell_vertices * dim);
-    cell_is_constrained.assign(n_cells, false);
-    cell_shape.resize(n_cells);
-    FEValues<dim>                        fe_values(mapping,
-                            *fe,
-                            stress_quadrature,
-                            update_gradients | update_JxW_values);
-    std::vector<types::global_dof_index> dof_indices(fe->n_dofs_per_cell());
-    // The partitioner of the solution vector translates global dof numbers into
-    // local indices of its storage. Every dof of an owned cell is locally
-    // relevant, so each has a local index (owned or ghost).
-    const auto &partitioner = *solution.get_partitioner();
-    CellShapes  shapes(mapping, *fe, stress_quadrature, owned_cells);
-    for (std::size_t k = 0; k < n_cells; ++k)
-      {
-        fe_values.reinit(owned_cells[k]);
-        owned_cells[k]->get_dof_indices(dof_indices);
-        // The displacement dof of vertex a and component d, in the order
-        // (vertex a, component c) that add_stress_point_load() and
-        // distribute_cell_vector() use. A cell with a constrained dof (clamped,
-        // or hanging) is marked: its contributions must go through the
-        // constraints.
-        for (unsigned int a = 0; a < n_cell_vertices; ++a)
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              const types::global_dof_index dof
-                = dof_indices[fe->component_to_system_index(d, a)];
-              cell_local_dofs[(k * n_cell_vertices + a) * dim + d]
-                = partitioner.global_to_local(dof);
-              if (constraints.is_constrained(dof))
-                cell_is_constrained[k] = true;
-            }
-        // The cell's shape: that of an earlier cell with the same geometry.
-        cell_shape[k] = shapes.shape_of(fe_values, k);
-      }
-
-    // JxW and the gradients of the scalar shape functions N_a of each shape:
-    // the shape function of vertex a in component 0 is N_a e_0, so its
-    // gradient in that component is grad N_a, which is all the strains need
-    // (eps(N_a e_c) = sym(e_c (x) grad N_a)).
-    const std::vector<unsigned int> &representatives = shapes.representatives;
-    stress_point_JxW.resize(representatives.size() * n_q);
-    stress_point_gradients.resize(representatives.size() * n_q
-                                  * n_cell_vertices);
-    for (unsigned int shape = 0; shape < representatives.size(); ++shape)
-      {
-        fe_values.reinit(owned_cells[representatives[shape]]);
-        for (unsigned int q = 0; q < n_q; ++q)
-          {
-            stress_point_JxW[shape * n_q + q] = fe_values.JxW(q);
-            for (unsigned int a = 0; a < n_cell_vertices; ++a)
-              stress_point_gradients[(shape * n_q + q) * n_cell_vertices + a]
-                = fe_values.shape_grad_component(
-                  fe->component_to_system_index(0, a),
-                  q,
-                  0);
-          }
-      }
   }
 
 
@@ -520,7 +314,7 @@ namespace ViscoContact
                       scalar_dof_handler,
                       face_quadrature,
                       constraints,
-                      hanging_node_constraints,
+                      prescribed.hanging_node_constraints(),
                       solution);
     set_gaps(schedule.current_time());
     // Tresca's bounds at the nodes (collective: a negative or infinite
@@ -618,7 +412,7 @@ namespace ViscoContact
              AffineConstraints<double> &level_constraints) {
         make_displacement_constraints(mapping,
                                       level_dofs,
-                                      dirichlet.parts(),
+                                      prescribed.parts().parts(),
                                       parameters.symmetry_ids,
                                       relevant,
                                       level_constraints);
@@ -813,8 +607,8 @@ namespace ViscoContact
               << (contact_zones.descriptions().size() > 1 ? "s" : "") << " = "
               << softening << '\n';
         // Several solutions possible: a predicted start must not move the
-        // run to another branch (predict_step_start()).
-        pieces_predictable = eigenvalue > softening;
+        // run to another branch (acceleration/predicted_start.h).
+        predicted_start.set_pieces_predictable(eigenvalue > softening);
         if (eigenvalue <= softening)
           pcout << "WARNING: the contact law softens more than the body can "
                    "carry (doc/model.md, section 4): the step problem may "

@@ -65,7 +65,7 @@ namespace ViscoContact
     const bool         update_history = step.update_history;
     const bool         estimate       = step.estimate;
     const unsigned int n_q            = stress_quadrature.size();
-    const unsigned int n_local        = n_cell_vertices * dim;
+    const unsigned int n_local        = stress_points.n_vertices() * dim;
 
     // The work at the stress points is independent from point to point, so
     // the threads of this rank (as many as deal.II's MultithreadInfo allows:
@@ -112,7 +112,7 @@ namespace ViscoContact
     std::array<double, 3> local_sums          = {{0., 0., 0.}};
     // Each rank visits the stress points of its own cells only; the record of
     // stress point q of the k-th owned cell is entry k * n_q + q.
-    const unsigned int n_cells = owned_cells.size();
+    const unsigned int n_cells = stress_points.cells().size();
     for (unsigned int first = 0; first < n_cells; first += chunk_size)
       {
         const unsigned int end = std::min(first + chunk_size, n_cells);
@@ -132,7 +132,7 @@ namespace ViscoContact
               for (unsigned int i = 0; i < 3; ++i)
                 local_sums[i] += cell_estimate_sums[k - first][i];
             if (update_history)
-              distribute_cell_vector(
+              stress_points.distribute(
                 k,
                 ArrayView<const double>(cell_loads.data()
                                           + std::size_t(k - first) * n_local,
@@ -230,7 +230,7 @@ namespace ViscoContact
     // E eps(u_n), from the ghosted u_n (solve_contact_problem() has
     // imported the ghosts).
     const SymmetricTensor<2, dim> strain
-      = symmetrize(displacement_gradient_at(solution, k, q));
+      = symmetrize(stress_points.displacement_gradient(solution, k, q));
     const SymmetricTensor<2, dim> elastic_stress
       = material.elasticity_tensor() * strain;
     // The zz components (a copy, written back at the end; zero but in 2D
@@ -285,7 +285,7 @@ namespace ViscoContact
       {
         state.history += step.next_time_step * rate;
         zz.history_zz += step.next_time_step * rate_zz;
-        add_stress_point_load(-state.history, k, q, cell_vector);
+        stress_points.add_load(-state.history, k, q, cell_vector);
       }
     // The estimate's terms at this point (per cell: the sums of
     // (E^-1 dG, dG) JxW with dG = G(sigma_n) - G(sigma_{n-1}), of
@@ -293,7 +293,7 @@ namespace ViscoContact
     // the rate kept for the next step's estimate.
     if (step.estimate)
       {
-        const double JxW = get_stress_point_weight(k, q);
+        const double JxW = stress_points.JxW(k, q);
         estimate_sums[1]
           += material.complementary_energy(state.stress, zz.stress_zz) * JxW;
         if (plastic)
@@ -364,114 +364,6 @@ namespace ViscoContact
           state.history_zz += next_time_step * state.rate_zz;
       }
     assemble_history_load();
-  }
-
-
-
-  // @sect4{ViscoplasticContact::displacement_gradient_at}
-  //
-  // grad u = sum_a u_a (x) grad N_a at stress point q of the k-th owned
-  // cell, from the geometry stored at set-up and the ghosted entries of u.
-  //
-  // Row c of the result is grad u_c = sum_a u_{a,c} grad N_a. The values are
-  // read through the local indices stored for the cell, which point into the
-  // owned part or the ghost part of the vector's storage; hence the ghost
-  // values must be current, except on one rank, where the vector has no ghosts
-  // and the owned part is everything.
-  template <int dim>
-  Tensor<2, dim>
-  ViscoplasticContact<dim>::displacement_gradient_at(
-    const VectorType  &displacement,
-    const unsigned int k,
-    const unsigned int q) const
-  {
-    // The cell's dofs start at entry k * n_a * dim of cell_local_dofs, its
-    // stress point gradients at shape_gradients(k, q).
-    const unsigned int    n_a    = n_cell_vertices;
-    const unsigned int   *dofs   = &cell_local_dofs[std::size_t(k) * n_a * dim];
-    const double         *values = displacement.get_values(); // owned, ghosts
-    const Tensor<1, dim> *gradients = shape_gradients(k, q);
-    Assert(displacement.has_ghost_elements()
-             || Utilities::MPI::n_mpi_processes(mpi_communicator) == 1,
-           ExcMessage("The displacement needs its ghost values here."));
-    Tensor<2, dim> gradient;
-    for (unsigned int a = 0; a < n_a; ++a)
-      for (unsigned int c = 0; c < dim; ++c)
-        gradient[c] += values[dofs[a * dim + c]] * gradients[a];
-    return gradient;
-  }
-
-
-
-  // @sect4{ViscoplasticContact::add_stress_point_load}
-  //
-  // cell_vector += (tau, eps(v)) JxW at stress point q of the k-th owned
-  // cell: with eps(N_a e_c) = sym(e_c (x) grad N_a) and tau symmetric, the
-  // entry of the cell's dof (a, c) is JxW (tau grad N_a)_c.
-  //
-  // Called with tau = -H, this is the history load (update_stresses(),
-  // assemble_history_load()); the tangent assembly computes its internal force
-  // inline with the same formula. It only adds into a cell vector;
-  // distribute_cell_vector() then adds the cell vector to a global one.
-  template <int dim>
-  void
-  ViscoplasticContact<dim>::add_stress_point_load(
-    const SymmetricTensor<2, dim> &tau,
-    const unsigned int             k,
-    const unsigned int             q,
-    const ArrayView<double>       &cell_vector) const
-  {
-    const Tensor<1, dim> *gradients = shape_gradients(k, q);
-    const double          JxW       = get_stress_point_weight(k, q);
-    for (unsigned int a = 0; a < n_cell_vertices; ++a)
-      {
-        const Tensor<1, dim> force = tau * gradients[a];
-        for (unsigned int c = 0; c < dim; ++c)
-          cell_vector[a * dim + c] += JxW * force[c];
-      }
-  }
-
-
-
-  // @sect4{ViscoplasticContact::distribute_cell_vector}
-  //
-  // target += the cell vector of the k-th owned cell (dofs ordered (vertex
-  // a, component c)). Cells without constrained dofs add straight into the
-  // local storage; the others go through the constraints (hanging nodes,
-  // the clamped Gamma_1). The caller compresses.
-  //
-  // The direct path is the common one (most cells touch neither Gamma_1 nor a
-  // hanging node) and needs no global dof numbers at all. Entries of dofs owned
-  // by other ranks land in the ghost part of target's storage, which is why the
-  // caller must start from a zeroed vector and finish with
-  // compress(VectorOperation::add).
-  template <int dim>
-  void
-  ViscoplasticContact<dim>::distribute_cell_vector(
-    const unsigned int             k,
-    const ArrayView<const double> &cell_vector,
-    VectorType                    &target) const
-  {
-    const unsigned int  n_local = n_cell_vertices * dim;
-    const unsigned int *dofs    = &cell_local_dofs[std::size_t(k) * n_local];
-    if (!cell_is_constrained[k])
-      {
-        double *values = target.get_values(); // owned entries, then ghosts
-        for (unsigned int i = 0; i < n_local; ++i)
-          values[dofs[i]] += cell_vector[i];
-        return;
-      }
-    // A cell with constrained dofs: back to global dof numbers, which
-    // AffineConstraints works with, and let it drop the clamped entries and
-    // distribute those of hanging nodes.
-    std::vector<types::global_dof_index> global_dofs(n_local);
-    const auto &partitioner = *target.get_partitioner();
-    for (unsigned int i = 0; i < n_local; ++i)
-      global_dofs[i] = partitioner.local_to_global(dofs[i]);
-    constraints.distribute_local_to_global(cell_vector.begin(),
-                                           cell_vector.end(),
-                                           global_dofs.begin(),
-                                           target);
   }
 
 

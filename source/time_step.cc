@@ -53,12 +53,12 @@ namespace ViscoContact
              && !accept_adaptive_step(start, proposed_step));
 
     // u_{n-1} and z_{n-1}, the state the step started from, are what the
-    // next step's prediction extrapolates from (predict_step_start()). Not
-    // the initial state u_0 = 0: a load already present at t = 0 makes the
-    // first step a jump, not a piece of a smooth path to extrapolate.
+    // next step's prediction extrapolates from. Not the initial state u_0 =
+    // 0: a load already present at t = 0 makes the first step a jump, not a
+    // piece of a smooth path to extrapolate.
     if (parameters.predicted_start && n > 1)
-      previous_step_start
-        = StepStart{std::move(start.solution), std::move(start.contact.z)};
+      predicted_start.remember(std::move(start.solution),
+                               std::move(start.contact.z));
     // Friction: the next step's slip is measured from here.
     if (contact_enabled && contact_set.has_friction())
       contact_set.accept_slip(contact_set.tangential_displacements(solution));
@@ -87,7 +87,7 @@ namespace ViscoContact
   {
     StepStartState start{solution, contact_set.state(), {}, 0.};
     if (schedule.is_adaptive())
-      start.stress_points = quadrature_point_history;
+      start.stress_point_records = quadrature_point_history;
     start.step_length = schedule.step_length();
     return start;
   }
@@ -130,14 +130,20 @@ namespace ViscoContact
         // The right-hand side depends on t_n, which a cut has changed.
         const double k = schedule.step_length();
         assemble_right_hand_side(schedule.next_time());
-        predict_step_start();
+        // The start of the step: extrapolated from the two before it
+        // (acceleration/predicted_start.h), then from the coarser meshes.
+        if (parameters.predicted_start && schedule.step_number() >= 1)
+          predicted_start.predict(schedule.step_length()
+                                    / schedule.previous_step_length(),
+                                  solution,
+                                  contact_enabled ? &contact_set : nullptr);
         if (step_cycles_due())
           start_from_coarser_mesh();
         // The step starts with the displacement prescribed at t_n (the
         // implicit update's first Newton iterate must have it).
-        if (dirichlet.has_values())
+        if (prescribed.has_values())
           {
-            apply_constraints(solution);
+            prescribed.distribute(solution, constraints);
             solution.update_ghost_values();
           }
         const ActiveSetResult result
@@ -201,55 +207,6 @@ namespace ViscoContact
           << "\n  Cutting the time step to k = " << k / 2 << ".\n";
     schedule.cut_step();
     return true;
-  }
-
-
-
-  // @sect4{ViscoplasticContact::predict_step_start}
-  //
-  // With Predicted start, step n starts from the linear extrapolation of the
-  // last two steps instead of from u_{n-1}: u = u_{n-1} + (k_n / k_{n-1})
-  // (u_{n-1} - u_{n-2}) is the first guess of the full space back end's
-  // Krylov solves and of the implicit update's Newton iteration, and every
-  // contact node goes to the piece that the extrapolated r = u.nu_i and
-  // z_{n-1} + (k_n / k_{n-1}) (z_{n-1} - z_{n-2}) name. While the front of the
-  // rigid zone moves, the nodes it reaches in this step are then on the rigid
-  // piece from the first active-set iteration on, instead of being found one
-  // batch per iteration.
-  //
-  // The start changes the iterations, not the result, as long as the step
-  // problem has one solution (doc/model.md, section 4). Where the uniqueness
-  // check found that it may have several, the nodes keep the previous step's
-  // pieces, which keeps the run on the branch it is on; the displacement is
-  // still extrapolated, which only changes where the Krylov solves start.
-  // Called at every attempt of the step, on the state at its start (restored
-  // after a failed attempt), with the attempt's k_n.
-  template <int dim>
-  void
-  ViscoplasticContact<dim>::predict_step_start()
-  {
-    if (!parameters.predicted_start || !previous_step_start
-        || schedule.step_number() < 1)
-      return;
-    const double ratio
-      = schedule.step_length() / schedule.previous_step_length();
-    solution.zero_out_ghost_values();
-    solution.sadd(1 + ratio, -ratio, previous_step_start->displacement);
-    solution.update_ghost_values();
-    if (!contact_enabled || !pieces_predictable)
-      return;
-    const std::vector<double> &earlier_forces
-      = previous_step_start->contact_forces;
-    for (unsigned int i = 0; i < contact_set.size(); ++i)
-      {
-        contact_set.r[i]
-          = contact_set.normal_component(solution, i) - contact_set.gap(i);
-        contact_set.z[i] += ratio * (contact_set.z[i] - earlier_forces[i]);
-      }
-    // The slip of the step is not predicted: a node starts it in the
-    // stick/slip state it ended the last one in (with the extrapolated
-    // normal force, a node slipping at its bound would look stuck).
-    contact_set.update_pieces(/*with_friction=*/false);
   }
 
 
@@ -344,7 +301,7 @@ namespace ViscoContact
             << "; repeated with k = " << std::setprecision(6)
             << schedule.step_length() << '\n';
     restore_step_start(start);
-    quadrature_point_history = start.stress_points;
+    quadrature_point_history = start.stress_point_records;
     if (explicit_history_update())
       rescale_history_increment(start.step_length, schedule.step_length());
     return false;
@@ -420,7 +377,7 @@ namespace ViscoContact
     // The constrained entries (Dirichlet, hanging, symmetry) get their
     // values from the constraints and g_n, then the ghosts are imported so
     // that the stress update can read every dof of the owned cells.
-    apply_constraints(solution);
+    prescribed.distribute(solution, constraints);
     solution.update_ghost_values();
     // A NaN or Inf anywhere makes the global norm non-finite on every rank
     // (l2_norm() is a reduction), so all ranks declare the failure together.
@@ -622,7 +579,7 @@ namespace ViscoContact
                                                       const double new_step)
   {
     const unsigned int n_q = stress_quadrature.size();
-    for (unsigned int k = 0; k < owned_cells.size(); ++k)
+    for (unsigned int k = 0; k < stress_points.cells().size(); ++k)
       if (material_of(k).is_plastic())
         for (unsigned int q = 0; q < n_q; ++q)
           {

@@ -143,7 +143,7 @@ namespace ViscoContact
     , materials(make_materials<dim>(parameters))
     , material_index(material_numbers(parameters))
     , loads(parameters)
-    , dirichlet(parameters)
+    , prescribed(parameters, communicator)
     , contact_zones(parameters)
   {
     // main() instantiates the class for the Dimension the parameter file names;
@@ -486,7 +486,7 @@ namespace ViscoContact
   const std::vector<typename DoFHandler<dim>::active_cell_iterator> &
   ViscoplasticContact<dim>::get_owned_cells() const
   {
-    return owned_cells;
+    return stress_points.cells();
   }
 
 
@@ -512,7 +512,7 @@ namespace ViscoContact
   {
     // grad u_n at the stress point, from the ghosted solution (it is called
     // between time steps, when solution holds u_n with its ghosts).
-    return displacement_gradient_at(solution, k, q);
+    return stress_points.displacement_gradient(solution, k, q);
   }
 
 
@@ -522,9 +522,7 @@ namespace ViscoContact
   ViscoplasticContact<dim>::get_stress_point_weight(const unsigned int k,
                                                     const unsigned int q) const
   {
-    return stress_point_JxW[std::size_t(cell_shape[k])
-                              * stress_quadrature.size()
-                            + q];
+    return stress_points.JxW(k, q);
   }
 
 

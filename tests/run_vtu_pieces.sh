@@ -1,6 +1,6 @@
 #!/bin/bash
 # A rank's cells go into its .vtu file in pieces of at most 2^18 cells
-# (output.cc, write_vtu_pieces()). On one rank and more cells than that:
+# (robustness/vtu_record.cc, write_vtu_record()). On one rank and more cells than that:
 #  - the last .vtu file has more than one <Piece>;
 #  - read by meshio (Debian's python3-meshio), the pieces together have
 #    4 points per quadrilateral of the "Mesh:" line (every cell written

@@ -155,12 +155,13 @@ namespace ViscoContact
   // Where the coarser meshes start the step: with contact, on every step but
   // one that the initial cycles start, and not where the uniqueness check
   // found that the step problem may have several solutions (there the nodes
-  // keep the pieces of the branch the run is on, predict_step_start()).
+  // keep the pieces of the branch the run is on, PredictedStart).
   template <int dim>
   bool
   ViscoplasticContact<dim>::step_cycles_due() const
   {
-    return plan.step_cycles() > 0 && contact_enabled && pieces_predictable
+    return plan.step_cycles() > 0 && contact_enabled
+           && predicted_start.pieces_predictable()
            && !(schedule.step_number() == 0 && plan.initial_cycles() > 0)
            && !plan.step_cycles_dropped();
   }
@@ -292,7 +293,7 @@ namespace ViscoContact
                                  false,
                                  first_component,
                                  true);
-    coarse.apply_constraints(coarse.solution);
+    coarse.prescribed.distribute(coarse.solution, coarse.constraints);
     coarse.solution.update_ghost_values();
     coarse_pressure.update_ghost_values();
     coarse.set_pieces_from(coarse_pressure);
@@ -332,7 +333,7 @@ namespace ViscoContact
                                  pressure,
                                  true,
                                  first_component);
-    apply_constraints(solution);
+    prescribed.distribute(solution, constraints);
     solution.update_ghost_values();
     pressure.update_ghost_values();
     set_pieces_from(pressure);
@@ -344,7 +345,7 @@ namespace ViscoContact
   //
   // Each contact node's r = u.nu - s and z = w p from u and the pressure
   // field p, and the piece they name; the stick/slip states are updated
-  // too only if asked (the step cycles leave them as predict_step_start()
+  // too only if asked (the step cycles leave them as PredictedStart::predict()
   // does; a transfer to a new mesh updates them, then resets the slip).
   template <int dim>
   void

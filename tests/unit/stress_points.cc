@@ -1,0 +1,220 @@
+// Unit tests of the stress-point geometry (StressPointGeometry): the cell
+// loops of the time loop read grad u and assemble (tau, eps(v)) from values
+// stored once per mesh instead of FEValues. A linear field is reproduced by
+// Q1 elements, so its gradient at every stress point is exact, and the load
+// of a constant stress tested with it is tau : sym(A) times the volume, on a
+// mesh with hanging nodes too (whose cells add through the constraints).
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/distributed/tria.h>
+
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_q.h>
+
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <deal.II/lac/affine_constraints.h>
+
+#include <deal.II/numerics/vector_tools.h>
+
+#include <gtest/gtest.h>
+
+#include "stress_points.h"
+
+#include <cmath>
+
+using namespace dealii;
+using namespace ViscoContact;
+
+namespace
+{
+  // u(x) = A x + b.
+  template <int dim>
+  class LinearField : public Function<dim>
+  {
+  public:
+    LinearField(const Tensor<2, dim> &A)
+      : Function<dim>(dim)
+      , A(A)
+    {}
+    double
+    value(const Point<dim> &x, const unsigned int c) const override
+    {
+      return (A * x)[c] + 0.1 * (c + 1);
+    }
+
+  private:
+    const Tensor<2, dim> A;
+  };
+
+  template <int dim>
+  Tensor<2, dim>
+  gradient_of_the_field()
+  {
+    Tensor<2, dim> A;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = 0; j < dim; ++j)
+        A[i][j] = 0.3 * (i + 1) - 0.2 * j + (i == j ? 1. : 0.);
+    return A;
+  }
+
+  // The box [0, 2] x [0, 1] (x [0, 1]) refined twice, sheared (every cell
+  // the same shape) or with its vertices moved at random (every cell its
+  // own), or with one cell refined once more (hanging nodes).
+  enum class Mesh
+  {
+    sheared,
+    distorted,
+    hanging
+  };
+
+  template <int dim>
+  void
+  check_geometry(const Mesh mesh)
+  {
+    const MPI_Comm                            comm = MPI_COMM_WORLD;
+    parallel::distributed::Triangulation<dim> triangulation(comm);
+    Point<dim>                                corner;
+    for (unsigned int d = 0; d < dim; ++d)
+      corner[d] = d == 0 ? 2. : 1.;
+    GridGenerator::hyper_rectangle(triangulation, Point<dim>(), corner);
+    triangulation.refine_global(2);
+    double volume = 2.;
+    if (mesh == Mesh::sheared)
+      GridTools::transform(
+        [](const Point<dim> &x) {
+          Point<dim> y = x;
+          y[0] += 0.5 * x[1];
+          return y;
+        },
+        triangulation);
+    else if (mesh == Mesh::distorted)
+      {
+        // The same moves on every rank (distort_random draws per rank).
+        GridTools::transform(
+          [](const Point<dim> &x) {
+            Point<dim> y = x;
+            for (unsigned int d = 0; d < dim; ++d)
+              y[d] += 0.03 * std::sin(7. * x[(d + 1) % dim] + 3. * x[d]);
+            return y;
+          },
+          triangulation);
+        volume = 0;
+      }
+    else
+      {
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned() && cell->center()[0] < 0.5
+              && cell->center()[1] < 0.5)
+            cell->set_refine_flag();
+        triangulation.execute_coarsening_and_refinement();
+      }
+
+    const FESystem<dim> fe(FE_Q<dim>(1), dim);
+    DoFHandler<dim>     dof_handler(triangulation);
+    dof_handler.distribute_dofs(fe);
+    IndexSet relevant;
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
+    AffineConstraints<double> constraints(relevant);
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    constraints.close();
+    VectorType          u(dof_handler.locally_owned_dofs(), relevant, comm);
+    const MappingQ<dim> mapping(1);
+    const QGauss<dim>   quadrature(2);
+
+    StressPointGeometry<dim> geometry;
+    geometry.reinit(mapping,
+                    dof_handler,
+                    quadrature,
+                    *u.get_partitioner(),
+                    constraints);
+    EXPECT_EQ(geometry.n_cells(), triangulation.n_locally_owned_active_cells());
+    EXPECT_EQ(geometry.n_points(), quadrature.size());
+    EXPECT_EQ(geometry.n_vertices(), GeometryInfo<dim>::vertices_per_cell);
+    // A sheared box has one shape; a refined one two (the coarse and the
+    // fine cells); every cell of the distorted one is its own.
+    if (mesh == Mesh::sheared)
+      {
+        EXPECT_EQ(geometry.n_shapes(), geometry.n_cells() > 0 ? 1u : 0u);
+      }
+    else if (mesh == Mesh::hanging)
+      {
+        EXPECT_LE(geometry.n_shapes(), 2u);
+      }
+    else
+      {
+        EXPECT_EQ(geometry.n_shapes(), geometry.n_cells());
+      }
+
+    const Tensor<2, dim> A = gradient_of_the_field<dim>();
+    VectorTools::interpolate(mapping, dof_handler, LinearField<dim>(A), u);
+    u.update_ghost_values();
+
+    SymmetricTensor<2, dim> tau;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = i; j < dim; ++j)
+        tau[i][j] = 1. + i - 0.5 * j;
+    VectorType          load(u.get_partitioner());
+    double              local_volume = 0;
+    std::vector<double> cell_vector(geometry.n_vertices() * dim);
+    for (unsigned int k = 0; k < geometry.n_cells(); ++k)
+      {
+        std::fill(cell_vector.begin(), cell_vector.end(), 0.);
+        for (unsigned int q = 0; q < geometry.n_points(); ++q)
+          {
+            const Tensor<2, dim> gradient
+              = geometry.displacement_gradient(u, k, q);
+            EXPECT_LT((gradient - A).norm(), 1e-12 * A.norm());
+            geometry.add_load(tau, k, q, make_array_view(cell_vector));
+            local_volume += geometry.JxW(k, q);
+          }
+        geometry.distribute(k, make_array_view(cell_vector), load);
+      }
+    load.compress(VectorOperation::add);
+    const double total_volume = Utilities::MPI::sum(local_volume, comm);
+    if (volume > 0)
+      {
+        EXPECT_NEAR(total_volume, volume, 1e-13);
+      }
+    // (tau, eps(u)) = tau : sym(A) |Omega| for the linear field; the
+    // constrained entries of the load are zero, their parts passed on.
+    u.zero_out_ghost_values();
+    EXPECT_NEAR(load * u,
+                (tau * symmetrize(A)) * total_volume,
+                1e-12 * std::abs(tau * symmetrize(A)) * total_volume);
+  }
+} // namespace
+
+TEST(StressPointGeometry, ShearedBox2D)
+{
+  check_geometry<2>(Mesh::sheared);
+}
+
+TEST(StressPointGeometry, DistortedBox2D)
+{
+  check_geometry<2>(Mesh::distorted);
+}
+
+TEST(StressPointGeometry, HangingNodes2D)
+{
+  check_geometry<2>(Mesh::hanging);
+}
+
+TEST(StressPointGeometry, ShearedBox3D)
+{
+  check_geometry<3>(Mesh::sheared);
+}
+
+TEST(StressPointGeometry, HangingNodes3D)
+{
+  check_geometry<3>(Mesh::hanging);
+}

@@ -71,10 +71,10 @@
 #include "back_ends/rigid_body_modes.h"
 #include "constraints.h"
 #include "elastic_operator.h"
-#include "loads.h"
+#include "scene/loads.h"
 #include "back_ends/matrix_free_elasticity.h"
 #include "material.h"
-#include "mesh.h"
+#include "mesh/mesh.h"
 #include "parameters.h"
 
 #include <Epetra_CrsMatrix.h>

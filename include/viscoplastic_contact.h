@@ -31,12 +31,12 @@
 #include "constraints.h"
 #include "contact_nodes.h"
 #include "contact_set.h"
-#include "contact_zones.h"
-#include "loads.h"
+#include "scene/contact_zones.h"
+#include "scene/loads.h"
 #include "elastic_operator.h"
 #include "material.h"
 #include "parameters.h"
-#include "prescribed_displacements.h"
+#include "scene/prescribed_displacements.h"
 #include "robustness/checkpoint_file.h"
 #include "robustness/output_folder.h"
 #include "run/run_plan.h"
@@ -190,10 +190,6 @@ namespace ViscoContact
     print_header(const unsigned int n_steps) const;
     void
     report_scheme_limits();
-    // The smallest generalised eigenvalue of (K, lumped normal boundary mass),
-    // doc/model.md, section 4.
-    double
-    smallest_uniqueness_eigenvalue();
 
     // @sect4{One time step}
     //
@@ -530,11 +526,6 @@ namespace ViscoContact
     std::size_t
     checkpoint_record_size() const;
 
-    // Collective: the counts and the force are sums over all ranks.
-    std::array<unsigned int, 3>
-    count_contact_states() const;
-    double
-    total_contact_force() const;
 
     // Run control, console (pcout prints on rank 0 only) and the report of
     // the run (counts, timers, progress, summary: run/run_report.h).
@@ -646,14 +637,14 @@ namespace ViscoContact
     // The relative error estimate of the last stress update.
     double error_estimate = 0;
 
-    // The loads of the scene (loads.h).
+    // The loads of the scene (scene/loads.h).
     Loads<dim> loads;
 
     // The owned cells, their dofs and the geometry of their stress points
     // (stress_points.h), for the cell loops of the time loop.
     StressPointGeometry<dim> stress_points;
     // The Dirichlet parts and planes of symmetry: constraints, values g_n,
-    // lifting load and reactions (prescribed_displacements.h).
+    // lifting load and reactions (scene/prescribed_displacements.h).
     PrescribedDisplacements<dim> prescribed;
 
     // Contact: the nodes of Gamma_3 this rank owns, with their pieces, their
@@ -663,7 +654,7 @@ namespace ViscoContact
     bool            contact_enabled = false;
     ContactSet<dim> contact_set;
     // The contact zones of the scene, with their laws and obstacles
-    // (contact_zones.h).
+    // (scene/contact_zones.h).
     ContactZones<dim> contact_zones;
     // The gaps of the contact nodes at the given time (collective: a value
     // that is not finite stops all ranks, naming the entry).

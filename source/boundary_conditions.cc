@@ -1,6 +1,6 @@
 // ViscoplasticContact<dim>: the prescribed displacements of each step and
 // the reactions of the parts that carry them (the dofs, values and sums are
-// PrescribedDisplacements', prescribed_displacements.h), and the gaps of the
+// PrescribedDisplacements', scene/prescribed_displacements.h), and the gaps of the
 // contact nodes.
 
 #include <deal.II/base/exceptions.h>

@@ -9,7 +9,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include "back_ends/blas_threads.h"
-#include "convergence_study.h"
+#include "studies/convergence_study.h"
 #include "parameters.h"
 #include "robustness/file_output.h"
 #include "robustness/mpi_tools.h"

@@ -41,7 +41,7 @@
 #include <deal.II/numerics/error_estimator.h>
 #include <deal.II/numerics/vector_tools_evaluate.h>
 
-#include "mesh.h"
+#include "mesh/mesh.h"
 
 #include "robustness/checkpoint_file.h"
 #include "robustness/mpi_tools.h"

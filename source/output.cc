@@ -13,7 +13,7 @@
 #include <deal.II/numerics/data_out.h>
 
 #include "back_ends/blas_threads.h"
-#include "mesh.h"
+#include "mesh/mesh.h"
 #include "robustness/checkpoint_file.h"
 #include "robustness/file_output.h"
 #include "robustness/output_folder.h"
@@ -155,8 +155,8 @@ namespace ViscoContact
                                                   const ActiveSetResult &result,
                                                   const double wall_time)
   {
-    const auto   states = count_contact_states();
-    const double force  = total_contact_force();
+    const auto   states = contact_set.count_states(mpi_communicator);
+    const double force  = contact_set.total_force(mpi_communicator);
     const double size
       = contact_enabled ? contact_set.contact_area(mpi_communicator) : 0.;
     const double peak
@@ -508,8 +508,8 @@ namespace ViscoContact
       std::sqrt(Utilities::MPI::sum(strain_norm, mpi_communicator)),
       std::sqrt(Utilities::MPI::sum(stress_norm, mpi_communicator)),
       max_von_mises,
-      count_contact_states(),
-      total_contact_force(),
+      contact_set.count_states(mpi_communicator),
+      contact_set.total_force(mpi_communicator),
       solution.l2_norm(),
       solution.linfty_norm(),
       schedule.step_number(),

@@ -13,13 +13,13 @@
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparsity_tools.h>
-#include <deal.II/lac/tridiagonal_matrix.h>
 
 #include <deal.II/numerics/vector_tools.h>
 
 #include "constraints.h"
 #include "elastic_operator.h"
-#include "mesh.h"
+#include "lanczos.h"
+#include "mesh/mesh.h"
 #include "robustness/file_output.h"
 #include "viscoplastic_contact.h"
 
@@ -597,7 +597,27 @@ namespace ViscoContact
         if (!from_checkpoint)
           {
             TimerOutput::Scope t(report.timer(), "Setup: uniqueness margin");
-            uniqueness_eigenvalue = smallest_uniqueness_eigenvalue();
+            // min_v a(v,v) / sum_i w_i (v . nu_i)^2: for given normal
+            // displacements r the smallest energy is r^T S^{-1} r (the
+            // harmonic extension), so the minimum is 1 / lambda_max(D^{1/2}
+            // S D^{1/2}), D = diag(w_i). A product with S is the back end's
+            // apply_compliance(): a dense product on the condensed back end,
+            // one elastic solve on the full space back end.
+            const auto apply
+              = [this](const Vector<double> &x, Vector<double> &y) {
+                  Vector<double> scaled(x);
+                  for (unsigned int i = 0; i < contact_set.size(); ++i)
+                    scaled[i] *= std::sqrt(contact_set.weight(i));
+                  contact_solver->apply_compliance(contact_set, scaled, y);
+                  for (unsigned int i = 0; i < contact_set.size(); ++i)
+                    y[i] *= std::sqrt(contact_set.weight(i));
+                };
+            uniqueness_eigenvalue
+              = 1.
+                / largest_eigenvalue(apply,
+                                     contact_set.size(),
+                                     contact_set.n_global_nodes(),
+                                     mpi_communicator);
           }
         const double eigenvalue = *uniqueness_eigenvalue;
         pcout << "Uniqueness: smallest eigenvalue of (stiffness, lumped "
@@ -615,109 +635,6 @@ namespace ViscoContact
                    "have several solutions and the active-set iteration may "
                    "cycle.\n";
       }
-  }
-
-
-
-  // @sect4{ViscoplasticContact::smallest_uniqueness_eigenvalue}
-  //
-  // min_v a(v,v) / sum_i w_i (v . nu_i)^2: for given normal displacements
-  // r the smallest energy is r^T S^{-1} r (the harmonic extension), so the
-  // minimum is 1 / lambda_max(D^{1/2} S D^{1/2}), D = diag(w_i). The
-  // largest eigenvalue is found by the Lanczos iteration (with full
-  // reorthogonalisation; the vectors live on the contact nodes, so they are
-  // small), whose extreme Ritz values converge fast; a product with S is
-  // the back end's apply_compliance(): a dense product on the condensed
-  // back end, one elastic solve on the full space back end.
-  //
-  // In parallel each rank holds the entries of its own contact nodes; the only
-  // communication besides apply_compliance() is the sum in the inner products.
-  // Since every rank then sees the same scalars, all take the same decisions
-  // (convergence, breakdown) and leave the loop together, as the collective
-  // apply_compliance() requires.
-  template <int dim>
-  double
-  ViscoplasticContact<dim>::smallest_uniqueness_eigenvalue()
-  {
-    // Vectors of length m_local, indexed by this rank's contact nodes; m is the
-    // global number of contact nodes.
-    const unsigned int m_local = contact_set.size();
-    const unsigned int m       = contact_set.n_global_nodes();
-    // The inner product of two such vectors over all ranks: only the scalar is
-    // reduced.
-    const auto dot = [&](const Vector<double> &a, const Vector<double> &b) {
-      double sum = 0;
-      for (unsigned int i = 0; i < m_local; ++i)
-        sum += a[i] * b[i];
-      return Utilities::MPI::sum(sum, mpi_communicator);
-    };
-    // x -> D^{1/2} S D^{1/2} x.
-    const auto apply = [&](const Vector<double> &x, Vector<double> &y) {
-      Vector<double> scaled(x);
-      for (unsigned int i = 0; i < m_local; ++i)
-        scaled[i] *= std::sqrt(contact_set.weight(i));
-      contact_solver->apply_compliance(contact_set, scaled, y);
-      for (unsigned int i = 0; i < m_local; ++i)
-        y[i] *= std::sqrt(contact_set.weight(i));
-    };
-
-    // The Lanczos basis (kept for the reorthogonalisation) and the recurrence
-    // coefficients alpha_k (diagonal) and beta_k (off-diagonal) of the
-    // tridiagonal matrix T. The start vector is the constant vector of unit
-    // length over all ranks, which every rank sets up without communication.
-    std::vector<Vector<double>> basis;
-    std::vector<double>         alpha, beta;
-    Vector<double>              v(m_local), w(m_local);
-    for (unsigned int i = 0; i < m_local; ++i)
-      v[i] = 1. / std::sqrt(double(m));
-    double largest = 0;
-    // At most m iterations (then the Krylov space is the whole space) and at
-    // most 60; doc/model.md, section 4, reports 10 to 20 for the benchmark.
-    for (unsigned int k = 0; k < std::min(m, 60u); ++k)
-      {
-        basis.push_back(v);
-        apply(v, w);
-        alpha.push_back(dot(w, v));
-        // w = A v with A = D^{1/2} S D^{1/2}, and alpha_k = (A v, v). Then w is
-        // orthogonalised against every earlier basis vector, not only the last
-        // two: in floating point the three-term recurrence loses orthogonality
-        // and produces spurious copies of converged Ritz values. This
-        // subtraction includes the usual alpha_k v_k and beta_{k-1} v_{k-1}.
-        for (const Vector<double> &b : basis) // full reorthogonalisation
-          {
-            const double projection = dot(w, b);
-            for (unsigned int i = 0; i < m_local; ++i)
-              w[i] -= projection * b[i];
-          }
-        // The norm of what remains is beta_k, the next off-diagonal entry.
-        const double norm = std::sqrt(dot(w, w));
-
-        // The Ritz values are the eigenvalues of T (LAPACK's symmetric
-        // tridiagonal solver, in ascending order); the largest approximates
-        // lambda_max from below.
-        TridiagonalMatrix<double> T(alpha.size(), true);
-        for (unsigned int i = 0; i < alpha.size(); ++i)
-          {
-            T(i, i) = alpha[i];
-            if (i + 1 < alpha.size())
-              T(i, i + 1) = T(i + 1, i) = beta[i];
-          }
-        T.compute_eigenvalues();
-        const double ritz = T.eigenvalue(alpha.size() - 1);
-        // Stop when the largest Ritz value no longer changes (relative 1e-12),
-        // or when the Krylov space is invariant (w vanishes): then the Ritz
-        // value is exact.
-        const bool converged
-          = k > 0 && std::abs(ritz - largest) <= 1e-12 * std::abs(ritz);
-        largest = ritz;
-        if (converged || norm <= 1e-14 * std::abs(ritz))
-          break;
-        // Otherwise the normalised remainder is the next basis vector.
-        beta.push_back(norm);
-        for (unsigned int i = 0; i < m_local; ++i)
-          v[i] = w[i] / norm;
-      }
-    return 1. / largest;
   }
 
 

@@ -155,7 +155,8 @@ namespace ViscoContact
         // The contact counts of the failed iterate, for the report (collective,
         // before the state is restored). Then back to u_{n-1} with its ghosts,
         // and to the pieces the step started from.
-        const std::array<unsigned int, 3> states = count_contact_states();
+        const std::array<unsigned int, 3> states
+          = contact_set.count_states(mpi_communicator);
         restore_step_start(start);
         if (cut_failed_step(result.failure))
           {
@@ -597,33 +598,6 @@ namespace ViscoContact
               state.history_zz += (new_step - old_step) * rate_zz;
           }
     assemble_history_load();
-  }
-
-
-
-  // @sect4{Contact state}
-  //
-  // Counts over all ranks: at the rigid limit, in normal-compliance contact,
-  // out of contact; and the total contact force. Both are collective (a sum
-  // over the ranks of the owned nodes' contributions), so every rank must call
-  // them, also where only rank 0 prints the result. Without contact they are
-  // zero and need no communication.
-  template <int dim>
-  std::array<unsigned int, 3>
-  ViscoplasticContact<dim>::count_contact_states() const
-  {
-    if (!contact_enabled)
-      return {{0, 0, 0}};
-    return contact_set.count_states(mpi_communicator);
-  }
-
-
-
-  template <int dim>
-  double
-  ViscoplasticContact<dim>::total_contact_force() const
-  {
-    return contact_enabled ? contact_set.total_force(mpi_communicator) : 0.;
   }
 
 

@@ -9,10 +9,10 @@
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/fe_system.h>
 
-#include "loads.h"
-#include "mesh.h"
+#include "scene/loads.h"
+#include "mesh/mesh.h"
 #include "robustness/checkpoint_file.h"
-#include "robustness/mesh_checks.h"
+#include "mesh/mesh_checks.h"
 #include "robustness/stop_signals.h"
 #include "step_report.h"
 #include "hardening_plasticity.h"
@@ -320,7 +320,7 @@ namespace ViscoContact
   //
   // What follows an accepted step n, in this order: the observer of a study,
   // the time-series row and the step line (sums over the ranks: every rank
-  // calls the collective count_contact_states() and total_contact_force(),
+  // calls the collective ContactNodes::count_states() and total_force(),
   // rank 0 prints), the contact profile and the .pvtu record (written by all
   // ranks into shared files), the mesh adaptation, the checkpoint, and the
   // scheduler's signals. The mesh is adapted after the output of step n
@@ -353,16 +353,16 @@ namespace ViscoContact
                       n,
                       t,
                       result.iterations(),
-                      count_contact_states(),
-                      total_contact_force(),
+                      contact_set.count_states(mpi_communicator),
+                      contact_set.total_force(mpi_communicator),
                       progress_text);
     if (step_line && schedule.is_adaptive())
       print_adaptive_step_line(pcout,
                                n,
                                t,
                                result.iterations(),
-                               count_contact_states(),
-                               total_contact_force(),
+                               contact_set.count_states(mpi_communicator),
+                               contact_set.total_force(mpi_communicator),
                                k,
                                error_estimate,
                                progress_text);

@@ -1,6 +1,6 @@
 #!/bin/bash
 # Simplex meshes are built once per group of ranks (Mesh group size,
-# source/mesh.cc): the group root reads, refines and partitions the whole
+# source/mesh/mesh.cc): the group root reads, refines and partitions the whole
 # mesh and hands each member its part.
 #  1. The two columns on a Gmsh mesh of triangles, 3 ranks in groups of 2:
 #     exactly two processes (the roots, ranks 0 and 2) open the mesh file

@@ -55,7 +55,7 @@
 #include "contact_nodes.h"
 #include "contact_set.h"
 #include "material.h"
-#include "mesh.h"
+#include "mesh/mesh.h"
 #include "rigid_motions.h"
 #include "robustness/checkpoint_file.h"
 #include "robustness/mpi_tools.h"

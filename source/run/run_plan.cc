@@ -5,9 +5,9 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
 
-#include "mesh.h"
+#include "mesh/mesh.h"
 #include "robustness/file_output.h"
-#include "robustness/mesh_checks.h"
+#include "mesh/mesh_checks.h"
 #include "run/run_plan.h"
 #include "time_schedule.h"
 

@@ -32,7 +32,7 @@
 
 #include <gtest/gtest.h>
 
-#include "prescribed_displacements.h"
+#include "scene/prescribed_displacements.h"
 
 #include <cmath>
 #include <string>

@@ -13,9 +13,9 @@
 
 #include <gtest/gtest.h>
 
-#include "contact_zones.h"
-#include "dirichlet_parts.h"
-#include "loads.h"
+#include "scene/contact_zones.h"
+#include "scene/dirichlet_parts.h"
+#include "scene/loads.h"
 #include "parameters.h"
 
 #include <string>

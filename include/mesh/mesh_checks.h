@@ -13,7 +13,7 @@ namespace ViscoContact
 {
   using namespace dealii;
 
-  // The checks of a Gmsh file (robustness/mesh_checks.cc), each stopping with a
+  // The checks of a Gmsh file (mesh/mesh_checks.cc), each stopping with a
   // message that names the Mesh file entry, the file and what is wrong:
   // the counts of the $Nodes and $Elements sections whole numbers within
   // what the file can hold, every node id defined once; on the cells the

@@ -16,7 +16,7 @@
 
 #include "back_ends/linear_algebra.h"
 #include "contact_set.h"
-#include "dirichlet_parts.h"
+#include "scene/dirichlet_parts.h"
 #include "parameters.h"
 #include "stress_points.h"
 #include "time_schedule.h"

@@ -3,8 +3,8 @@
 
 #include <deal.II/fe/component_mask.h>
 
-#include "dirichlet_parts.h"
-#include "loads.h"
+#include "scene/dirichlet_parts.h"
+#include "scene/loads.h"
 
 #include <algorithm>
 #include <cmath>

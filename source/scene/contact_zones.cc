@@ -3,8 +3,8 @@
 
 #include <deal.II/base/tensor.h>
 
-#include "contact_zones.h"
-#include "loads.h"
+#include "scene/contact_zones.h"
+#include "scene/loads.h"
 
 namespace ViscoContact
 {

@@ -19,7 +19,7 @@
 
 #include <deal.II/numerics/rtree.h>
 
-#include "robustness/mesh_checks.h"
+#include "mesh/mesh_checks.h"
 
 #include <algorithm>
 #include <cmath>

@@ -11,7 +11,7 @@
 
 #include <deal.II/lac/vector.h>
 
-#include "loads.h"
+#include "scene/loads.h"
 
 #include <cmath>
 #include <map>

@@ -11,7 +11,7 @@
 #include <deal.II/lac/vector.h>
 
 #include "constraints.h"
-#include "prescribed_displacements.h"
+#include "scene/prescribed_displacements.h"
 #include "rigid_motions.h"
 #include "robustness/file_output.h"
 

@@ -24,9 +24,9 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparsity_tools.h>
 
-#include "loads.h"
-#include "mesh.h"
-#include "robustness/mesh_checks.h"
+#include "scene/loads.h"
+#include "mesh/mesh.h"
+#include "mesh/mesh_checks.h"
 #include "robustness/mpi_tools.h"
 
 #include <algorithm>

@@ -13,7 +13,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 
-#include "convergence_study.h"
+#include "studies/convergence_study.h"
 #include "robustness/file_output.h"
 
 #include <algorithm>

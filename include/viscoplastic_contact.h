@@ -26,6 +26,7 @@
 #include <deal.II/numerics/data_out.h>
 
 #include "acceleration/predicted_start.h"
+#include "acceleration/step_cycles.h"
 #include "back_ends/contact_solver.h"
 #include "back_ends/linear_algebra.h"
 #include "constraints.h"
@@ -432,32 +433,11 @@ namespace ViscoContact
     void
     restore_checkpoint_mesh();
 
-    // @sect4{Step cycles (acceleration/step_cycles.cc)}
-    //
-    // Nested iteration in every step (Step cycles = L): the step problem is
-    // solved first on the mesh coarsened once, by a ViscoplasticContact of
-    // that mesh (which starts from the mesh coarsened once more while L > 1),
-    // from this step's start injected into it and with this step's history
-    // load restricted to it; its displacement and contact pressure,
-    // prolongated, are where the active-set iteration here starts. The
-    // coarser problem and the transfer are built at their first use and
-    // dropped with every new mesh (setup_on_mesh()).
-    bool
-    step_cycles_due() const;
-    void
-    set_up_coarser_step_problem();
-    void
-    start_from_coarser_mesh();
     // The contact state of this rank's nodes from u and a nodal pressure
     // field; their stick/slip states only with_friction.
     void
     set_pieces_from(const VectorType &pressure,
                     const bool        with_friction = false);
-    struct CoarserStepProblem;
-    std::shared_ptr<CoarserStepProblem> coarser_step_problem;
-    // The active-set iterations on the coarser meshes of the last step (for
-    // the iteration history).
-    ActiveSetResult coarser_step_result;
 
     // @sect4{Checkpoints}
     //
@@ -584,8 +564,12 @@ namespace ViscoContact
     VectorType system_rhs;
 
     // The start of each step extrapolated from the two before it, with what
-    // it extrapolates from (acceleration/predicted_start.h).
+    // it extrapolates from (acceleration/predicted_start.h), and the step
+    // solved first on the mesh coarsened once (Step cycles,
+    // acceleration/step_cycles.h), which reads this object's state.
     PredictedStart<dim> predicted_start;
+    StepCycles<dim>     step_cycles;
+    friend class StepCycles<dim>;
     // The smallest eigenvalue of the uniqueness check, once computed (on the
     // first mesh of the run, the coarsest of the initial cycles); a resumed
     // run takes it from the checkpoint, so that it decides as the

@@ -75,6 +75,7 @@ for head, pos, kind in decls:
     if not h: continue
     if re.match(r'^(struct|class|union|enum)\b', h):
         types.append((re.match(r'^\w+\s+(\w+)', h).group(1), lineno(pos), kind)); continue
+    if h.startswith('friend '): continue
     if h.startswith('using ') or h.startswith('typedef'): types.append((h, lineno(pos), 'alias')); continue
     flat = strip_angles(h.split('=')[0] if '(' not in h.split('=')[0] else h)
     mm = re.search(r'(~?\w+)\s*\(', flat)

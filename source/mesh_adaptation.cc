@@ -896,6 +896,30 @@ namespace ViscoContact
 
 
 
+  // @sect4{ViscoplasticContact::set_pieces_from}
+  //
+  // Each contact node's r = u.nu - s and z = w p from u and the pressure
+  // field p, and the piece they name; the stick/slip states are updated
+  // too only if asked (the step cycles leave them as PredictedStart::predict()
+  // does; a transfer to a new mesh updates them, then resets the slip).
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::set_pieces_from(const VectorType &pressure,
+                                            const bool        with_friction)
+  {
+    for (unsigned int i = 0; i < contact_set.size(); ++i)
+      {
+        contact_set.r[i]
+          = contact_set.normal_component(solution, i) - contact_set.gap(i);
+        contact_set.z[i]
+          = contact_set.weight(i)
+            * pressure.local_element(contact_set.node(i).local_dofs[0]);
+      }
+    contact_set.update_pieces(with_friction);
+  }
+
+
+
   template class ViscoplasticContact<2>;
   template class ViscoplasticContact<3>;
 } // namespace ViscoContact

@@ -95,7 +95,7 @@ namespace ViscoContact
   ViscoplasticContact<dim>::setup_on_mesh()
   {
     predicted_start.forget();
-    coarser_step_problem.reset();
+    step_cycles.forget();
     contact_solver.reset();
     // The peak memory after each phase, on the first set-up.
     const bool report_memory = report.reports_set_up_memory();

@@ -137,8 +137,8 @@ namespace ViscoContact
                                     / schedule.previous_step_length(),
                                   solution,
                                   contact_enabled ? &contact_set : nullptr);
-        if (step_cycles_due())
-          start_from_coarser_mesh();
+        if (step_cycles.due(*this))
+          step_cycles.start_from_coarser_mesh(*this);
         // The step starts with the displacement prescribed at t_n (the
         // implicit update's first Newton iterate must have it).
         if (prescribed.has_values())

@@ -159,7 +159,7 @@ namespace ViscoContact
   {
     // The DoFHandlers refer to the triangulation: release them first, after
     // the coarser step problem, whose transfer refers to them.
-    coarser_step_problem.reset();
+    step_cycles.forget();
     scalar_dof_handler.clear();
     dof_handler.clear();
   }
@@ -366,14 +366,14 @@ namespace ViscoContact
                                k,
                                error_estimate,
                                progress_text);
+    const ActiveSetResult coarser_result = step_cycles.take_last_result();
     if (parameters.print_iteration_history)
       {
-        if (!coarser_step_result.history.empty())
-          pcout << "    step cycles: " << coarser_step_result.iterations()
+        if (!coarser_result.history.empty())
+          pcout << "    step cycles: " << coarser_result.iterations()
                 << " active-set iterations on the coarser mesh\n";
         pcout << result.describe() << std::flush;
       }
-    coarser_step_result = ActiveSetResult();
     // The profile for a requested time is written at the step closest to it
     // (adaptive steps land on it exactly).
     if (contact_enabled

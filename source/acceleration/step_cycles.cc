@@ -1,52 +1,19 @@
-// Step cycles of ViscoplasticContact<dim>: nested iteration in every time
-// step (doc/algorithm.md, "Step cycles").
-//
-// At a fixed time step the front of the rigid zone crosses more rows of
-// nodes per step on a finer mesh, and the active-set iteration finds them a
-// batch per iteration, so the iterations per step grow with the mesh
-// (doc/performance.md, "Active-set iterations, the mesh and the time step").
-// The same step problem on the mesh coarsened once has half as many rows to
-// cross and an eighth of the dofs (in 3D); its contact zone, prolongated, is
-// wrong only within a coarse cell of the front, so the iteration on the fine
-// mesh starts next to its end. Where the step's own start was already right
-// at the coarser resolution, it is kept (start_from_coarser_mesh()).
-//
-// The coarser problem is the step problem restricted to the coarser space:
-// its operator is K of the coarser mesh (for Q1 on nested meshes the
-// Galerkin product P^T K P), its external load and prescribed values are its
-// own, and its history load is P^T of this mesh's, so the viscoplastic
-// history of this mesh, not a coarser one's, drives it. It starts from this
-// step's start (after the prediction), injected into the coarser space. So
-// the coarser problem keeps no state between steps: a cut, rejected or
-// resumed step has the same coarser solve as an uninterrupted one.
-//
-// The transfers are deal.II's MGTwoLevelTransfer between the two meshes
-// (the global-coarsening transfer of step-75), on any partition of either:
-// the prolongation P and the restriction P^T. They need the meshes nested
-// with the same coarse cells: on p4est by construction, and for simplices,
-// which are built whole and handed out, by building both from the same
-// coarse box (AllParameters::nested_coarsened()). Written here rather than
-// taken from deal.II as it is: in deal.II 9.4 the geometric transfer of a
-// vector-valued P1 element on simplices and its injection (interpolate())
-// on simplices are wrong (a linear field is not reproduced; checked by
-// hand), while the scalar P1 and Q1 prolongations are exact. So every field
-// is transferred component by component with the scalar element of the
-// nodal output fields, and the injection of a fine field f into the
-// coarser mesh is P^T applied to f kept at the fine vertices that are
-// vertices of the coarser mesh and zeroed elsewhere: there the rows of P
-// are unit vectors, so P^T gives f at each coarser vertex.
+// StepCycles<dim>: nested iteration in every time step
+// (acceleration/step_cycles.h).
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/timer.h>
 
 #include <deal.II/multigrid/mg_transfer_global_coarsening.h>
 
+#include "acceleration/step_cycles.h"
 #include "back_ends/cost_model.h"
 #include "viscoplastic_contact.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <utility>
 
 namespace ViscoContact
 {
@@ -100,7 +67,7 @@ namespace ViscoContact
 
 
   template <int dim>
-  struct ViscoplasticContact<dim>::CoarserStepProblem
+  struct StepCycles<dim>::CoarserProblem
   {
     // The step problem on the mesh coarsened once, and the scalar transfer
     // between it and this mesh (declared after it: it goes first).
@@ -150,25 +117,48 @@ namespace ViscoContact
 
 
 
-  // @sect4{ViscoplasticContact::step_cycles_due}
-  //
-  // Where the coarser meshes start the step: with contact, on every step but
-  // one that the initial cycles start, and not where the uniqueness check
-  // found that the step problem may have several solutions (there the nodes
-  // keep the pieces of the branch the run is on, PredictedStart).
   template <int dim>
-  bool
-  ViscoplasticContact<dim>::step_cycles_due() const
+  StepCycles<dim>::StepCycles() = default;
+
+
+
+  template <int dim>
+  StepCycles<dim>::~StepCycles() = default;
+
+
+
+  template <int dim>
+  void
+  StepCycles<dim>::forget()
   {
-    return plan.step_cycles() > 0 && contact_enabled
-           && predicted_start.pieces_predictable()
-           && !(schedule.step_number() == 0 && plan.initial_cycles() > 0)
-           && !plan.step_cycles_dropped();
+    coarser.reset();
   }
 
 
 
-  // @sect4{ViscoplasticContact::set_up_coarser_step_problem}
+  template <int dim>
+  ActiveSetResult
+  StepCycles<dim>::take_last_result()
+  {
+    return std::exchange(last_result, ActiveSetResult());
+  }
+
+
+
+  template <int dim>
+  bool
+  StepCycles<dim>::due(const ViscoplasticContact<dim> &problem) const
+  {
+    return problem.plan.step_cycles() > 0 && problem.contact_enabled
+           && problem.predicted_start.pieces_predictable()
+           && !(problem.schedule.step_number() == 0
+                && problem.plan.initial_cycles() > 0)
+           && !problem.plan.step_cycles_dropped();
+  }
+
+
+
+  // @sect4{StepCycles::set_up}
   //
   // The coarser problem is a ViscoplasticContact of the parameter file
   // coarsened once (parameters.check_step_cycles() made sure its mesh is
@@ -178,18 +168,19 @@ namespace ViscoContact
   // ever solves step problems for this object, silently.
   template <int dim>
   void
-  ViscoplasticContact<dim>::set_up_coarser_step_problem()
+  StepCycles<dim>::set_up(ViscoplasticContact<dim> &problem)
   {
-    TimerOutput::Scope        t(report.timer(), "Setup: step cycles");
-    Parameters::AllParameters coarse_parameters = parameters.nested_coarsened();
+    TimerOutput::Scope        t(problem.report.timer(), "Setup: step cycles");
+    Parameters::AllParameters coarse_parameters
+      = problem.parameters.nested_coarsened();
     coarse_parameters.step_cycles_entry
-      = std::to_string(plan.step_cycles() - 1);
+      = std::to_string(problem.plan.step_cycles() - 1);
     coarse_parameters.initial_cycles_entry = "0";
     // The back end of this mesh: the cost model of Method = auto would
     // choose for the coarser mesh alone, without the memory this one holds
     // (a matrix-based back end there could take more than the matrix-free
     // one here).
-    coarse_parameters.method                  = plan.back_end().method;
+    coarse_parameters.method                  = problem.plan.back_end().method;
     coarse_parameters.verbose                 = false;
     coarse_parameters.print_iteration_history = false;
     coarse_parameters.print_timing_summary    = false;
@@ -197,41 +188,42 @@ namespace ViscoContact
     coarse_parameters.resume                  = false;
     coarse_parameters.checkpoint_interval     = 0;
 
-    coarser_step_problem = std::make_shared<CoarserStepProblem>();
-    coarser_step_problem->problem
+    coarser = std::make_unique<CoarserProblem>();
+    coarser->problem
       = std::make_unique<ViscoplasticContact<dim>>(coarse_parameters,
-                                                   mpi_communicator);
-    ViscoplasticContact<dim> &coarse = *coarser_step_problem->problem;
+                                                   problem.mpi_communicator);
+    ViscoplasticContact<dim> &coarse = *coarser->problem;
     coarse.pcout.set_condition(false);
-    coarse.plan.choose_step_cycles(reference_cell.is_simplex());
+    coarse.plan.choose_step_cycles(problem.reference_cell.is_simplex());
     coarse.make_grid();
     coarse.setup_on_mesh();
-    AssertThrow(coarse.contact_enabled == contact_enabled
+    AssertThrow(coarse.contact_enabled == problem.contact_enabled
                   && coarse.contact_set.n_global_nodes() > 0,
                 ExcInternalError());
     // Plain transfers: on uniformly refined meshes there are no hanging
     // nodes, and the constrained entries are set by each mesh's constraints
     // after the transfer.
-    CoarserStepProblem &coarser = *coarser_step_problem;
-    coarser.transfer.reinit_geometric_transfer(scalar_dof_handler,
-                                               coarse.scalar_dof_handler);
-    coarser.fine_components = component_indices(dof_handler,
-                                                scalar_dof_handler,
-                                                *solution.get_partitioner(),
-                                                *scalar_partitioner);
-    coarser.coarse_components
+    coarser->transfer.reinit_geometric_transfer(problem.scalar_dof_handler,
+                                                coarse.scalar_dof_handler);
+    coarser->fine_components
+      = component_indices(problem.dof_handler,
+                          problem.scalar_dof_handler,
+                          *problem.solution.get_partitioner(),
+                          *problem.scalar_partitioner);
+    coarser->coarse_components
       = component_indices(coarse.dof_handler,
                           coarse.scalar_dof_handler,
                           *coarse.solution.get_partitioner(),
                           *coarse.scalar_partitioner);
-    coarser.fine_field.reinit(scalar_partitioner);
-    coarser.coarse_field.reinit(coarse.scalar_partitioner);
+    coarser->fine_field.reinit(problem.scalar_partitioner);
+    coarser->coarse_field.reinit(coarse.scalar_partitioner);
     // A fine vertex is a vertex of the coarser mesh where it is a vertex of
     // its cell's parent (every cell here has one: the mesh is the coarser
     // one refined).
-    coarser.coarser_vertices.reinit(scalar_partitioner);
-    std::vector<types::global_dof_index> dofs(scalar_fe->n_dofs_per_cell());
-    for (const auto &cell : scalar_dof_handler.active_cell_iterators())
+    coarser->coarser_vertices.reinit(problem.scalar_partitioner);
+    std::vector<types::global_dof_index> dofs(
+      problem.scalar_fe->n_dofs_per_cell());
+    for (const auto &cell : problem.scalar_dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           cell->get_dof_indices(dofs);
@@ -239,29 +231,23 @@ namespace ViscoContact
           for (const unsigned int a : cell->vertex_indices())
             for (const unsigned int b : parent->vertex_indices())
               if (cell->vertex_index(a) == parent->vertex_index(b)
-                  && scalar_partitioner->in_local_range(dofs[a]))
-                coarser.coarser_vertices[dofs[a]] = 1;
+                  && problem.scalar_partitioner->in_local_range(dofs[a]))
+                coarser->coarser_vertices[dofs[a]] = 1;
         }
   }
 
 
 
-  // @sect4{ViscoplasticContact::start_from_coarser_mesh}
-  //
-  // Called once the step's right-hand side is assembled and its start
-  // predicted: the coarser problem is solved from the injected start, and
-  // its u and contact pressure are prolongated into this step's start. A
-  // coarser solve that fails leaves the start as it was (the step then
-  // starts from the prediction, as without step cycles).
+  // @sect4{StepCycles::start_from_coarser_mesh}
   template <int dim>
   void
-  ViscoplasticContact<dim>::start_from_coarser_mesh()
+  StepCycles<dim>::start_from_coarser_mesh(ViscoplasticContact<dim> &problem)
   {
-    if (!coarser_step_problem)
-      set_up_coarser_step_problem();
-    TimerOutput::Scope        t(report.timer(), "Solve: step cycles");
-    ViscoplasticContact<dim> &coarse   = *coarser_step_problem->problem;
-    const CoarserStepProblem &transfer = *coarser_step_problem;
+    if (!coarser)
+      set_up(problem);
+    TimerOutput::Scope        t(problem.report.timer(), "Solve: step cycles");
+    ViscoplasticContact<dim> &coarse   = *coarser->problem;
+    const CoarserProblem     &transfer = *coarser;
     std::vector<unsigned int> all_components(dim);
     std::iota(all_components.begin(), all_components.end(), 0);
     // The pressure lives at the x-dofs of the contact nodes.
@@ -269,19 +255,19 @@ namespace ViscoContact
 
     // The same step: its time levels, its history load restricted, its
     // external load, prescribed values and gaps at t_n on the coarser mesh.
-    coarse.schedule     = schedule;
+    coarse.schedule     = problem.schedule;
     coarse.history_load = 0;
-    if (explicit_history_update())
-      transfer.transfer_components(history_load,
+    if (problem.explicit_history_update())
+      transfer.transfer_components(problem.history_load,
                                    coarse.history_load,
                                    false,
                                    all_components);
-    coarse.assemble_right_hand_side(schedule.next_time());
+    coarse.assemble_right_hand_side(problem.schedule.next_time());
 
     // The start: u and the contact pressure of this step's start, injected.
-    VectorType pressure = contact_pressure_field();
+    VectorType pressure = problem.contact_pressure_field();
     coarse.solution.zero_out_ghost_values();
-    transfer.transfer_components(solution,
+    transfer.transfer_components(problem.solution,
                                  coarse.solution,
                                  false,
                                  all_components,
@@ -301,13 +287,13 @@ namespace ViscoContact
     // The coarser problem's own coarser meshes first, then its solve.
     const unsigned int deeper_iterations
       = coarse.report.step_cycle_iterations();
-    if (coarse.step_cycles_due())
-      coarse.start_from_coarser_mesh();
-    coarser_step_result = coarse.solve_contact_problem(coarse.system_rhs);
-    report.count_step_cycle_iterations(coarser_step_result.iterations()
-                                       + coarse.report.step_cycle_iterations()
-                                       - deeper_iterations);
-    if (!coarser_step_result.converged)
+    if (coarse.step_cycles.due(coarse))
+      coarse.step_cycles.start_from_coarser_mesh(coarse);
+    last_result = coarse.solve_contact_problem(coarse.system_rhs);
+    problem.report.count_step_cycle_iterations(
+      last_result.iterations() + coarse.report.step_cycle_iterations()
+      - deeper_iterations);
+    if (!last_result.converged)
       return;
 
     // Where the coarser iteration took one or two iterations, this step's
@@ -320,11 +306,11 @@ namespace ViscoContact
     // the front went further than the start says, and the fine iteration
     // would find it in about twice as many batches: the coarser u and
     // pressure, prolongated, start this step.
-    if (coarser_step_result.iterations() < 3)
+    if (last_result.iterations() < 3)
       return;
-    solution.zero_out_ghost_values();
+    problem.solution.zero_out_ghost_values();
     transfer.transfer_components(coarse.solution,
-                                 solution,
+                                 problem.solution,
                                  true,
                                  all_components);
     pressure.zero_out_ghost_values();
@@ -333,38 +319,14 @@ namespace ViscoContact
                                  pressure,
                                  true,
                                  first_component);
-    prescribed.distribute(solution, constraints);
-    solution.update_ghost_values();
+    problem.prescribed.distribute(problem.solution, problem.constraints);
+    problem.solution.update_ghost_values();
     pressure.update_ghost_values();
-    set_pieces_from(pressure);
+    problem.set_pieces_from(pressure);
   }
 
 
 
-  // @sect4{ViscoplasticContact::set_pieces_from}
-  //
-  // Each contact node's r = u.nu - s and z = w p from u and the pressure
-  // field p, and the piece they name; the stick/slip states are updated
-  // too only if asked (the step cycles leave them as PredictedStart::predict()
-  // does; a transfer to a new mesh updates them, then resets the slip).
-  template <int dim>
-  void
-  ViscoplasticContact<dim>::set_pieces_from(const VectorType &pressure,
-                                            const bool        with_friction)
-  {
-    for (unsigned int i = 0; i < contact_set.size(); ++i)
-      {
-        contact_set.r[i]
-          = contact_set.normal_component(solution, i) - contact_set.gap(i);
-        contact_set.z[i]
-          = contact_set.weight(i)
-            * pressure.local_element(contact_set.node(i).local_dofs[0]);
-      }
-    contact_set.update_pieces(with_friction);
-  }
-
-
-
-  template class ViscoplasticContact<2>;
-  template class ViscoplasticContact<3>;
+  template class StepCycles<2>;
+  template class StepCycles<3>;
 } // namespace ViscoContact

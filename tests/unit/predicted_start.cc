@@ -69,6 +69,11 @@ namespace
                     constraints,
                     constraints,
                     layout);
+      // The active-set parameter c_i of every node (above the law's
+      // steepest softening), as the program sets it from K.
+      contact.set_parameters(
+        std::vector<double>(contact.size(),
+                            10. * (1. + contact.laws().steepest_softening())));
     }
 
     VectorType

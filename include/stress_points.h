@@ -14,6 +14,7 @@
 #include <deal.II/fe/mapping.h>
 
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
 
 #include "back_ends/linear_algebra.h"
 
@@ -116,6 +117,13 @@ namespace ViscoContact
              const unsigned int             k,
              const unsigned int             q,
              const ArrayView<double>       &cell_vector) const;
+    // cell_matrix += (C eps(w), eps(v)) JxW at stress point q of cell k, C
+    // with the minor symmetries (the tangent of the implicit update).
+    void
+    add_tangent(const SymmetricTensor<4, dim> &C,
+                const unsigned int             k,
+                const unsigned int             q,
+                FullMatrix<double>            &cell_matrix) const;
     // target += the cell vector of cell k (through the constraints where the
     // cell has a constrained dof). The caller compresses with
     // VectorOperation::add.

@@ -365,6 +365,11 @@ namespace ViscoContact
       Vector<float>              von_mises, subdomain, material_id, stress_zz;
       std::vector<VectorType>    contact;
       VectorType                 tangential_traction, slip, friction_state;
+
+      void
+      add_to(DataOut<dim>          &data_out,
+             const DoFHandler<dim> &dof_handler,
+             const DoFHandler<dim> &scalar_dof_handler) const;
     };
     OutputFields
     compute_output_fields() const;

@@ -487,12 +487,7 @@ namespace ViscoContact
         cell_force                              = 0;
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            // The stored geometry of stress point q of cell k: JxW and the
-            // gradients of the scalar shape functions of the cell's vertices.
-            const std::size_t     point = std::size_t(k) * n_q + q;
-            const Tensor<1, dim> *gradients
-              = stress_points.shape_gradients(k, q);
-            const double         JxW = stress_points.JxW(k, q);
+            const std::size_t    point = std::size_t(k) * n_q + q;
             const Tensor<2, dim> displacement_gradient
               = stress_points.displacement_gradient(displacement, k, q);
 
@@ -528,26 +523,10 @@ namespace ViscoContact
                    internal_variable)
                                        : E * strain);
 
-            // The cell dof i is (vertex ai, component ci), in the order of
-            // cell_local_dofs. With eps(N_a e_c) = sym(e_c (x) grad N_a) and
-            // the minor symmetries of sigma and C, the internal force is
-            // JxW (sigma grad N_a)_c, and the tangent entry is JxW sum_{m,l}
-            // C_{ci m cj l} (grad N_ai)_m (grad N_bj)_l.
-            for (unsigned int i = 0; i < n_local; ++i)
-              {
-                const unsigned int ai = i / dim, ci = i % dim;
-                cell_force(i) += JxW * (stress * gradients[ai])[ci];
-                for (unsigned int j = 0; j < n_local; ++j)
-                  {
-                    const unsigned int bj = j / dim, cj = j % dim;
-                    double             value = 0;
-                    for (unsigned int m = 0; m < dim; ++m)
-                      for (unsigned int l = 0; l < dim; ++l)
-                        value += C[ci][m][cj][l] * gradients[ai][m]
-                                 * gradients[bj][l];
-                    cell_matrix(i, j) += JxW * value;
-                  }
-              }
+            // The internal force (sigma, eps(v)) and the tangent
+            // (C eps(w), eps(v)) of the point.
+            stress_points.add_load(stress, k, q, make_array_view(cell_force));
+            stress_points.add_tangent(C, k, q, cell_matrix);
           }
         // The local indices back to global dof numbers, since the matrix (a
         // Trilinos matrix) is addressed globally, and every cell goes through

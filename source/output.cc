@@ -32,6 +32,22 @@ namespace ViscoContact
 {
   namespace
   {
+    // The names and interpretation of a vector field of dim components.
+    template <int dim>
+    std::pair<
+      std::vector<std::string>,
+      std::vector<DataComponentInterpretation::DataComponentInterpretation>>
+    vector_field(const std::string &name)
+    {
+      return {
+        std::vector<std::string>(dim, name),
+        std::vector<DataComponentInterpretation::DataComponentInterpretation>(
+          dim,
+          DataComponentInterpretation::component_is_part_of_vector)};
+    }
+
+
+
     // The first line of time_series.csv: what the columns are. After the
     // counts and the force, the size of the contact zone (width in 2D,
     // area in 3D) and the peak pressure, with several contact zones the
@@ -290,53 +306,7 @@ namespace ViscoContact
       const auto [names, interpretation] = vector_field("displacement");
       data_out.add_data_vector(dof_handler, solution, names, interpretation);
     }
-    const char *axes = "xyz";
-    for (unsigned int i = 0; i < fields.stress.size(); ++i)
-      {
-        const auto index
-          = SymmetricTensor<2, dim>::unrolled_to_component_indices(i);
-        const std::string suffix = {axes[index[0]], axes[index[1]]};
-        data_out.add_data_vector(fields.stress[i],
-                                 "stress_" + suffix,
-                                 DataOut<dim>::type_cell_data);
-        data_out.add_data_vector(fields.viscoplastic[i],
-                                 "viscoplastic_stress_" + suffix,
-                                 DataOut<dim>::type_cell_data);
-      }
-    for (const auto &[field, name] :
-         {std::pair<const Vector<float> *, std::string>{&fields.von_mises,
-                                                        "von_mises_stress"},
-          {&fields.subdomain, "subdomain"},
-          {&fields.material_id, "material_id"},
-          {&fields.stress_zz, "stress_zz"}})
-      if (field->size() > 0)
-        data_out.add_data_vector(*field, name, DataOut<dim>::type_cell_data);
-    const char *contact_names[4] = {"contact_pressure",
-                                    "compliance_pressure",
-                                    "foundation_pressure",
-                                    "contact_status"};
-    for (unsigned int i = 0; i < 4; ++i)
-      data_out.add_data_vector(scalar_dof_handler,
-                               fields.contact[i],
-                               contact_names[i]);
-    if (fields.friction_state.size() > 0)
-      {
-        for (const auto &[field, name] :
-             {std::pair<const VectorType *, std::string>{
-                &fields.tangential_traction,
-                "tangential_traction"},
-              {&fields.slip, "slip"}})
-          {
-            const auto [names, interpretation] = vector_field(name);
-            data_out.add_data_vector(dof_handler,
-                                     *field,
-                                     names,
-                                     interpretation);
-          }
-        data_out.add_data_vector(scalar_dof_handler,
-                                 fields.friction_state,
-                                 "friction_state");
-      }
+    fields.add_to(data_out, dof_handler, scalar_dof_handler);
     // Time and step number go into the .vtu files themselves; the data are
     // compressed with zlib's fastest level.
     DataOutBase::VtkFlags flags(time, step);
@@ -371,6 +341,71 @@ namespace ViscoContact
                              OutputFolder::Replace::own);
       }
     output_folder->commit();
+  }
+
+
+
+  // @sect4{ViscoplasticContact::OutputFields::add_to}
+  //
+  // The fields to a record, after the displacement: per cell the stress
+  // components (named like stress_xy) and their viscoplastic parts, the
+  // von Mises stress, the subdomain, the material id and sigma_zz where
+  // computed; at the vertices the contact fields, and with friction the
+  // tangential traction and the slip (vector fields) and the stick/slip
+  // state.
+  template <int dim>
+  void
+  ViscoplasticContact<dim>::OutputFields::add_to(
+    DataOut<dim>          &data_out,
+    const DoFHandler<dim> &dof_handler,
+    const DoFHandler<dim> &scalar_dof_handler) const
+  {
+    const char *axes = "xyz";
+    for (unsigned int i = 0; i < stress.size(); ++i)
+      {
+        const auto index
+          = SymmetricTensor<2, dim>::unrolled_to_component_indices(i);
+        const std::string suffix = {axes[index[0]], axes[index[1]]};
+        data_out.add_data_vector(stress[i],
+                                 "stress_" + suffix,
+                                 DataOut<dim>::type_cell_data);
+        data_out.add_data_vector(viscoplastic[i],
+                                 "viscoplastic_stress_" + suffix,
+                                 DataOut<dim>::type_cell_data);
+      }
+    for (const auto &[field, name] :
+         {std::pair<const Vector<float> *, std::string>{&von_mises,
+                                                        "von_mises_stress"},
+          {&subdomain, "subdomain"},
+          {&material_id, "material_id"},
+          {&stress_zz, "stress_zz"}})
+      if (field->size() > 0)
+        data_out.add_data_vector(*field, name, DataOut<dim>::type_cell_data);
+    const char *contact_names[4] = {"contact_pressure",
+                                    "compliance_pressure",
+                                    "foundation_pressure",
+                                    "contact_status"};
+    for (unsigned int i = 0; i < 4; ++i)
+      data_out.add_data_vector(scalar_dof_handler,
+                               contact[i],
+                               contact_names[i]);
+    if (friction_state.size() > 0)
+      {
+        for (const auto &[field, name] :
+             {std::pair<const VectorType *, std::string>{&tangential_traction,
+                                                         "tangential_traction"},
+              {&slip, "slip"}})
+          {
+            const auto [names, interpretation] = vector_field<dim>(name);
+            data_out.add_data_vector(dof_handler,
+                                     *field,
+                                     names,
+                                     interpretation);
+          }
+        data_out.add_data_vector(scalar_dof_handler,
+                                 friction_state,
+                                 "friction_state");
+      }
   }
 
 

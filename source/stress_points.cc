@@ -294,6 +294,38 @@ namespace ViscoContact
 
 
 
+  // @sect4{StressPointGeometry::add_tangent}
+  //
+  // The cell dof i is (vertex ai, component ci). With eps(N_a e_c) =
+  // sym(e_c (x) grad N_a) and the minor symmetries of C, the entry (i, j) is
+  // JxW sum_{m,l} C_{ci m cj l} (grad N_ai)_m (grad N_bj)_l.
+  template <int dim>
+  void
+  StressPointGeometry<dim>::add_tangent(const SymmetricTensor<4, dim> &C,
+                                        const unsigned int             k,
+                                        const unsigned int             q,
+                                        FullMatrix<double> &cell_matrix) const
+  {
+    const Tensor<1, dim> *gradients = shape_gradients(k, q);
+    const double          JxW       = this->JxW(k, q);
+    const unsigned int    n_local   = n_cell_vertices * dim;
+    for (unsigned int i = 0; i < n_local; ++i)
+      {
+        const unsigned int ai = i / dim, ci = i % dim;
+        for (unsigned int j = 0; j < n_local; ++j)
+          {
+            const unsigned int bj = j / dim, cj = j % dim;
+            double             value = 0;
+            for (unsigned int m = 0; m < dim; ++m)
+              for (unsigned int l = 0; l < dim; ++l)
+                value += C[ci][m][cj][l] * gradients[ai][m] * gradients[bj][l];
+            cell_matrix(i, j) += JxW * value;
+          }
+      }
+  }
+
+
+
   // @sect4{StressPointGeometry::distribute}
   //
   // target += the cell vector of the k-th owned cell (dofs ordered (vertex

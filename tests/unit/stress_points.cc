@@ -3,7 +3,9 @@
 // stored once per mesh instead of FEValues. A linear field is reproduced by
 // Q1 elements, so its gradient at every stress point is exact, and the load
 // of a constant stress tested with it is tau : sym(A) times the volume, on a
-// mesh with hanging nodes too (whose cells add through the constraints).
+// mesh with hanging nodes too (whose cells add through the constraints),
+// and the tangent of an isotropic C gives the energy sym(A) : C : sym(A)
+// times the volume.
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/index_set.h>
@@ -23,6 +25,7 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
 
 #include <deal.II/numerics/vector_tools.h>
 
@@ -163,6 +166,18 @@ namespace
     for (unsigned int i = 0; i < dim; ++i)
       for (unsigned int j = i; j < dim; ++j)
         tau[i][j] = 1. + i - 0.5 * j;
+    // Isotropic, lambda = mu = 1.
+    SymmetricTensor<4, dim> C;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = 0; j < dim; ++j)
+        for (unsigned int k = 0; k < dim; ++k)
+          for (unsigned int l = 0; l < dim; ++l)
+            C[i][j][k][l] = (i == j && k == l ? 1. : 0.)
+                            + (i == k && j == l ? 0.5 : 0.)
+                            + (i == l && j == k ? 0.5 : 0.);
+    FullMatrix<double>  cell_matrix(geometry.n_vertices() * dim,
+                                   geometry.n_vertices() * dim);
+    double              local_energy = 0;
     VectorType          load(u.get_partitioner());
     double              local_volume = 0;
     std::vector<double> cell_vector(geometry.n_vertices() * dim);
@@ -178,6 +193,15 @@ namespace
             local_volume += geometry.JxW(k, q);
           }
         geometry.distribute(k, make_array_view(cell_vector), load);
+        // u_k^T M_k u_k with M_k the cell's (C eps(w), eps(v)).
+        cell_matrix = 0;
+        for (unsigned int q = 0; q < geometry.n_points(); ++q)
+          geometry.add_tangent(C, k, q, cell_matrix);
+        for (unsigned int i = 0; i < cell_vector.size(); ++i)
+          for (unsigned int j = 0; j < cell_vector.size(); ++j)
+            local_energy += u.local_element(geometry.local_dofs(k)[i])
+                            * cell_matrix(i, j)
+                            * u.local_element(geometry.local_dofs(k)[j]);
       }
     load.compress(VectorOperation::add);
     const double total_volume = Utilities::MPI::sum(local_volume, comm);
@@ -185,6 +209,11 @@ namespace
       {
         EXPECT_NEAR(total_volume, volume, 1e-13);
       }
+    // (C eps(u), eps(u)) = sym(A) : C : sym(A) |Omega|.
+    const double energy = Utilities::MPI::sum(local_energy, comm);
+    const double expected_energy
+      = (symmetrize(A) * C * symmetrize(A)) * total_volume;
+    EXPECT_NEAR(energy, expected_energy, 1e-12 * expected_energy);
     // (tau, eps(u)) = tau : sym(A) |Omega| for the linear field; the
     // constrained entries of the load are zero, their parts passed on.
     u.zero_out_ghost_values();

@@ -1,7 +1,7 @@
 // ViscoplasticContact<dim>: the prescribed displacements of each step and
 // the reactions of the parts that carry them (the dofs, values and sums are
-// PrescribedDisplacements', scene/prescribed_displacements.h), and the gaps of the
-// contact nodes.
+// PrescribedDisplacements', scene/prescribed_displacements.h), and the gaps of
+// the contact nodes.
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
@@ -100,7 +100,7 @@ namespace ViscoContact
   std::vector<Tensor<1, dim>>
   ViscoplasticContact<dim>::reaction_forces(const double time)
   {
-    std::vector<Tensor<1, dim>> forces(prescribed.reaction_names().size());
+    std::vector<Tensor<1, dim>> forces(prescribed.n_reactions());
     if (forces.empty())
       return forces;
     VectorType residual(solution);

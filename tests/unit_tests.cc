@@ -62,6 +62,7 @@
 #include "robustness/output_folder.h"
 #include "stress_point_transfer.h"
 #include "time_schedule.h"
+#include "unit/test_scenes.h"
 
 #include "back_ends/direct_solver.h"
 
@@ -2802,12 +2803,7 @@ TEST(CostModel, CostsGrowWithTheMeshAndShrinkWithRanks)
 TEST(Parameters, DefaultProfileTimesWithinAShortRun)
 {
   const auto parse = [](const std::string &text) {
-    Parameters::AllParameters parameters;
-    ParameterHandler          prm;
-    parameters.add_parameters(prm);
-    prm.parse_input_from_string(text);
-    parameters.check_parameters(prm);
-    return parameters;
+    return TestScenes::parse_parameters(text);
   };
   const std::string short_run = "subsection Time\n"
                                 "  set End time  = 0.25\n"

@@ -138,6 +138,11 @@ namespace ViscoContact
     // "prescribed_N"), then every plane of symmetry ("symmetry_ID").
     std::vector<std::string>
     reaction_names() const;
+    unsigned int
+    n_reactions() const
+    {
+      return dirichlet.size() + symmetry_ids.size();
+    }
     // The owned cells (stress-point numbering k) whose residual the
     // reactions need.
     const std::vector<unsigned int> &

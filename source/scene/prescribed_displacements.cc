@@ -404,7 +404,7 @@ namespace ViscoContact
   PrescribedDisplacements<dim>::reactions(VectorType            &residual,
                                           const ContactSet<dim> *contact) const
   {
-    std::vector<Tensor<1, dim>> forces(dirichlet.size() + symmetry_ids.size());
+    std::vector<Tensor<1, dim>> forces(n_reactions());
     if (forces.empty())
       return forces;
     // The residuals of the owned hanging nodes passed on to their parents

@@ -6,28 +6,11 @@
 // node's normal and tangents in component order, and the operations on
 // rows agree with those in the node's frame to rounding.
 
-#include <deal.II/base/index_set.h>
-#include <deal.II/base/mpi.h>
-#include <deal.II/base/quadrature_lib.h>
-
-#include <deal.II/distributed/tria.h>
-
-#include <deal.II/dofs/dof_handler.h>
-#include <deal.II/dofs/dof_tools.h>
-
-#include <deal.II/fe/fe_q.h>
-#include <deal.II/fe/fe_system.h>
-#include <deal.II/fe/mapping_q.h>
-
-#include <deal.II/grid/grid_generator.h>
-#include <deal.II/grid/grid_tools.h>
-
-#include <deal.II/lac/affine_constraints.h>
-
 #include <gtest/gtest.h>
 
 #include "contact_set.h"
 #include "parameters.h"
+#include "test_scenes.h"
 
 #include <cmath>
 
@@ -42,42 +25,12 @@ namespace
   void
   check_rows_of_the_bottom_edge(const double angle)
   {
-    const MPI_Comm                          comm = MPI_COMM_WORLD;
-    parallel::distributed::Triangulation<2> triangulation(comm);
-    GridGenerator::hyper_cube(triangulation, 0, 1, true);
-    GridTools::rotate(angle, triangulation);
-    triangulation.refine_global(2);
-
-    const FESystem<2> fe(FE_Q<2>(1), 2);
-    const FE_Q<2>     scalar_fe(1);
-    DoFHandler<2>     dof_handler(triangulation), scalar_dofs(triangulation);
-    dof_handler.distribute_dofs(fe);
-    scalar_dofs.distribute_dofs(scalar_fe);
-    IndexSet relevant;
-    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
-    AffineConstraints<double> constraints(relevant);
-    constraints.close();
-    VectorType layout(dof_handler.locally_owned_dofs(), relevant, comm);
-
     Parameters::Contact entries;
     entries.tangential_law       = Parameters::TangentialLawType::coulomb;
     entries.friction_coefficient = 0.3;
-    const std::vector<ContactZoneDescription<2>> zones{
-      {1,
-       "Contact",
-       ContactLaw::from_parameters(entries),
-       {2},
-       std::nullopt,
-       TangentialLaw::from_parameters(entries)}};
-    ContactSet<2> contact;
-    contact.setup(zones,
-                  MappingQ<2>(1),
-                  dof_handler,
-                  scalar_dofs,
-                  QGauss<1>(2),
-                  constraints,
-                  constraints,
-                  layout);
+    TestScenes::SquareWithContactZone square(entries, angle);
+    const ContactSet<2>              &contact = square.contact;
+    const VectorType                 &layout  = square.layout;
     EXPECT_EQ(contact.n_global_nodes(), 5u);
 
     // A displacement with distinct entries.

@@ -3,27 +3,10 @@
 // and r = n.u - s), and nothing moves without a start to extrapolate from;
 // where the pieces may not be predicted, only u is extrapolated.
 
-#include <deal.II/base/index_set.h>
-#include <deal.II/base/mpi.h>
-#include <deal.II/base/quadrature_lib.h>
-
-#include <deal.II/distributed/tria.h>
-
-#include <deal.II/dofs/dof_handler.h>
-#include <deal.II/dofs/dof_tools.h>
-
-#include <deal.II/fe/fe_q.h>
-#include <deal.II/fe/fe_system.h>
-#include <deal.II/fe/mapping_q.h>
-
-#include <deal.II/grid/grid_generator.h>
-
-#include <deal.II/lac/affine_constraints.h>
-
 #include <gtest/gtest.h>
 
 #include "acceleration/predicted_start.h"
-#include "parameters.h"
+#include "test_scenes.h"
 
 #include <cmath>
 
@@ -35,40 +18,11 @@ namespace
   // The unit square refined twice with the paper's layer law on its bottom
   // edge (boundary id 2); u(t) = a + t b and z_i(t) = 1 + 2 t + i on a path
   // through t_0 = 0.1, t_1 = 0.3 and t_2 = 0.4.
-  struct Scene
+  struct Scene : TestScenes::SquareWithContactZone
   {
     Scene()
-      : triangulation(MPI_COMM_WORLD)
-      , fe(FE_Q<2>(1), 2)
-      , scalar_fe(1)
+      : SquareWithContactZone(Parameters::Contact())
     {
-      GridGenerator::hyper_cube(triangulation, 0, 1, true);
-      triangulation.refine_global(2);
-      dof_handler.reinit(triangulation);
-      dof_handler.distribute_dofs(fe);
-      scalar_dofs.reinit(triangulation);
-      scalar_dofs.distribute_dofs(scalar_fe);
-      IndexSet relevant;
-      DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
-      constraints.reinit(relevant);
-      constraints.close();
-      layout.reinit(dof_handler.locally_owned_dofs(), relevant, MPI_COMM_WORLD);
-      const Parameters::Contact                    entries;
-      const std::vector<ContactZoneDescription<2>> zones{
-        {1,
-         "Contact",
-         ContactLaw::from_parameters(entries),
-         {2},
-         std::nullopt,
-         TangentialLaw::from_parameters(entries)}};
-      contact.setup(zones,
-                    MappingQ<2>(1),
-                    dof_handler,
-                    scalar_dofs,
-                    QGauss<1>(2),
-                    constraints,
-                    constraints,
-                    layout);
       // The active-set parameter c_i of every node (above the law's
       // steepest softening), as the program sets it from K.
       contact.set_parameters(
@@ -96,14 +50,6 @@ namespace
         z[i] = 1. + 2. * t + i;
       return z;
     }
-
-    parallel::distributed::Triangulation<2> triangulation;
-    const FESystem<2>                       fe;
-    const FE_Q<2>                           scalar_fe;
-    DoFHandler<2>                           dof_handler, scalar_dofs;
-    AffineConstraints<double>               constraints;
-    VectorType                              layout;
-    ContactSet<2>                           contact;
   };
 
   void

@@ -12,7 +12,6 @@
 // - The lifting load is -(E eps(g_n), eps(v)) as FEValues assembles it.
 // - A scene that leaves a rigid motion free is refused, naming it.
 
-#include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/distributed/tria.h>
@@ -33,6 +32,7 @@
 #include <gtest/gtest.h>
 
 #include "scene/prescribed_displacements.h"
+#include "test_scenes.h"
 
 #include <cmath>
 #include <string>
@@ -45,22 +45,17 @@ namespace
   Parameters::AllParameters
   scene(const std::string &boundary)
   {
-    Parameters::AllParameters parameters;
-    parameters.prescribed_displacements.resize(1);
-    parameters.further_contact_zones.resize(1);
-    ParameterHandler prm;
-    parameters.add_parameters(prm);
-    prm.parse_input_from_string("subsection Boundary\n" + boundary
-                                + "  set Loaded boundary ids  =\n"
-                                  "  set Contact boundary ids = 1\n"
-                                  "  subsection Prescribed displacement 1\n"
-                                  "    set Boundary ids = 3\n"
-                                  "    set Components   = y\n"
-                                  "    set Displacement = -0.01 * t * x\n"
-                                  "  end\n"
-                                  "end\n");
-    parameters.check_parameters(prm);
-    return parameters;
+    return TestScenes::parse_parameters(
+      "subsection Boundary\n" + boundary
+        + "  set Loaded boundary ids  =\n"
+          "  set Contact boundary ids = 1\n"
+          "  subsection Prescribed displacement 1\n"
+          "    set Boundary ids = 3\n"
+          "    set Components   = y\n"
+          "    set Displacement = -0.01 * t * x\n"
+          "  end\n"
+          "end\n",
+      1);
   }
 
   // The mesh, dofs, constraints and stress points of the square, with the

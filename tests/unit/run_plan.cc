@@ -3,31 +3,19 @@
 // back end as set and as auto chooses it for a mesh; the bound on the steps.
 
 #include <deal.II/base/mpi.h>
-#include <deal.II/base/parameter_handler.h>
 
 #include <gtest/gtest.h>
 
 #include "parameters.h"
 #include "run/run_plan.h"
+#include "test_scenes.h"
 
 #include <string>
 
 using namespace dealii;
 using namespace ViscoContact;
 
-namespace
-{
-  Parameters::AllParameters
-  plan_parameters(const std::string &text)
-  {
-    Parameters::AllParameters parameters;
-    ParameterHandler          prm;
-    parameters.add_parameters(prm);
-    prm.parse_input_from_string(text);
-    parameters.check_parameters(prm);
-    return parameters;
-  }
-} // namespace
+using TestScenes::parse_parameters;
 
 
 
@@ -36,17 +24,17 @@ namespace
 TEST(RunPlan, ChoicesSetByHand)
 {
   const Parameters::AllParameters parameters
-    = plan_parameters("subsection Geometry\n"
-                      "  set Cell type    = hypercube\n"
-                      "  set Subdivisions = 16\n"
-                      "end\n"
-                      "subsection Mesh adaptation\n"
-                      "  set Initial cycles = 2\n"
-                      "  set Step cycles    = 1\n"
-                      "end\n"
-                      "subsection Linear solver\n"
-                      "  set Method = full space\n"
-                      "end\n");
+    = parse_parameters("subsection Geometry\n"
+                       "  set Cell type    = hypercube\n"
+                       "  set Subdivisions = 16\n"
+                       "end\n"
+                       "subsection Mesh adaptation\n"
+                       "  set Initial cycles = 2\n"
+                       "  set Step cycles    = 1\n"
+                       "end\n"
+                       "subsection Linear solver\n"
+                       "  set Method = full space\n"
+                       "end\n");
   RunPlan<2> plan(parameters, MPI_COMM_SELF, false);
   plan.choose_initial_cycles();
   plan.choose_step_cycles(false);
@@ -63,7 +51,7 @@ TEST(RunPlan, ChoicesSetByHand)
 // condensed back end for the mesh.
 TEST(RunPlan, AutoOnASmallMesh)
 {
-  const Parameters::AllParameters parameters = plan_parameters("");
+  const Parameters::AllParameters parameters = parse_parameters("");
   RunPlan<2>                      plan(parameters, MPI_COMM_SELF, false);
   plan.check_memory();
   plan.choose_initial_cycles();
@@ -83,13 +71,13 @@ TEST(RunPlan, AutoOnASmallMesh)
 // Step cycles are not for friction, nor for the implicit update.
 TEST(RunPlan, StepCyclesReasons)
 {
-  RunPlan<2> friction(plan_parameters("subsection Geometry\n"
-                                      "  set Cell type = hypercube\n"
-                                      "end\n"
-                                      "subsection Contact\n"
-                                      "  set Tangential law       = Coulomb\n"
-                                      "  set Friction coefficient = 0.3\n"
-                                      "end\n"),
+  RunPlan<2> friction(parse_parameters("subsection Geometry\n"
+                                       "  set Cell type = hypercube\n"
+                                       "end\n"
+                                       "subsection Contact\n"
+                                       "  set Tangential law       = Coulomb\n"
+                                       "  set Friction coefficient = 0.3\n"
+                                       "end\n"),
                       MPI_COMM_SELF,
                       false);
   friction.choose_step_cycles(false);
@@ -101,9 +89,9 @@ TEST(RunPlan, StepCyclesReasons)
 TEST(RunPlan, StepCount)
 {
   const Parameters::AllParameters parameters
-    = plan_parameters("subsection Time\n"
-                      "  set Maximum number of steps = 64\n"
-                      "end\n");
+    = parse_parameters("subsection Time\n"
+                       "  set Maximum number of steps = 64\n"
+                       "end\n");
   const RunPlan<2> plan(parameters, MPI_COMM_SELF, false);
   EXPECT_NO_THROW(plan.check_step_count(64, 0.98));
   try

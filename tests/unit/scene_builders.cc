@@ -5,7 +5,6 @@
 // Exact comparisons: the expressions are evaluated by muparser in double
 // precision from the same numbers.
 
-#include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
@@ -17,33 +16,14 @@
 #include "scene/dirichlet_parts.h"
 #include "scene/loads.h"
 #include "parameters.h"
+#include "test_scenes.h"
 
 #include <string>
 
 using namespace dealii;
 using namespace ViscoContact;
 
-namespace
-{
-  // The parameters of a text as main() reads a file: the numbered
-  // subsections sized first.
-  Parameters::AllParameters
-  parse(const std::string &text,
-        const unsigned int n_prescribed    = 0,
-        const unsigned int n_surface_loads = 0,
-        const unsigned int n_zones         = 1)
-  {
-    Parameters::AllParameters parameters;
-    parameters.prescribed_displacements.resize(n_prescribed);
-    parameters.surface_loads.resize(n_surface_loads);
-    parameters.further_contact_zones.resize(n_zones);
-    ParameterHandler prm;
-    parameters.add_parameters(prm);
-    prm.parse_input_from_string(text);
-    parameters.check_parameters(prm);
-    return parameters;
-  }
-} // namespace
+using TestScenes::parse_parameters;
 
 
 
@@ -53,20 +33,20 @@ namespace
 TEST(Loads, BodyForceTractionAndPressure)
 {
   const Parameters::AllParameters parameters
-    = parse("subsection Boundary\n"
-            "  set Loaded boundary ids = 3\n"
-            "end\n"
-            "subsection Loads\n"
-            "  set Body force       = x; 2 * t\n"
-            "  set Surface traction = 0; -5\n"
-            "  subsection Surface load 1\n"
-            "    set Boundary ids = 1\n"
-            "    set Type         = pressure\n"
-            "    set Value        = 3 * y\n"
-            "  end\n"
-            "end\n",
-            0,
-            1);
+    = parse_parameters("subsection Boundary\n"
+                       "  set Loaded boundary ids = 3\n"
+                       "end\n"
+                       "subsection Loads\n"
+                       "  set Body force       = x; 2 * t\n"
+                       "  set Surface traction = 0; -5\n"
+                       "  subsection Surface load 1\n"
+                       "    set Boundary ids = 1\n"
+                       "    set Type         = pressure\n"
+                       "    set Value        = 3 * y\n"
+                       "  end\n"
+                       "end\n",
+                       0,
+                       1);
   Loads<2> loads(parameters);
   EXPECT_TRUE(loads.depend_on_time());
   EXPECT_FALSE(loads.body_force_is_zero());
@@ -98,13 +78,13 @@ TEST(Loads, BodyForceTractionAndPressure)
 TEST(Loads, ZeroAndConstantLoads)
 {
   const Parameters::AllParameters parameters
-    = parse("subsection Boundary\n"
-            "  set Loaded boundary ids = 3\n"
-            "end\n"
-            "subsection Loads\n"
-            "  set Body force       = 0; 0\n"
-            "  set Surface traction = 0; -5\n"
-            "end\n");
+    = parse_parameters("subsection Boundary\n"
+                       "  set Loaded boundary ids = 3\n"
+                       "end\n"
+                       "subsection Loads\n"
+                       "  set Body force       = 0; 0\n"
+                       "  set Surface traction = 0; -5\n"
+                       "end\n");
   const Loads<2> loads(parameters);
   EXPECT_TRUE(loads.body_force_is_zero());
   EXPECT_FALSE(loads.depend_on_time());
@@ -115,13 +95,13 @@ TEST(Loads, ZeroAndConstantLoads)
 TEST(Loads, NonFiniteValueNamesTheEntry)
 {
   const Parameters::AllParameters parameters
-    = parse("subsection Boundary\n"
-            "  set Loaded boundary ids = 3\n"
-            "end\n"
-            "subsection Loads\n"
-            "  set Body force       = 1 / x; 0\n"
-            "  set Surface traction = 0; -5\n"
-            "end\n");
+    = parse_parameters("subsection Boundary\n"
+                       "  set Loaded boundary ids = 3\n"
+                       "end\n"
+                       "subsection Loads\n"
+                       "  set Body force       = 1 / x; 0\n"
+                       "  set Surface traction = 0; -5\n"
+                       "end\n");
   Loads<2> loads(parameters);
   loads.set_time(0.5);
   Vector<double>    value(2);
@@ -138,16 +118,16 @@ TEST(Loads, NonFiniteValueNamesTheEntry)
 TEST(DirichletParts, ClampedThenPrescribed)
 {
   const Parameters::AllParameters parameters
-    = parse("subsection Boundary\n"
-            "  set Clamped boundary ids = 0\n"
-            "  set Loaded boundary ids  =\n"
-            "  subsection Prescribed displacement 1\n"
-            "    set Boundary ids = 3\n"
-            "    set Components   = y\n"
-            "    set Displacement = -0.01 * t * x\n"
-            "  end\n"
-            "end\n",
-            1);
+    = parse_parameters("subsection Boundary\n"
+                       "  set Clamped boundary ids = 0\n"
+                       "  set Loaded boundary ids  =\n"
+                       "  subsection Prescribed displacement 1\n"
+                       "    set Boundary ids = 3\n"
+                       "    set Components   = y\n"
+                       "    set Displacement = -0.01 * t * x\n"
+                       "  end\n"
+                       "end\n",
+                       1);
   const DirichletParts<2> dirichlet(parameters);
   ASSERT_EQ(dirichlet.size(), 2u);
   EXPECT_EQ(dirichlet.name(0), "clamped");
@@ -172,17 +152,17 @@ TEST(DirichletParts, ClampedThenPrescribed)
 TEST(DirichletParts, NonFiniteValueNamesTheEntry)
 {
   const Parameters::AllParameters parameters
-    = parse("subsection Boundary\n"
-            "  set Clamped boundary ids  =\n"
-            "  set Loaded boundary ids   =\n"
-            "  set Symmetry boundary ids = 0, 1\n"
-            "  subsection Prescribed displacement 1\n"
-            "    set Boundary ids = 3\n"
-            "    set Components   = y\n"
-            "    set Displacement = -0.01 / (1 - t)\n"
-            "  end\n"
-            "end\n",
-            1);
+    = parse_parameters("subsection Boundary\n"
+                       "  set Clamped boundary ids  =\n"
+                       "  set Loaded boundary ids   =\n"
+                       "  set Symmetry boundary ids = 0, 1\n"
+                       "  subsection Prescribed displacement 1\n"
+                       "    set Boundary ids = 3\n"
+                       "    set Components   = y\n"
+                       "    set Displacement = -0.01 / (1 - t)\n"
+                       "  end\n"
+                       "end\n",
+                       1);
   const DirichletParts<2> dirichlet(parameters);
   const auto [value, message] = dirichlet.value(0, 1, Point<2>(0.5, 1), 1.);
   EXPECT_FALSE(std::isfinite(value));
@@ -199,26 +179,26 @@ TEST(DirichletParts, NonFiniteValueNamesTheEntry)
 TEST(ContactZones, LawsGapsDirectionsAndFriction)
 {
   const Parameters::AllParameters parameters
-    = parse("subsection Boundary\n"
-            "  set Contact boundary ids = 2\n"
-            "end\n"
-            "subsection Contact\n"
-            "  set Initial gap          = 0.001 - 0.01 * t\n"
-            "  set Gap direction        = 0, -2\n"
-            "  set Tangential law       = Coulomb\n"
-            "  set Friction coefficient = 0.3\n"
-            "end\n"
-            "subsection Contact zone 2\n"
-            "  set Boundary ids          = 1\n"
-            "  set Unilateral constraint = true\n"
-            "  set Normal compliance     = false\n"
-            "  set Layer thickness       = 0\n"
-            "  set Tangential law        = Tresca\n"
-            "  set Slip bound            = x\n"
-            "end\n",
-            0,
-            0,
-            1);
+    = parse_parameters("subsection Boundary\n"
+                       "  set Contact boundary ids = 2\n"
+                       "end\n"
+                       "subsection Contact\n"
+                       "  set Initial gap          = 0.001 - 0.01 * t\n"
+                       "  set Gap direction        = 0, -2\n"
+                       "  set Tangential law       = Coulomb\n"
+                       "  set Friction coefficient = 0.3\n"
+                       "end\n"
+                       "subsection Contact zone 2\n"
+                       "  set Boundary ids          = 1\n"
+                       "  set Unilateral constraint = true\n"
+                       "  set Normal compliance     = false\n"
+                       "  set Layer thickness       = 0\n"
+                       "  set Tangential law        = Tresca\n"
+                       "  set Slip bound            = x\n"
+                       "end\n",
+                       0,
+                       0,
+                       1);
   const ContactZones<2> zones(parameters);
   ASSERT_EQ(zones.descriptions().size(), 2u);
   EXPECT_EQ(zones.numbers(), (std::vector<unsigned int>{1, 2}));
@@ -253,13 +233,13 @@ TEST(ContactZones, LawsGapsDirectionsAndFriction)
 TEST(ContactZones, VoidLawHasNoZone)
 {
   const Parameters::AllParameters parameters
-    = parse("subsection Boundary\n"
-            "  set Contact boundary ids = 2\n"
-            "end\n"
-            "subsection Contact\n"
-            "  set Unilateral constraint = false\n"
-            "  set Normal compliance     = false\n"
-            "end\n");
+    = parse_parameters("subsection Boundary\n"
+                       "  set Contact boundary ids = 2\n"
+                       "end\n"
+                       "subsection Contact\n"
+                       "  set Unilateral constraint = false\n"
+                       "  set Normal compliance     = false\n"
+                       "end\n");
   const ContactZones<2> zones(parameters);
   EXPECT_TRUE(zones.empty());
   EXPECT_FALSE(zones.has_gap());

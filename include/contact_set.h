@@ -230,6 +230,22 @@ namespace ViscoContact
     std::string
     profile_text(const double time) const;
 
+    // For a change of mesh: the contact pressure as a nodal field of the
+    // displacement's layout, z_i / w_i at the first dof of each node and
+    // zero elsewhere, with the hanging-node constraints and the ghosts (only
+    // those: a Dirichlet constraint, a symmetry plane through Gamma_3, would
+    // overwrite the pressure of its nodes). And back: each node's
+    // r = nu.u - s and z = w p from u and such a field p, and the pieces
+    // they name; the stick/slip states too only with_friction (the step
+    // cycles leave them as the predicted start does).
+    VectorType
+    pressure_field(const VectorType                &layout,
+                   const AffineConstraints<double> &hanging_constraints) const;
+    void
+    set_state_from(const VectorType &u,
+                   const VectorType &pressure,
+                   const bool        with_friction);
+
     // The nodal contact fields of the output at the contact nodes of this
     // rank (zero elsewhere): contact pressure z/w, its parts carried by the
     // layer and by the foundation, and the status.

@@ -438,10 +438,10 @@ namespace ViscoContact
       add_parameters(ParameterHandler &prm);
     };
 
-    // Adaptive meshes during the run (mesh_adaptation.cc): every Refinement
-    // interval steps the mesh is refined and coarsened by the indicator of
-    // doc/adaptivity.md, the state is carried over, and the step problem is
-    // set up again. Hypercube meshes only (p4est).
+    // Adaptive meshes during the run (mesh/mesh_adaptation.cc): every
+    // Refinement interval steps the mesh is refined and coarsened by the
+    // indicator of doc/adaptivity.md, the state is carried over, and the step
+    // problem is set up again. Hypercube meshes only (p4est).
     struct MeshAdaptation
     {
       bool         adaptive_refinement      = false;
@@ -517,6 +517,10 @@ namespace ViscoContact
       any_plasticity() const;
       bool
       implicit_update() const;
+      // Whether the explicit update adds a history load: only with
+      // plasticity.
+      bool
+      explicit_history_update() const;
       // The contact zones "Contact zone 2", "Contact zone 3", ...: sized like
       // further_materials.
       std::vector<Contact> further_contact_zones = std::vector<Contact>(1);

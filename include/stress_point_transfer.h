@@ -15,7 +15,7 @@ namespace ViscoContact
   //
   // On a hypercube the 2^dim Gauss points of a cell form a tensor grid, so
   // their values define a unique Q1 (tensor-product multilinear) polynomial on
-  // the reference cell. When the mesh changes (mesh_adaptation.cc):
+  // the reference cell. When the mesh changes (mesh/mesh_adaptation.cc):
   //  - refinement: each child's Gauss values are the parent's Q1 interpolant
   //    evaluated at the child's Gauss points;
   //  - coarsening: the parent's Gauss values are those of the least-squares

@@ -174,6 +174,26 @@ namespace ViscoContact
     double max_shrink = 0.2;
   };
 
+  // The controller of Time step control = adaptive with its tolerance and
+  // range of steps: with the explicit update (a finite stability_limit,
+  // 4 lambda / lambda_max(E)) the steps stay below 0.9 times the limit:
+  // beyond it the error estimate would not see the instability before the
+  // stresses oscillate, and the margin keeps the steps off the limit, where
+  // the damping of forward Euler vanishes. (If the minimum is above that,
+  // the minimum wins; the header warns.)
+  TimeStepController
+  make_time_step_controller(const double tolerance,
+                            const double minimum_step,
+                            const double maximum_step,
+                            const double stability_limit);
+
+  // The times adaptive steps land on exactly: the profile times inside
+  // (0, end_time) (their profiles are then written at the requested time,
+  // not at the closest step), sorted, and end_time.
+  std::vector<double>
+  landing_targets(const std::vector<double> &profile_times,
+                  const double               end_time);
+
   // What the controller makes of a step of length step with the relative
   // error estimate error: accepted or rejected, and the step it proposes
   // (the next one after an accepted step, the repetition after a rejected

@@ -25,6 +25,7 @@
 
 #include <deal.II/numerics/data_out.h>
 
+#include "acceleration/initial_cycles.h"
 #include "acceleration/predicted_start.h"
 #include "acceleration/step_cycles.h"
 #include "back_ends/contact_solver.h"
@@ -36,12 +37,17 @@
 #include "scene/loads.h"
 #include "elastic_operator.h"
 #include "material.h"
+#include "materials.h"
+#include "mesh/mesh_adaptation.h"
 #include "parameters.h"
 #include "scene/prescribed_displacements.h"
 #include "robustness/checkpoint_file.h"
 #include "robustness/output_folder.h"
+#include "run/checkpoints.h"
+#include "run/run_output.h"
 #include "run/run_plan.h"
 #include "run/run_report.h"
+#include "run/step_control.h"
 #include "step_report.h"
 #include "stress_points.h"
 #include "time_schedule.h"
@@ -112,36 +118,53 @@ namespace ViscoContact
     run();
 
     // For studies that compare runs (the convergence study): a function
-    // called after every time step with the step number and time, and read
-    // access to the state it may inspect then.
+    // called after every accepted step with the step number and time, and
+    // read access to the state it may inspect then, per locally owned cell k
+    // (in the order of the stress points) and stress point q.
     void
     set_step_observer(
       const std::function<void(const unsigned int, const double)> &observer);
-    const DoFHandler<dim> &
-    get_dof_handler() const;
-    const Quadrature<dim> &
-    get_stress_quadrature() const;
-    // The locally owned cells, in the order of the stress-point data.
-    const std::vector<typename DoFHandler<dim>::active_cell_iterator> &
-    get_owned_cells() const;
-    // sigma_n and grad u_n at stress point q of the k-th locally owned cell.
-    const SymmetricTensor<2, dim> &
-    get_stress(const unsigned int k, const unsigned int q) const;
-    Tensor<2, dim>
-    get_displacement_gradient(const unsigned int k, const unsigned int q) const;
-    // JxW of stress point q of the k-th locally owned cell.
-    double
-    get_stress_point_weight(const unsigned int k, const unsigned int q) const;
+    struct StressPointState
+    {
+      const DoFHandler<dim>                          &dof_handler;
+      const Quadrature<dim>                          &quadrature;
+      const StressPointGeometry<dim>                 &geometry;
+      const std::vector<QuadraturePointHistory<dim>> &records;
+      const VectorType                               &displacement;
+
+      const std::vector<typename DoFHandler<dim>::active_cell_iterator> &
+      cells() const
+      {
+        return geometry.cells();
+      }
+      // sigma_n, grad u_n and JxW at stress point q of the k-th owned cell.
+      const SymmetricTensor<2, dim> &
+      stress(const unsigned int k, const unsigned int q) const
+      {
+        return records[std::size_t(k) * quadrature.size() + q].stress;
+      }
+      Tensor<2, dim>
+      displacement_gradient(const unsigned int k, const unsigned int q) const
+      {
+        return geometry.displacement_gradient(displacement, k, q);
+      }
+      double
+      JxW(const unsigned int k, const unsigned int q) const
+      {
+        return geometry.JxW(k, q);
+      }
+    };
+    StressPointState
+    stress_point_state() const
+    {
+      return {dof_handler,
+              stress_quadrature,
+              stress_points,
+              quadrature_point_history,
+              solution};
+    }
 
   private:
-    // Which history update the steps run. Without plasticity the history
-    // stays zero and both updates are the elastic problem, so the implicit
-    // update's Newton iteration only runs with plasticity on.
-    bool
-    implicit_update() const;
-    bool
-    explicit_history_update() const;
-
     // @sect4{Set-up}
     //
     // Called in this order by run(): the mesh; then, in setup_on_mesh(), dofs,
@@ -163,16 +186,6 @@ namespace ViscoContact
     // distributed and the vertices of the contact boundary.
     void
     choose_back_end();
-    // The matrix-free back end: no matrix of K is assembled; the back end
-    // applies it cell by cell.
-    bool
-    matrix_free() const
-    {
-      return plan.back_end().method == Parameters::Method::matrix_free;
-    }
-    // The elasticity tensor of a cell's material.
-    ElasticityOfCell<dim>
-    cell_elasticity() const;
     void
     setup_stress_points();
     void
@@ -188,8 +201,6 @@ namespace ViscoContact
     void
     prepare_output();
     void
-    print_header(const unsigned int n_steps) const;
-    void
     report_scheme_limits();
 
     // @sect4{One time step}
@@ -204,64 +215,30 @@ namespace ViscoContact
     do_time_step();
     bool
     finish_time_step(const ActiveSetResult &result, const double wall_time);
-    // The state at the start of a step that a failed or rejected attempt is
-    // undone with: u_{n-1}, the contact state, and with adaptive steps the
-    // stress-point records and the step length their history was advanced
-    // for.
-    struct StepStartState
-    {
-      VectorType                               solution;
-      ContactNodes::State                      contact;
-      std::vector<QuadraturePointHistory<dim>> stress_point_records;
-      double                                   step_length;
-    };
-    StepStartState
-    save_step_start() const;
-    // u_{n-1} and the contact state (the stress points are restored apart,
-    // where needed).
-    void
-    restore_step_start(const StepStartState &start);
     // The step problem from the current time to the next, restarted with a
     // cut step if a solve fails and cutting is allowed; otherwise the run
     // stops with a report.
     ActiveSetResult
-    solve_step_with_recovery(const StepStartState &start);
-    bool
-    cut_failed_step(const std::string &failure);
+    solve_step_with_recovery(const StepStart<dim> &start);
     // b_n = (f_n, v) - (H_n, eps(v)) - (E eps(g_n), eps(v)), from its parts.
     void
     assemble_right_hand_side(const double time);
     void
     assemble_external_load(const double time);
-    // (f, v) + (f_2, v)_Gamma2 of one cell into cell_rhs (dofs ordered
-    // (vertex, component)) at the time the load functions are set to; false
-    // if the cell carries no load. problem gets the first value that is not
-    // finite.
-    bool
-    cell_external_load(
-      const typename DoFHandler<dim>::active_cell_iterator &cell,
-      FEValues<dim>                                        &fe_values,
-      FEFaceValues<dim>                                    &fe_face_values,
-      Vector<double>                                       &cell_rhs,
-      std::string                                          &problem);
 
     // @sect4{Prescribed displacements (boundary_conditions.cc)}
     //
     // The values g_n of the step (with the lifting load of the explicit
-    // update), a check that every prescribed value and gap of the run is
-    // finite (all ranks stop with a message naming the entry, before
+    // update), a check that every load, prescribed value and gap of the run
+    // is finite (all ranks stop with a message naming the entry, before
     // anything is written), and the forces every Dirichlet part and then
     // every plane of symmetry exert on the body at time t_n (collective).
     void
     set_dirichlet_values(const double time);
     void
-    check_prescribed_values();
+    check_scene_values();
     std::vector<Tensor<1, dim>>
     reaction_forces(const double time);
-    // Every load value at the load points and the times of the run is
-    // finite, or all ranks stop with a message naming the entry.
-    void
-    check_loads();
     void
     assemble_history_load();
     // The active set around the back end's solves, for the operator it holds.
@@ -291,226 +268,10 @@ namespace ViscoContact
     void
     update_stresses(const double current_time_step,
                     const double next_time_step);
-    // What update_stresses() does at every stress point of a step: which
-    // update, whether the history of the next step and the error estimate
-    // are computed, and the two step lengths.
-    struct StressUpdateStep
-    {
-      bool   implicit;
-      bool   update_history;
-      bool   estimate;
-      double current_time_step;
-      double next_time_step;
-    };
-    StressUpdateStep
-    stress_update_step(const double current_time_step,
-                       const double next_time_step) const;
-    void
-    stop_on_non_finite_stresses() const;
-    // One stress point q of the k-th owned cell: sigma_n, the history and
-    // its load into cell_vector, the largest von Mises stress of the cell
-    // so far, and the point's terms of the error estimate.
-    void
-    update_stress_point(const StressUpdateStep  &step,
-                        const unsigned int       k,
-                        const unsigned int       q,
-                        const ArrayView<double> &cell_vector,
-                        double                  &max_von_mises_of_cell,
-                        std::array<double, 3>   &estimate_sums);
-    // The step's relative error estimate from the sums over the rank's
-    // stress points (doc/adaptivity.md); collective.
-    double
-    step_error_estimate(const std::array<double, 3> &local_sums,
-                        const double                 time_step) const;
     // With adaptive steps: H_{n+1} = H_n + k_{n+1} G(sigma_n) and its load,
     // once k_{n+1} is known (explicit update only).
     void
     advance_history(const double next_time_step);
-
-    // @sect4{Adaptive time steps}
-    //
-    // The controller's side of the time step (doc/adaptivity.md): the
-    // controller, the times the steps must land on (Profile times, End
-    // time), and the error test of a solved step: accepted (with the step
-    // the controller proposes next), or rejected and the state at its start
-    // restored for a shorter step.
-    TimeStepController
-    time_step_controller() const;
-    std::vector<double>
-    landing_targets() const;
-    bool
-    accept_adaptive_step(const StepStartState &start, double &proposed_step);
-
-    // @sect4{Output}
-    //
-    // .pvtu records with their .pvd list, one CSV row per step, contact
-    // profiles, and the run summary with its cost measurements. What is written
-    // is either reduced over the ranks (counts, forces, norms: written by rank
-    // 0) or each rank's own part of one file (written collectively).
-    void
-    check_output_directory();
-    void
-    prepare_output_directory(const unsigned int resume_step);
-    void
-    output_results(const unsigned int step,
-                   const double       time,
-                   const std::string &stem = "solution");
-    // The fields of a record: per cell (an entry per active cell, set on the
-    // owned ones; material_id and stress_zz empty where not written) and at
-    // the vertices (the contact fields, and with friction the friction
-    // fields; friction_state empty without), with their ghosts.
-    struct OutputFields
-    {
-      std::vector<Vector<float>> stress, viscoplastic;
-      Vector<float>              von_mises, subdomain, material_id, stress_zz;
-      std::vector<VectorType>    contact;
-      VectorType                 tangential_traction, slip, friction_state;
-
-      void
-      add_to(DataOut<dim>          &data_out,
-             const DoFHandler<dim> &dof_handler,
-             const DoFHandler<dim> &scalar_dof_handler) const;
-    };
-    OutputFields
-    compute_output_fields() const;
-    void
-    write_time_series_row(const unsigned int     step,
-                          const double           time,
-                          const double           time_step,
-                          const ActiveSetResult &result,
-                          const double           wall_time);
-    void
-    write_contact_profile(const unsigned int step, const double time);
-    void
-    print_run_summary();
-    // The reference costs of the run summary, measured after the run: one
-    // solve with the step operator and no contact, one stress update.
-    RunReport::CostMeasurement
-    measure_reference_costs();
-
-    // @sect4{Mesh adaptation}
-    //
-    // Every Refinement interval steps (mesh_adaptation.cc, doc/adaptivity.md):
-    // the indicator (Kelly's estimator of the displacement, raised at the
-    // contact front and at the boundary of the plastic zone), refinement and
-    // coarsening of the p4est mesh with the displacement, the stress-point data
-    // and the contact pressures carried over, the set-up on the new mesh and
-    // the contact set re-established. A resumed adaptive run first rebuilds
-    // the checkpoint's mesh.
-    //
-    // Both the adaptation during the run and the initial cycles (nested
-    // iteration on the first step) on p4est mark cells and then call
-    // refine_and_transfer(), which changes the mesh, sets everything up on it
-    // and carries u and the contact pressure over, and the stress-point data
-    // if asked to (the initial cycles start every mesh from the initial
-    // history instead); on simplices the initial cycles call
-    // rebuild_and_transfer().
-    bool
-    adaptation_due() const;
-    void
-    adapt_mesh(const double time);
-    Vector<float>
-    refinement_indicators() const;
-    bool
-    mark_cells_by_indicators();
-    void
-    refine_and_transfer(const bool transfer_stress_points);
-    // The initial cycles on a simplex mesh (deal.II 9.4's fully distributed
-    // triangulation cannot refine): the next mesh, the parameter file's
-    // coarsened coarsenings times, is built anew, and u and the contact
-    // pressure are interpolated to it from the current mesh.
-    void
-    rebuild_and_transfer(const unsigned int coarsenings);
-    // The contact pressure as a nodal field of the displacement's layout
-    // (at the x-dof of each contact node), for the transfer.
-    VectorType
-    contact_pressure_field() const;
-    // After a transfer: each contact node's (r, z) from u and the pressure
-    // field, the piece they name, friction from stick.
-    void
-    set_contact_state_from(const VectorType &pressure);
-    // Debug builds: the transferred stress points reproduce E eps(u) on the
-    // children of refined_parents (implicit update).
-    void
-    check_stress_point_transfer(const std::set<CellId> &refined_parents) const;
-    void
-    solve_initial_cycles();
-    void
-    restore_checkpoint_mesh();
-
-    // The contact state of this rank's nodes from u and a nodal pressure
-    // field; their stick/slip states only with_friction.
-    void
-    set_pieces_from(const VectorType &pressure,
-                    const bool        with_friction = false);
-
-    // @sect4{Checkpoints}
-    //
-    // One file per checkpoint with one record per cell, keyed by the cell's id,
-    // so that a run can be resumed on any number of ranks (checkpoint.h).
-    void
-    write_checkpoint(const double wall_time);
-    // The header of a checkpoint file (the same on every rank; rank 0's is
-    // written); the vectors the records hold besides u, with their ghost
-    // values; and the records of stress_points.cells()[first, end).
-    ByteWriter
-    checkpoint_header(const double wall_time) const;
-    std::array<VectorType, 4>
-    checkpoint_vectors() const;
-    void
-    write_cell_records(const std::array<VectorType, 4> &vectors,
-                       const std::size_t                first,
-                       const std::size_t                end,
-                       char                            *out) const;
-    // A scheduler's signal received on any rank: all ranks stop after this
-    // step, with a checkpoint of it (unless one was just written).
-    void
-    stop_if_signalled(const bool checkpoint_written, const double wall_time);
-    // Collective. Resumes from the last checkpoint: the mesh, the header
-    // (schedule, counters, .pvd list), the records of the owned cells, and
-    // what the time loop derives from them.
-    void
-    resume_from_checkpoint();
-    struct CheckpointFlags
-    {
-      bool has_step_start;
-    };
-    CheckpointFlags
-    read_checkpoint_header(ByteReader &header, const unsigned int step);
-    // The schedule after the checkpoint for this run's End time; returns the
-    // next step's length before and after.
-    std::pair<double, double>
-    continue_schedule_after_checkpoint();
-    // The values a checkpoint stores at the dofs of every cell besides u
-    // (restored into solution): the contact state, the start of the step,
-    // the nodes' history and their friction state.
-    struct CellRecordVectors
-    {
-      VectorType contact_state;
-      VectorType start_displacement;
-      VectorType node_history;
-      VectorType friction_state;
-    };
-    // The records of this rank's share of the file sent to the owners of
-    // their cells and restored on the owned dofs and stress points, after
-    // check_header() has read the header; false on a rank that did not find
-    // all its cells.
-    bool
-    restore_cell_records(const std::string           &file,
-                         std::vector<char>           &header,
-                         CellRecordVectors           &vectors,
-                         const std::function<void()> &check_header);
-    void
-    restore_contact_nodes(const CellRecordVectors &vectors,
-                          const ByteReader        &header);
-    void
-    restore_prediction_start(const CellRecordVectors &vectors,
-                             const CheckpointFlags   &flags);
-    // The bytes of a cell's record in a checkpoint file: the cell id, the
-    // values of the vectors at the cell's dofs, its stress-point records.
-    std::size_t
-    checkpoint_record_size() const;
-
 
     // Run control, console (pcout prints on rank 0 only) and the report of
     // the run (counts, timers, progress, summary: run/run_report.h).
@@ -575,6 +336,14 @@ namespace ViscoContact
     PredictedStart<dim> predicted_start;
     StepCycles<dim>     step_cycles;
     friend class StepCycles<dim>;
+    // The initial cycles (acceleration/initial_cycles.h) and the mesh
+    // adaptation (mesh/mesh_adaptation.h) change the mesh of this object and
+    // carry its state over.
+    friend class InitialCycles<dim>;
+    friend class MeshAdaptation<dim>;
+    // The saved start of a step, cuts and the error test of adaptive steps
+    // (run/step_control.h).
+    friend class StepControl<dim>;
     // The smallest eigenvalue of the uniqueness check, once computed (on the
     // first mesh of the run, the coarsest of the initial cycles); a resumed
     // run takes it from the checkpoint, so that it decides as the
@@ -582,45 +351,13 @@ namespace ViscoContact
     // (567 s of a resume at 10.7M dofs on one rank).
     std::optional<double> uniqueness_eigenvalue;
 
-    // Materials, loads, and the state at the stress points of the locally
-    // owned cells. materials holds the laws (material_law.h) of subsection
-    // Material and of the numbered ones that are used, in that order;
-    // material_index the index of each material id (empty with one material
-    // for every cell), cell_material that of each owned cell k
-    // (material_of(k)). quadrature_point_history is a flat array: the record
-    // of stress point q of the k-th owned cell is entry k * n_q + q, with n_q
-    // = stress_quadrature.size(), holding sigma_n, the history H_{n+1} of
-    // the next step and the law's internal variable. max_von_mises is the
-    // maximum over all ranks of the last stress update.
-    std::vector<std::unique_ptr<const MaterialLaw<dim>>> materials;
-    std::map<types::material_id, unsigned int>           material_index;
-    std::vector<unsigned int>                            cell_material;
-    unsigned int
-    material_number(const types::material_id id) const
-    {
-      return material_index.empty() ? 0 : material_index.at(id);
-    }
-    const MaterialLaw<dim> &
-    material_of(const unsigned int k) const
-    {
-      return *materials[cell_material[k]];
-    }
-    // The von Mises stress of a record of the k-th owned cell (with its
-    // sigma_zz in 2D plane strain).
-    double
-    von_mises_stress(const unsigned int                 k,
-                     const QuadraturePointHistory<dim> &state) const
-    {
-      double stress_zz = 0;
-      if constexpr (dim == 2)
-        stress_zz = state.stress_zz;
-      return material_of(k).equivalent_stress(state.stress, stress_zz);
-    }
-    // The largest step of the explicit history update that is stable: the
-    // smallest of the materials' (4 lambda / lambda_max(E) for Perzyna's).
-    double
-    explicit_stability_limit() const;
-
+    // The materials (materials.h) and the state at the stress points of the
+    // locally owned cells. quadrature_point_history is a flat array: the
+    // record of stress point q of the k-th owned cell is entry k * n_q + q,
+    // with n_q = stress_quadrature.size(), holding sigma_n, the history
+    // H_{n+1} of the next step and the law's internal variable.
+    // max_von_mises is the maximum over all ranks of the last stress update.
+    Materials<dim>                           materials;
     std::vector<QuadraturePointHistory<dim>> quadrature_point_history;
     double                                   max_von_mises = 0;
     // The relative error estimate of the last stress update.
@@ -656,13 +393,19 @@ namespace ViscoContact
     // The time levels of the run, the steps taken and the step controller's
     // state: what a checkpoint stores and a resumed run restores.
     TimeSchedule schedule;
+    // The controller of adaptive steps, with the cap of the explicit update
+    // (set with the schedule).
+    TimeStepController step_controller;
 
-    // The output folder (created by run() before the set-up, which checks
-    // and locks it), the .pvd list (kept on rank 0), and the step of the
-    // last checkpoint.
-    std::unique_ptr<OutputFolder>               output_folder;
-    std::vector<std::pair<double, std::string>> times_and_names;
-    unsigned int last_checkpoint_step = numbers::invalid_unsigned_int;
+    // What the run writes: the output folder (opened by run() before the
+    // set-up, which checks and locks it), the records, the time series, the
+    // profiles and the summary (run/run_output.h).
+    RunOutput<dim> output;
+    friend class RunOutput<dim>;
+    // What a checkpoint stores and a resumed run restores
+    // (run/checkpoints.h), which reads and sets this object's state.
+    Checkpoints<dim> checkpoints;
+    friend class Checkpoints<dim>;
   };
 } // namespace ViscoContact
 

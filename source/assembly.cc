@@ -138,107 +138,6 @@ namespace ViscoContact
 
 
 
-  // @sect4{ViscoplasticContact::check_loads}
-  //
-  // A load that is not finite somewhere (1/0, sqrt(t - 0.5) at t = 0) would
-  // only show as a displacement that is not finite in some step, after files
-  // have been written and without naming the entry. So the loads are
-  // evaluated here, before the output directory is touched: the surface
-  // traction at the face quadrature points of the loaded boundary, the body
-  // force at the load quadrature points of the cells, each at every time
-  // level of the fixed schedule of Time step (at t = 0 only, if the loads do
-  // not mention t). These are the points and times the assembly evaluates
-  // (adaptive and cut steps add levels between them).
-  //
-  // The body force of a large time-dependent 3D run would make this as
-  // expensive as assembling it in every step; beyond a budget of evaluations,
-  // the cells are checked at a stride, and the assembly itself checks every
-  // value it computes (assemble_external_load()).
-  template <int dim>
-  void
-  ViscoplasticContact<dim>::check_loads()
-  {
-    // The levels of the schedule's grid t_m = m k, m < N, and t_N = T.
-    const std::uint64_t n_levels
-      = loads.depend_on_time() ? schedule.n_grid_levels() : 1;
-    const auto level
-      = [&](const std::uint64_t m) { return schedule.grid_level(m); };
-    // The points first, once: the geometry does not change with time. The
-    // points of each surface load come with their normals.
-    std::vector<Point<dim>> body_points;
-    std::vector<std::vector<std::pair<Point<dim>, Tensor<1, dim>>>>
-                      surface_points(loads.n_surface_parts());
-    FEValues<dim>     fe_values(mapping,
-                            *fe,
-                            load_quadrature,
-                            update_quadrature_points);
-    FEFaceValues<dim> fe_face_values(mapping,
-                                     *fe,
-                                     face_quadrature,
-                                     update_quadrature_points
-                                       | update_normal_vectors);
-    for (const auto &cell : stress_points.cells())
-      {
-        if (!loads.body_force_is_zero())
-          {
-            fe_values.reinit(cell);
-            for (const unsigned int q : fe_values.quadrature_point_indices())
-              body_points.push_back(fe_values.quadrature_point(q));
-          }
-        for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary())
-            {
-              const unsigned int part
-                = loads.surface_part_of(cell->face(f)->boundary_id());
-              if (part == numbers::invalid_unsigned_int)
-                continue;
-              fe_face_values.reinit(cell, f);
-              for (const unsigned int q :
-                   fe_face_values.quadrature_point_indices())
-                surface_points[part].emplace_back(
-                  fe_face_values.quadrature_point(q),
-                  fe_face_values.normal_vector(q));
-            }
-      }
-
-    // At most about 2e7 evaluations per rank and load: every point if that
-    // suffices, otherwise every stride-th point.
-    const auto stride_of = [&](const std::size_t n_points) {
-      const double evaluations = double(n_points) * n_levels;
-      return std::max<std::size_t>(1, std::size_t(evaluations / 2e7));
-    };
-    std::string    problem;
-    Vector<double> value(dim);
-    for (unsigned int l = 0; l < loads.n_surface_parts(); ++l)
-      {
-        const auto       &points = surface_points[l];
-        const std::size_t stride = stride_of(points.size());
-        for (std::uint64_t m = 0; m < n_levels && problem.empty(); ++m)
-          {
-            loads.set_time(level(m));
-            for (std::size_t i = 0; i < points.size() && problem.empty();
-                 i += stride)
-              problem = loads.surface_load(l,
-                                           points[i].first,
-                                           points[i].second,
-                                           value);
-          }
-      }
-    const std::size_t stride = stride_of(body_points.size());
-    for (std::uint64_t m = 0; m < n_levels && problem.empty(); ++m)
-      {
-        loads.set_time(level(m));
-        for (std::size_t i = 0; i < body_points.size() && problem.empty();
-             i += stride)
-          problem = loads.body_force(body_points[i], value);
-      }
-    // One outcome for all ranks: the message of the lowest rank that found
-    // a point.
-    FileOutput::agree_on_problem(problem, mpi_communicator);
-  }
-
-
-
   // @sect4{ViscoplasticContact::assemble_right_hand_side}
   //
   // b_n = (f_n, v) - (H_n, eps(v)) - (E eps(g_n), eps(v)). The history part
@@ -266,12 +165,12 @@ namespace ViscoContact
     system_rhs = external_load;
     // The lifting of the prescribed displacements (the implicit update has
     // them in its iterate instead).
-    if (prescribed.has_values() && !implicit_update())
+    if (prescribed.has_values() && !parameters.implicit_update())
       system_rhs += prescribed.lifting_load();
     // Without plasticity H_n = sigma_0 - E eps(u_0) = 0 for all n, and
     // history_load stays zero; with the implicit update the history enters
     // through the internal force of implicit_newton().
-    if (explicit_history_update())
+    if (parameters.explicit_history_update())
       system_rhs += history_load;
   }
 
@@ -307,18 +206,14 @@ namespace ViscoContact
                                      update_values | update_quadrature_points
                                        | update_normal_vectors
                                        | update_JxW_values);
-    // The first value that is not finite, if any (check_loads() has checked
-    // the loads before the run, possibly only at some of the points).
+    // The first value that is not finite, if any (check_scene_values() has
+    // checked the loads before the run, possibly only at some of the points).
     std::string problem;
     for (const auto &cell : stress_points.cells())
       // Cells without any load contribute nothing and are skipped. The
       // constraints drop the entries of Dirichlet dofs and distribute those
       // of hanging nodes.
-      if (cell_external_load(cell,
-                             fe_values,
-                             fe_face_values,
-                             cell_rhs,
-                             problem))
+      if (loads.cell_load(cell, fe_values, fe_face_values, cell_rhs, problem))
         {
           cell->get_dof_indices(local_dof_indices);
           constraints.distribute_local_to_global(cell_rhs,
@@ -330,71 +225,6 @@ namespace ViscoContact
     external_load.compress(VectorOperation::add);
     FileOutput::agree_on_problem(problem, mpi_communicator);
     report.count_external_load_assembly();
-  }
-
-
-
-  // @sect4{ViscoplasticContact::cell_external_load}
-  //
-  // The body force at the load quadrature points and the surface load on
-  // the faces of the cell that lie on a loaded part of the boundary (the
-  // Surface traction on the Loaded boundary ids, each Surface load N on its
-  // own ids); the component of shape function i picks the component of the
-  // load it is tested with. The rest of the boundary that is neither
-  // Dirichlet nor in contact is traction free.
-  template <int dim>
-  bool
-  ViscoplasticContact<dim>::cell_external_load(
-    const typename DoFHandler<dim>::active_cell_iterator &cell,
-    FEValues<dim>                                        &fe_values,
-    FEFaceValues<dim>                                    &fe_face_values,
-    Vector<double>                                       &cell_rhs,
-    std::string                                          &problem)
-  {
-    const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
-    Vector<double>     load_value(dim);
-    cell_rhs       = 0;
-    bool has_loads = false;
-    if (!loads.body_force_is_zero())
-      {
-        fe_values.reinit(cell);
-        for (const unsigned int q : fe_values.quadrature_point_indices())
-          {
-            const std::string message
-              = loads.body_force(fe_values.quadrature_point(q), load_value);
-            if (problem.empty())
-              problem = message;
-            for (unsigned int i = 0; i < dofs_per_cell; ++i)
-              cell_rhs(i) += load_value(fe->system_to_component_index(i).first)
-                             * fe_values.shape_value(i, q) * fe_values.JxW(q);
-          }
-        has_loads = true;
-      }
-    for (const unsigned int f : cell->face_indices())
-      if (cell->face(f)->at_boundary())
-        {
-          const unsigned int part
-            = loads.surface_part_of(cell->face(f)->boundary_id());
-          if (part == numbers::invalid_unsigned_int)
-            continue;
-          fe_face_values.reinit(cell, f);
-          for (const unsigned int q : fe_face_values.quadrature_point_indices())
-            {
-              const std::string message
-                = loads.surface_load(part,
-                                     fe_face_values.quadrature_point(q),
-                                     fe_face_values.normal_vector(q),
-                                     load_value);
-              if (problem.empty())
-                problem = message;
-              for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                cell_rhs(i)
-                  += load_value(fe->system_to_component_index(i).first)
-                     * fe_face_values.shape_value(i, q) * fe_face_values.JxW(q);
-            }
-          has_loads = true;
-        }
-    return has_loads;
   }
 
 
@@ -422,7 +252,7 @@ namespace ViscoContact
     // The history of stress point q of the k-th owned cell is record
     // k * n_q + q; the cells of elastic materials have none.
     for (unsigned int k = 0; k < stress_points.cells().size(); ++k)
-      if (material_of(k).is_plastic())
+      if (materials.of_cell(k).is_plastic())
         {
           std::fill(cell_vector.begin(), cell_vector.end(), 0.);
           for (unsigned int q = 0; q < n_q; ++q)
@@ -481,7 +311,7 @@ namespace ViscoContact
 
     for (unsigned int k = 0; k < stress_points.cells().size(); ++k)
       {
-        const MaterialLaw<dim>        &material = material_of(k);
+        const MaterialLaw<dim>        &material = materials.of_cell(k);
         const SymmetricTensor<4, dim> &E        = material.elasticity_tensor();
         cell_matrix                             = 0;
         cell_force                              = 0;

@@ -17,17 +17,30 @@
 
 namespace ViscoContact
 {
-  // @sect4{ViscoplasticContact::check_prescribed_values}
+  // @sect4{ViscoplasticContact::check_scene_values}
   //
-  // Before anything is written: every prescribed value is finite at the
-  // dofs of its part, and the obstacle's gap at the contact nodes, at the
-  // times of the run (the levels of Time step and End time; at a stride
-  // beyond about 2e7 evaluations per rank). The message names the entry,
-  // the point and the time, on every rank.
+  // A load, a prescribed value or a gap that is not finite somewhere (1/0,
+  // sqrt(t - 0.5) at t = 0) would only show as a displacement that is not
+  // finite in some step, after files have been written and without naming
+  // the entry. So before anything is written: every load at the points the
+  // assembly evaluates (Loads::first_non_finite_value()), every prescribed
+  // value at the dofs of its part, and the obstacle's gap at the contact
+  // nodes, at the times of the run (the levels of Time step and End time; at
+  // a stride beyond about 2e7 evaluations per rank). The message names the
+  // entry, the point and the time, on every rank; the loads are decided
+  // first.
   template <int dim>
   void
-  ViscoplasticContact<dim>::check_prescribed_values()
+  ViscoplasticContact<dim>::check_scene_values()
   {
+    FileOutput::agree_on_problem(
+      loads.first_non_finite_value(stress_points.cells(),
+                                   mapping,
+                                   *fe,
+                                   load_quadrature,
+                                   face_quadrature,
+                                   schedule),
+      mpi_communicator);
     std::string problem = prescribed.first_non_finite_value(schedule);
     // The obstacle's gap at the contact nodes, at every level (or every
     // stride-th on long runs with many nodes), then again at the current
@@ -68,9 +81,9 @@ namespace ViscoContact
     TimerOutput::Scope t(report.timer(), "Assemble prescribed displacement");
     prescribed.set_time(
       time,
-      !implicit_update(),
+      !parameters.implicit_update(),
       [this](const unsigned int k) -> const SymmetricTensor<4, dim> & {
-        return material_of(k).elasticity_tensor();
+        return materials.of_cell(k).elasticity_tensor();
       });
   }
 
@@ -132,11 +145,11 @@ namespace ViscoContact
             k,
             q,
             make_array_view(cell_vector));
-        if (cell_external_load(stress_points.cells()[k],
-                               fe_values,
-                               fe_face_values,
-                               cell_load,
-                               problem))
+        if (loads.cell_load(stress_points.cells()[k],
+                            fe_values,
+                            fe_face_values,
+                            cell_load,
+                            problem))
           for (unsigned int a = 0; a < stress_points.n_vertices(); ++a)
             for (unsigned int c = 0; c < dim; ++c)
               cell_vector[a * dim + c]

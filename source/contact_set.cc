@@ -748,6 +748,42 @@ namespace ViscoContact
 
 
 
+  // @sect4{ContactSet::pressure_field}
+  template <int dim>
+  VectorType
+  ContactSet<dim>::pressure_field(
+    const VectorType                &layout,
+    const AffineConstraints<double> &hanging_constraints) const
+  {
+    VectorType pressure(layout);
+    pressure = 0;
+    for (unsigned int i = 0; i < size(); ++i)
+      pressure.local_element(node(i).local_dofs[0]) = contact_pressure(i);
+    pressure.zero_out_ghost_values();
+    hanging_constraints.distribute(pressure);
+    pressure.update_ghost_values();
+    return pressure;
+  }
+
+
+
+  // @sect4{ContactSet::set_state_from}
+  template <int dim>
+  void
+  ContactSet<dim>::set_state_from(const VectorType &u,
+                                  const VectorType &pressure,
+                                  const bool        with_friction)
+  {
+    for (unsigned int i = 0; i < size(); ++i)
+      {
+        this->r[i] = normal_component(u, i) - gap(i);
+        this->z[i] = weight(i) * pressure.local_element(node(i).local_dofs[0]);
+      }
+    update_pieces(with_friction);
+  }
+
+
+
   // @sect4{ContactSet::fill_output_fields}
   //
   // The nodal contact fields of the graphical output, in the layout of the

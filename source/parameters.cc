@@ -1723,6 +1723,12 @@ namespace ViscoContact
       return any_plasticity() && stress_update == StressUpdate::implicit_euler;
     }
 
+    bool
+    AllParameters::explicit_history_update() const
+    {
+      return any_plasticity() && !implicit_update();
+    }
+
     // Each material id belongs to one material; with several materials,
     // subsection Material names its ids too (its empty list means "every
     // cell" only when it is the only material). Plane strain is a 2D model,

@@ -46,7 +46,7 @@ namespace ViscoContact
   // parameter file is the last one of the cycles: the run starts on it
   // coarsened Initial cycles times (fewer Global refinements, then half the
   // Subdivisions of a generated box), whose refinement the cycles do
-  // (solve_initial_cycles()). On p4est both give the same cells with the
+  // (InitialCycles::solve()). On p4est both give the same cells with the
   // same ids; simplex meshes are built anew for each cycle.
   template <int dim>
   void
@@ -82,9 +82,10 @@ namespace ViscoContact
   // and, if condensed, the nodes themselves. The state it leaves is the
   // initial one (u = 0, zero stresses and history, every contact node at
   // r = z = 0): run() starts from it, and after a change of the mesh the
-  // caller carries the state over (adapt_mesh(), resume_from_checkpoint()).
-  // The start of the previous step is not carried over, so the first step on
-  // a new mesh starts from u_{n-1} (acceleration/predicted_start.h).
+  // caller carries the state over (MeshAdaptation::adapt(),
+  // Checkpoints::resume()). The start of the previous step is not carried over,
+  // so the first step on a new mesh starts from u_{n-1}
+  // (acceleration/predicted_start.h).
   //
   // The back end of the previous mesh goes first: a factorisation may refer
   // to the matrix it was set up with (Amesos' MUMPS asks it for its
@@ -176,7 +177,7 @@ namespace ViscoContact
       // with the complete rows of its owned dofs, which is how the Trilinos
       // matrices are partitioned. Without a matrix (Method = matrix free) there
       // is nothing to lay out.
-      if (!matrix_free())
+      if (!plan.matrix_free())
         {
           DynamicSparsityPattern dsp(locally_relevant_dofs);
           DoFTools::make_sparsity_pattern(dof_handler,
@@ -193,7 +194,7 @@ namespace ViscoContact
                                   mpi_communicator);
           // The tangent of the implicit update has the same couplings as K;
           // the explicit update never needs it.
-          if (implicit_update())
+          if (parameters.implicit_update())
             tangent_matrix.reinit(locally_owned_dofs,
                                   locally_owned_dofs,
                                   dsp,
@@ -213,7 +214,7 @@ namespace ViscoContact
         vector->reinit(solution);
       solution.update_ghost_values(); // u_0 = 0, readable at the ghosts
     }
-    if (!matrix_free())
+    if (!plan.matrix_free())
       assemble_elastic_operator();
   }
 
@@ -239,23 +240,10 @@ namespace ViscoContact
     ViscoContact::assemble_elastic_operator(mapping,
                                             dof_handler,
                                             stress_quadrature,
-                                            cell_elasticity(),
+                                            materials.cell_elasticity(),
                                             constraints,
                                             stiffness_matrix);
     report.count_operator_assembly();
-  }
-
-
-
-  template <int dim>
-  ElasticityOfCell<dim>
-  ViscoplasticContact<dim>::cell_elasticity() const
-  {
-    return [this](const typename DoFHandler<dim>::active_cell_iterator &cell)
-             -> const SymmetricTensor<4, dim> & {
-      return materials[material_number(cell->material_id())]
-        ->elasticity_tensor();
-    };
   }
 
 
@@ -277,9 +265,7 @@ namespace ViscoContact
                          stress_quadrature,
                          *solution.get_partitioner(),
                          constraints);
-    cell_material.clear();
-    for (const auto &cell : stress_points.cells())
-      cell_material.push_back(material_number(cell->material_id()));
+    materials.set_cells(stress_points.cells());
     quadrature_point_history.assign(std::size_t(stress_points.n_cells())
                                       * stress_quadrature.size(),
                                     QuadraturePointHistory<dim>());
@@ -322,18 +308,19 @@ namespace ViscoContact
     FileOutput::agree_on_problem(contact_set.set_slip_bounds(
                                    contact_zones.slip_bounds()),
                                  mpi_communicator);
-    if (!matrix_free())
+    if (!plan.matrix_free())
       contact_set.set_operator(stiffness_matrix);
     else
       {
         std::vector<std::array<types::global_dof_index, dim>> node_dofs;
         for (unsigned int i = 0; i < contact_set.size(); ++i)
           node_dofs.push_back(contact_set.node(i).dofs);
-        contact_set.set_operator(elastic_node_blocks<dim>(mapping,
-                                                          dof_handler,
-                                                          stress_quadrature,
-                                                          cell_elasticity(),
-                                                          node_dofs));
+        contact_set.set_operator(
+          elastic_node_blocks<dim>(mapping,
+                                   dof_handler,
+                                   stress_quadrature,
+                                   materials.cell_elasticity(),
+                                   node_dofs));
       }
   }
 
@@ -405,7 +392,7 @@ namespace ViscoContact
       dof_handler,
       constraints,
       [this](const types::material_id id) -> const SymmetricTensor<4, dim> & {
-        return materials[material_number(id)]->elasticity_tensor();
+        return materials.of_id(id).elasticity_tensor();
       },
       [this](const DoFHandler<dim>     &level_dofs,
              const IndexSet            &relevant,
@@ -433,101 +420,6 @@ namespace ViscoContact
 
 
 
-  // @sect4{ViscoplasticContact::print_header}
-  // The run's header: the size of the problem (global counts), the model, the
-  // back end with the reason for the choice, and the parallel layout. pcout
-  // prints on rank 0 only.
-  template <int dim>
-  void
-  ViscoplasticContact<dim>::print_header(const unsigned int n_steps) const
-  {
-    pcout << "Mesh: " << triangulation->n_global_active_cells() << ' '
-          << reference_cell.to_string() << " cells, " << dof_handler.n_dofs()
-          << " displacement dofs, "
-          << (contact_enabled ? contact_set.n_global_nodes() : 0)
-          << " contact nodes, ";
-    if (parameters.time_step_control == Parameters::TimeStepControl::adaptive)
-      pcout << "adaptive time steps\n";
-    else
-      pcout << n_steps << " time steps\n";
-    // With initial cycles the mesh above is the first of them (a resumed run
-    // starts on the checkpoint's mesh and runs none).
-    if (plan.initial_cycles() > 0 && !parameters.resume)
-      pcout << "Initial cycles: step 1 on " << plan.initial_cycles()
-            << " coarser meshes first, from this one, "
-            << (reference_cell.is_simplex() ? "each finer one built anew"
-                : parameters.initial_refinement
-                    == Parameters::InitialRefinement::global
-                  ? "refined globally"
-                  : "refined adaptively")
-            << (plan.initial_cycles_reason().empty()
-                  ? ""
-                  : " (Initial cycles = auto: " + plan.initial_cycles_reason()
-                      + ")")
-            << '\n';
-    else if (!plan.initial_cycles_reason().empty())
-      pcout << "Initial cycles: none (Initial cycles = auto: "
-            << plan.initial_cycles_reason() << ")\n";
-    const std::string step_cycles_auto
-      = plan.step_cycles_reason().empty()
-          ? ""
-          : " (Step cycles = auto: " + plan.step_cycles_reason() + ")";
-    // Without initial cycles the back end is already that of the run's mesh.
-    if (plan.step_cycles_dropped() && plan.initial_cycles() == 0)
-      pcout << "Step cycles: none (Step cycles = auto: Method = auto chose "
-               "the condensed back end)\n";
-    else if (plan.step_cycles() > 0)
-      pcout << "Step cycles: every step"
-            << (plan.initial_cycles() > 0 ? " after the first" : "")
-            << " solved on " << plan.step_cycles() << " coarser mesh"
-            << (plan.step_cycles() > 1 ? "es" : "")
-            << " first, whose contact zone starts it on the mesh of the run "
-               "where it moved further than the predicted start"
-            << step_cycles_auto << '\n';
-    else if (!step_cycles_auto.empty())
-      pcout << "Step cycles: none" << step_cycles_auto << '\n';
-    // A rate-independent law has no rate form (hardening plasticity).
-    const auto rate_independent
-      = [](const auto &m) { return m->is_plastic() && !m->has_rate_form(); };
-    const bool any_rate_independent
-      = std::any_of(materials.begin(), materials.end(), rate_independent);
-    pcout << "Model: "
-          << (!parameters.any_plasticity() ? "elastic"
-              : any_rate_independent       ? "plastic (hardening plasticity)"
-                                           : "viscoplastic");
-    if (parameters.plane_model == Parameters::PlaneModel::plane_strain)
-      pcout << " plane strain";
-    if (materials.size() > 1)
-      pcout << " (" << materials.size() << " materials, "
-            << std::count_if(materials.begin(),
-                             materials.end(),
-                             [](const auto &m) { return m->is_plastic(); })
-            << (any_rate_independent ? " plastic)" : " viscoplastic)");
-    pcout << ", contact " << (contact_enabled ? "on" : "off") << ", "
-          << (parameters.stress_update
-                  == Parameters::StressUpdate::explicit_euler
-                ? "explicit"
-                : "implicit")
-          << " stress update\n";
-    // Contact off because no boundary part is named is most likely a
-    // mistake in the parameter file: said, not silently accepted.
-    if (parameters.used_contact_zones().empty())
-      pcout << "WARNING: contact is off: <Contact boundary ids> in subsection "
-               "<Boundary> names no boundary part (nor does any subsection "
-               "Contact zone N), so the body has no contact boundary and the "
-               "contact law is not used.\n";
-    else if (contact_zones.descriptions().size() > 1)
-      pcout << "Contact zones: " << contact_zones.descriptions().size() << '\n';
-    pcout << "Back end: " << contact_solver->description() << " ("
-          << plan.back_end().reason << ")\n"
-          << "Parallel: " << Utilities::MPI::n_mpi_processes(mpi_communicator)
-          << " MPI rank(s), "
-          << (reference_cell.is_simplex() ? "fully distributed" : "p4est")
-          << " mesh\n";
-  }
-
-
-
   // @sect4{ViscoplasticContact::report_scheme_limits}
   //
   // Where the method may fail, said before the run starts (doc/model.md,
@@ -543,13 +435,13 @@ namespace ViscoContact
   {
     // The implicit update is unconditionally stable (doc/model.md, section 3);
     // the explicit one has the limit of forward Euler on the relaxation.
-    if (implicit_update())
+    if (parameters.implicit_update())
       pcout << "Implicit (backward-Euler) history update: no stability limit "
                "on k (doc/model.md, section 3); k = "
             << schedule.grid_step_length() << " s\n";
-    else if (explicit_history_update())
+    else if (parameters.explicit_history_update())
       {
-        const double bound = explicit_stability_limit();
+        const double bound = materials.explicit_stability_limit();
         pcout << "Explicit history update: stable for k < 4 lambda / "
                  "lambda_max(E) = "
               << bound << " s; k = " << schedule.grid_step_length() << " s\n";
@@ -561,19 +453,19 @@ namespace ViscoContact
                    "stresses may oscillate or blow up.\n";
       }
     // Adaptive steps: the controller's tolerance and range, with the cap of
-    // the explicit update (time_step_controller()).
+    // the explicit update (make_time_step_controller()).
     if (parameters.time_step_control == Parameters::TimeStepControl::adaptive)
       {
-        const TimeStepController controller = time_step_controller();
+        const TimeStepController &controller = step_controller;
         pcout << "Adaptive time steps: Error tolerance = "
               << controller.tolerance << ", k in [" << controller.minimum_step
               << ", " << controller.maximum_step << "] s";
-        if (explicit_history_update())
+        if (parameters.explicit_history_update())
           pcout << " (at most 0.9 x the stability limit)";
         pcout << (parameters.resume ? ", next step " : ", first step ")
               << schedule.proposed_step() << " s\n";
-        if (explicit_history_update()
-            && controller.maximum_step >= explicit_stability_limit())
+        if (parameters.explicit_history_update()
+            && controller.maximum_step >= materials.explicit_stability_limit())
           pcout << "WARNING: Minimum time step exceeds the stability limit of "
                    "the explicit history update (doc/model.md, section 3).\n";
       }

@@ -384,6 +384,39 @@ namespace ViscoContact
 
 
 
+  // @sect4{make_time_step_controller}
+  TimeStepController
+  make_time_step_controller(const double tolerance,
+                            const double minimum_step,
+                            const double maximum_step,
+                            const double stability_limit)
+  {
+    TimeStepController controller;
+    controller.tolerance    = tolerance;
+    controller.minimum_step = minimum_step;
+    controller.maximum_step
+      = std::max(std::min(maximum_step, 0.9 * stability_limit), minimum_step);
+    return controller;
+  }
+
+
+
+  // @sect4{landing_targets}
+  std::vector<double>
+  landing_targets(const std::vector<double> &profile_times,
+                  const double               end_time)
+  {
+    std::vector<double> targets;
+    for (const double t : profile_times)
+      if (t > 0 && t < end_time)
+        targets.push_back(t);
+    std::sort(targets.begin(), targets.end());
+    targets.push_back(end_time);
+    return targets;
+  }
+
+
+
   // @sect4{control_time_step}
   //
   // The elementary (I-) controller of doc/adaptivity.md. The estimate of a

@@ -6,6 +6,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/timer.h>
 
+#include "run/step_control.h"
 #include "step_report.h"
 #include "viscoplastic_contact.h"
 
@@ -19,16 +20,16 @@ namespace ViscoContact
   //
   // One time step, from the current time of the schedule to the next: with
   // Initial cycles, step 1 is first solved on coarser meshes (nested
-  // iteration, solve_initial_cycles()); then the step problem is solved
+  // iteration, InitialCycles::solve()); then the step problem is solved
   // (solve_step_with_recovery(), which may cut the step), and the stresses
   // sigma_n are updated at every stress point with the history of the next
   // step, whose length is the distance to the next time level where it is
   // known (fixed steps; 0 after the last step, where no history is needed).
   //
   // With adaptive steps the step comes with its error test
-  // (accept_adaptive_step()): a rejected step is repeated from the state at
-  // its start with a shorter step. Only once a step is accepted is the next
-  // level known: the controller's step fitted to the targets, and the
+  // (StepControl::accept_adaptive_step()): a rejected step is repeated from the
+  // state at its start with a shorter step. Only once a step is accepted is the
+  // next level known: the controller's step fitted to the targets, and the
   // history is advanced for it.
   template <int dim>
   ActiveSetResult
@@ -39,9 +40,9 @@ namespace ViscoContact
     // is bounded here (fixed schedules were checked with the parameters).
     plan.check_step_count(n, schedule.current_time());
     if (n == 1 && plan.initial_cycles() > 0)
-      solve_initial_cycles();
+      InitialCycles<dim>::solve(*this);
 
-    StepStartState  start         = save_step_start();
+    StepStart<dim>  start         = StepControl<dim>::save_start(*this);
     double          proposed_step = 0;
     ActiveSetResult result;
     do
@@ -49,8 +50,9 @@ namespace ViscoContact
         result = solve_step_with_recovery(start);
         update_stresses(schedule.step_length(),
                         schedule.following_step_length());
-    } while (schedule.is_adaptive()
-             && !accept_adaptive_step(start, proposed_step));
+    } while (
+      schedule.is_adaptive()
+      && !StepControl<dim>::accept_adaptive_step(*this, start, proposed_step));
 
     // u_{n-1} and z_{n-1}, the state the step started from, are what the
     // next step's prediction extrapolates from. Not the initial state u_0 =
@@ -63,44 +65,10 @@ namespace ViscoContact
     if (contact_enabled && contact_set.has_friction())
       contact_set.accept_slip(contact_set.tangential_displacements(solution));
     schedule.advance_time(proposed_step);
-    if (schedule.is_adaptive() && explicit_history_update()
+    if (schedule.is_adaptive() && parameters.explicit_history_update()
         && !schedule.is_at_end())
       advance_history(schedule.step_length());
     return result;
-  }
-
-
-
-  // @sect4{ViscoplasticContact::save_step_start}
-  //
-  // What a failed attempt is undone with: u_{n-1} and the contact state (the
-  // pieces and (r, z) of every owned node; each rank keeps its own part). The
-  // stress points need no copy for that: a failed attempt changes nothing
-  // there but the starting guesses of the plastic multipliers, since sigma_n
-  // and the history are only written by update_stresses() (and by the
-  // rescaling of a cut step). A rejected adaptive step has updated them, so
-  // with adaptive steps they are copied too, with the step length the
-  // stored history H_n was advanced for.
-  template <int dim>
-  typename ViscoplasticContact<dim>::StepStartState
-  ViscoplasticContact<dim>::save_step_start() const
-  {
-    StepStartState start{solution, contact_set.state(), {}, 0.};
-    if (schedule.is_adaptive())
-      start.stress_point_records = quadrature_point_history;
-    start.step_length = schedule.step_length();
-    return start;
-  }
-
-
-
-  template <int dim>
-  void
-  ViscoplasticContact<dim>::restore_step_start(const StepStartState &start)
-  {
-    solution = start.solution;
-    solution.update_ghost_values();
-    contact_set.set_state(start.contact);
   }
 
 
@@ -120,7 +88,7 @@ namespace ViscoContact
   template <int dim>
   ActiveSetResult
   ViscoplasticContact<dim>::solve_step_with_recovery(
-    const StepStartState &start)
+    const StepStart<dim> &start)
   {
     // Each pass is one attempt with the current schedule; a cut shortens the
     // step and the next pass tries the shorter one. The loop ends by
@@ -147,8 +115,8 @@ namespace ViscoContact
             solution.update_ghost_values();
           }
         const ActiveSetResult result
-          = (implicit_update() ? solve_implicit_step(k)
-                               : solve_explicit_step());
+          = (parameters.implicit_update() ? solve_implicit_step(k)
+                                          : solve_explicit_step());
         if (result.converged)
           return result;
 
@@ -157,10 +125,10 @@ namespace ViscoContact
         // and to the pieces the step started from.
         const std::array<unsigned int, 3> states
           = contact_set.count_states(mpi_communicator);
-        restore_step_start(start);
-        if (cut_failed_step(result.failure))
+        StepControl<dim>::restore_start(*this, start);
+        if (StepControl<dim>::cut_failed_step(*this, result.failure))
           {
-            if (explicit_history_update())
+            if (parameters.explicit_history_update())
               rescale_history_increment(k, schedule.step_length());
             continue;
           }
@@ -173,7 +141,7 @@ namespace ViscoContact
         // accepted steps.
         const unsigned int n          = schedule.step_number() + 1;
         const std::string  state_file = failed_state_file(n, "pvtu");
-        output_results(n, schedule.current_time(), "failed_step");
+        output.write_results(*this, n, schedule.current_time(), "failed_step");
         AssertThrow(false,
                     ExcMessage(failure_report(parameters,
                                               n,
@@ -183,129 +151,6 @@ namespace ViscoContact
                                               states,
                                               state_file)));
       }
-  }
-
-
-
-  // @sect4{ViscoplasticContact::cut_failed_step}
-  //
-  // Recovery from a failed solve (doc/algorithm.md, "Failed solves"): the
-  // step is halved (TimeSchedule::cut_step()), only if On solver failure =
-  // cut time step, and never below Minimum time step; otherwise the caller
-  // stops the run with failure_report(). The decision uses only data every
-  // rank has alike, so all ranks cut or stop together.
-  template <int dim>
-  bool
-  ViscoplasticContact<dim>::cut_failed_step(const std::string &failure)
-  {
-    const double k = schedule.step_length();
-    if (parameters.on_failure != Parameters::FailurePolicy::cut_time_step
-        || k / 2 < parameters.minimum_time_step)
-      return false;
-    pcout << "Step " << schedule.step_number() + 1
-          << " (t = " << schedule.next_time() << ", k = " << k
-          << ") failed: " << failure
-          << "\n  Cutting the time step to k = " << k / 2 << ".\n";
-    schedule.cut_step();
-    return true;
-  }
-
-
-
-  // @sect4{ViscoplasticContact::time_step_controller}
-  //
-  // The controller of Time step control = adaptive: the tolerance, and the
-  // range of steps. With the explicit update the steps stay below 0.9 times
-  // its stability limit 4 lambda / lambda_max(E) (doc/model.md, section 3):
-  // beyond it the error estimate would not see the instability before the
-  // stresses oscillate. The margin of 10% keeps the steps off the limit,
-  // where the damping of forward Euler vanishes. (If Minimum time step is
-  // above that, the minimum wins; report_scheme_limits() warns.)
-  template <int dim>
-  TimeStepController
-  ViscoplasticContact<dim>::time_step_controller() const
-  {
-    TimeStepController controller;
-    controller.tolerance    = parameters.error_tolerance;
-    controller.minimum_step = parameters.minimum_time_step;
-    controller.maximum_step = parameters.maximum_time_step;
-    if (explicit_history_update())
-      controller.maximum_step
-        = std::min(controller.maximum_step, 0.9 * explicit_stability_limit());
-    controller.maximum_step
-      = std::max(controller.maximum_step, controller.minimum_step);
-    return controller;
-  }
-
-
-
-  // @sect4{ViscoplasticContact::landing_targets}
-  //
-  // The times the adaptive steps land on exactly: the Profile times (their
-  // profiles are then written at the requested time, not at the closest
-  // step) and End time, sorted.
-  template <int dim>
-  std::vector<double>
-  ViscoplasticContact<dim>::landing_targets() const
-  {
-    std::vector<double> targets;
-    for (const double t : parameters.profile_times)
-      if (t > 0 && t < parameters.end_time)
-        targets.push_back(t);
-    std::sort(targets.begin(), targets.end());
-    targets.push_back(parameters.end_time);
-    return targets;
-  }
-
-
-
-  // @sect4{ViscoplasticContact::accept_adaptive_step}
-  //
-  // The controller's decision on a solved step, from the error estimate of its
-  // stress update. An accepted step returns true with the step the controller
-  // proposes next. A rejected step is repeated from the state at its start,
-  // restored exactly: u_{n-1}, the contact state, and every stress-point
-  // record (sigma_{n-1}, the history H_n, the rates and multipliers); the
-  // history increment is then rescaled to the shorter step, as for a cut.
-  // Every rank has the same estimate (a sum over the ranks), so all take the
-  // same decision.
-  template <int dim>
-  bool
-  ViscoplasticContact<dim>::accept_adaptive_step(const StepStartState &start,
-                                                 double &proposed_step)
-  {
-    const TimeStepController controller = time_step_controller();
-    const double             k          = schedule.step_length();
-    const TimeStepDecision   decision
-      = control_time_step(controller,
-                          k,
-                          error_estimate,
-                          schedule.proposed_step());
-    if (decision.accepted)
-      {
-        if (error_estimate > controller.tolerance && parameters.verbose)
-          pcout << "  Step " << schedule.step_number() + 1
-                << " is at <Minimum time step> = " << controller.minimum_step
-                << " and accepted above <Error tolerance>.\n";
-        proposed_step = decision.step;
-        return true;
-      }
-
-    // Rejected: the shorter step, fitted to the targets like any other.
-    const double rejected_time = schedule.next_time();
-    schedule.reject_step(decision.step);
-    if (parameters.verbose)
-      pcout << "  Step " << schedule.step_number() + 1
-            << " (t = " << rejected_time << ", k = " << k
-            << ") rejected: error estimate " << std::setprecision(3)
-            << error_estimate << " > " << controller.tolerance
-            << "; repeated with k = " << std::setprecision(6)
-            << schedule.step_length() << '\n';
-    restore_step_start(start);
-    quadrature_point_history = start.stress_point_records;
-    if (explicit_history_update())
-      rescale_history_increment(start.step_length, schedule.step_length());
-    return false;
   }
 
 
@@ -581,7 +426,7 @@ namespace ViscoContact
   {
     const unsigned int n_q = stress_quadrature.size();
     for (unsigned int k = 0; k < stress_points.cells().size(); ++k)
-      if (material_of(k).is_plastic())
+      if (materials.of_cell(k).is_plastic())
         for (unsigned int q = 0; q < n_q; ++q)
           {
             QuadraturePointHistory<dim> &state
@@ -589,11 +434,12 @@ namespace ViscoContact
             double stress_zz = 0, rate_zz = 0;
             if constexpr (dim == 2)
               stress_zz = state.stress_zz;
-            state.history += (new_step - old_step)
-                             * material_of(k).rate(state.stress,
-                                                   stress_zz,
-                                                   rate_zz,
-                                                   state.internal_variable);
+            state.history
+              += (new_step - old_step)
+                 * materials.of_cell(k).rate(state.stress,
+                                             stress_zz,
+                                             rate_zz,
+                                             state.internal_variable);
             if constexpr (dim == 2)
               state.history_zz += (new_step - old_step) * rate_zz;
           }

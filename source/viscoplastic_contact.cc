@@ -15,7 +15,6 @@
 #include "mesh/mesh_checks.h"
 #include "robustness/stop_signals.h"
 #include "step_report.h"
-#include "hardening_plasticity.h"
 #include "viscoplastic_contact.h"
 
 #include <algorithm>
@@ -52,48 +51,6 @@ namespace ViscoContact
       if (cell.is_simplex())
         return std::make_unique<FE_SimplexP<dim>>(1);
       return std::make_unique<FE_Q<dim>>(1);
-    }
-
-    // The materials that are used, in the order of used_materials(), and the
-    // number of each material id among them (none with one material for
-    // every cell, whose subsection Material has no ids).
-    template <int dim>
-    std::vector<std::unique_ptr<const MaterialLaw<dim>>>
-    make_materials(const Parameters::AllParameters &parameters)
-    {
-      const bool plane_strain
-        = parameters.plane_model == Parameters::PlaneModel::plane_strain;
-      std::vector<std::unique_ptr<const MaterialLaw<dim>>> materials;
-      for (const auto &[name, material] : parameters.used_materials())
-        if (material->plasticity
-            && material->law
-                 == Parameters::MaterialLawType::hardening_plasticity)
-          materials.push_back(std::make_unique<HardeningPlasticity<dim>>(
-            material->young_modulus,
-            material->poisson_ratio,
-            material->yield_stress,
-            material->hardening_modulus,
-            plane_strain));
-        else
-          materials.push_back(
-            std::make_unique<PerzynaMaterial<dim>>(material->young_modulus,
-                                                   material->poisson_ratio,
-                                                   material->viscosity,
-                                                   material->yield_stress,
-                                                   material->plasticity,
-                                                   plane_strain));
-      return materials;
-    }
-
-    std::map<types::material_id, unsigned int>
-    material_numbers(const Parameters::AllParameters &parameters)
-    {
-      std::map<types::material_id, unsigned int> numbers;
-      const auto materials = parameters.used_materials();
-      for (unsigned int m = 0; m < materials.size(); ++m)
-        for (const auto id : materials[m].second->material_ids)
-          numbers[id] = m;
-      return numbers;
     }
   } // namespace
 
@@ -140,8 +97,7 @@ namespace ViscoContact
     , load_quadrature(reference_cell.template get_gauss_type_quadrature<dim>(2))
     , face_quadrature(reference_cell.face_reference_cell(0)
                         .template get_gauss_type_quadrature<dim - 1>(2))
-    , materials(make_materials<dim>(parameters))
-    , material_index(material_numbers(parameters))
+    , materials(parameters)
     , loads(parameters)
     , prescribed(parameters, communicator)
     , contact_zones(parameters)
@@ -166,46 +122,6 @@ namespace ViscoContact
 
 
 
-  // @sect4{ViscoplasticContact::implicit_update}
-  //
-  // The two ways of updating the history (doc/model.md, sections 2 and 3),
-  // decided from the parameters in one place: the implicit update runs only
-  // with plasticity on; the explicit one adds a history load only then.
-  template <int dim>
-  bool
-  ViscoplasticContact<dim>::implicit_update() const
-  {
-    return parameters.implicit_update();
-  }
-
-
-
-  template <int dim>
-  bool
-  ViscoplasticContact<dim>::explicit_history_update() const
-  {
-    return parameters.any_plasticity() && !implicit_update();
-  }
-
-
-
-  // @sect4{ViscoplasticContact::explicit_stability_limit}
-  //
-  // The smallest limit of the materials (forward Euler on the relaxation of
-  // a viscoplastic material is stable for k < 4 lambda / lambda_max(E),
-  // doc/model.md, section 3; an elastic material sets no limit).
-  template <int dim>
-  double
-  ViscoplasticContact<dim>::explicit_stability_limit() const
-  {
-    double limit = std::numeric_limits<double>::infinity();
-    for (const auto &material : materials)
-      limit = std::min(limit, material->explicit_stability_limit());
-    return limit;
-  }
-
-
-
   // @sect4{ViscoplasticContact::run}
   //
   // The algorithm of doc/model.md, section 2, as the reader would write it
@@ -223,7 +139,7 @@ namespace ViscoContact
     // then the mesh, and everything that depends on it (setup_on_mesh()). A
     // scheduler's signal during the set-up stops the run between its phases
     // (there is no step to save yet).
-    check_output_directory();
+    output.open_folder(parameters, mpi_communicator);
     plan.check_memory();
     plan.choose_initial_cycles();
     plan.choose_step_cycles(reference_cell.is_simplex());
@@ -250,7 +166,7 @@ namespace ViscoContact
           break;
       }
 
-    print_run_summary();
+    output.print_summary(*this);
   }
 
 
@@ -270,22 +186,25 @@ namespace ViscoContact
   void
   ViscoplasticContact<dim>::set_up_schedule()
   {
+    step_controller
+      = make_time_step_controller(parameters.error_tolerance,
+                                  parameters.minimum_time_step,
+                                  parameters.maximum_time_step,
+                                  parameters.explicit_history_update()
+                                    ? materials.explicit_stability_limit()
+                                    : std::numeric_limits<double>::infinity());
     if (parameters.time_step_control == Parameters::TimeStepControl::adaptive)
-      {
-        const TimeStepController controller = time_step_controller();
-        schedule                            = TimeSchedule::adaptive_steps(
-          landing_targets(),
-          std::min(std::max(parameters.time_step, controller.minimum_step),
-                   controller.maximum_step),
-          parameters.time_step);
-      }
+      schedule = TimeSchedule::adaptive_steps(
+        landing_targets(parameters.profile_times, parameters.end_time),
+        std::min(std::max(parameters.time_step, step_controller.minimum_step),
+                 step_controller.maximum_step),
+        parameters.time_step);
     else
       schedule
         = TimeSchedule::fixed_steps(parameters.end_time, parameters.time_step);
-    check_loads();
-    check_prescribed_values();
+    check_scene_values();
     if (parameters.resume)
-      resume_from_checkpoint();
+      checkpoints.resume(*this);
   }
 
 
@@ -307,11 +226,11 @@ namespace ViscoContact
                              schedule.n_steps());
     StopSignals::stop_if_received(mpi_communicator,
                                   "before the output folder was prepared");
-    prepare_output_directory(schedule.step_number());
-    print_header(schedule.n_steps());
+    output.prepare_folder(*this, schedule.step_number());
+    output.print_header(*this, schedule.n_steps());
     report_scheme_limits();
     if (parameters.write_vtu && schedule.step_number() == 0)
-      output_results(0, 0.);
+      output.write_results(*this, 0, 0.);
   }
 
 
@@ -339,7 +258,7 @@ namespace ViscoContact
     if (step_observer)
       step_observer(n, t);
 
-    write_time_series_row(n, t, k, result, wall_time);
+    output.write_time_series_row(*this, n, t, k, result, wall_time);
     // The iteration history is read under its step's line.
     const bool step_line
       = parameters.verbose || parameters.print_iteration_history;
@@ -382,17 +301,17 @@ namespace ViscoContact
                        [&](const double target) {
                          return schedule.current_time_is_closest_to(target);
                        }))
-      write_contact_profile(n, t);
+      output.write_contact_profile(*this, n, t);
     if (parameters.write_vtu
         && (n % parameters.interval == 0 || schedule.is_at_end()))
-      output_results(n, t);
-    if (adaptation_due())
-      adapt_mesh(t);
+      output.write_results(*this, n, t);
+    if (MeshAdaptation<dim>::due(*this))
+      MeshAdaptation<dim>::adapt(*this, t);
     const bool checkpoint_due = parameters.checkpoint_interval > 0
                                 && n % parameters.checkpoint_interval == 0;
     if (checkpoint_due)
-      write_checkpoint(wall_time);
-    stop_if_signalled(checkpoint_due, wall_time);
+      checkpoints.write(*this, wall_time);
+    checkpoints.stop_if_signalled(*this, checkpoint_due, wall_time);
 
     // For tests of the checkpoints: end the loop here as if the run had
     // been killed after the checkpoint; the summary is still printed.
@@ -408,121 +327,21 @@ namespace ViscoContact
 
 
 
-  // @sect4{ViscoplasticContact::stop_if_signalled}
-  //
-  // A scheduler's signal (SIGTERM, SIGINT, SIGUSR1) on any rank: every rank
-  // learns of it here, once per step, through the maximum over the ranks, so
-  // that all stop after this same step. The step is complete and written; a
-  // checkpoint of it is written if none was, and the run ends with status
-  // 128 + signal (main()). After the last step there is nothing left to save
-  // the run for: it ends normally.
-  template <int dim>
-  void
-  ViscoplasticContact<dim>::stop_if_signalled(const bool   checkpoint_written,
-                                              const double wall_time)
-  {
-    const int signal
-      = Utilities::MPI::max(StopSignals::received(), mpi_communicator);
-    if (signal == 0 || schedule.is_at_end())
-      return;
-    if (parameters.resumable && !checkpoint_written)
-      write_checkpoint(wall_time);
-    pcout << "Stopped after step " << schedule.step_number()
-          << " (t = " << schedule.current_time() << ") on "
-          << StopSignals::name(signal);
-    if (parameters.resumable)
-      pcout << "; the checkpoint of step " << schedule.step_number()
-            << " is in " << output_folder->path(checkpoint_folder)
-            << ".\nTo continue the run, set Resume = true in subsection "
-               "<Checkpoint> and run the same parameter file again (on any "
-               "number of MPI ranks)."
-            << std::endl;
-    else
-      pcout << "; a convergence study cannot be resumed: run it again."
-            << std::endl;
-    throw StopSignals::Stopped{signal};
-  }
-
-
-
   // @sect4{Access for studies}
   //
   // The convergence study runs several ViscoplasticContact objects and compares
   // their states at every time level. It installs an observer that run() calls
-  // after every accepted step and reads, per locally owned cell k and stress
-  // point q, the stress, the displacement gradient and the weight JxW: the same
-  // (k, q) indexing as the stress-point arrays, so it needs no FEValues either.
-  // All of this is local to a rank; the study itself sends the cells where they
-  // are needed.
+  // after every accepted step and reads (stress_point_state()), per locally
+  // owned cell k and stress point q, the stress, the displacement gradient and
+  // the weight JxW: the same (k, q) indexing as the stress-point arrays, so it
+  // needs no FEValues either. All of this is local to a rank; the study itself
+  // sends the cells where they are needed.
   template <int dim>
   void
   ViscoplasticContact<dim>::set_step_observer(
     const std::function<void(const unsigned int, const double)> &observer)
   {
     step_observer = observer;
-  }
-
-
-
-  template <int dim>
-  const DoFHandler<dim> &
-  ViscoplasticContact<dim>::get_dof_handler() const
-  {
-    return dof_handler;
-  }
-
-
-
-  template <int dim>
-  const Quadrature<dim> &
-  ViscoplasticContact<dim>::get_stress_quadrature() const
-  {
-    return stress_quadrature;
-  }
-
-
-
-  template <int dim>
-  const std::vector<typename DoFHandler<dim>::active_cell_iterator> &
-  ViscoplasticContact<dim>::get_owned_cells() const
-  {
-    return stress_points.cells();
-  }
-
-
-
-  template <int dim>
-  const SymmetricTensor<2, dim> &
-  ViscoplasticContact<dim>::get_stress(const unsigned int k,
-                                       const unsigned int q) const
-  {
-    // The record of (k, q) in the flat stress-point array.
-    return quadrature_point_history[std::size_t(k) * stress_quadrature.size()
-                                    + q]
-      .stress;
-  }
-
-
-
-  template <int dim>
-  Tensor<2, dim>
-  ViscoplasticContact<dim>::get_displacement_gradient(
-    const unsigned int k,
-    const unsigned int q) const
-  {
-    // grad u_n at the stress point, from the ghosted solution (it is called
-    // between time steps, when solution holds u_n with its ghosts).
-    return stress_points.displacement_gradient(solution, k, q);
-  }
-
-
-
-  template <int dim>
-  double
-  ViscoplasticContact<dim>::get_stress_point_weight(const unsigned int k,
-                                                    const unsigned int q) const
-  {
-    return stress_points.JxW(k, q);
   }
 
 

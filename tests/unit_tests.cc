@@ -72,6 +72,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <random>
 #include <sstream>
@@ -2262,6 +2263,30 @@ TEST(TimeStepController, GrowthShrinkAndCaps)
   d = control_time_step(controller, 0.003, 1e-6, 0.01);
   EXPECT_TRUE(d.accepted);
   EXPECT_NEAR(d.step, 0.02, 1e-14);
+}
+
+TEST(TimeStepController, RangeAndTheCapOfTheExplicitUpdate)
+{
+  // Without a stability limit the range is the one given.
+  const double       infinity = std::numeric_limits<double>::infinity();
+  TimeStepController c = make_time_step_controller(1e-3, 1e-4, 0.25, infinity);
+  EXPECT_EQ(c.tolerance, 1e-3);
+  EXPECT_EQ(c.minimum_step, 1e-4);
+  EXPECT_EQ(c.maximum_step, 0.25);
+  // The explicit update: at most 0.9 times its limit.
+  c = make_time_step_controller(1e-3, 1e-4, 0.25, 0.1);
+  EXPECT_EQ(c.maximum_step, 0.9 * 0.1);
+  // A minimum above that wins.
+  c = make_time_step_controller(1e-3, 0.2, 0.25, 0.1);
+  EXPECT_EQ(c.maximum_step, 0.2);
+}
+
+TEST(TimeStepController, LandingTargetsInsideTheRunThenEndTime)
+{
+  // Sorted, without the times outside (0, T), End time last.
+  EXPECT_EQ(landing_targets({0.5, 0, 0.25, 2, 1}, 1),
+            (std::vector<double>{0.25, 0.5, 1}));
+  EXPECT_EQ(landing_targets({}, 3), (std::vector<double>{3}));
 }
 
 TEST(TimeStepController, LandsOnTargets)

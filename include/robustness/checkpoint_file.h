@@ -42,9 +42,9 @@ namespace ViscoContact
   // assignment of cells to ranks change with the number of ranks, cell ids do
   // not, and every piece of the state (u at the cell's dofs, the contact state
   // at its vertices, the stress points) belongs to a cell. The mesh itself is
-  // not stored; it is rebuilt from the parameter file (see write_checkpoint()).
-  // Every rank's work and memory stay proportional to its share of the cells,
-  // on writing and on reading.
+  // not stored; it is rebuilt from the parameter file (see
+  // Checkpoints::write()). Every rank's work and memory stay proportional to
+  // its share of the cells, on writing and on reading.
 
   // The version of the file layout, the first value of every header: a
   // resumed run refuses a checkpoint of another version rather than misread

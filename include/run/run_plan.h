@@ -80,6 +80,13 @@ namespace ViscoContact
                     const unsigned int initial_cycles_done);
     const MethodChoice &
     back_end() const;
+    // The matrix-free back end: no matrix of K is assembled; the back end
+    // applies it cell by cell.
+    bool
+    matrix_free() const
+    {
+      return back_end().method == Parameters::Method::matrix_free;
+    }
 
     // @sect4{Output and steps}
     //

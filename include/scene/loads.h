@@ -6,9 +6,18 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
 
+#include <deal.II/base/quadrature.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping.h>
+
 #include <deal.II/lac/vector.h>
 
 #include "parameters.h"
+#include "time_schedule.h"
 
 #include <map>
 #include <memory>
@@ -81,6 +90,27 @@ namespace ViscoContact
                  const Point<dim>     &point,
                  const Tensor<1, dim> &normal,
                  Vector<double>       &value) const;
+
+    // The loads of one cell at the time set, (f_0, v) + (f_2, v)_Gamma2 into
+    // cell_rhs (the dofs of fe_values' element); false if the cell carries
+    // no load. problem gets the first value that is not finite.
+    bool
+    cell_load(const typename DoFHandler<dim>::active_cell_iterator &cell,
+              FEValues<dim>                                        &fe_values,
+              FEFaceValues<dim> &fe_face_values,
+              Vector<double>    &cell_rhs,
+              std::string       &problem) const;
+    // Every load at the points of the cells the assembly evaluates, at the
+    // time levels of the schedule's grid: the message for the first value
+    // that is not finite, or an empty string (not collective).
+    std::string
+    first_non_finite_value(
+      const std::vector<typename DoFHandler<dim>::active_cell_iterator> &cells,
+      const Mapping<dim>        &mapping,
+      const FiniteElement<dim>  &fe,
+      const Quadrature<dim>     &load_quadrature,
+      const Quadrature<dim - 1> &face_quadrature,
+      const TimeSchedule        &schedule);
 
   private:
     struct SurfacePart

@@ -257,7 +257,7 @@ namespace ViscoContact
     // external load, prescribed values and gaps at t_n on the coarser mesh.
     coarse.schedule     = problem.schedule;
     coarse.history_load = 0;
-    if (problem.explicit_history_update())
+    if (problem.parameters.explicit_history_update())
       transfer.transfer_components(problem.history_load,
                                    coarse.history_load,
                                    false,
@@ -265,7 +265,9 @@ namespace ViscoContact
     coarse.assemble_right_hand_side(problem.schedule.next_time());
 
     // The start: u and the contact pressure of this step's start, injected.
-    VectorType pressure = problem.contact_pressure_field();
+    VectorType pressure = problem.contact_set.pressure_field(
+      problem.solution,
+      problem.prescribed.hanging_node_constraints());
     coarse.solution.zero_out_ghost_values();
     transfer.transfer_components(problem.solution,
                                  coarse.solution,
@@ -282,7 +284,9 @@ namespace ViscoContact
     coarse.prescribed.distribute(coarse.solution, coarse.constraints);
     coarse.solution.update_ghost_values();
     coarse_pressure.update_ghost_values();
-    coarse.set_pieces_from(coarse_pressure);
+    coarse.contact_set.set_state_from(coarse.solution,
+                                      coarse_pressure,
+                                      /*with_friction=*/false);
 
     // The coarser problem's own coarser meshes first, then its solve.
     const unsigned int deeper_iterations
@@ -315,14 +319,19 @@ namespace ViscoContact
                                  all_components);
     pressure.zero_out_ghost_values();
     pressure = 0;
-    transfer.transfer_components(coarse.contact_pressure_field(),
-                                 pressure,
-                                 true,
-                                 first_component);
+    transfer.transfer_components(
+      coarse.contact_set.pressure_field(
+        coarse.solution,
+        coarse.prescribed.hanging_node_constraints()),
+      pressure,
+      true,
+      first_component);
     problem.prescribed.distribute(problem.solution, problem.constraints);
     problem.solution.update_ghost_values();
     pressure.update_ghost_values();
-    problem.set_pieces_from(pressure);
+    problem.contact_set.set_state_from(problem.solution,
+                                       pressure,
+                                       /*with_friction=*/false);
   }
 
 

@@ -310,7 +310,7 @@ namespace ViscoContact
       {
         // A resumed simplex run starts on the checkpoint's mesh, the last
         // of the cycles, which the parameter file describes (p4est meshes
-        // are rebuilt from the first one: restore_checkpoint_mesh()).
+        // are rebuilt from the first one: Checkpoints::restore_mesh()).
         first_step_cycles
           = (parameters.resume
              && parameters.cell_type == Parameters::CellType::simplex)

@@ -9,11 +9,15 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
 
+#include <deal.II/fe/fe_values.h>
+
 #include <deal.II/lac/vector.h>
 
 #include "scene/loads.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -305,6 +309,175 @@ namespace ViscoContact
                            value,
                            point,
                            part.function->get_time());
+  }
+
+
+
+  // @sect4{Loads::first_non_finite_value}
+  //
+  // A load that is not finite somewhere (1/0, sqrt(t - 0.5) at t = 0) would
+  // only show as a displacement that is not finite in some step, after files
+  // have been written and without naming the entry. So the loads are
+  // evaluated here, before the output directory is touched: the surface
+  // traction at the face quadrature points of the loaded boundary, the body
+  // force at the load quadrature points of the cells, each at every time
+  // level of the fixed schedule of Time step (at t = 0 only, if the loads do
+  // not mention t). These are the points and times the assembly evaluates
+  // (adaptive and cut steps add levels between them).
+  //
+  // The body force of a large time-dependent 3D run would make this as
+  // expensive as assembling it in every step; beyond a budget of evaluations,
+  // the cells are checked at a stride, and the assembly itself checks every
+  // value it computes (cell_load()).
+  template <int dim>
+  std::string
+  Loads<dim>::first_non_finite_value(
+    const std::vector<typename DoFHandler<dim>::active_cell_iterator> &cells,
+    const Mapping<dim>                                                &mapping,
+    const FiniteElement<dim>                                          &fe,
+    const Quadrature<dim>     &load_quadrature,
+    const Quadrature<dim - 1> &face_quadrature,
+    const TimeSchedule        &schedule)
+  {
+    // The levels of the schedule's grid t_m = m k, m < N, and t_N = T.
+    const std::uint64_t n_levels
+      = time_dependent ? schedule.n_grid_levels() : 1;
+    const auto level
+      = [&](const std::uint64_t m) { return schedule.grid_level(m); };
+    // The points first, once: the geometry does not change with time. The
+    // points of each surface load come with their normals.
+    std::vector<Point<dim>> body_points;
+    std::vector<std::vector<std::pair<Point<dim>, Tensor<1, dim>>>>
+                      surface_points(n_surface_parts());
+    FEValues<dim>     fe_values(mapping,
+                            fe,
+                            load_quadrature,
+                            update_quadrature_points);
+    FEFaceValues<dim> fe_face_values(mapping,
+                                     fe,
+                                     face_quadrature,
+                                     update_quadrature_points
+                                       | update_normal_vectors);
+    for (const auto &cell : cells)
+      {
+        if (!body_is_zero)
+          {
+            fe_values.reinit(cell);
+            for (const unsigned int q : fe_values.quadrature_point_indices())
+              body_points.push_back(fe_values.quadrature_point(q));
+          }
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
+            {
+              const unsigned int part
+                = surface_part_of(cell->face(f)->boundary_id());
+              if (part == numbers::invalid_unsigned_int)
+                continue;
+              fe_face_values.reinit(cell, f);
+              for (const unsigned int q :
+                   fe_face_values.quadrature_point_indices())
+                surface_points[part].emplace_back(
+                  fe_face_values.quadrature_point(q),
+                  fe_face_values.normal_vector(q));
+            }
+      }
+
+    // At most about 2e7 evaluations per rank and load: every point if that
+    // suffices, otherwise every stride-th point.
+    const auto stride_of = [&](const std::size_t n_points) {
+      const double evaluations = double(n_points) * n_levels;
+      return std::max<std::size_t>(1, std::size_t(evaluations / 2e7));
+    };
+    std::string    problem;
+    Vector<double> value(dim);
+    for (unsigned int l = 0; l < n_surface_parts(); ++l)
+      {
+        const auto       &points = surface_points[l];
+        const std::size_t stride = stride_of(points.size());
+        for (std::uint64_t m = 0; m < n_levels && problem.empty(); ++m)
+          {
+            set_time(level(m));
+            for (std::size_t i = 0; i < points.size() && problem.empty();
+                 i += stride)
+              problem
+                = surface_load(l, points[i].first, points[i].second, value);
+          }
+      }
+    const std::size_t stride = stride_of(body_points.size());
+    for (std::uint64_t m = 0; m < n_levels && problem.empty(); ++m)
+      {
+        set_time(level(m));
+        for (std::size_t i = 0; i < body_points.size() && problem.empty();
+             i += stride)
+          problem = body_force(body_points[i], value);
+      }
+    return problem;
+  }
+
+
+
+  // @sect4{Loads::cell_load}
+  //
+  // The body force at the load quadrature points and the surface load on
+  // the faces of the cell that lie on a loaded part of the boundary (the
+  // Surface traction on the Loaded boundary ids, each Surface load N on its
+  // own ids); the component of shape function i picks the component of the
+  // load it is tested with. The rest of the boundary that is neither
+  // Dirichlet nor in contact is traction free.
+  template <int dim>
+  bool
+  Loads<dim>::cell_load(
+    const typename DoFHandler<dim>::active_cell_iterator &cell,
+    FEValues<dim>                                        &fe_values,
+    FEFaceValues<dim>                                    &fe_face_values,
+    Vector<double>                                       &cell_rhs,
+    std::string                                          &problem) const
+  {
+    const FiniteElement<dim> &fe            = fe_values.get_fe();
+    const unsigned int        dofs_per_cell = fe.n_dofs_per_cell();
+    Vector<double>            load_value(dim);
+    cell_rhs       = 0;
+    bool has_loads = false;
+    if (!body_is_zero)
+      {
+        fe_values.reinit(cell);
+        for (const unsigned int q : fe_values.quadrature_point_indices())
+          {
+            const std::string message
+              = body_force(fe_values.quadrature_point(q), load_value);
+            if (problem.empty())
+              problem = message;
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+              cell_rhs(i) += load_value(fe.system_to_component_index(i).first)
+                             * fe_values.shape_value(i, q) * fe_values.JxW(q);
+          }
+        has_loads = true;
+      }
+    for (const unsigned int f : cell->face_indices())
+      if (cell->face(f)->at_boundary())
+        {
+          const unsigned int part
+            = surface_part_of(cell->face(f)->boundary_id());
+          if (part == numbers::invalid_unsigned_int)
+            continue;
+          fe_face_values.reinit(cell, f);
+          for (const unsigned int q : fe_face_values.quadrature_point_indices())
+            {
+              const std::string message
+                = surface_load(part,
+                               fe_face_values.quadrature_point(q),
+                               fe_face_values.normal_vector(q),
+                               load_value);
+              if (problem.empty())
+                problem = message;
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                cell_rhs(i) += load_value(fe.system_to_component_index(i).first)
+                               * fe_face_values.shape_value(i, q)
+                               * fe_face_values.JxW(q);
+            }
+          has_loads = true;
+        }
+    return has_loads;
   }
 
 

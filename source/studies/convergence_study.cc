@@ -141,13 +141,14 @@ namespace ViscoContact
     Run                            &run,
     const ViscoplasticContact<dim> &problem) const
   {
-    const auto        &cells = problem.get_owned_cells();
-    const unsigned int n_q   = problem.get_stress_quadrature().size();
+    const auto         state = problem.stress_point_state();
+    const auto        &cells = state.cells();
+    const unsigned int n_q   = state.quadrature.size();
     // The first call (after step 1) also creates the records and fills in
     // what does not change: the key, the number of vertices, the vertices.
     if (run.cells.empty())
       {
-        run.n_dofs = problem.get_dof_handler().n_dofs();
+        run.n_dofs = state.dof_handler.n_dofs();
         run.cells.resize(cells.size());
         for (unsigned int k = 0; k < cells.size(); ++k)
           {
@@ -164,9 +165,8 @@ namespace ViscoContact
     for (unsigned int k = 0; k < cells.size(); ++k)
       for (unsigned int q = 0; q < n_q; ++q)
         {
-          const Tensor<2, dim> gradient
-            = problem.get_displacement_gradient(k, q);
-          const SymmetricTensor<2, dim> &stress = problem.get_stress(k, q);
+          const Tensor<2, dim> gradient = state.displacement_gradient(k, q);
+          const SymmetricTensor<2, dim> &stress = state.stress(k, q);
           for (unsigned int a = 0; a < dim; ++a)
             for (unsigned int b = 0; b < dim; ++b)
               {
@@ -236,7 +236,7 @@ namespace ViscoContact
     // A failure of the reference run itself ends the study with its error.
     Timer timer;
     reference.run();
-    write_table(reference.get_dof_handler().n_dofs(),
+    write_table(reference.stress_point_state().dof_handler.n_dofs(),
                 reference_steps,
                 Utilities::MPI::max(timer.wall_time(), communicator));
   }
@@ -467,8 +467,9 @@ namespace ViscoContact
     std::vector<Point<dim>>        &points,
     std::vector<std::string>       &keys) const
   {
-    const auto            &cells      = reference.get_owned_cells();
-    const Quadrature<dim> &quadrature = reference.get_stress_quadrature();
+    const auto             state      = reference.stress_point_state();
+    const auto            &cells      = state.cells();
+    const Quadrature<dim> &quadrature = state.quadrature;
     const Mapping<dim>    &mapping
       = cells.empty() ? ReferenceCells::get_hypercube<dim>()
                           .template get_default_linear_mapping<dim>()
@@ -505,8 +506,9 @@ namespace ViscoContact
     const unsigned int              level,
     const ViscoplasticContact<dim> &reference) const
   {
-    const auto            &cells      = reference.get_owned_cells();
-    const Quadrature<dim> &quadrature = reference.get_stress_quadrature();
+    const auto             state      = reference.stress_point_state();
+    const auto            &cells      = state.cells();
+    const Quadrature<dim> &quadrature = state.quadrature;
     const unsigned int     n_q        = quadrature.size();
     double                 error_u = 0, error_sigma = 0;
     for (unsigned int k = 0; k < cells.size(); ++k)
@@ -553,10 +555,10 @@ namespace ViscoContact
           // The differences at the point: the strain of the displacement
           // error and the stress error, squared and weighted.
           const SymmetricTensor<2, dim> strain_error
-            = symmetrize(reference.get_displacement_gradient(k, q) - gradient);
+            = symmetrize(state.displacement_gradient(k, q) - gradient);
           const Tensor<2, dim> stress_error
-            = Tensor<2, dim>(reference.get_stress(k, q)) - stress;
-          const double JxW = reference.get_stress_point_weight(k, q);
+            = Tensor<2, dim>(state.stress(k, q)) - stress;
+          const double JxW = state.JxW(k, q);
           error_u += (strain_error * strain_error) * JxW;
           error_sigma += scalar_product(stress_error, stress_error) * JxW;
         }

@@ -107,3 +107,35 @@ TEST(ContactRows, TurnedEdge)
 {
   check_rows_of_the_bottom_edge(0.3);
 }
+
+
+
+// The contact state across a change of mesh: the pressure z_i / w_i as a
+// nodal field (ContactSet::pressure_field()) and back
+// (ContactSet::set_state_from()) gives every node its z and, from u, its
+// r = nu . u - s.
+TEST(ContactSet, PressureFieldAndBack)
+{
+  Parameters::Contact               entries;
+  TestScenes::SquareWithContactZone square(entries, 0.3);
+  ContactSet<2>                    &contact = square.contact;
+  ASSERT_EQ(contact.n_global_nodes(), 5u);
+  for (unsigned int i = 0; i < contact.size(); ++i)
+    contact.z[i] = (1. + i) * contact.weight(i);
+  const VectorType pressure
+    = contact.pressure_field(square.layout, square.constraints);
+  VectorType u(square.layout);
+  for (unsigned int k = 0; k < u.locally_owned_size(); ++k)
+    u.local_element(k) = 1e-3 * std::cos(1. + k);
+  u.update_ghost_values();
+  for (unsigned int i = 0; i < contact.size(); ++i)
+    contact.z[i] = contact.r[i] = 0;
+  contact.set_state_from(u, pressure, /*with_friction=*/false);
+  for (unsigned int i = 0; i < contact.size(); ++i)
+    {
+      EXPECT_NEAR(contact.z[i], (1. + i) * contact.weight(i), 1e-14);
+      EXPECT_NEAR(contact.r[i],
+                  contact.normal_component(u, i) - contact.gap(i),
+                  1e-16);
+    }
+}

@@ -1,6 +1,6 @@
-// Output of ViscoplasticContact<dim>: the .pvtu/.vtu records and the .pvd
-// time record for ParaView, the time series and contact profiles (CSV), and
-// the run summary with the cost measurements.
+// What a run of ViscoplasticContact<dim> writes: the .pvtu/.vtu records and the
+// .pvd time record for ParaView, the time series and contact profiles (CSV),
+// and the run summary with the cost measurements.
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
@@ -18,6 +18,7 @@
 #include "robustness/file_output.h"
 #include "robustness/output_folder.h"
 #include "robustness/vtu_record.h"
+#include "run/run_output.h"
 #include "viscoplastic_contact.h"
 
 #include <algorithm>
@@ -84,7 +85,7 @@ namespace ViscoContact
 
 
 
-  // @sect4{ViscoplasticContact::check_output_directory}
+  // @sect4{RunOutput::open_folder}
   //
   // The first thing run() does: the output folder is looked at (and, if it
   // exists, locked for this run) before any work is done. A new run refuses
@@ -96,7 +97,8 @@ namespace ViscoContact
   // Nothing in the folder changes here.
   template <int dim>
   void
-  ViscoplasticContact<dim>::check_output_directory()
+  RunOutput<dim>::open_folder(const Parameters::AllParameters &parameters,
+                              const MPI_Comm                   communicator)
   {
     const OutputFolder::Mode mode
       = parameters.resume      ? OutputFolder::Mode::resume
@@ -105,12 +107,12 @@ namespace ViscoContact
     output_folder = std::make_unique<OutputFolder>(parameters.directory,
                                                    mode,
                                                    parameters.parameter_file,
-                                                   mpi_communicator);
+                                                   communicator);
   }
 
 
 
-  // @sect4{ViscoplasticContact::prepare_output_directory}
+  // @sect4{RunOutput::prepare_folder}
   //
   // Called once the input is known to be good (parameters parsed, mesh,
   // boundary parts and a requested checkpoint checked), so a bad run never
@@ -122,39 +124,152 @@ namespace ViscoContact
   // cut back to the checkpoint's step.
   template <int dim>
   void
-  ViscoplasticContact<dim>::prepare_output_directory(
-    const unsigned int resume_step)
+  RunOutput<dim>::prepare_folder(const ViscoplasticContact<dim> &problem,
+                                 const unsigned int              resume_step)
   {
     output_folder->prepare(resume_step);
     output_folder->record_files({"parameters.prm", "time_series.csv"});
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+    if (Utilities::MPI::this_mpi_process(problem.mpi_communicator) == 0)
       {
         if (!output_folder->is_parameter_file("parameters.prm"))
           output_folder->stage("parameters.prm",
-                               parameters.parsed_parameters,
-                               parameters.resume
+                               problem.parameters.parsed_parameters,
+                               problem.parameters.resume
                                  ? OutputFolder::Replace::own
                                  : OutputFolder::Replace::never);
-        if (!parameters.resume)
-          output_folder->stage(
-            "time_series.csv",
-            time_series_header<dim>(contact_zones.numbers(),
-                                    prescribed.reaction_names(),
-                                    contact_zones.frictional_numbers()));
+        if (!problem.parameters.resume)
+          output_folder->stage("time_series.csv",
+                               time_series_header<dim>(
+                                 problem.contact_zones.numbers(),
+                                 problem.prescribed.reaction_names(),
+                                 problem.contact_zones.frictional_numbers()));
       }
     output_folder->commit();
-    if (parameters.resume)
+    if (problem.parameters.resume)
       truncate_time_series(
         *output_folder,
-        time_series_header<dim>(contact_zones.numbers(),
-                                prescribed.reaction_names(),
-                                contact_zones.frictional_numbers()),
+        time_series_header<dim>(problem.contact_zones.numbers(),
+                                problem.prescribed.reaction_names(),
+                                problem.contact_zones.frictional_numbers()),
         resume_step);
   }
 
 
 
-  // @sect4{ViscoplasticContact::write_time_series_row}
+  // @sect4{RunOutput::print_header}
+  // The run's header: the size of the problem (global counts), the model, the
+  // back end with the reason for the choice, and the parallel layout. pcout
+  // prints on rank 0 only.
+  template <int dim>
+  void
+  RunOutput<dim>::print_header(const ViscoplasticContact<dim> &problem,
+                               const unsigned int              n_steps) const
+  {
+    problem.pcout << "Mesh: " << problem.triangulation->n_global_active_cells()
+                  << ' ' << problem.reference_cell.to_string() << " cells, "
+                  << problem.dof_handler.n_dofs() << " displacement dofs, "
+                  << (problem.contact_enabled
+                        ? problem.contact_set.n_global_nodes()
+                        : 0)
+                  << " contact nodes, ";
+    if (problem.parameters.time_step_control
+        == Parameters::TimeStepControl::adaptive)
+      problem.pcout << "adaptive time steps\n";
+    else
+      problem.pcout << n_steps << " time steps\n";
+    // With initial cycles the mesh above is the first of them (a resumed run
+    // starts on the checkpoint's mesh and runs none).
+    if (problem.plan.initial_cycles() > 0 && !problem.parameters.resume)
+      problem.pcout << "Initial cycles: step 1 on "
+                    << problem.plan.initial_cycles()
+                    << " coarser meshes first, from this one, "
+                    << (problem.reference_cell.is_simplex()
+                          ? "each finer one built anew"
+                        : problem.parameters.initial_refinement
+                            == Parameters::InitialRefinement::global
+                          ? "refined globally"
+                          : "refined adaptively")
+                    << (problem.plan.initial_cycles_reason().empty()
+                          ? ""
+                          : " (Initial cycles = auto: "
+                              + problem.plan.initial_cycles_reason() + ")")
+                    << '\n';
+    else if (!problem.plan.initial_cycles_reason().empty())
+      problem.pcout << "Initial cycles: none (Initial cycles = auto: "
+                    << problem.plan.initial_cycles_reason() << ")\n";
+    const std::string step_cycles_auto
+      = problem.plan.step_cycles_reason().empty()
+          ? ""
+          : " (Step cycles = auto: " + problem.plan.step_cycles_reason() + ")";
+    // Without initial cycles the back end is already that of the run's mesh.
+    if (problem.plan.step_cycles_dropped()
+        && problem.plan.initial_cycles() == 0)
+      problem.pcout
+        << "Step cycles: none (Step cycles = auto: Method = auto chose "
+           "the condensed back end)\n";
+    else if (problem.plan.step_cycles() > 0)
+      problem.pcout
+        << "Step cycles: every step"
+        << (problem.plan.initial_cycles() > 0 ? " after the first" : "")
+        << " solved on " << problem.plan.step_cycles() << " coarser mesh"
+        << (problem.plan.step_cycles() > 1 ? "es" : "")
+        << " first, whose contact zone starts it on the mesh of the run "
+           "where it moved further than the predicted start"
+        << step_cycles_auto << '\n';
+    else if (!step_cycles_auto.empty())
+      problem.pcout << "Step cycles: none" << step_cycles_auto << '\n';
+    // A rate-independent law has no rate form (hardening plasticity).
+    const auto rate_independent
+      = [](const auto &m) { return m->is_plastic() && !m->has_rate_form(); };
+    const bool any_rate_independent
+      = std::any_of(problem.materials.laws().begin(),
+                    problem.materials.laws().end(),
+                    rate_independent);
+    problem.pcout << "Model: "
+                  << (!problem.parameters.any_plasticity() ? "elastic"
+                      : any_rate_independent ? "plastic (hardening plasticity)"
+                                             : "viscoplastic");
+    if (problem.parameters.plane_model == Parameters::PlaneModel::plane_strain)
+      problem.pcout << " plane strain";
+    if (problem.materials.laws().size() > 1)
+      problem.pcout << " (" << problem.materials.laws().size() << " materials, "
+                    << std::count_if(problem.materials.laws().begin(),
+                                     problem.materials.laws().end(),
+                                     [](const auto &m) {
+                                       return m->is_plastic();
+                                     })
+                    << (any_rate_independent ? " plastic)" : " viscoplastic)");
+    problem.pcout << ", contact " << (problem.contact_enabled ? "on" : "off")
+                  << ", "
+                  << (problem.parameters.stress_update
+                          == Parameters::StressUpdate::explicit_euler
+                        ? "explicit"
+                        : "implicit")
+                  << " stress update\n";
+    // Contact off because no boundary part is named is most likely a
+    // mistake in the parameter file: said, not silently accepted.
+    if (problem.parameters.used_contact_zones().empty())
+      problem.pcout
+        << "WARNING: contact is off: <Contact boundary ids> in subsection "
+           "<Boundary> names no boundary part (nor does any subsection "
+           "Contact zone N), so the body has no contact boundary and the "
+           "contact law is not used.\n";
+    else if (problem.contact_zones.descriptions().size() > 1)
+      problem.pcout << "Contact zones: "
+                    << problem.contact_zones.descriptions().size() << '\n';
+    problem.pcout << "Back end: " << problem.contact_solver->description()
+                  << " (" << problem.plan.back_end().reason << ")\n"
+                  << "Parallel: "
+                  << Utilities::MPI::n_mpi_processes(problem.mpi_communicator)
+                  << " MPI rank(s), "
+                  << (problem.reference_cell.is_simplex() ? "fully distributed"
+                                                          : "p4est")
+                  << " mesh\n";
+  }
+
+
+
+  // @sect4{RunOutput::write_time_series_row}
   //
   // One row per step: the counts and the force are sums over all ranks, written
   // by rank 0. They are computed on every rank before the other ranks return,
@@ -165,39 +280,51 @@ namespace ViscoContact
   // is undone and stops all ranks.
   template <int dim>
   void
-  ViscoplasticContact<dim>::write_time_series_row(const unsigned int step,
-                                                  const double       time,
-                                                  const double       time_step,
-                                                  const ActiveSetResult &result,
-                                                  const double wall_time)
+  RunOutput<dim>::write_time_series_row(ViscoplasticContact<dim> &problem,
+                                        const unsigned int        step,
+                                        const double              time,
+                                        const double              time_step,
+                                        const ActiveSetResult    &result,
+                                        const double              wall_time)
   {
-    const auto   states = contact_set.count_states(mpi_communicator);
-    const double force  = contact_set.total_force(mpi_communicator);
+    const auto states
+      = problem.contact_set.count_states(problem.mpi_communicator);
+    const double force
+      = problem.contact_set.total_force(problem.mpi_communicator);
     const double size
-      = contact_enabled ? contact_set.contact_area(mpi_communicator) : 0.;
+      = problem.contact_enabled
+          ? problem.contact_set.contact_area(problem.mpi_communicator)
+          : 0.;
     const double peak
-      = contact_enabled ? contact_set.peak_pressure(mpi_communicator) : 0.;
+      = problem.contact_enabled
+          ? problem.contact_set.peak_pressure(problem.mpi_communicator)
+          : 0.;
     const std::vector<double> zone_forces
-      = contact_enabled
-          ? contact_set.zone_forces(mpi_communicator)
-          : std::vector<double>(contact_zones.descriptions().size(), 0.);
-    const std::vector<Tensor<1, dim>> reactions = reaction_forces(time);
-    const bool friction = contact_enabled && contact_set.has_friction();
+      = problem.contact_enabled
+          ? problem.contact_set.zone_forces(problem.mpi_communicator)
+          : std::vector<double>(problem.contact_zones.descriptions().size(),
+                                0.);
+    const std::vector<Tensor<1, dim>> reactions = problem.reaction_forces(time);
+    const bool                        friction
+      = problem.contact_enabled && problem.contact_set.has_friction();
     const std::array<unsigned int, 2> friction_counts
-      = friction ? contact_set.count_friction_states(mpi_communicator)
-                 : std::array<unsigned int, 2>{{0, 0}};
+      = friction
+          ? problem.contact_set.count_friction_states(problem.mpi_communicator)
+          : std::array<unsigned int, 2>{{0, 0}};
     const std::vector<Tensor<1, dim>> tangential_forces
-      = friction ? contact_set.zone_tangential_forces(mpi_communicator)
-                 : std::vector<Tensor<1, dim>>();
-    std::string problem;
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      = friction
+          ? problem.contact_set.zone_tangential_forces(problem.mpi_communicator)
+          : std::vector<Tensor<1, dim>>();
+    std::string failure;
+    if (Utilities::MPI::this_mpi_process(problem.mpi_communicator) == 0)
       {
         std::ostringstream row;
         row << std::setprecision(10) << step << ',' << time << ','
             << result.iterations() << ',' << states[0] << ',' << states[1]
-            << ',' << states[2] << ',' << force << ',' << max_von_mises << ','
-            << wall_time << ',' << result.inner_iterations() << ',' << time_step
-            << ',' << error_estimate << ',' << size << ',' << peak;
+            << ',' << states[2] << ',' << force << ',' << problem.max_von_mises
+            << ',' << wall_time << ',' << result.inner_iterations() << ','
+            << time_step << ',' << problem.error_estimate << ',' << size << ','
+            << peak;
         if (zone_forces.size() > 1)
           for (const double zone_force : zone_forces)
             row << ',' << zone_force;
@@ -215,7 +342,7 @@ namespace ViscoContact
         if (friction)
           {
             row << ',' << friction_counts[0] << ',' << friction_counts[1];
-            const auto &zones = contact_zones.descriptions();
+            const auto &zones = problem.contact_zones.descriptions();
             for (unsigned int zone = 0; zone < zones.size(); ++zone)
               if (zones[zone].friction->has_friction())
                 for (unsigned int c = 0; c < dim; ++c)
@@ -225,14 +352,14 @@ namespace ViscoContact
                             : 0.);
           }
         row << '\n';
-        problem = output_folder->append("time_series.csv", row.str());
+        failure = output_folder->append("time_series.csv", row.str());
       }
-    FileOutput::agree_on_problem(problem, mpi_communicator);
+    FileOutput::agree_on_problem(failure, problem.mpi_communicator);
   }
 
 
 
-  // @sect4{ViscoplasticContact::write_contact_profile}
+  // @sect4{RunOutput::write_contact_profile}
   //
   // contact_profile_NNNN.csv: the state of every contact node along
   // Gamma_3 (contact_set.h), written by all ranks into one file.
@@ -242,25 +369,26 @@ namespace ViscoContact
   // gathers the others' nodes (OutputFolder::stage_collectively()).
   template <int dim>
   void
-  ViscoplasticContact<dim>::write_contact_profile(const unsigned int step,
-                                                  const double       time)
+  RunOutput<dim>::write_contact_profile(const ViscoplasticContact<dim> &problem,
+                                        const unsigned int              step,
+                                        const double                    time)
   {
     std::ostringstream name;
     name << "contact_profile_" << std::setw(4) << std::setfill('0') << step
          << ".csv";
     output_folder->record_files({name.str()});
-    const std::string text = contact_set.profile_text(time);
+    const std::string text = problem.contact_set.profile_text(time);
     output_folder->stage_collectively(name.str(),
                                       "",
                                       text.data(),
                                       text.size(),
-                                      mpi_communicator);
+                                      problem.mpi_communicator);
     output_folder->commit();
   }
 
 
 
-  // @sect4{ViscoplasticContact::output_results}
+  // @sect4{RunOutput::write_results}
   //
   // One .pvtu record per output step (with at most 8 .vtu pieces, whatever
   // the number of ranks, each written by a group of ranks), listed with its
@@ -283,12 +411,13 @@ namespace ViscoContact
   // fields at every vertex of the owned cells, the ghosts included.
   template <int dim>
   void
-  ViscoplasticContact<dim>::output_results(const unsigned int step,
-                                           const double       time,
-                                           const std::string &stem)
+  RunOutput<dim>::write_results(ViscoplasticContact<dim> &problem,
+                                const unsigned int        step,
+                                const double              time,
+                                const std::string        &stem)
   {
-    TimerOutput::Scope t(report.timer(), "Output");
-    const OutputFields fields = compute_output_fields();
+    TimerOutput::Scope t(problem.report.timer(), "Output");
+    const Fields       fields = compute_fields(problem);
 
     // The displacement is one vector field of dim components, as are the
     // tangential traction and the slip; the stress components get names
@@ -301,12 +430,15 @@ namespace ViscoContact
           DataComponentInterpretation::component_is_part_of_vector));
     };
     DataOut<dim> data_out;
-    data_out.attach_triangulation(*triangulation);
+    data_out.attach_triangulation(*problem.triangulation);
     {
       const auto [names, interpretation] = vector_field("displacement");
-      data_out.add_data_vector(dof_handler, solution, names, interpretation);
+      data_out.add_data_vector(problem.dof_handler,
+                               problem.solution,
+                               names,
+                               interpretation);
     }
-    fields.add_to(data_out, dof_handler, scalar_dof_handler);
+    fields.add_to(data_out, problem.dof_handler, problem.scalar_dof_handler);
     // Time and step number go into the .vtu files themselves; the data are
     // compressed with zlib's fastest level.
     DataOutBase::VtkFlags flags(time, step);
@@ -321,16 +453,16 @@ namespace ViscoContact
                                                 flags,
                                                 stem,
                                                 step,
-                                                stress_points.cells(),
-                                                mapping,
+                                                problem.stress_points.cells(),
+                                                problem.mapping,
                                                 *output_folder,
-                                                mpi_communicator);
+                                                problem.mpi_communicator);
     // Only rank 0 keeps the list of records and rewrites solution.pvd with it
     // after every record; the list goes into the checkpoints, so that a resumed
     // run extends the same .pvd file. The record and the .pvd list are
     // committed together, once every piece is in place.
     if (stem == "solution"
-        && Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+        && Utilities::MPI::this_mpi_process(problem.mpi_communicator) == 0)
       {
         times_and_names.emplace_back(time, record);
         std::ostringstream pvd;
@@ -345,7 +477,7 @@ namespace ViscoContact
 
 
 
-  // @sect4{ViscoplasticContact::OutputFields::add_to}
+  // @sect4{RunOutput::Fields::add_to}
   //
   // The fields to a record, after the displacement: per cell the stress
   // components (named like stress_xy) and their viscoplastic parts, the
@@ -355,7 +487,7 @@ namespace ViscoContact
   // state.
   template <int dim>
   void
-  ViscoplasticContact<dim>::OutputFields::add_to(
+  RunOutput<dim>::Fields::add_to(
     DataOut<dim>          &data_out,
     const DoFHandler<dim> &dof_handler,
     const DoFHandler<dim> &scalar_dof_handler) const
@@ -410,7 +542,7 @@ namespace ViscoContact
 
 
 
-  // @sect4{ViscoplasticContact::compute_output_fields}
+  // @sect4{RunOutput::compute_fields}
   //
   // The cell fields have one entry per active cell of this rank's view of
   // the mesh (owned, ghost and artificial cells), indexed by
@@ -425,37 +557,38 @@ namespace ViscoContact
   // rank the values at all vertices of its cells, also those of contact
   // nodes owned by a neighbour.
   template <int dim>
-  typename ViscoplasticContact<dim>::OutputFields
-  ViscoplasticContact<dim>::compute_output_fields() const
+  typename RunOutput<dim>::Fields
+  RunOutput<dim>::compute_fields(const ViscoplasticContact<dim> &problem)
   {
     const unsigned int n_components = dim * (dim + 1) / 2;
-    const unsigned int n_cells      = triangulation->n_active_cells();
-    const unsigned int n_q          = stress_quadrature.size();
-    OutputFields       fields;
+    const unsigned int n_cells      = problem.triangulation->n_active_cells();
+    const unsigned int n_q          = problem.stress_quadrature.size();
+    Fields             fields;
     fields.stress.assign(n_components, Vector<float>(n_cells));
     fields.viscoplastic.assign(n_components, Vector<float>(n_cells));
     fields.von_mises.reinit(n_cells);
     fields.subdomain.reinit(n_cells);
-    if (materials.size() > 1)
+    if (problem.materials.laws().size() > 1)
       fields.material_id.reinit(n_cells);
     bool plane_strain = false;
     if constexpr (dim == 2)
-      plane_strain
-        = (parameters.plane_model == Parameters::PlaneModel::plane_strain);
+      plane_strain = (problem.parameters.plane_model
+                      == Parameters::PlaneModel::plane_strain);
     if (plane_strain)
       fields.stress_zz.reinit(n_cells);
-    for (unsigned int k = 0; k < stress_points.n_cells(); ++k)
+    for (unsigned int k = 0; k < problem.stress_points.n_cells(); ++k)
       {
-        const auto                    &cell = stress_points.cells()[k];
+        const auto                    &cell = problem.stress_points.cells()[k];
         const unsigned int             c    = cell->active_cell_index();
-        const SymmetricTensor<4, dim> &E = material_of(k).elasticity_tensor();
-        fields.subdomain[c]              = cell->subdomain_id();
+        const SymmetricTensor<4, dim> &E
+          = problem.materials.of_cell(k).elasticity_tensor();
+        fields.subdomain[c] = cell->subdomain_id();
         if (fields.material_id.size() > 0)
           fields.material_id[c] = cell->material_id();
         for (unsigned int q = 0; q < n_q; ++q)
           {
             const QuadraturePointHistory<dim> &state
-              = quadrature_point_history[std::size_t(k) * n_q + q];
+              = problem.quadrature_point_history[std::size_t(k) * n_q + q];
             // The viscoplastic part is recomputed as sigma_n - E eps(u_n)
             // instead of being read from the stored history, because with the
             // explicit update the stored history is already H_{n+1}, the one of
@@ -464,7 +597,8 @@ namespace ViscoContact
               = state.stress
                 - E
                     * symmetrize(
-                      stress_points.displacement_gradient(solution, k, q));
+                      problem.stress_points
+                        .displacement_gradient(problem.solution, k, q));
             // Component i of the symmetric tensor, in deal.II's unrolled order
             // (the diagonal first); each stress point contributes 1/n_q of the
             // cell's average.
@@ -475,29 +609,30 @@ namespace ViscoContact
                 fields.stress[i][c] += state.stress[index] / n_q;
                 fields.viscoplastic[i][c] += vp[index] / n_q;
               }
-            fields.von_mises[c] += von_mises_stress(k, state) / n_q;
+            fields.von_mises[c]
+              += problem.materials.von_mises_stress(k, state) / n_q;
             if constexpr (dim == 2)
               if (plane_strain)
                 fields.stress_zz[c] += state.stress_zz / n_q;
           }
       }
 
-    fields.contact.assign(4, VectorType(scalar_partitioner));
-    if (contact_enabled)
-      contact_set.fill_output_fields(fields.contact[0],
-                                     fields.contact[1],
-                                     fields.contact[2],
-                                     fields.contact[3]);
+    fields.contact.assign(4, VectorType(problem.scalar_partitioner));
+    if (problem.contact_enabled)
+      problem.contact_set.fill_output_fields(fields.contact[0],
+                                             fields.contact[1],
+                                             fields.contact[2],
+                                             fields.contact[3]);
     for (VectorType &field : fields.contact)
       field.update_ghost_values();
-    if (contact_enabled && contact_set.has_friction())
+    if (problem.contact_enabled && problem.contact_set.has_friction())
       {
-        fields.tangential_traction.reinit(solution);
-        fields.slip.reinit(solution);
-        fields.friction_state.reinit(scalar_partitioner);
-        contact_set.fill_friction_fields(fields.tangential_traction,
-                                         fields.slip,
-                                         fields.friction_state);
+        fields.tangential_traction.reinit(problem.solution);
+        fields.slip.reinit(problem.solution);
+        fields.friction_state.reinit(problem.scalar_partitioner);
+        problem.contact_set.fill_friction_fields(fields.tangential_traction,
+                                                 fields.slip,
+                                                 fields.friction_state);
         for (VectorType *field : {&fields.tangential_traction,
                                   &fields.slip,
                                   &fields.friction_state})
@@ -508,7 +643,7 @@ namespace ViscoContact
 
 
 
-  // @sect4{ViscoplasticContact::print_run_summary}
+  // @sect4{RunOutput::print_summary}
   //
   // The final state as the summary shows it (run/run_report.h): the L2 norms
   // of eps(u) and sigma with the stress quadrature (each rank sums over its
@@ -520,98 +655,106 @@ namespace ViscoContact
   // history load. These ratios are what the benchmarks report.
   template <int dim>
   void
-  ViscoplasticContact<dim>::print_run_summary()
+  RunOutput<dim>::print_summary(ViscoplasticContact<dim> &problem)
   {
-    const unsigned int n_q         = stress_quadrature.size();
+    const unsigned int n_q         = problem.stress_quadrature.size();
     double             strain_norm = 0, stress_norm = 0;
-    for (unsigned int k = 0; k < stress_points.cells().size(); ++k)
+    for (unsigned int k = 0; k < problem.stress_points.cells().size(); ++k)
       for (unsigned int q = 0; q < n_q; ++q)
         {
-          const SymmetricTensor<2, dim> strain
-            = symmetrize(stress_points.displacement_gradient(solution, k, q));
+          const SymmetricTensor<2, dim> strain = symmetrize(
+            problem.stress_points.displacement_gradient(problem.solution,
+                                                        k,
+                                                        q));
           const SymmetricTensor<2, dim> &sigma
-            = quadrature_point_history[std::size_t(k) * n_q + q].stress;
-          const double JxW = stress_points.JxW(k, q);
+            = problem.quadrature_point_history[std::size_t(k) * n_q + q].stress;
+          const double JxW = problem.stress_points.JxW(k, q);
           strain_norm += (strain * strain) * JxW;
           stress_norm += (sigma * sigma) * JxW;
         }
     // All collective (global norms, sums over the ranks): every rank computes
     // them, rank 0 prints.
-    const auto                 &statistics = contact_solver->statistics();
+    const auto &statistics = problem.contact_solver->statistics();
     const RunReport::FinalState state{
-      implicit_update(),
-      std::sqrt(Utilities::MPI::sum(strain_norm, mpi_communicator)),
-      std::sqrt(Utilities::MPI::sum(stress_norm, mpi_communicator)),
-      max_von_mises,
-      contact_set.count_states(mpi_communicator),
-      contact_set.total_force(mpi_communicator),
-      solution.l2_norm(),
-      solution.linfty_norm(),
-      schedule.step_number(),
-      schedule.n_rejected_steps(),
-      plan.step_cycles(),
-      plan.step_cycles_dropped(),
+      problem.parameters.implicit_update(),
+      std::sqrt(Utilities::MPI::sum(strain_norm, problem.mpi_communicator)),
+      std::sqrt(Utilities::MPI::sum(stress_norm, problem.mpi_communicator)),
+      problem.max_von_mises,
+      problem.contact_set.count_states(problem.mpi_communicator),
+      problem.contact_set.total_force(problem.mpi_communicator),
+      problem.solution.l2_norm(),
+      problem.solution.linfty_norm(),
+      problem.schedule.step_number(),
+      problem.schedule.n_rejected_steps(),
+      problem.plan.step_cycles(),
+      problem.plan.step_cycles_dropped(),
       statistics.operator_setups,
       statistics.solves,
       statistics.inner_iterations};
     // The peak memory before the cost measurement, whose extra solves may
     // build a preconditioner the run did not need.
-    if (parameters.print_timing_summary)
-      report.record_peak_memory("over the run");
-    report.print_summary(state);
-    if (parameters.print_timing_summary)
+    if (problem.parameters.print_timing_summary)
+      problem.report.record_peak_memory("over the run");
+    problem.report.print_summary(state);
+    if (problem.parameters.print_timing_summary)
       {
-        report.print_timer_summary();
-        report.print_cost_measurement(measure_reference_costs());
+        problem.report.print_timer_summary();
+        problem.report.print_cost_measurement(measure_reference_costs(problem));
       }
   }
 
 
 
-  // @sect4{ViscoplasticContact::measure_reference_costs}
+  // @sect4{RunOutput::measure_reference_costs}
   //
   // The reference costs, measured now (the run is over, so the state may
   // be overwritten) and taken as the maximum over the ranks.
   template <int dim>
   RunReport::CostMeasurement
-  ViscoplasticContact<dim>::measure_reference_costs()
+  RunOutput<dim>::measure_reference_costs(ViscoplasticContact<dim> &problem)
   {
-    VectorType reference(solution);
+    VectorType reference(problem.solution);
     // The solve with the operator the back end holds at the end of the run (K
     // for the explicit update, the last tangent for the implicit one), on the
     // external load; where an obstacle or prescribed displacements alone load
     // the body (a zero load costs no iteration), on K u, the load that holds
     // the final displacement. The wall time per solve is the maximum over the
     // ranks, as the slowest rank sets the pace.
-    VectorType load(external_load);
+    VectorType load(problem.external_load);
     const bool holding_load = (load.l2_norm() == 0);
     if (holding_load)
-      contact_solver->apply_operator(load, solution);
+      problem.contact_solver->apply_operator(load, problem.solution);
     // One solve first, untimed: it builds the preconditioner of the operator
     // where the back end has none yet (the AMG of K alone), a set-up that is
     // not part of a solve. Then one timed solve, and two more where it took
     // less than a second (they average out the noise of short solves; at
     // 10^7 dofs they would add minutes to the run). The decision is the
     // slowest rank's, so every rank takes it.
-    contact_solver->solve_without_contact(load, reference);
+    problem.contact_solver->solve_without_contact(load, reference);
     Timer        timer;
     unsigned int krylov_iterations
-      = contact_solver->solve_without_contact(load, reference).inner_iterations;
+      = problem.contact_solver->solve_without_contact(load, reference)
+          .inner_iterations;
     const unsigned int repetitions
-      = Utilities::MPI::max(timer.wall_time(), mpi_communicator) > 1 ? 1 : 3;
+      = Utilities::MPI::max(timer.wall_time(), problem.mpi_communicator) > 1
+          ? 1
+          : 3;
     for (unsigned int r = 1; r < repetitions; ++r)
       krylov_iterations
-        += contact_solver->solve_without_contact(load, reference)
+        += problem.contact_solver->solve_without_contact(load, reference)
              .inner_iterations;
     const double solve_time
-      = Utilities::MPI::max(timer.wall_time() / repetitions, mpi_communicator);
+      = Utilities::MPI::max(timer.wall_time() / repetitions,
+                            problem.mpi_communicator);
     // One stress update (for the explicit update with the history update and
     // the assembly of its load): the work every step does besides the solve.
     timer.restart();
     for (unsigned int r = 0; r < repetitions; ++r)
-      update_stresses(schedule.grid_step_length(), schedule.grid_step_length());
+      problem.update_stresses(problem.schedule.grid_step_length(),
+                              problem.schedule.grid_step_length());
     const double update_time
-      = Utilities::MPI::max(timer.wall_time() / repetitions, mpi_communicator);
+      = Utilities::MPI::max(timer.wall_time() / repetitions,
+                            problem.mpi_communicator);
     // The threads of the BLAS in the sparse factorisation (1 where the BLAS
     // has none).
     unsigned int factorisation_threads = 1;
@@ -619,17 +762,17 @@ namespace ViscoContact
       const BlasThreadsOfRank threads;
       factorisation_threads = blas_threads();
     }
-    return {schedule.step_number(),
+    return {problem.schedule.step_number(),
             solve_time,
             krylov_iterations / repetitions,
             holding_load,
             update_time,
             factorisation_threads,
-            double(dof_handler.n_dofs())};
+            double(problem.dof_handler.n_dofs())};
   }
 
 
 
-  template class ViscoplasticContact<2>;
-  template class ViscoplasticContact<3>;
+  template class RunOutput<2>;
+  template class RunOutput<3>;
 } // namespace ViscoContact

@@ -206,6 +206,12 @@ namespace ViscoContact
       used_prescribed_displacements() const;
     };
 
+    // ParameterHandler::parse_input() of a parameter file, with a value that
+    // does not match its entry's pattern reported as any rejected entry is:
+    // the subsection, the entry, the value and what is accepted.
+    void
+    parse_parameter_file(ParameterHandler &prm, const std::string &file);
+
     // The highest N of the subsections "<name> N" in a parameter file (and
     // in the files it includes), at least 1: how many such subsections to
     // declare before the file is parsed.
@@ -377,8 +383,6 @@ namespace ViscoContact
 
       void
       add_parameters(ParameterHandler &prm);
-      void
-      check_parameters(ParameterHandler &prm);
     };
 
     struct LinearSolver

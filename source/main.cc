@@ -171,7 +171,7 @@ namespace
       std::max(2u, Parameters::count_numbered_subsections(file, "Contact zone"))
       - 1);
     parameters.add_parameters(prm);
-    prm.parse_input(file);
+    Parameters::parse_parameter_file(prm, file);
     // What the parameter file may not mean as ParameterHandler reads it is
     // allowed, but said (rank 0).
     if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)

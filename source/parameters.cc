@@ -114,6 +114,126 @@ namespace ViscoContact
       private:
         const Patterns::Integer count{0, 20};
       };
+
+      // A finite number in an interval whose ends may be open or infinite:
+      // the range of an entry that is its own (a rule across entries stays
+      // in check_parameters()). Written here because deal.II's
+      // Patterns::Double has closed ends only, and "E > 0" is not [0, inf).
+      // Its description is the range in words, which the message of a
+      // rejected value quotes (parse_parameter_file()).
+      class Interval : public Patterns::PatternBase
+      {
+      public:
+        static constexpr double infinity
+          = std::numeric_limits<double>::infinity();
+
+        Interval(const double lower,
+                 const bool   lower_open,
+                 const double upper      = infinity,
+                 const bool   upper_open = true)
+          : lower(lower)
+          , upper(upper)
+          , lower_open(lower_open)
+          , upper_open(upper_open)
+        {}
+
+        bool
+        match(const std::string &text) const override
+        {
+          const std::string trimmed = Utilities::trim(text);
+          const char       *begin   = trimmed.c_str();
+          char             *end     = nullptr;
+          errno                     = 0;
+          const double value        = std::strtod(begin, &end);
+          if (trimmed.empty() || end != begin + trimmed.size()
+              || !std::isfinite(value))
+            return false;
+          return (lower_open ? value > lower : value >= lower)
+                 && (upper_open ? value < upper : value <= upper);
+        }
+        std::string
+        description(const OutputStyle = Machine) const override
+        {
+          const auto number = [](const double x) {
+            std::ostringstream text;
+            text << x;
+            return text.str();
+          };
+          if (upper == infinity)
+            return "[a number " + std::string(lower_open ? "> " : ">= ")
+                   + number(lower) + "]";
+          return "[a number in " + std::string(lower_open ? "(" : "[")
+                 + number(lower) + ", " + number(upper)
+                 + (upper_open ? ")" : "]") + "]";
+        }
+        std::unique_ptr<PatternBase>
+        clone() const override
+        {
+          return std::make_unique<Interval>(lower,
+                                            lower_open,
+                                            upper,
+                                            upper_open);
+        }
+
+      private:
+        const double lower, upper;
+        const bool   lower_open, upper_open;
+      };
+
+      const Interval positive(0, /*lower_open=*/true);
+      const Interval non_negative(0, /*lower_open=*/false);
+      const Interval fraction(0, false, 1, false);
+
+      // A pattern's description as the message of a rejected value says
+      // what is accepted: deal.II's "[Double 0...MAX_DOUBLE (inclusive)]"
+      // becomes "a number >= 0", "[Selection a|b ]" "one of a|b", "[Bool]"
+      // "true or false"; an Interval's is in words already; any other is
+      // quoted.
+      std::string
+      accepted_by(const std::string &description)
+      {
+        std::smatch       match;
+        const std::string trimmed = Utilities::trim(description);
+        if (trimmed.rfind("auto or ", 0) == 0)
+          return "auto or " + accepted_by(trimmed.substr(8));
+        const std::regex range(
+          "^\\[(Double|Integer range) (\\S+)\\.\\.\\.(\\S+) "
+          "\\(inclusive\\)\\]$");
+        if (std::regex_match(trimmed, match, range))
+          {
+            const std::string kind
+              = match[1] == "Double" ? "a number" : "a whole number";
+            const bool no_lower
+              = match[2].str().find("MAX") != std::string::npos
+                || match[2].str().find("2147483648") != std::string::npos;
+            const bool no_upper
+              = match[3].str().find("MAX") != std::string::npos
+                || match[3].str().find("2147483647") != std::string::npos;
+            if (no_lower && no_upper)
+              return kind;
+            if (no_upper)
+              return kind + " >= " + match[2].str();
+            if (no_lower)
+              return kind + " <= " + match[3].str();
+            return kind + " in [" + match[2].str() + ", " + match[3].str()
+                   + "]";
+          }
+        if (std::regex_match(trimmed,
+                             match,
+                             std::regex("^\\[Selection (.*) \\]$")))
+          return "one of " + match[1].str();
+        if (trimmed == "[Bool]")
+          return "true or false";
+        if (trimmed == "[Double]")
+          return "a number";
+        if (trimmed == "[Integer]")
+          return "a whole number";
+        if (std::regex_match(trimmed,
+                             match,
+                             std::regex("^\\[(a number.*)\\]$")))
+          return match[1].str();
+        return trimmed;
+      }
     } // namespace
 
 
@@ -182,7 +302,7 @@ namespace ViscoContact
           "expressions of the file may use them as the constants L1, L2, L3. "
           "With a Mesh file the mesh gives the geometry: Lengths then only "
           "sets those constants (2 or 3 values, whatever the Dimension).",
-          Patterns::List(Patterns::Double(0), 2, 3));
+          Patterns::List(positive, 2, 3));
         prm.add_parameter("Subdivisions",
                           subdivisions,
                           "Number of squares (cubes) along each edge; the mesh "
@@ -286,12 +406,6 @@ namespace ViscoContact
                   + " values) for the generated box (with a Mesh file, "
                     "Lengths only sets the constants L1, L2, L3 of the "
                     "expressions and may have 2 or 3 values)");
-        for (const double l : lengths)
-          require(l > 0,
-                  "Geometry",
-                  "Lengths",
-                  prm.get("Lengths"),
-                  "strictly positive lengths");
         const std::string pattern = prm.get("Simplex pattern");
         if (cell_type == CellType::simplex)
           require(dimension == 2
@@ -531,6 +645,67 @@ namespace ViscoContact
       prm.leave_subsection();
     }
 
+    // @sect4{parse_parameter_file}
+    //
+    // ParameterHandler::parse_input(), with a value that its entry's pattern
+    // rejects reported as every other rejected entry is: deal.II names the
+    // file, the line, the entry and the pattern; the message names the
+    // subsection (from the subsection lines of the file before that line),
+    // the entry, the value and, in words, what is accepted.
+    void
+    parse_parameter_file(ParameterHandler &prm, const std::string &file)
+    {
+      try
+        {
+          prm.parse_input(file);
+        }
+      catch (const ParameterHandler::ExcInvalidEntryForPattern &exc)
+        {
+          // The message's lines: "Line <N> of file <F>:", "The entry value",
+          // the value, "for the entry named", the entry, "does not match
+          // the given pattern:", the pattern.
+          std::ostringstream info;
+          exc.print_info(info);
+          std::vector<std::string> lines;
+          std::istringstream       text(info.str());
+          for (std::string line; std::getline(text, line);)
+            lines.push_back(Utilities::trim(line));
+          std::smatch where;
+          if (lines.size() < 7
+              || !std::regex_match(lines[0],
+                                   where,
+                                   std::regex("^Line <([0-9]+)> of file "
+                                              "<(.*)>:$")))
+            throw;
+          const unsigned int       line_number = std::stoul(where[1].str());
+          const std::string        input       = where[2].str();
+          std::vector<std::string> path;
+          std::ifstream            in(input);
+          std::string              line;
+          for (unsigned int n = 1; n < line_number && std::getline(in, line);
+               ++n)
+            {
+              const std::string statement
+                = Utilities::trim(line.substr(0, line.find('#')));
+              if (statement.rfind("subsection ", 0) == 0)
+                path.push_back(Utilities::trim(statement.substr(11)));
+              else if (statement == "end" && !path.empty())
+                path.pop_back();
+            }
+          std::string subsection;
+          for (const std::string &section : path)
+            subsection += (subsection.empty() ? "" : "/") + section;
+          require(false,
+                  subsection,
+                  lines[4],
+                  lines[2],
+                  accepted_by(lines[6]) + " (line " + where[1].str() + " of "
+                    + input + ")");
+        }
+    }
+
+
+
     unsigned int
     count_numbered_subsections(const std::string &parameter_file,
                                const std::string &name)
@@ -605,21 +780,21 @@ namespace ViscoContact
         prm.add_parameter("Young's modulus",
                           young_modulus,
                           "E > 0 [N/m^2].",
-                          Patterns::Double());
+                          positive);
         prm.add_parameter("Poisson ratio",
                           poisson_ratio,
                           "k: -1 < k < 1 in 2D (plane stress), -1 < k < 0.5 "
                           "in 3D.",
-                          Patterns::Double());
+                          Interval(-1, true, 1, true));
         prm.add_parameter("Viscosity",
                           viscosity,
                           "lambda > 0 [N s/m^2] of the Perzyna law "
                           "G = -(1/(2 lambda)) E (sigma - P_K sigma).",
-                          Patterns::Double());
+                          positive);
         prm.add_parameter("Yield stress",
                           yield_stress,
                           "sigma_Y > 0 [N/m^2] of the von Mises set K.",
-                          Patterns::Double());
+                          positive);
         prm.add_parameter("Hardening modulus",
                           hardening_modulus,
                           "H >= 0 [N/m^2] of Law = hardening plasticity: the "
@@ -646,11 +821,6 @@ namespace ViscoContact
     {
       prm.enter_subsection(subsection);
       {
-        require(young_modulus > 0,
-                subsection,
-                "Young's modulus",
-                to_string(young_modulus),
-                "E > 0");
         const double k_max = (dim == 2 ? 1.0 : 0.5);
         require(poisson_ratio > -1 && poisson_ratio < k_max,
                 subsection,
@@ -658,16 +828,6 @@ namespace ViscoContact
                 to_string(poisson_ratio),
                 std::string("-1 < k < ")
                   + (dim == 2 ? "1 (2D plane stress)" : "0.5 (3D)"));
-        require(viscosity > 0,
-                subsection,
-                "Viscosity",
-                to_string(viscosity),
-                "lambda > 0");
-        require(yield_stress > 0,
-                subsection,
-                "Yield stress",
-                to_string(yield_stress),
-                "sigma_Y > 0");
       }
       prm.leave_subsection();
     }
@@ -790,7 +950,7 @@ namespace ViscoContact
                           "g > 0 [m], the thickness of the deformable layer "
                           "(g >= 0 is accepted without normal compliance: "
                           "Signorini with gap g).",
-                          Patterns::Double());
+                          non_negative);
         add_selection(
           prm,
           "Law",
@@ -803,7 +963,7 @@ namespace ViscoContact
         prm.add_parameter("c1",
                           c1,
                           "Stiffness of the layer up to u1 [N/m^3], c1 >= 0.",
-                          Patterns::Double());
+                          non_negative);
         prm.add_parameter("c2",
                           c2,
                           "Slope beyond u1 [N/m^3]; negative = softening.",
@@ -811,7 +971,7 @@ namespace ViscoContact
         prm.add_parameter("u1",
                           u1,
                           "Penetration where the slope changes [m], u1 >= 0.",
-                          Patterns::Double());
+                          non_negative);
         prm.add_parameter(
           "Breakpoints",
           breakpoints,
@@ -826,8 +986,10 @@ namespace ViscoContact
           "Jumps",
           jumps,
           "Piecewise-linear law: K jumps p(b_k+) - p(b_k-) >= 0 (empty: all "
-          "zero). A jump makes the Clarke subdifferential an interval.",
-          Patterns::List(Patterns::Double()));
+          "zero). A jump makes the Clarke subdifferential an interval (an "
+          "upward jump is a vertical piece of the graph; a downward one has no "
+          "such piece).",
+          Patterns::List(non_negative));
         if (first_zone)
           prm.add_parameter(
             "Check uniqueness",
@@ -878,7 +1040,7 @@ namespace ViscoContact
         prm.add_parameter("Friction coefficient",
                           friction_coefficient,
                           "Coulomb's coefficient mu >= 0.",
-                          Patterns::Double());
+                          non_negative);
       }
       prm.leave_subsection();
     }
@@ -906,12 +1068,6 @@ namespace ViscoContact
                   prm.get("Tangential law"),
                   "frictionless on a zone without a normal law (Unilateral "
                   "constraint = false and Normal compliance = false)");
-        require(friction_coefficient >= 0
-                  && std::isfinite(friction_coefficient),
-                subsection,
-                "Friction coefficient",
-                to_string(friction_coefficient),
-                "a finite mu >= 0");
         if (tangential_law == TangentialLawType::tresca)
           {
             static const std::regex t_variable(
@@ -943,19 +1099,7 @@ namespace ViscoContact
                   subsection,
                   "Layer thickness",
                   to_string(gap),
-                  "g > 0");
-        else
-          require(gap >= 0,
-                  subsection,
-                  "Layer thickness",
-                  to_string(gap),
-                  "g >= 0");
-
-        if (normal_compliance && law_type == ContactLawType::nonmonotone)
-          {
-            require(c1 >= 0, subsection, "c1", to_string(c1), "c1 >= 0");
-            require(u1 >= 0, subsection, "u1", to_string(u1), "u1 >= 0");
-          }
+                  "g > 0 with Normal compliance = true");
         if (normal_compliance && law_type == ContactLawType::piecewise_linear)
           {
             require(breakpoints.size() >= 1,
@@ -981,13 +1125,6 @@ namespace ViscoContact
                     prm.get("Jumps"),
                     "empty or one jump per breakpoint ("
                       + std::to_string(breakpoints.size()) + " values)");
-            for (const double jump : jumps)
-              require(jump >= 0,
-                      subsection,
-                      "Jumps",
-                      prm.get("Jumps"),
-                      "non-negative jumps (an upward jump is a vertical piece "
-                      "of the graph; a downward one has no such piece)");
           }
       }
       prm.leave_subsection();
@@ -1000,15 +1137,12 @@ namespace ViscoContact
     {
       prm.enter_subsection("Time");
       {
-        prm.add_parameter("End time",
-                          end_time,
-                          "T > 0 [s].",
-                          Patterns::Double());
+        prm.add_parameter("End time", end_time, "T > 0 [s].", positive);
         prm.add_parameter("Time step",
                           time_step,
                           "k with 0 < k <= T [s]; if T/k is not an integer the "
                           "last step is shortened to end at T.",
-                          Patterns::Double());
+                          positive);
         add_selection(
           prm,
           "Stress update",
@@ -1038,7 +1172,7 @@ namespace ViscoContact
                           "The smallest time step a cut may reach [s], and "
                           "with Time step control = adaptive the smallest "
                           "step the controller takes; in (0, Time step].",
-                          Patterns::Double());
+                          positive);
         add_selection(
           prm,
           "Time step control",
@@ -1058,7 +1192,7 @@ namespace ViscoContact
           "With Time step control = adaptive: the bound on each step's "
           "estimated local error of the history, relative to the stress "
           "(both in the energy norm of E^-1 over the body); in (0, 1].",
-          Patterns::Double());
+          Interval(0, true, 1, false));
         prm.add_parameter(
           "Maximum time step",
           maximum_time_step,
@@ -1066,7 +1200,7 @@ namespace ViscoContact
           "time. The explicit history update never takes more than 0.9 times "
           "its stability limit 4 lambda / lambda_max(E). 0, or in [Minimum "
           "time step, End time].",
-          Patterns::Double());
+          non_negative);
         prm.add_parameter(
           "Maximum number of steps",
           max_steps,
@@ -1084,22 +1218,16 @@ namespace ViscoContact
     {
       prm.enter_subsection("Time");
       {
-        require(end_time > 0, "Time", "End time", to_string(end_time), "T > 0");
-        require(time_step > 0 && time_step <= end_time,
+        require(time_step <= end_time,
                 "Time",
                 "Time step",
                 to_string(time_step),
                 "0 < k <= T = " + to_string(end_time));
-        require(minimum_time_step > 0 && minimum_time_step <= time_step,
+        require(minimum_time_step <= time_step,
                 "Time",
                 "Minimum time step",
                 to_string(minimum_time_step),
                 "0 < Minimum time step <= Time step = " + to_string(time_step));
-        require(error_tolerance > 0 && error_tolerance <= 1,
-                "Time",
-                "Error tolerance",
-                to_string(error_tolerance),
-                "0 < Error tolerance <= 1 (relative)");
         require(maximum_time_step == 0
                   || (maximum_time_step >= minimum_time_step
                       && maximum_time_step <= end_time),
@@ -1171,7 +1299,7 @@ namespace ViscoContact
           "normal displacements (condensed back end). The iteration stops "
           "when no contact node changes its piece and the last solve met "
           "this tolerance; in (0, 1e-2].",
-          Patterns::Double(0));
+          Interval(0, true, 1e-2, false));
         prm.add_parameter(
           "Predicted start",
           predicted_start,
@@ -1186,20 +1314,6 @@ namespace ViscoContact
           "(the branch the run is on). false: every step starts from u_{n-1} "
           "and the previous step's pieces.",
           Patterns::Bool());
-      }
-      prm.leave_subsection();
-    }
-
-    void
-    ActiveSetSolver::check_parameters(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Active set solver");
-      {
-        require(tolerance > 0 && tolerance <= 1e-2,
-                "Active set solver",
-                "Tolerance",
-                to_string(tolerance),
-                "a number in (0, 1e-2]");
       }
       prm.leave_subsection();
     }
@@ -1425,13 +1539,13 @@ namespace ViscoContact
                           refine_fraction,
                           "The fraction of the cells with the largest "
                           "indicators that is refined, in [0, 1].",
-                          Patterns::Double());
+                          fraction);
         prm.add_parameter("Coarsen fraction",
                           coarsen_fraction,
                           "The fraction of the cells with the smallest "
                           "indicators that is coarsened, in [0, 1]; Refine "
                           "fraction + Coarsen fraction <= 1.",
-                          Patterns::Double());
+                          fraction);
         prm.add_parameter("Maximum cells",
                           maximum_cells,
                           "A bound on the number of active cells: fewer "
@@ -1509,13 +1623,7 @@ namespace ViscoContact
     {
       prm.enter_subsection("Mesh adaptation");
       {
-        require(refine_fraction >= 0 && refine_fraction <= 1,
-                "Mesh adaptation",
-                "Refine fraction",
-                prm.get("Refine fraction"),
-                "a number in [0, 1]");
-        require(coarsen_fraction >= 0
-                  && coarsen_fraction <= 1 - refine_fraction,
+        require(coarsen_fraction <= 1 - refine_fraction,
                 "Mesh adaptation",
                 "Coarsen fraction",
                 prm.get("Coarsen fraction"),
@@ -1560,7 +1668,7 @@ namespace ViscoContact
         prm.add_parameter("Reference time step",
                           reference_time_step,
                           "Time step of the reference run; > 0.",
-                          Patterns::Double(0));
+                          positive);
       }
       prm.leave_subsection();
     }
@@ -1578,11 +1686,6 @@ namespace ViscoContact
                     prm.get("Time steps"),
                     "one time step per Subdivisions entry ("
                       + std::to_string(study_subdivisions.size()) + " values)");
-            require(reference_time_step > 0,
-                    "Convergence study",
-                    "Reference time step",
-                    prm.get("Reference time step"),
-                    "a positive number");
             for (const unsigned int n : study_subdivisions)
               require(reference_subdivisions % n == 0,
                       "Convergence study",
@@ -1649,7 +1752,6 @@ namespace ViscoContact
           zone.contact->check_parameters(prm, dimension, zone.subsection);
       check_boundary_id_claims();
       Time::check_parameters(prm);
-      ActiveSetSolver::check_parameters(prm);
       MeshAdaptation::check_parameters(prm);
       ConvergenceStudy::check_parameters(prm);
       Output::check_parameters(prm);

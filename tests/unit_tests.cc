@@ -75,6 +75,7 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <regex>
 #include <sstream>
 
 using namespace dealii;
@@ -2059,6 +2060,71 @@ TEST(OutputFolder, CollectiveFileInRankOrder)
 // What a resumed run compares with its checkpoint: the values, not their
 // spelling. Numbers are parsed and printed with the fewest digits that give
 // them back; expressions and words stay as written (trimmed).
+// A value that its entry's pattern rejects is reported as every rejected
+// entry is: the subsection, the entry, the value, what is accepted in words,
+// and the line of the file. Ranges with open ends (E > 0) are patterns of
+// their own.
+TEST(Parameters, PatternErrorsNameTheEntry)
+{
+  const auto message_of = [](const std::string &text) {
+    const std::string file
+      = "pattern_error_"
+        + std::to_string(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD))
+        + ".prm";
+    std::ofstream(file) << text;
+    Parameters::AllParameters parameters;
+    ParameterHandler          prm;
+    parameters.add_parameters(prm);
+    std::string message;
+    try
+      {
+        Parameters::parse_parameter_file(prm, file);
+      }
+    catch (const ExceptionBase &exc)
+      {
+        message = exc.what();
+      }
+    std::filesystem::remove(file);
+    // deal.II wraps the message's lines: one blank between words.
+    return std::regex_replace(message, std::regex("\\s+"), " ");
+  };
+  const std::string modulus = message_of("subsection Material\n"
+                                         "  set Young's modulus = 0 # E\n"
+                                         "end\n");
+  EXPECT_NE(modulus.find("Invalid parameter <Young's modulus> in subsection "
+                         "<Material>: value <0>; accepted: a number > 0 "
+                         "(line 2 of pattern_error_"),
+            std::string::npos)
+    << modulus;
+  const std::string fraction = message_of("subsection Mesh adaptation\n"
+                                          "  set Refine fraction = 1.5\n"
+                                          "end\n");
+  EXPECT_NE(fraction.find("<Refine fraction> in subsection <Mesh adaptation>: "
+                          "value <1.5>; accepted: a number in [0, 1] (line 2"),
+            std::string::npos)
+    << fraction;
+  const std::string method = message_of("subsection Linear solver\n"
+                                        "  set Method = distributed\n"
+                                        "end\n");
+  EXPECT_NE(method.find("<Method> in subsection <Linear solver>: value "
+                        "<distributed>; accepted: one of auto|condensed|full "
+                        "space|matrix free (line 2"),
+            std::string::npos)
+    << method;
+  const std::string top = message_of("set Dimension = 4\n");
+  EXPECT_NE(top.find("Invalid parameter <Dimension>: value <4>; accepted: "),
+            std::string::npos)
+    << top;
+  // A number that is not finite is no number of a range.
+  const std::string infinite = message_of("subsection Time\n"
+                                          "  set End time = inf\n"
+                                          "end\n");
+  EXPECT_NE(infinite.find("<End time> in subsection <Time>: value <inf>; "
+                          "accepted: a number > 0"),
+            std::string::npos)
+    << infinite;
+}
+
 TEST(Parameters, CanonicalValues)
 {
   using Parameters::canonical_value;

@@ -130,6 +130,10 @@ TEST(ContactSet, PressureFieldAndBack)
   u.update_ghost_values();
   for (unsigned int i = 0; i < contact.size(); ++i)
     contact.z[i] = contact.r[i] = 0;
+  // The active-set parameters c_i, from unit blocks, name the pieces.
+  Tensor<2, 2> unit;
+  unit[0][0] = unit[1][1] = 1;
+  contact.set_operator(std::vector<Tensor<2, 2>>(contact.size(), unit));
   contact.set_state_from(u, pressure, /*with_friction=*/false);
   for (unsigned int i = 0; i < contact.size(); ++i)
     {

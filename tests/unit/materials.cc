@@ -117,5 +117,7 @@ TEST(Materials, LawOfEachOwnedCell)
   QuadraturePointHistory<2> state;
   state.stress[0][0] = -3;
   if (!cells.empty())
-    EXPECT_NEAR(materials.von_mises_stress(0, state), 3, 1e-14);
+    {
+      EXPECT_NEAR(materials.von_mises_stress(0, state), 3, 1e-14);
+    }
 }

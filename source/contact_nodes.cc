@@ -36,6 +36,27 @@ namespace ViscoContact
                           ArrayView<unsigned int>(sums.data(), N));
       return sums;
     }
+
+    // Whether the last three iterations kept their pieces and their linear
+    // solves no longer improve (none of the last two halved the residual
+    // and it stays above the tolerance): the accuracy of the linear
+    // problem is exhausted.
+    bool
+    stagnates(const std::vector<ActiveSetResult::IterationRecord> &history,
+              const double                                         tolerance)
+    {
+      const std::size_t n = history.size();
+      if (n < 3)
+        return false;
+      bool stagnant = true;
+      for (std::size_t j = n - 2; j < n; ++j)
+        stagnant = stagnant && history[j].changed_nodes == 0
+                   && history[j - 1].changed_nodes == 0
+                   && history[j].linear_residual > tolerance
+                   && history[j].linear_residual
+                        > 0.5 * history[j - 1].linear_residual;
+      return stagnant;
+    }
   } // namespace
 
 
@@ -596,29 +617,17 @@ namespace ViscoContact
           }
         if (moved[0] == 0)
           pieces_settled = true;
-        // Settled pieces whose linear solves no longer improve (three solves
-        // in a row without halving the residual): the accuracy of the linear
-        // problem is exhausted, and more iterations would only repeat it.
-        const std::size_t n = result.history.size();
-        if (n >= 3 && moved[0] == 0)
+        // Settled pieces whose linear solves no longer improve: more
+        // iterations would only repeat them.
+        if (moved[0] == 0 && stagnates(result.history, tolerance))
           {
-            bool stagnant = true;
-            for (std::size_t j = n - 2; j < n; ++j)
-              stagnant = stagnant && result.history[j].changed_nodes == 0
-                         && result.history[j - 1].changed_nodes == 0
-                         && result.history[j].linear_residual > tolerance
-                         && result.history[j].linear_residual
-                              > 0.5 * result.history[j - 1].linear_residual;
-            if (stagnant)
-              {
-                std::ostringstream reason;
-                reason << "The pieces of the contact law settled, but the "
-                          "linear solves stagnate at a relative residual of "
-                       << report.residual << ", above Tolerance = " << tolerance
-                       << " in subsection <Active set solver>.";
-                result.failure = reason.str();
-                return result;
-              }
+            std::ostringstream reason;
+            reason << "The pieces of the contact law settled, but the "
+                      "linear solves stagnate at a relative residual of "
+                   << report.residual << ", above Tolerance = " << tolerance
+                   << " in subsection <Active set solver>.";
+            result.failure = reason.str();
+            return result;
           }
       }
     // Out of iterations: the caller cuts the time step or stops the run with

@@ -170,6 +170,180 @@ namespace ViscoContact
           }
       return name.str();
     }
+
+
+
+    // The rigid modes at the support points of the dofs in to_evaluate,
+    // on the cells this rank knows (every locally relevant dof lies on
+    // one); FEValues maps the unit support points only on cells that carry
+    // a dof to evaluate.
+    template <int dim>
+    std::vector<ModeValues<dim>>
+    modes_at_support_points(const Mapping<dim>    &mapping,
+                            const DoFHandler<dim> &dof_handler,
+                            const IndexSet        &to_evaluate,
+                            const MPI_Comm         communicator)
+    {
+      const FiniteElement<dim> &fe = dof_handler.get_fe();
+      const auto [centre, diameter]
+        = bounding_box(dof_handler.get_triangulation(), communicator);
+      std::vector<ModeValues<dim>> values(to_evaluate.n_elements());
+      std::vector<bool>            evaluated(to_evaluate.n_elements(), false);
+      FEValues<dim>                fe_values(mapping,
+                              fe,
+                              Quadrature<dim>(fe.get_unit_support_points()),
+                              update_quadrature_points);
+      std::vector<types::global_dof_index> dof_indices(fe.n_dofs_per_cell());
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (!cell->is_artificial())
+          {
+            cell->get_dof_indices(dof_indices);
+            bool reinitialized = false;
+            for (unsigned int k = 0; k < dof_indices.size(); ++k)
+              if (to_evaluate.is_element(dof_indices[k]))
+                {
+                  const auto n = to_evaluate.index_within_set(dof_indices[k]);
+                  if (evaluated[n])
+                    continue;
+                  if (!reinitialized)
+                    fe_values.reinit(cell);
+                  reinitialized = true;
+                  values[n]
+                    = mode_values<dim>(fe.system_to_component_index(k).first,
+                                       fe_values.quadrature_point(k),
+                                       centre,
+                                       diameter);
+                  evaluated[n] = true;
+                }
+          }
+      AssertThrow(std::find(evaluated.begin(), evaluated.end(), false)
+                    == evaluated.end(),
+                  ExcInternalError());
+      return values;
+    }
+
+
+
+    // The replies to the requests of other ranks (requested: the dofs each
+    // asked this rank for, values at the dofs of to_evaluate), and the
+    // answers to this rank's requests: the modes at the dofs it asked for.
+    template <int dim>
+    std::map<types::global_dof_index, ModeValues<dim>>
+    exchange_modes(
+      const std::vector<ModeValues<dim>> &values,
+      const IndexSet                     &to_evaluate,
+      const std::map<unsigned int, std::vector<types::global_dof_index>>
+        &requests,
+      const std::map<unsigned int, std::vector<types::global_dof_index>>
+                    &requested,
+      const MPI_Comm communicator)
+    {
+      constexpr unsigned int                      n_modes = n_rigid_modes<dim>;
+      std::map<unsigned int, std::vector<double>> replies;
+      for (const auto &[rank, dofs] : requested)
+        {
+          std::vector<double> &reply = replies[rank];
+          for (const auto j : dofs)
+            {
+              const ModeValues<dim> &m
+                = values[to_evaluate.index_within_set(j)];
+              reply.insert(reply.end(), m.begin(), m.end());
+            }
+        }
+      std::map<types::global_dof_index, ModeValues<dim>> remote_values;
+      for (const auto &[rank, answer] :
+           Utilities::MPI::some_to_some(communicator, replies))
+        {
+          const std::vector<types::global_dof_index> &dofs = requests.at(rank);
+          AssertThrow(answer.size() == n_modes * dofs.size(),
+                      ExcInternalError());
+          for (unsigned int n = 0; n < dofs.size(); ++n)
+            std::copy(answer.begin() + n_modes * n,
+                      answer.begin() + n_modes * (n + 1),
+                      remote_values[dofs[n]].begin());
+        }
+      return remote_values;
+    }
+
+
+
+    // The null space of the Gram matrix G of the modes over the constrained
+    // dofs: the names of the rigid motions the constraints leave free.
+    template <int dim>
+    std::vector<std::string>
+    null_space_names(
+      const std::array<double, n_rigid_modes<dim> * n_rigid_modes<dim>> &gram)
+    {
+      constexpr unsigned int n_modes = n_rigid_modes<dim>;
+      // The eigenvectors of the eigenvalues of G below the tolerance, 1e-10
+      // or, for sums over very many constrained dofs, the roundoff of the
+      // eigenvalues of G (machine epsilon times its norm, at most its trace)
+      // if that is larger.
+      LAPACKFullMatrix<double> G(n_modes);
+      double                   trace = 0;
+      for (unsigned int k = 0; k < n_modes; ++k)
+        {
+          for (unsigned int l = 0; l < n_modes; ++l)
+            G(k, l) = gram[k * n_modes + l];
+          trace += gram[k * n_modes + k];
+        }
+      const double tolerance
+        = std::max(1e-10, 100 * std::numeric_limits<double>::epsilon() * trace);
+      Vector<double>     eigenvalues;
+      FullMatrix<double> eigenvectors;
+      G.compute_eigenvalues_symmetric(-1. - trace,
+                                      tolerance,
+                                      2 * std::numeric_limits<double>::min(),
+                                      eigenvalues,
+                                      eigenvectors);
+      const unsigned int n_free = eigenvalues.size();
+
+      // The eigenvectors of a multiple eigenvalue (such as the three of an
+      // unconstrained body) are any orthonormal basis of the null space. Its
+      // reduced row echelon form (pivots in the order of the modes) is the
+      // basis with single modes wherever the null space contains them, and
+      // otherwise combinations of as few modes as there can be; each vector
+      // is then scaled to length 1, its first coefficient positive.
+      std::vector<ModeValues<dim>> basis(n_free);
+      for (unsigned int f = 0; f < n_free; ++f)
+        for (unsigned int k = 0; k < n_modes; ++k)
+          basis[f][k] = eigenvectors(k, f);
+      unsigned int row = 0;
+      for (unsigned int k = 0; k < n_modes && row < n_free; ++k)
+        {
+          unsigned int pivot = row;
+          for (unsigned int f = row + 1; f < n_free; ++f)
+            if (std::abs(basis[f][k]) > std::abs(basis[pivot][k]))
+              pivot = f;
+          if (std::abs(basis[pivot][k]) < 1e-8)
+            continue;
+          std::swap(basis[row], basis[pivot]);
+          const double scale = 1. / basis[row][k];
+          for (double &coefficient : basis[row])
+            coefficient *= scale;
+          for (unsigned int f = 0; f < n_free; ++f)
+            if (f != row)
+              {
+                const double factor = basis[f][k];
+                for (unsigned int l = 0; l < n_modes; ++l)
+                  basis[f][l] -= factor * basis[row][l];
+              }
+          ++row;
+        }
+
+      std::vector<std::string> names;
+      for (ModeValues<dim> &alpha : basis)
+        {
+          double norm = 0;
+          for (const double coefficient : alpha)
+            norm += coefficient * coefficient;
+          norm = std::sqrt(norm);
+          for (double &coefficient : alpha)
+            coefficient /= norm;
+          names.push_back(motion_name<dim>(alpha));
+        }
+      return names;
+    }
   } // namespace
 
 
@@ -239,72 +413,21 @@ namespace ViscoContact
           to_evaluate.add_indices(dofs.begin(), dofs.end());
       }
 
-    // (3) The modes at the support points, on the cells this rank knows
-    // (every locally relevant dof lies on one); FEValues maps the unit
-    // support points only on cells that carry a dof to evaluate.
-    const auto [centre, diameter]
-      = bounding_box(dof_handler.get_triangulation(), communicator);
-    std::vector<ModeValues<dim>> values(to_evaluate.n_elements());
-    std::vector<bool>            evaluated(to_evaluate.n_elements(), false);
-    FEValues<dim>                fe_values(mapping,
-                            fe,
-                            Quadrature<dim>(fe.get_unit_support_points()),
-                            update_quadrature_points);
-    std::vector<types::global_dof_index> dof_indices(fe.n_dofs_per_cell());
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (!cell->is_artificial())
-        {
-          cell->get_dof_indices(dof_indices);
-          bool reinitialized = false;
-          for (unsigned int k = 0; k < dof_indices.size(); ++k)
-            if (to_evaluate.is_element(dof_indices[k]))
-              {
-                const auto n = to_evaluate.index_within_set(dof_indices[k]);
-                if (evaluated[n])
-                  continue;
-                if (!reinitialized)
-                  fe_values.reinit(cell);
-                reinitialized = true;
-                values[n]
-                  = mode_values<dim>(fe.system_to_component_index(k).first,
-                                     fe_values.quadrature_point(k),
-                                     centre,
-                                     diameter);
-                evaluated[n] = true;
-              }
-        }
-    AssertThrow(std::find(evaluated.begin(), evaluated.end(), false)
-                  == evaluated.end(),
-                ExcInternalError());
+    // (3) The modes at the support points, here and for other ranks.
+    const std::vector<ModeValues<dim>> values
+      = modes_at_support_points(mapping,
+                                dof_handler,
+                                to_evaluate,
+                                communicator);
 
-    std::map<types::global_dof_index, ModeValues<dim>> remote_values;
-    if (any_missing)
-      {
-        std::map<unsigned int, std::vector<double>> replies;
-        for (const auto &[rank, dofs] : requested)
-          {
-            std::vector<double> &reply = replies[rank];
-            for (const auto j : dofs)
-              {
-                const ModeValues<dim> &m
-                  = values[to_evaluate.index_within_set(j)];
-                reply.insert(reply.end(), m.begin(), m.end());
-              }
-          }
-        const auto answers
-          = Utilities::MPI::some_to_some(communicator, replies);
-        for (const auto &[rank, answer] : answers)
-          {
-            const std::vector<types::global_dof_index> &dofs
-              = requests.at(rank);
-            AssertThrow(answer.size() == n_modes * dofs.size(),
-                        ExcInternalError());
-            for (unsigned int n = 0; n < dofs.size(); ++n)
-              std::copy(answer.begin() + n_modes * n,
-                        answer.begin() + n_modes * (n + 1),
-                        remote_values[dofs[n]].begin());
-          }
-      }
+    // The modes of the dofs other ranks evaluated for this one.
+    const std::map<types::global_dof_index, ModeValues<dim>> remote_values
+      = any_missing ? exchange_modes<dim>(values,
+                                          to_evaluate,
+                                          requests,
+                                          requested,
+                                          communicator)
+                    : std::map<types::global_dof_index, ModeValues<dim>>();
     const auto mode_values_of
       = [&](const types::global_dof_index j) -> const ModeValues<dim> & {
       if (to_evaluate.is_element(j))
@@ -333,73 +456,8 @@ namespace ViscoContact
                         communicator,
                         ArrayView<double>(gram.data(), gram.size()));
 
-    // (5) The eigenvectors of the eigenvalues of G below the tolerance, 1e-10
-    // or, for sums over very many constrained dofs, the roundoff of the
-    // eigenvalues of G (machine epsilon times its norm, at most its trace)
-    // if that is larger.
-    LAPACKFullMatrix<double> G(n_modes);
-    double                   trace = 0;
-    for (unsigned int k = 0; k < n_modes; ++k)
-      {
-        for (unsigned int l = 0; l < n_modes; ++l)
-          G(k, l) = gram[k * n_modes + l];
-        trace += gram[k * n_modes + k];
-      }
-    const double tolerance
-      = std::max(1e-10, 100 * std::numeric_limits<double>::epsilon() * trace);
-    Vector<double>     eigenvalues;
-    FullMatrix<double> eigenvectors;
-    G.compute_eigenvalues_symmetric(-1. - trace,
-                                    tolerance,
-                                    2 * std::numeric_limits<double>::min(),
-                                    eigenvalues,
-                                    eigenvectors);
-    const unsigned int n_free = eigenvalues.size();
-
-    // The eigenvectors of a multiple eigenvalue (such as the three of an
-    // unconstrained body) are any orthonormal basis of the null space. Its
-    // reduced row echelon form (pivots in the order of the modes) is the
-    // basis with single modes wherever the null space contains them, and
-    // otherwise combinations of as few modes as there can be; each vector
-    // is then scaled to length 1, its first coefficient positive.
-    std::vector<ModeValues<dim>> basis(n_free);
-    for (unsigned int f = 0; f < n_free; ++f)
-      for (unsigned int k = 0; k < n_modes; ++k)
-        basis[f][k] = eigenvectors(k, f);
-    unsigned int row = 0;
-    for (unsigned int k = 0; k < n_modes && row < n_free; ++k)
-      {
-        unsigned int pivot = row;
-        for (unsigned int f = row + 1; f < n_free; ++f)
-          if (std::abs(basis[f][k]) > std::abs(basis[pivot][k]))
-            pivot = f;
-        if (std::abs(basis[pivot][k]) < 1e-8)
-          continue;
-        std::swap(basis[row], basis[pivot]);
-        const double scale = 1. / basis[row][k];
-        for (double &coefficient : basis[row])
-          coefficient *= scale;
-        for (unsigned int f = 0; f < n_free; ++f)
-          if (f != row)
-            {
-              const double factor = basis[f][k];
-              for (unsigned int l = 0; l < n_modes; ++l)
-                basis[f][l] -= factor * basis[row][l];
-            }
-        ++row;
-      }
-
-    std::vector<std::string> names;
-    for (ModeValues<dim> &alpha : basis)
-      {
-        double norm = 0;
-        for (const double coefficient : alpha)
-          norm += coefficient * coefficient;
-        norm = std::sqrt(norm);
-        for (double &coefficient : alpha)
-          coefficient /= norm;
-        names.push_back(motion_name<dim>(alpha));
-      }
+    // (5) The names of the motions in the null space of G.
+    const std::vector<std::string> names = null_space_names<dim>(gram);
     // Every rank has the same G; rank 0's names make sure of the same
     // answer also where a reduction could round differently on each rank.
     return Utilities::MPI::broadcast(communicator, names, 0);

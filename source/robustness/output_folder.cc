@@ -27,6 +27,7 @@
 #include <iostream>
 #include <random>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -391,6 +392,86 @@ namespace ViscoContact
       return list;
     }
 
+
+    // The manifest of a folder, and those of the runs of a study in the
+    // folders it lists ("runs/..."): an empty string, or the problem of the
+    // first manifest that is not as the program wrote it, whose name
+    // (relative to the folder) is then in name.
+    std::string
+    read_manifests(const int    folder_descriptor,
+                   Manifest    &entries,
+                   std::string &name)
+    {
+      std::string problem = read_manifest(folder_descriptor, entries);
+      for (const auto &[kind, listed] : entries)
+        if (problem.empty() && kind == "folder"
+            && listed.rfind("runs/", 0) == 0)
+          {
+            std::string leaf;
+            const int   parent = open_parent(folder_descriptor, listed, leaf);
+            const int   inner
+              = parent < 0
+                  ? -1
+                  : ::openat(parent,
+                             leaf.c_str(),
+                             O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+            Manifest inner_entries;
+            if (inner >= 0)
+              {
+                problem = read_manifest(inner, inner_entries);
+                name    = listed + "/" + OutputFolder::manifest_name;
+                ::close(inner);
+              }
+            if (parent >= 0 && parent != folder_descriptor)
+              ::close(parent);
+          }
+      return problem;
+    }
+
+    // The entries of a folder with the names of the program's output that
+    // its manifest does not list (listed), and the listed names that have
+    // become symbolic links (neither removed nor replaced: they are not the
+    // run's any more), with the checkpoint files a listed checkpoint folder
+    // does not list. The listed files that exist go into earlier_run.
+    std::vector<std::string>
+    names_in_the_way(const int                    folder_descriptor,
+                     const std::set<std::string> &listed,
+                     std::vector<std::string>    &earlier_run)
+    {
+      std::vector<std::string> in_the_way;
+      for (const std::string &name : folder_entries(folder_descriptor))
+        {
+          const bool is_listed = listed.count(name) > 0;
+          if (is_listed && name[0] != '.')
+            earlier_run.push_back(name);
+          else if (!is_listed && is_program_name(name))
+            in_the_way.push_back(name);
+        }
+      for (const std::string &name : listed)
+        {
+          struct stat status;
+          if (status_of(folder_descriptor, name, status)
+              && S_ISLNK(status.st_mode))
+            in_the_way.push_back(name);
+        }
+      if (listed.count("checkpoint") > 0)
+        {
+          const int inner
+            = ::openat(folder_descriptor,
+                       "checkpoint",
+                       O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+          if (inner >= 0)
+            {
+              for (const std::string &name : folder_entries(inner))
+                if (is_checkpoint_name(name)
+                    && listed.count("checkpoint/" + name) == 0)
+                  in_the_way.push_back("checkpoint/" + name);
+              ::close(inner);
+            }
+        }
+      return in_the_way;
+    }
+
     std::string
     host_name()
     {
@@ -718,30 +799,10 @@ namespace ViscoContact
     struct stat status;
     const bool  has_manifest
       = status_of(folder_descriptor, manifest_name, status);
-    std::string manifest_problem = read_manifest(folder_descriptor, entries);
-    std::string manifest_path    = path(manifest_name);
-    for (const auto &[kind, name] : entries)
-      if (manifest_problem.empty() && kind == "folder"
-          && name.rfind("runs/", 0) == 0)
-        {
-          std::string leaf;
-          const int   parent = open_parent(folder_descriptor, name, leaf);
-          const int   inner
-            = parent < 0
-                ? -1
-                : ::openat(parent,
-                           leaf.c_str(),
-                           O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
-          Manifest inner_entries;
-          if (inner >= 0)
-            {
-              manifest_problem = read_manifest(inner, inner_entries);
-              manifest_path    = path(name + "/" + manifest_name);
-              ::close(inner);
-            }
-          if (parent >= 0 && parent != folder_descriptor)
-            ::close(parent);
-        }
+    std::string       manifest_name_read = manifest_name;
+    const std::string manifest_problem
+      = read_manifests(folder_descriptor, entries, manifest_name_read);
+    const std::string manifest_path = path(manifest_name_read);
     if (!manifest_problem.empty())
       return entry_name + "; its manifest " + manifest_path + " "
              + manifest_problem
@@ -754,42 +815,9 @@ namespace ViscoContact
     for (const auto &entry : entries)
       listed_names.insert(entry.second);
 
-    std::vector<std::string> in_the_way, earlier_run;
-    for (const std::string &name : folder_entries(folder_descriptor))
-      {
-        const bool listed = listed_names.count(name) > 0;
-        if (listed && name[0] != '.')
-          earlier_run.push_back(name);
-        else if (!listed && is_program_name(name))
-          in_the_way.push_back(name);
-      }
-    // A listed name that has become a symbolic link is not the run's any
-    // more: neither removed nor replaced, it is in the way.
-    for (const std::string &name : listed_names)
-      {
-        struct stat status;
-        if (status_of(folder_descriptor, name, status)
-            && S_ISLNK(status.st_mode))
-          in_the_way.push_back(name);
-      }
-    // Inside a listed checkpoint folder, the checkpoint files it does not
-    // list.
-    if (listed_names.count("checkpoint") > 0)
-      {
-        const int inner
-          = ::openat(folder_descriptor,
-                     "checkpoint",
-                     O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
-        if (inner >= 0)
-          {
-            for (const std::string &name : folder_entries(inner))
-              if (is_checkpoint_name(name)
-                  && listed_names.count("checkpoint/" + name) == 0)
-                in_the_way.push_back("checkpoint/" + name);
-            ::close(inner);
-          }
-      }
-
+    std::vector<std::string> earlier_run;
+    std::vector<std::string> in_the_way
+      = names_in_the_way(folder_descriptor, listed_names, earlier_run);
     std::sort(in_the_way.begin(), in_the_way.end());
     if (!in_the_way.empty())
       return entry_name

@@ -650,8 +650,9 @@ namespace ViscoContact
     // ParameterHandler::parse_input(), with a value that its entry's pattern
     // rejects reported as every other rejected entry is: deal.II names the
     // file, the line, the entry and the pattern; the message names the
-    // subsection (from the subsection lines of the file before that line),
-    // the entry, the value and, in words, what is accepted.
+    // subsection (from the subsection lines of that file before that line:
+    // in a file that another includes, the path below the include), the
+    // entry, the value and, in words, what is accepted.
     void
     parse_parameter_file(ParameterHandler &prm, const std::string &file)
     {
@@ -687,9 +688,11 @@ namespace ViscoContact
             {
               const std::string statement
                 = Utilities::trim(line.substr(0, line.find('#')));
-              if (statement.rfind("subsection ", 0) == 0)
+              if (statement.rfind("subsection ", 0) == 0
+                  || statement.rfind("SUBSECTION ", 0) == 0)
                 path.push_back(Utilities::trim(statement.substr(11)));
-              else if (statement == "end" && !path.empty())
+              else if ((statement == "end" || statement == "END")
+                       && !path.empty())
                 path.pop_back();
             }
           std::string subsection;
@@ -963,7 +966,7 @@ namespace ViscoContact
         prm.add_parameter("c1",
                           c1,
                           "Stiffness of the layer up to u1 [N/m^3], c1 >= 0.",
-                          non_negative);
+                          Patterns::Double());
         prm.add_parameter("c2",
                           c2,
                           "Slope beyond u1 [N/m^3]; negative = softening.",
@@ -971,7 +974,7 @@ namespace ViscoContact
         prm.add_parameter("u1",
                           u1,
                           "Penetration where the slope changes [m], u1 >= 0.",
-                          non_negative);
+                          Patterns::Double());
         prm.add_parameter(
           "Breakpoints",
           breakpoints,
@@ -989,7 +992,7 @@ namespace ViscoContact
           "zero). A jump makes the Clarke subdifferential an interval (an "
           "upward jump is a vertical piece of the graph; a downward one has no "
           "such piece).",
-          Patterns::List(non_negative));
+          Patterns::List(Patterns::Double()));
         if (first_zone)
           prm.add_parameter(
             "Check uniqueness",
@@ -1100,6 +1103,13 @@ namespace ViscoContact
                   "Layer thickness",
                   to_string(gap),
                   "g > 0 with Normal compliance = true");
+        // The ranges of the laws' entries hold only for the law that uses
+        // them.
+        if (normal_compliance && law_type == ContactLawType::nonmonotone)
+          {
+            require(c1 >= 0, subsection, "c1", to_string(c1), "c1 >= 0");
+            require(u1 >= 0, subsection, "u1", to_string(u1), "u1 >= 0");
+          }
         if (normal_compliance && law_type == ContactLawType::piecewise_linear)
           {
             require(breakpoints.size() >= 1,
@@ -1125,6 +1135,13 @@ namespace ViscoContact
                     prm.get("Jumps"),
                     "empty or one jump per breakpoint ("
                       + std::to_string(breakpoints.size()) + " values)");
+            for (const double jump : jumps)
+              require(jump >= 0,
+                      subsection,
+                      "Jumps",
+                      prm.get("Jumps"),
+                      "non-negative jumps (an upward jump is a vertical piece "
+                      "of the graph; a downward one has no such piece)");
           }
       }
       prm.leave_subsection();
@@ -1668,7 +1685,7 @@ namespace ViscoContact
         prm.add_parameter("Reference time step",
                           reference_time_step,
                           "Time step of the reference run; > 0.",
-                          positive);
+                          Patterns::Double(0));
       }
       prm.leave_subsection();
     }
@@ -1686,6 +1703,11 @@ namespace ViscoContact
                     prm.get("Time steps"),
                     "one time step per Subdivisions entry ("
                       + std::to_string(study_subdivisions.size()) + " values)");
+            require(reference_time_step > 0,
+                    "Convergence study",
+                    "Reference time step",
+                    prm.get("Reference time step"),
+                    "a positive number");
             for (const unsigned int n : study_subdivisions)
               require(reference_subdivisions % n == 0,
                       "Convergence study",

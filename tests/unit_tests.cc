@@ -2055,11 +2055,8 @@ TEST(OutputFolder, CollectiveFileInRankOrder)
 
 
 
-// @sect3{Canonical entry values}
+// @sect3{Entries rejected by their patterns}
 //
-// What a resumed run compares with its checkpoint: the values, not their
-// spelling. Numbers are parsed and printed with the fewest digits that give
-// them back; expressions and words stay as written (trimmed).
 // A value that its entry's pattern rejects is reported as every rejected
 // entry is: the subsection, the entry, the value, what is accepted in words,
 // and the line of the file. Ranges with open ends (E > 0) are patterns of
@@ -2115,6 +2112,13 @@ TEST(Parameters, PatternErrorsNameTheEntry)
   EXPECT_NE(top.find("Invalid parameter <Dimension>: value <4>; accepted: "),
             std::string::npos)
     << top;
+  // deal.II also reads SUBSECTION and END.
+  const std::string upper = message_of("SUBSECTION Time\n"
+                                       "  set End time = -1\n"
+                                       "END\n");
+  EXPECT_NE(upper.find("<End time> in subsection <Time>: value <-1>"),
+            std::string::npos)
+    << upper;
   // A number that is not finite is no number of a range.
   const std::string infinite = message_of("subsection Time\n"
                                           "  set End time = inf\n"
@@ -2125,6 +2129,11 @@ TEST(Parameters, PatternErrorsNameTheEntry)
     << infinite;
 }
 
+// @sect3{Canonical entry values}
+//
+// What a resumed run compares with its checkpoint: the values, not their
+// spelling. Numbers are parsed and printed with the fewest digits that give
+// them back; expressions and words stay as written (trimmed).
 TEST(Parameters, CanonicalValues)
 {
   using Parameters::canonical_value;

@@ -33,13 +33,15 @@ namespace ViscoContact
   // The integrals are segment-based: each pair of a slave and a master
   // segment is integrated over the part of the slave segment that the
   // master segment covers, where pi is affine, so Gauss's two-point rule is
-  // exact. What this guarantees (tests/unit/mortar.cc): sum_k M_jk = D_j at
-  // every vertex (a rigid translation has no weighted gap), and on a
-  // straight interface whose slave segments around j are covered by the
-  // master side, sum_k M_jk x_k = D_j x_j (a linear field is reproduced:
-  // the patch test on non-matching meshes). D_j is the integral of psi_j,
-  // not of psi_j N_j: the two agree on covered segments, and the first
-  // keeps the row sum exact where the master side ends inside a segment.
+  // exact. On a slave segment that the master side covers only in part,
+  // the dual basis is taken biorthogonal on the covered part (below 1%
+  // coverage the standard basis psi_j = N_j), so that D_j is the covered
+  // integral of N_j, never negative. What this guarantees
+  // (tests/unit/mortar.cc): sum_k M_jk = D_j at every vertex (a rigid
+  // translation has no weighted gap), and on a straight interface
+  // sum_k M_jk x_k = D_j x_j wherever the segments around j are covered, in
+  // part or whole (a linear field is reproduced: the patch test on
+  // non-matching meshes).
   namespace Mortar
   {
     // A side in 2D as segments between vertices, each segment oriented so

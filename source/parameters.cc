@@ -137,18 +137,16 @@ namespace ViscoContact
           , upper_open(upper_open)
         {}
 
+        // A number as deal.II reads it (the syntax of Patterns::Double,
+        // and the value Convert<double> gives the member), in the range.
         bool
         match(const std::string &text) const override
         {
-          const std::string trimmed = Utilities::trim(text);
-          const char       *begin   = trimmed.c_str();
-          char             *end     = nullptr;
-          errno                     = 0;
-          const double value        = std::strtod(begin, &end);
-          if (trimmed.empty() || end != begin + trimmed.size()
-              || !std::isfinite(value))
+          if (!Patterns::Double().match(text))
             return false;
-          return (lower_open ? value > lower : value >= lower)
+          const double value = Patterns::Tools::Convert<double>::to_value(text);
+          return std::isfinite(value)
+                 && (lower_open ? value > lower : value >= lower)
                  && (upper_open ? value < upper : value <= upper);
         }
         std::string

@@ -2119,6 +2119,14 @@ TEST(Parameters, PatternErrorsNameTheEntry)
   EXPECT_NE(upper.find("<End time> in subsection <Time>: value <-1>"),
             std::string::npos)
     << upper;
+  // Only numbers as deal.II reads them: "0x10" would be read as 0.
+  const std::string hexadecimal = message_of("subsection Material\n"
+                                             "  set Young's modulus = 0x10\n"
+                                             "end\n");
+  EXPECT_NE(hexadecimal.find("<Young's modulus> in subsection <Material>: "
+                             "value <0x10>; accepted: a number > 0"),
+            std::string::npos)
+    << hexadecimal;
   // A number that is not finite is no number of a range.
   const std::string infinite = message_of("subsection Time\n"
                                           "  set End time = inf\n"

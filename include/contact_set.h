@@ -17,6 +17,7 @@
 #include "back_ends/linear_algebra.h"
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,7 +58,16 @@ namespace ViscoContact
     std::vector<types::boundary_id> boundary_ids;
     std::optional<Tensor<1, dim>>   direction;
     FrictionLaw                     friction = std::make_shared<Frictionless>();
+    // A contact pair: the boundary parts of the body the zone meets (empty:
+    // a rigid obstacle).
+    std::vector<types::boundary_id> opposite_ids;
+    // The largest distance between paired faces (0: the longest face of
+    // the two sides).
+    double search_distance = 0;
   };
+
+  template <int dim>
+  class ContactPairs;
 
   // @sect3{The contact set}
   //
@@ -100,7 +110,32 @@ namespace ViscoContact
       unsigned int                        n_tangents = 0;
       std::array<Tensor<1, dim>, dim - 1> tangents;
       std::array<Tensor<1, dim>, dim - 1> tangent_rows;
+      // On a contact pair (contact_pairs/contact_pairs.h): component c of
+      // the opposite side's displacement at the node as a sum of
+      // coefficient * u[dof] over the entries of component c, and the
+      // distance between the sides along the node's direction. The rows of
+      // the node are then a . (u_node - u_opposite), a its direction or a
+      // tangent; the gap adds to the zone's Initial gap.
+      struct OppositeEntry
+      {
+        types::global_dof_index dof;
+        unsigned int            local_dof;
+        unsigned int            component;
+        double                  coefficient;
+      };
+      std::vector<OppositeEntry> opposite;
+      double                     opposite_gap = 0;
     };
+
+    // Contact pairs (zones with Opposite boundary ids, contact_pairs.h),
+    // before the vectors are laid out: the coupling of the pair nodes this
+    // rank owns with the opposite sides, and the dofs of those sides that
+    // their rows use and this rank does not own, which must be ghosts of
+    // the layout setup() gets. Collective; refuses bad pairs on every rank.
+    IndexSet
+    couple_pairs(const std::vector<ContactZoneDescription<dim>> &zones,
+                 const DoFHandler<dim>                          &dof_handler,
+                 const AffineConstraints<double>                &constraints);
 
     // A vertex on the boundary parts of several zones belongs to the first
     // of them. constraints are all of the displacement's, hanging_constraints
@@ -152,9 +187,21 @@ namespace ViscoContact
     };
     ArrayView<const RowEntry>
     row(const unsigned int i, const unsigned int j) const;
+    // Whether a row of any rank's nodes has an entry at a dof its rank
+    // does not own (a contact pair whose opposite side lies on other
+    // ranks): row . u then needs u's ghost values, and v += value row a
+    // compress(add) of v afterwards.
+    bool
+    rows_reach_ghosts() const;
     // row(i, j) . u and v += value row(i, j), on the local entries.
     double
     row_component(const VectorType  &u,
+                  const unsigned int i,
+                  const unsigned int j) const;
+    // The same on the owned entries of u as an array (every entry of the
+    // row owned).
+    double
+    row_component(const double      *u,
                   const unsigned int i,
                   const unsigned int j) const;
     void
@@ -190,6 +237,14 @@ namespace ViscoContact
     // zone, the tangential force the body exerts on the obstacle.
     std::vector<Tensor<1, dim>>
     zone_tangential_forces(const MPI_Comm communicator) const;
+    // Over all ranks, per zone: the contact force on the zone's side (what
+    // the other body or the obstacle exerts on it, normal and tangential)
+    // and, on a contact pair, the force on the opposite side's free dofs
+    // (from the entries of the rows there): the two balance, less what
+    // constraints of the opposite side take (a plane of symmetry through
+    // it).
+    std::vector<std::array<Tensor<1, dim>, 2>>
+    zone_side_forces(const MPI_Comm communicator) const;
     // The slip of the last step for the output: zero at a free node.
     Tensor<1, dim>
     output_slip(const unsigned int i) const;
@@ -297,9 +352,12 @@ namespace ViscoContact
     std::vector<unsigned int> zone_numbers;
     std::vector<double>       gaps; // empty: no obstacle gap (s = 0)
     std::vector<FrictionLaw>  zone_friction;
-    types::global_dof_index   n_global     = 0;
-    types::global_dof_index   first_global = 0;
-    MPI_Comm                  communicator = MPI_COMM_SELF;
+    // The mortar coupling of the pair nodes (none without pairs).
+    std::shared_ptr<const ContactPairs<dim>> pairs;
+    bool                                     rows_reach_ghost_dofs = false;
+    types::global_dof_index                  n_global              = 0;
+    types::global_dof_index                  first_global          = 0;
+    MPI_Comm                                 communicator = MPI_COMM_SELF;
   };
 } // namespace ViscoContact
 

@@ -305,7 +305,11 @@ namespace ViscoContact
     // used).
     struct Contact
     {
-      std::vector<types::boundary_id> boundary_ids;     // zones N >= 2 only
+      std::vector<types::boundary_id> boundary_ids; // zones N >= 2 only
+      // A contact pair: the boundary part of the other body that the zone
+      // meets (empty: a rigid obstacle).
+      std::vector<types::boundary_id> opposite_ids;
+      std::string                     search_distance = "auto";
       bool                unilateral_constraint = true; // rigid foundation
       bool                normal_compliance     = true; // the deformable layer
       double              gap                   = 0.01; // g, layer thickness

@@ -5,6 +5,7 @@
 #define viscoplastic_contact_rigid_motions_h
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/point.h>
 
 #include <deal.II/dofs/dof_handler.h>
 
@@ -21,18 +22,30 @@ namespace ViscoContact
 
   // @sect3{Free rigid motions}
   //
-  // The rigid motions of the body that the constraints do not stop: K is
-  // singular unless this is empty. Returns one line per free motion, e.g.
-  // "translation in x", "rotation about z", or for a combination
-  // "0.71 translation in x + 0.71 rotation about z". The rotations are
-  // right-handed, about the centre of the mesh's bounding box. Collective.
+  // The rigid motions of the bodies of the mesh (its connected components)
+  // that the constraints do not stop: K is singular unless this is empty.
+  // One entry per body with a free motion: its number (from 1, in the order
+  // of the coarse cells), the number of bodies, its bounding box, and one
+  // line per free motion, e.g. "translation in x", "rotation about z", or
+  // for a combination "0.71 translation in x + 0.71 rotation about z". The
+  // rotations are right-handed, about the centre of the body's bounding
+  // box. Collective.
   //
   // dof_handler: a primitive vector-valued element with dim components
   // (FESystem of P1 or Q1) on any (also distributed) mesh; constraints:
   // closed, stored at least on the locally relevant dofs (their
   // inhomogeneities do not matter). Every rank returns the same lines.
   template <int dim>
-  std::vector<std::string>
+  struct FreeBody
+  {
+    unsigned int             number;
+    unsigned int             n_bodies;
+    Point<dim>               lower, upper;
+    std::vector<std::string> motions;
+  };
+
+  template <int dim>
+  std::vector<FreeBody<dim>>
   free_rigid_motions(const Mapping<dim>              &mapping,
                      const DoFHandler<dim>           &dof_handler,
                      const AffineConstraints<double> &constraints,

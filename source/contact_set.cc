@@ -16,12 +16,14 @@
 
 #include <deal.II/lac/full_matrix.h>
 
+#include "contact_pairs/contact_pairs.h"
 #include "contact_set.h"
 #include "robustness/file_output.h"
 
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -142,6 +144,30 @@ namespace ViscoContact
 
 
 
+  // @sect4{ContactSet::couple_pairs}
+  template <int dim>
+  IndexSet
+  ContactSet<dim>::couple_pairs(
+    const std::vector<ContactZoneDescription<dim>> &zones,
+    const DoFHandler<dim>                          &dof_handler,
+    const AffineConstraints<double>                &constraints)
+  {
+    pairs.reset();
+    if (std::all_of(zones.begin(), zones.end(), [](const auto &zone) {
+          return zone.opposite_ids.empty();
+        }))
+      return IndexSet(dof_handler.n_dofs());
+    auto coupled = std::make_shared<ContactPairs<dim>>();
+    coupled->reinit(zones,
+                    dof_handler,
+                    constraints,
+                    dof_handler.get_communicator());
+    pairs = coupled;
+    return pairs->ghost_dofs();
+  }
+
+
+
   // @sect4{ContactSet::setup}
   //
   // Finds the contact nodes this rank owns, with their geometry, weights and
@@ -214,18 +240,29 @@ namespace ViscoContact
     // The weight of a node sits at its x-dof; the nodes start at r = z = 0,
     // stuck where the zone has friction, with a zero Tresca bound until
     // set_slip_bounds().
-    std::vector<double>       node_weights(geometry.size());
+    std::vector<double> node_weights(geometry.size());
+    for (unsigned int i = 0; i < geometry.size(); ++i)
+      node_weights[i] = weights(geometry[i].dofs[0]);
+    // The nodes of contact pairs take the weights and rows of the mortar
+    // coupling with the opposite side.
+    if (pairs)
+      pairs->couple_nodes(geometry, node_weights, *layout.get_partitioner());
     std::vector<unsigned int> node_zones(geometry.size());
     for (unsigned int i = 0; i < geometry.size(); ++i)
-      {
-        node_weights[i] = weights(geometry[i].dofs[0]);
-        node_zones[i]   = geometry[i].zone;
-      }
+      node_zones[i] = geometry[i].zone;
     reinit(ContactLaws(laws), node_zones, node_weights);
     zone_friction.clear();
     for (const ContactZoneDescription<dim> &zone : zones)
       zone_friction.push_back(zone.friction);
     make_rows();
+    const unsigned int n_owned = layout.locally_owned_size();
+    rows_reach_ghost_dofs      = Utilities::MPI::logical_or(
+      std::any_of(row_entries.begin(),
+                  row_entries.end(),
+                  [n_owned](const RowEntry &entry) {
+                    return entry.local_dof >= n_owned;
+                  }),
+      communicator);
     std::vector<unsigned int> tangents(geometry.size());
     for (unsigned int i = 0; i < geometry.size(); ++i)
       tangents[i] = geometry[i].n_tangents;
@@ -614,6 +651,24 @@ namespace ViscoContact
               if (vector[c] != 0.)
                 row_entries.push_back(
                   RowEntry{node.dofs[c], node.local_dofs[c], vector[c]});
+            // On a pair, minus the opposite side's displacement along the
+            // row's direction in space, each dof once.
+            const Tensor<1, dim> &direction
+              = (j == 0 ? node.direction : node.tangents[j - 1]);
+            std::map<types::global_dof_index, RowEntry> opposite;
+            for (const auto &entry : node.opposite)
+              {
+                RowEntry &row_entry
+                  = opposite
+                      .emplace(entry.dof,
+                               RowEntry{entry.dof, entry.local_dof, 0.})
+                      .first->second;
+                row_entry.value
+                  -= entry.coefficient * direction[entry.component];
+              }
+            for (const auto &[dof, entry] : opposite)
+              if (entry.value != 0.)
+                row_entries.push_back(entry);
             row_begin.push_back(row_entries.size());
           }
         node_first_row.push_back(node_first_row.back() + 1 + node.n_tangents);
@@ -647,6 +702,29 @@ namespace ViscoContact
     for (const RowEntry &entry : row(i, j))
       value += entry.value * u.local_element(entry.local_dof);
     return value;
+  }
+
+
+
+  template <int dim>
+  double
+  ContactSet<dim>::row_component(const double      *u,
+                                 const unsigned int i,
+                                 const unsigned int j) const
+  {
+    double value = 0;
+    for (const RowEntry &entry : row(i, j))
+      value += entry.value * u[entry.local_dof];
+    return value;
+  }
+
+
+
+  template <int dim>
+  bool
+  ContactSet<dim>::rows_reach_ghosts() const
+  {
+    return rows_reach_ghost_dofs;
   }
 
 
@@ -948,6 +1026,39 @@ namespace ViscoContact
 
 
 
+  template <int dim>
+  std::vector<std::array<Tensor<1, dim>, 2>>
+  ContactSet<dim>::zone_side_forces(const MPI_Comm communicator) const
+  {
+    std::vector<double> sums(laws().n_zones() * 2 * dim, 0.);
+    for (unsigned int i = 0; i < size(); ++i)
+      {
+        const NodeGeometry &node = geometry[i];
+        // The force of node i on the other side, in space.
+        Tensor<1, dim> force = z[i] * node.direction;
+        if (node.n_tangents > 0)
+          force += tangential_vector(i, t[i]);
+        double *zone_sums = &sums[zone(i) * 2 * dim];
+        for (unsigned int c = 0; c < dim; ++c)
+          zone_sums[c] -= force[c];
+        for (const auto &entry : node.opposite)
+          zone_sums[dim + entry.component]
+            += entry.coefficient * force[entry.component];
+      }
+    const std::vector<double> local = sums;
+    Utilities::MPI::sum(ArrayView<const double>(local.data(), local.size()),
+                        communicator,
+                        ArrayView<double>(sums.data(), sums.size()));
+    std::vector<std::array<Tensor<1, dim>, 2>> forces(laws().n_zones());
+    for (unsigned int zone = 0; zone < forces.size(); ++zone)
+      for (unsigned int side = 0; side < 2; ++side)
+        for (unsigned int c = 0; c < dim; ++c)
+          forces[zone][side][c] = sums[(zone * 2 + side) * dim + c];
+    return forces;
+  }
+
+
+
   // The instantiations for 2D and 3D.
   template void
   assemble_lumped_weights(const Mapping<2> &,
@@ -1001,7 +1112,7 @@ namespace ViscoContact
   double
   ContactSet<dim>::gap(const unsigned int i) const
   {
-    return gaps.empty() ? 0. : gaps[i];
+    return (gaps.empty() ? 0. : gaps[i]) + geometry[i].opposite_gap;
   }
 
 

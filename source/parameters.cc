@@ -115,6 +115,32 @@ namespace ViscoContact
         const Patterns::Integer count{0, 20};
       };
 
+      // auto or a finite number > 0.
+      class AutoOrPositive : public Patterns::PatternBase
+      {
+      public:
+        bool
+        match(const std::string &text) const override
+        {
+          if (text == "auto")
+            return true;
+          if (!Patterns::Double().match(text))
+            return false;
+          const double value = Patterns::Tools::Convert<double>::to_value(text);
+          return std::isfinite(value) && value > 0;
+        }
+        std::string
+        description(const OutputStyle = Machine) const override
+        {
+          return "auto or a number > 0";
+        }
+        std::unique_ptr<PatternBase>
+        clone() const override
+        {
+          return std::make_unique<AutoOrPositive>();
+        }
+      };
+
       // A finite number in an interval whose ends may be open or infinite:
       // the range of an entry that is its own (a rule across entries stays
       // in check_parameters()). Written here because deal.II's
@@ -938,6 +964,24 @@ namespace ViscoContact
             "they mean in subsection Contact. A vertex shared with a zone of "
             "a lower number belongs to that zone.",
             Patterns::List(Patterns::Integer(0, 255)));
+        prm.add_parameter(
+          "Opposite boundary ids",
+          opposite_ids,
+          "A contact pair: the boundary parts of another body of the mesh "
+          "that this zone meets (empty: the zone meets a rigid obstacle). "
+          "The law acts on the relative displacement of the two sides, "
+          "coupled by mortar integrals on non-matching meshes; the gap is "
+          "their distance along the zone's normal plus Initial gap (2D, "
+          "the condensed back end; doc/model.md, section 8).",
+          Patterns::List(Patterns::Integer(0, 255)));
+        prm.add_parameter(
+          "Search distance",
+          search_distance,
+          "A contact pair: the largest distance along the zone's normal "
+          "(in front of the zone or behind it) at which a face of the "
+          "opposite side is paired with a face of the zone [m]; auto: the "
+          "longest face of the two sides.",
+          AutoOrPositive());
         prm.add_parameter("Unilateral constraint",
                           unilateral_constraint,
                           "Rigid foundation under the layer: u_nu <= g.",
@@ -1094,6 +1138,21 @@ namespace ViscoContact
                     "Slip bound",
                     slip_bound,
                     "a finite bound g >= 0");
+          }
+        if (!opposite_ids.empty())
+          {
+            require(dim == 2,
+                    subsection,
+                    "Opposite boundary ids",
+                    prm.get("Opposite boundary ids"),
+                    "empty when Dimension = 3 (contact pairs are available "
+                    "in 2D)");
+            require(gap_direction == "normal",
+                    subsection,
+                    "Gap direction",
+                    gap_direction,
+                    "normal on a contact pair (Opposite boundary ids): the "
+                    "gap is measured along the zone's normals");
           }
         if (normal_compliance)
           require(gap > 0,
@@ -1948,16 +2007,17 @@ namespace ViscoContact
       const auto claim_exclusively
         = [&](const std::vector<types::boundary_id> &ids,
               const std::string                     &subsection,
-              const std::string                     &accepted) {
+              const std::string                     &accepted,
+              const std::string                     &entry = "Boundary ids") {
             for (const auto id : ids)
               {
                 const auto [it, inserted]
                   = owner.emplace(id,
-                                  "<Boundary ids> of subsection <" + subsection
+                                  "<" + entry + "> of subsection <" + subsection
                                     + ">");
                 require(inserted,
                         subsection,
-                        "Boundary ids",
+                        entry,
                         id_list(ids),
                         accepted + " (" + std::to_string(id) + " is also in "
                           + it->second + ")");
@@ -1968,6 +2028,14 @@ namespace ViscoContact
           claim_exclusively(zone.boundary_ids,
                             zone.subsection,
                             "ids that no other entry names");
+      // The opposite side of a pair is a free part of another body: no
+      // other entry may name it, and it is not the zone itself.
+      for (const ContactZone &zone : used_contact_zones())
+        claim_exclusively(zone.contact->opposite_ids,
+                          zone.subsection,
+                          "ids of boundary parts that no other entry names "
+                          "(not the zone's own)",
+                          "Opposite boundary ids");
       // A load may act on a roller or plane of symmetry (its tangential
       // part does work) and on a part whose displacement is prescribed in
       // some components only (a top pressed down by a prescribed u_y and
@@ -2033,6 +2101,17 @@ namespace ViscoContact
     void
     AllParameters::check_method_entries() const
     {
+      // Contact pairs have rows across the two bodies, which only the
+      // condensed back end takes so far.
+      for (const ContactZone &zone : used_contact_zones())
+        if (!zone.contact->opposite_ids.empty())
+          require(method == Method::automatic || method == Method::condensed,
+                  "Linear solver",
+                  "Method",
+                  method == Method::full_space ? "full space" : "matrix free",
+                  "auto or condensed when a contact zone has Opposite "
+                  "boundary ids (subsection <"
+                    + zone.subsection + ">)");
       // The matrix-free operator evaluates tensor-product elements
       // (deal.II 9.4 has no multigrid hierarchy for simplex meshes), and it
       // is the elastic K: the implicit update's tangent changes in every

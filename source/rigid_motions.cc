@@ -35,16 +35,21 @@
 // the constraints of a problem leave free.
 
 #include <deal.II/base/array_view.h>
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature.h>
 #include <deal.II/base/utilities.h>
 
+#include <deal.II/distributed/tria_base.h>
+
 #include <deal.II/dofs/dof_tools.h>
 
 #include <deal.II/fe/fe.h>
 #include <deal.II/fe/fe_values.h>
+
+#include <deal.II/grid/grid_tools.h>
 
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/lapack_full_matrix.h>
@@ -59,6 +64,8 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <numeric>
+#include <set>
 #include <sstream>
 #include <utility>
 
@@ -86,38 +93,152 @@ namespace ViscoContact
 
 
 
-    // The centre and the diameter of the bounding box of the vertices of the
-    // locally owned cells of all ranks. One reduction: the maxima of the
-    // negated lower corner and of the upper corner.
+    // The bodies of the mesh, its connected components (cells joined by a
+    // vertex): the body number of every active cell this rank knows (by
+    // active_cell_index(); artificial cells get none), and the number of
+    // bodies. A rank sees only its own and its ghost cells, so each cell
+    // starts with the global id of its coarse cell, every rank joins its
+    // cells by their vertices and gives each component the smallest id in
+    // it, and the owners send their cells' ids to the ranks that see them
+    // as ghosts, until no id changes on any rank (a few rounds: as many as
+    // ranks a body spans in a row). The bodies are numbered in the order of
+    // their smallest coarse cell id, the same on every rank.
     template <int dim>
-    std::pair<Point<dim>, double>
-    bounding_box(const Triangulation<dim> &triangulation,
-                 const MPI_Comm            communicator)
+    std::vector<unsigned int>
+    body_of_cells(const Triangulation<dim> &triangulation,
+                  const MPI_Comm            communicator,
+                  unsigned int             &n_bodies)
     {
-      std::array<double, 2 * dim> local, global;
-      local.fill(-std::numeric_limits<double>::max());
+      constexpr auto                     none = numbers::invalid_coarse_cell_id;
+      std::vector<types::coarse_cell_id> label(triangulation.n_active_cells(),
+                                               none);
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (!cell->is_artificial())
+          label[cell->active_cell_index()] = cell->id().get_coarse_cell_id();
+      const bool parallel_mesh
+        = dynamic_cast<const parallel::TriangulationBase<dim> *>(&triangulation)
+          != nullptr;
+      for (bool changed = true; changed;)
+        {
+          if (parallel_mesh)
+            GridTools::exchange_cell_data_to_ghosts<types::coarse_cell_id,
+                                                    Triangulation<dim>>(
+              triangulation,
+              [&](const auto &cell) {
+                return std_cxx17::optional<types::coarse_cell_id>(
+                  label[cell->active_cell_index()]);
+              },
+              [&](const auto &cell, const types::coarse_cell_id &id) {
+                label[cell->active_cell_index()] = id;
+              });
+          // Union-find over the cells this rank knows, by shared vertices.
+          std::vector<unsigned int> root(label.size());
+          std::iota(root.begin(), root.end(), 0u);
+          const auto find = [&](unsigned int c) {
+            while (root[c] != c)
+              c = root[c] = root[root[c]];
+            return c;
+          };
+          std::vector<unsigned int> cell_at_vertex(
+            triangulation.n_vertices(),
+            numbers::invalid_unsigned_int);
+          for (const auto &cell : triangulation.active_cell_iterators())
+            if (!cell->is_artificial())
+              for (const unsigned int v : cell->vertex_indices())
+                {
+                  unsigned int &other = cell_at_vertex[cell->vertex_index(v)];
+                  if (other == numbers::invalid_unsigned_int)
+                    other = cell->active_cell_index();
+                  else
+                    {
+                      const unsigned int a = find(other),
+                                         b = find(cell->active_cell_index());
+                      root[std::max(a, b)] = std::min(a, b);
+                    }
+                }
+          std::map<unsigned int, types::coarse_cell_id> smallest;
+          for (const auto &cell : triangulation.active_cell_iterators())
+            if (!cell->is_artificial())
+              {
+                const unsigned int c = cell->active_cell_index();
+                auto it    = smallest.emplace(find(c), label[c]).first;
+                it->second = std::min(it->second, label[c]);
+              }
+          bool local_change = false;
+          for (const auto &cell : triangulation.active_cell_iterators())
+            if (!cell->is_artificial())
+              {
+                const unsigned int          c  = cell->active_cell_index();
+                const types::coarse_cell_id id = smallest.at(find(c));
+                local_change                   = local_change
+                               || (cell->is_locally_owned() && id != label[c]);
+                label[c] = id;
+              }
+          changed
+            = Utilities::MPI::max(local_change ? 1u : 0u, communicator) > 0;
+        }
+      std::set<types::coarse_cell_id> own_labels;
       for (const auto &cell : triangulation.active_cell_iterators())
         if (cell->is_locally_owned())
-          for (const unsigned int v : cell->vertex_indices())
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                local[d]       = std::max(local[d], -cell->vertex(v)[d]);
-                local[dim + d] = std::max(local[dim + d], cell->vertex(v)[d]);
-              }
-      Utilities::MPI::max(ArrayView<const double>(local.data(), 2 * dim),
+          own_labels.insert(label[cell->active_cell_index()]);
+      const std::set<types::coarse_cell_id> all_labels
+        = Utilities::MPI::compute_set_union(own_labels, communicator);
+      const std::vector<types::coarse_cell_id> labels(all_labels.begin(),
+                                                      all_labels.end());
+      n_bodies = labels.size();
+      std::vector<unsigned int> body(label.size(),
+                                     numbers::invalid_unsigned_int);
+      for (unsigned int c = 0; c < label.size(); ++c)
+        if (label[c] != none)
+          body[c] = std::lower_bound(labels.begin(), labels.end(), label[c])
+                    - labels.begin();
+      return body;
+    }
+
+
+
+    // The bounding box of every body over the locally owned cells of all
+    // ranks. One reduction: the maxima of the negated lower corners and of
+    // the upper corners.
+    template <int dim>
+    std::vector<BoundingBox<dim>>
+    body_boxes(const Triangulation<dim>        &triangulation,
+               const std::vector<unsigned int> &cell_bodies,
+               const unsigned int               n_bodies,
+               const MPI_Comm                   communicator)
+    {
+      std::vector<double> local(2 * dim * n_bodies,
+                                -std::numeric_limits<double>::max()),
+        global(local.size());
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            double *box
+              = &local[2 * dim * cell_bodies[cell->active_cell_index()]];
+            for (const unsigned int v : cell->vertex_indices())
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  box[d]       = std::max(box[d], -cell->vertex(v)[d]);
+                  box[dim + d] = std::max(box[dim + d], cell->vertex(v)[d]);
+                }
+          }
+      Utilities::MPI::max(ArrayView<const double>(local.data(), local.size()),
                           communicator,
-                          ArrayView<double>(global.data(), 2 * dim));
-      Point<dim> centre;
-      double     diameter = 0;
-      for (unsigned int d = 0; d < dim; ++d)
+                          ArrayView<double>(global.data(), global.size()));
+      std::vector<BoundingBox<dim>> boxes;
+      for (unsigned int b = 0; b < n_bodies; ++b)
         {
-          centre[d] = 0.5 * (global[dim + d] - global[d]);
-          diameter += Utilities::fixed_power<2>(global[dim + d] + global[d]);
+          Point<dim> lower, upper;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              lower[d] = -global[2 * dim * b + d];
+              upper[d] = global[2 * dim * b + dim + d];
+            }
+          AssertThrow(lower.distance(upper) > 0,
+                      ExcMessage("The mesh has no extent: no rigid motions."));
+          boxes.emplace_back(std::make_pair(lower, upper));
         }
-      diameter = std::sqrt(diameter);
-      AssertThrow(diameter > 0,
-                  ExcMessage("The mesh has no extent: no rigid motions."));
-      return {centre, diameter};
+      return boxes;
     }
 
 
@@ -179,14 +300,13 @@ namespace ViscoContact
     // a dof to evaluate.
     template <int dim>
     std::vector<ModeValues<dim>>
-    modes_at_support_points(const Mapping<dim>    &mapping,
-                            const DoFHandler<dim> &dof_handler,
-                            const IndexSet        &to_evaluate,
-                            const MPI_Comm         communicator)
+    modes_at_support_points(const Mapping<dim>                  &mapping,
+                            const DoFHandler<dim>               &dof_handler,
+                            const IndexSet                      &to_evaluate,
+                            const std::vector<unsigned int>     &cell_bodies,
+                            const std::vector<BoundingBox<dim>> &boxes)
     {
-      const FiniteElement<dim> &fe = dof_handler.get_fe();
-      const auto [centre, diameter]
-        = bounding_box(dof_handler.get_triangulation(), communicator);
+      const FiniteElement<dim>    &fe = dof_handler.get_fe();
       std::vector<ModeValues<dim>> values(to_evaluate.n_elements());
       std::vector<bool>            evaluated(to_evaluate.n_elements(), false);
       FEValues<dim>                fe_values(mapping,
@@ -208,11 +328,14 @@ namespace ViscoContact
                   if (!reinitialized)
                     fe_values.reinit(cell);
                   reinitialized = true;
+                  const BoundingBox<dim> &box
+                    = boxes[cell_bodies[cell->active_cell_index()]];
                   values[n]
                     = mode_values<dim>(fe.system_to_component_index(k).first,
                                        fe_values.quadrature_point(k),
-                                       centre,
-                                       diameter);
+                                       box.center(),
+                                       box.get_boundary_points().first.distance(
+                                         box.get_boundary_points().second));
                   evaluated[n] = true;
                 }
           }
@@ -359,7 +482,7 @@ namespace ViscoContact
   // here and by other ranks, then sent to those; (4) G, summed over the
   // ranks; (5) its null space and the names of the motions.
   template <int dim>
-  std::vector<std::string>
+  std::vector<FreeBody<dim>>
   free_rigid_motions(const Mapping<dim>              &mapping,
                      const DoFHandler<dim>           &dof_handler,
                      const AffineConstraints<double> &constraints,
@@ -372,17 +495,37 @@ namespace ViscoContact
                 ExcMessage("free_rigid_motions() needs a primitive element "
                            "with dim components and support points."));
 
-    // (1) The lines of G and the dofs whose modes they need.
+    // (0) The bodies, and the body of every constrained dof this rank owns
+    // (a constraint couples dofs of one body only).
+    unsigned int                    n_bodies = 0;
+    const std::vector<unsigned int> cell_bodies
+      = body_of_cells(dof_handler.get_triangulation(), communicator, n_bodies);
+    const std::vector<BoundingBox<dim>> boxes
+      = body_boxes(dof_handler.get_triangulation(),
+                   cell_bodies,
+                   n_bodies,
+                   communicator);
     const IndexSet &owned = dof_handler.locally_owned_dofs();
-    std::vector<types::global_dof_index> lines, needed_dofs;
-    for (const auto i : owned)
-      if (constraints.is_constrained(i))
+    std::map<types::global_dof_index, unsigned int> line_body;
+    std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
         {
-          lines.push_back(i);
-          needed_dofs.push_back(i);
-          for (const auto &entry : *constraints.get_constraint_entries(i))
-            needed_dofs.push_back(entry.first);
+          cell->get_dof_indices(cell_dofs);
+          for (const auto i : cell_dofs)
+            if (owned.is_element(i) && constraints.is_constrained(i))
+              line_body[i] = cell_bodies[cell->active_cell_index()];
         }
+
+    // (1) The lines of G and the dofs whose modes they need.
+    std::vector<types::global_dof_index> lines, needed_dofs;
+    for (const auto &[i, body] : line_body)
+      {
+        lines.push_back(i);
+        needed_dofs.push_back(i);
+        for (const auto &entry : *constraints.get_constraint_entries(i))
+          needed_dofs.push_back(entry.first);
+      }
     std::sort(needed_dofs.begin(), needed_dofs.end());
     needed_dofs.erase(std::unique(needed_dofs.begin(), needed_dofs.end()),
                       needed_dofs.end());
@@ -418,7 +561,8 @@ namespace ViscoContact
       = modes_at_support_points(mapping,
                                 dof_handler,
                                 to_evaluate,
-                                communicator);
+                                cell_bodies,
+                                boxes);
 
     // The modes of the dofs other ranks evaluated for this one.
     const std::map<types::global_dof_index, ModeValues<dim>> remote_values
@@ -435,9 +579,10 @@ namespace ViscoContact
       return remote_values.at(j);
     };
 
-    // (4) G = sum_i r_i r_i^T over the constrained dofs of all ranks
-    // (inhomogeneities play no part).
-    std::array<double, n_modes * n_modes> local_gram{}, gram;
+    // (4) G = sum_i r_i r_i^T over the constrained dofs of all ranks, one
+    // per body (inhomogeneities play no part).
+    const unsigned int  size = n_modes * n_modes;
+    std::vector<double> local_gram(n_bodies * size), gram(n_bodies * size);
     for (const auto i : lines)
       {
         ModeValues<dim> r = mode_values_of(i);
@@ -447,30 +592,48 @@ namespace ViscoContact
             for (unsigned int k = 0; k < n_modes; ++k)
               r[k] -= a * m[k];
           }
+        double *body_gram = &local_gram[line_body.at(i) * size];
         for (unsigned int k = 0; k < n_modes; ++k)
           for (unsigned int l = 0; l < n_modes; ++l)
-            local_gram[k * n_modes + l] += r[k] * r[l];
+            body_gram[k * n_modes + l] += r[k] * r[l];
       }
     Utilities::MPI::sum(ArrayView<const double>(local_gram.data(),
                                                 local_gram.size()),
                         communicator,
                         ArrayView<double>(gram.data(), gram.size()));
 
-    // (5) The names of the motions in the null space of G.
-    const std::vector<std::string> names = null_space_names<dim>(gram);
+    // (5) The names of the motions in the null space of each body's G.
     // Every rank has the same G; rank 0's names make sure of the same
     // answer also where a reduction could round differently on each rank.
-    return Utilities::MPI::broadcast(communicator, names, 0);
+    std::vector<std::vector<std::string>> names(n_bodies);
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        std::array<double, size> body_gram;
+        std::copy(gram.begin() + b * size,
+                  gram.begin() + (b + 1) * size,
+                  body_gram.begin());
+        names[b] = null_space_names<dim>(body_gram);
+      }
+    names = Utilities::MPI::broadcast(communicator, names, 0);
+    std::vector<FreeBody<dim>> free;
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      if (!names[b].empty())
+        free.push_back({b + 1,
+                        n_bodies,
+                        boxes[b].get_boundary_points().first,
+                        boxes[b].get_boundary_points().second,
+                        names[b]});
+    return free;
   }
 
 
 
-  template std::vector<std::string>
+  template std::vector<FreeBody<2>>
   free_rigid_motions(const Mapping<2> &,
                      const DoFHandler<2> &,
                      const AffineConstraints<double> &,
                      const MPI_Comm);
-  template std::vector<std::string>
+  template std::vector<FreeBody<3>>
   free_rigid_motions(const Mapping<3> &,
                      const DoFHandler<3> &,
                      const AffineConstraints<double> &,

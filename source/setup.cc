@@ -206,9 +206,15 @@ namespace ViscoContact
       // means that a local index (owned entries first, then ghosts) means the
       // same dof in every one of them, which the stored stress-point geometry
       // relies on.
-      solution.reinit(locally_owned_dofs,
-                      locally_relevant_dofs,
-                      mpi_communicator);
+      // The dofs of the opposite side of a contact pair that the rows of
+      // this rank's nodes use are ghosts too.
+      IndexSet ghosts = locally_relevant_dofs;
+      if (!contact_zones.empty())
+        ghosts.add_indices(
+          contact_set.couple_pairs(contact_zones.descriptions(),
+                                   dof_handler,
+                                   constraints));
+      solution.reinit(locally_owned_dofs, ghosts, mpi_communicator);
       for (VectorType *vector :
            {&external_load, &history_load, &system_rhs, &internal_force})
         vector->reinit(solution);

@@ -2516,10 +2516,13 @@ namespace
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
     add_constraints(constraints);
     constraints.close();
-    return free_rigid_motions(mapping,
-                              dof_handler,
-                              constraints,
-                              MPI_COMM_WORLD);
+    const auto free
+      = free_rigid_motions(mapping, dof_handler, constraints, MPI_COMM_WORLD);
+    if (free.empty())
+      return {};
+    EXPECT_EQ(free.size(), 1u);
+    EXPECT_EQ(free.front().n_bodies, 1u);
+    return free.front().motions;
   }
 
   // u_c = 0 for the components c of mask on the boundary part id.
@@ -2682,6 +2685,62 @@ TEST(RigidMotions, QuadrilateralsWithHangingNodes)
             0u);
 
   check_free_rigid_motions_of_square(mapping, dof_handler);
+}
+
+// Two bodies (the squares [0, 1]^2 and [2, 3] x [0, 1], separate
+// components of one p4est mesh): u = 0 on the left side of the first
+// leaves all three motions of the second free, and names it and its
+// bounding box; u_x = 0 on the right side of the second as well leaves its
+// translation in y alone.
+TEST(RigidMotions, TwoBodies)
+{
+  Triangulation<2> left, right, merged;
+  GridGenerator::hyper_rectangle(left, Point<2>(0., 0.), Point<2>(1., 1.));
+  GridGenerator::hyper_rectangle(right, Point<2>(2., 0.), Point<2>(3., 1.));
+  GridGenerator::merge_triangulations(left, right, merged);
+  parallel::distributed::Triangulation<2> triangulation(MPI_COMM_WORLD);
+  triangulation.copy_triangulation(merged);
+  for (const auto &cell : triangulation.active_cell_iterators())
+    for (const auto &face : cell->face_iterators())
+      if (face->at_boundary())
+        face->set_boundary_id(face->center()[0] < 1e-12        ? 0
+                              : face->center()[0] > 3. - 1e-12 ? 1
+                                                               : 2);
+  triangulation.refine_global(3);
+  const FESystem<2> fe(FE_Q<2>(1), 2);
+  DoFHandler<2>     dof_handler(triangulation);
+  dof_handler.distribute_dofs(fe);
+  const MappingQ1<2>  mapping;
+  const ComponentMask all    = std::vector<bool>{true, true};
+  const ComponentMask x_only = std::vector<bool>{true, false};
+
+  const auto free_bodies
+    = [&](const std::function<void(AffineConstraints<double> &)> &add) {
+        AffineConstraints<double> constraints(
+          DoFTools::extract_locally_relevant_dofs(dof_handler));
+        add(constraints);
+        constraints.close();
+        return free_rigid_motions(mapping,
+                                  dof_handler,
+                                  constraints,
+                                  MPI_COMM_WORLD);
+      };
+  const auto one
+    = free_bodies(fix_on_boundary<2>(mapping, dof_handler, 0, all));
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].number, 2u);
+  EXPECT_EQ(one[0].n_bodies, 2u);
+  EXPECT_EQ(one[0].lower, Point<2>(2., 0.));
+  EXPECT_EQ(one[0].upper, Point<2>(3., 1.));
+  EXPECT_EQ(one[0].motions,
+            (std::vector<std::string>{"translation in x",
+                                      "translation in y",
+                                      "rotation about z"}));
+  const auto two
+    = free_bodies(both(fix_on_boundary<2>(mapping, dof_handler, 0, all),
+                       fix_on_boundary<2>(mapping, dof_handler, 1, x_only)));
+  ASSERT_EQ(two.size(), 1u);
+  EXPECT_EQ(two[0].motions, std::vector<std::string>{"translation in y"});
 }
 
 // Triangles on a fully distributed mesh (partitioned by METIS).

@@ -39,8 +39,11 @@ namespace ViscoContact
     unsigned int dim             = 2;
     bool         simplex         = false;
     bool         implicit_update = false;
-    double       dofs            = 0;
-    double       contact_nodes   = 0;
+    // Whether a contact zone meets another body (rows across both sides:
+    // the condensed back end only, so far).
+    bool   contact_pairs = false;
+    double dofs          = 0;
+    double contact_nodes = 0;
     // Unknowns per contact node in the dense problem of the condensed back
     // end: 1 without friction, dim with it.
     unsigned int node_unknowns = 1;

@@ -5,6 +5,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <array>
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -61,14 +62,23 @@ namespace ViscoContact
       std::vector<double>                         D;
       std::vector<std::map<unsigned int, double>> M;
       std::vector<Tensor<1, 2>>                   normals;
+      // The smallest distance along a slave normal between a slave segment
+      // and a master segment that faces it and overlaps it, within the
+      // search distance or not (infinity: none).
+      double closest_distance = std::numeric_limits<double>::infinity();
     };
 
     // The mortar coupling of slave against master. Master segments are
     // projected onto each slave segment along its normal; a master segment
     // that faces the same way as the slave segment (it cannot be the other
-    // side of a contact) or that does not overlap it is left out.
+    // side of a contact), that does not overlap it, or that lies farther
+    // than search_distance from it along its normal (in front of it or
+    // behind it) is left out.
     Coupling
-    couple(const Side &slave, const Side &master);
+    couple(const Side  &slave,
+           const Side  &master,
+           const double search_distance
+           = std::numeric_limits<double>::infinity());
 
     // The weighted gap g_j of every slave vertex at the current positions
     // (the vertices moved by a displacement u_s, u_m of each side):

@@ -37,8 +37,9 @@ namespace ViscoContact
                    const std::string                &file);
   template <int dim>
   void
-  check_mesh_conformity(const Triangulation<dim> &triangulation,
-                        const std::string        &file);
+  check_mesh_conformity(const Triangulation<dim>              &triangulation,
+                        const std::string                     &file,
+                        const std::vector<types::boundary_id> &pair_ids);
 } // namespace ViscoContact
 
 #endif

@@ -41,6 +41,9 @@ namespace ViscoContact
     numbers() const;
     std::vector<unsigned int>
     frictional_numbers() const;
+    // The numbers of the zones that meet another body (contact pairs).
+    std::vector<unsigned int>
+    pair_numbers() const;
 
     // The gap function of each zone (nullptr where it is zero: the nodes
     // keep s = 0), and Tresca's slip bound of each zone (nullptr in the

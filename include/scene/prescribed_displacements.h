@@ -79,8 +79,9 @@ namespace ViscoContact
                      const DoFHandler<dim>     &dof_handler,
                      const IndexSet            &locally_relevant_dofs,
                      AffineConstraints<double> &constraints);
-    // A scene whose constraints leave a rigid motion of the body free is
-    // refused on every rank, naming the motions (collective).
+    // A scene whose constraints leave a rigid motion of a body free (of
+    // each connected component of the mesh) is refused on every rank,
+    // naming the bodies and the motions (collective).
     void
     check_rigid_motions(const Mapping<dim>              &mapping,
                         const DoFHandler<dim>           &dof_handler,

@@ -270,11 +270,12 @@ namespace ViscoContact
     for (unsigned int n = 0; n < all_rows.size(); ++n)
       row_start[n + 1] = row_start[n] + all_rows[n];
 
-    // The contact dofs: the dofs the rows have entries on, node by node
-    // in increasing order, each once (a dof in which no row has an entry
-    // does not enter N, so an axis-aligned frictionless contact boundary
-    // needs one dof per node). The columns of N^T below are written into
-    // the owned entries of a vector, so every entry must be owned.
+    // The contact dofs: the owned dofs the rows have entries on, node by
+    // node in increasing order, each once (a dof in which no row has an
+    // entry does not enter N, so an axis-aligned frictionless contact
+    // boundary needs one dof per node). The factor's last block needs them
+    // (one rank, where every dof is owned); a row of a contact pair may
+    // also reach dofs other ranks own (ghosts).
     const unsigned int n_owned = free_displacement.locally_owned_size();
     contact_dofs.clear();
     std::set<unsigned int> seen;
@@ -283,14 +284,9 @@ namespace ViscoContact
         std::set<unsigned int> node_dofs;
         for (unsigned int j = 0; j < own_rows[i]; ++j)
           for (const auto &entry : contact.row(i, j))
-            {
-              AssertThrow(entry.local_dof < n_owned,
-                          ExcMessage("The condensed back end needs the "
-                                     "contact rows on dofs of the rank "
-                                     "that owns the node."));
-              if (seen.insert(entry.local_dof).second)
-                node_dofs.insert(entry.local_dof);
-            }
+            if (entry.local_dof < n_owned
+                && seen.insert(entry.local_dof).second)
+              node_dofs.insert(entry.local_dof);
         contact_dofs.insert(contact_dofs.end(),
                             node_dofs.begin(),
                             node_dofs.end());
@@ -393,6 +389,7 @@ namespace ViscoContact
     // Row i of own_rows is row first + i of S, the row of this rank's i-th
     // node; the columns are filled block by block below.
     std::vector<double> own_rows(std::size_t(m_local) * m);
+    VectorType          column(free_displacement);
     const unsigned int  block = 64;
     std::vector<double> columns;
     for (unsigned int first_column = 0; first_column < m; first_column += block)
@@ -404,16 +401,40 @@ namespace ViscoContact
         // nodes are all outside the block contributes zero columns but still
         // takes part in the collective solve.
         columns.assign(std::size_t(n_local) * n_columns, 0.);
-        for (unsigned int i = 0; i < contact.size(); ++i)
-          for (unsigned int row = first_row(contact, i);
-               row < first_row(contact, i + 1);
-               ++row)
-            if (row >= first_column && row < first_column + n_columns)
-              for (const auto &entry :
-                   contact.row(i, row - first_row(contact, i)))
-                columns[std::size_t(row - first_column) * n_local
-                        + entry.local_dof]
-                  = entry.value;
+        if (!contact.rows_reach_ghosts())
+          {
+            for (unsigned int i = 0; i < contact.size(); ++i)
+              for (unsigned int row = first_row(contact, i);
+                   row < first_row(contact, i + 1);
+                   ++row)
+                if (row >= first_column && row < first_column + n_columns)
+                  for (const auto &entry :
+                       contact.row(i, row - first_row(contact, i)))
+                    columns[std::size_t(row - first_column) * n_local
+                            + entry.local_dof]
+                      = entry.value;
+          }
+        else
+          // Rows with entries at ghosts (contact pairs): each column is
+          // assembled in a vector and its ghost entries sent to their
+          // owners.
+          for (unsigned int j = 0; j < n_columns; ++j)
+            {
+              column = 0;
+              for (unsigned int i = 0; i < contact.size(); ++i)
+                for (unsigned int row = first_row(contact, i);
+                     row < first_row(contact, i + 1);
+                     ++row)
+                  if (row == first_column + j)
+                    contact.add_to_row(column,
+                                       i,
+                                       row - first_row(contact, i),
+                                       1.);
+              column.compress(VectorOperation::add);
+              std::copy(column.begin(),
+                        column.end(),
+                        columns.begin() + std::size_t(j) * n_local);
+            }
         // One collective solve overwrites the columns with A^{-1} N^T e_j.
         factorization.solve(columns, n_columns);
         this->counts.solves += n_columns;
@@ -423,14 +444,23 @@ namespace ViscoContact
         for (unsigned int j = 0; j < n_columns; ++j)
           {
             const double *response = &columns[std::size_t(j) * n_local];
+            if (contact.rows_reach_ghosts())
+              {
+                std::copy(response, response + n_local, column.begin());
+                column.update_ghost_values();
+              }
             for (unsigned int i = 0; i < contact.size(); ++i)
               for (unsigned int row = first_row(contact, i);
                    row < first_row(contact, i + 1);
                    ++row)
-                for (const auto &entry :
-                     contact.row(i, row - first_row(contact, i)))
-                  own_rows[std::size_t(row - first) * m + first_column + j]
-                    += entry.value * response[entry.local_dof];
+                own_rows[std::size_t(row - first) * m + first_column + j]
+                  += contact.rows_reach_ghosts()
+                       ? contact.row_component(column,
+                                               i,
+                                               row - first_row(contact, i))
+                       : contact.row_component(response,
+                                               i,
+                                               row - first_row(contact, i));
           }
       }
 
@@ -474,6 +504,7 @@ namespace ViscoContact
         return;
       }
     factorization.solve(free_displacement, b);
+    free_displacement.update_ghost_values();
     std::vector<double> own;
     for (unsigned int i = 0; i < contact.size(); ++i)
       for (unsigned int j = 0; j < 1 + contact.n_tangential(i); ++j)
@@ -702,6 +733,7 @@ namespace ViscoContact
                              z_all[row]);
       else
         contact.add_normal(forces, i, contact.z[i]);
+    forces.compress(VectorOperation::add);
     factorization.solve(response, forces);
     ++this->counts.solves;
     u -= response;

@@ -196,6 +196,8 @@ namespace ViscoContact
     switch (method)
       {
         case Parameters::Method::full_space:
+          if (scene.contact_pairs)
+            cost.unavailable = "contact pairs";
           cost.bytes_per_rank
             = library_bytes_per_rank
               + dofs_per_rank * full_space_bytes_per_dof(scene);
@@ -207,7 +209,9 @@ namespace ViscoContact
                                * dofs_per_rank;
           break;
         case Parameters::Method::matrix_free:
-          if (scene.simplex)
+          if (scene.contact_pairs)
+            cost.unavailable = "contact pairs";
+          else if (scene.simplex)
             cost.unavailable = "simplex mesh";
           else if (scene.implicit_update)
             cost.unavailable = "implicit update";

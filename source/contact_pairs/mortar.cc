@@ -49,7 +49,7 @@ namespace ViscoContact
     // takes the standard basis psi_j = N_j: D_j = int N_j still, the rows
     // still sum to D_j.
     Coupling
-    couple(const Side &slave, const Side &master)
+    couple(const Side &slave, const Side &master, const double search_distance)
     {
       Coupling          coupling;
       const std::size_t n_slave = slave.vertices.size();
@@ -88,7 +88,20 @@ namespace ViscoContact
               const double xi_d = (x_d - x_a) * tangent / length;
               const double low  = std::max(0., std::min(xi_c, xi_d));
               const double high = std::min(1., std::max(xi_c, xi_d));
-              if (high - low > 1e-14)
+              if (high - low <= 1e-14)
+                continue;
+              // The distance of the master segment from the slave line
+              // along the normal at the ends of the overlap.
+              const double g_c = (x_c - x_a) * normal,
+                           g_d = (x_d - x_a) * normal;
+              double distance  = 0;
+              for (const double xi : {low, high})
+                distance = std::max(
+                  distance,
+                  std::abs(g_c + (g_d - g_c) * (xi - xi_c) / (xi_d - xi_c)));
+              coupling.closest_distance
+                = std::min(coupling.closest_distance, distance);
+              if (distance <= search_distance)
                 overlaps.push_back({low, high, xi_c, xi_d, c, d});
             }
 

@@ -485,7 +485,21 @@ namespace ViscoContact
                         + " only, as <Cell type> = "
                         + (simplex ? "simplex" : "hypercube") + " requires."));
         // Coincident nodes, conformity.
-        check_mesh_conformity(checked_mesh, file);
+        // except between the two sides of a contact pair, whose ids must
+        // then be on the mesh (every rank reads the whole file).
+        check_boundary_ids(parameters, checked_mesh, MPI_COMM_SELF);
+        std::vector<types::boundary_id> pair_ids;
+        for (const auto &zone : parameters.used_contact_zones())
+          if (!zone.contact->opposite_ids.empty())
+            {
+              pair_ids.insert(pair_ids.end(),
+                              zone.boundary_ids.begin(),
+                              zone.boundary_ids.end());
+              pair_ids.insert(pair_ids.end(),
+                              zone.contact->opposite_ids.begin(),
+                              zone.contact->opposite_ids.end());
+            }
+        check_mesh_conformity(checked_mesh, file, pair_ids);
         triangulation.copy_triangulation(checked_mesh);
       }
     else
@@ -878,8 +892,13 @@ namespace ViscoContact
                 "Boundary ids",
                 "Boundary/Prescribed displacement " + std::to_string(number));
     for (const auto &zone : parameters.used_contact_zones())
-      if (zone.subsection != "Contact")
-        check_ids(zone.boundary_ids, "Boundary ids", zone.subsection);
+      {
+        if (zone.subsection != "Contact")
+          check_ids(zone.boundary_ids, "Boundary ids", zone.subsection);
+        check_ids(zone.contact->opposite_ids,
+                  "Opposite boundary ids",
+                  zone.subsection);
+      }
     for (const auto &[number, load] : parameters.used_surface_loads())
       check_ids(load->boundary_ids,
                 "Boundary ids",

@@ -416,10 +416,32 @@ namespace ViscoContact
     // No two of the used vertices (with their numbers) closer than
     // tolerance: a node defined twice under two ids, or a crack (a body
     // that is not connected across a line of double nodes).
+    // Nodes of the two sides of a contact pair may coincide, or lie on the
+    // other side's faces: the vertices of the faces with a pair's boundary
+    // ids are exempt.
+    template <int dim>
+    std::set<unsigned int>
+    pair_vertices_of(const Triangulation<dim>              &triangulation,
+                     const std::vector<types::boundary_id> &pair_ids)
+    {
+      std::set<unsigned int> vertices;
+      for (const auto &cell : triangulation.active_cell_iterators())
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary()
+              && std::find(pair_ids.begin(),
+                           pair_ids.end(),
+                           face->boundary_id())
+                   != pair_ids.end())
+            for (const unsigned int v : face->vertex_indices())
+              vertices.insert(face->vertex_index(v));
+      return vertices;
+    }
+
     template <int dim>
     void
     check_coincident_nodes(
       const std::vector<std::pair<Point<dim>, unsigned int>> &used_vertices,
+      const std::set<unsigned int>                           &pair_vertices,
       const double                                            tolerance,
       const std::string                                      &file)
     {
@@ -436,12 +458,19 @@ namespace ViscoContact
           vertex_tree.query(boost::geometry::index::intersects(
                               BoundingBox<dim>(std::make_pair(a, b))),
                             std::back_inserter(near));
+          if (near.size() > 1 && pair_vertices.count(index) == 1
+              && std::all_of(near.begin(), near.end(), [&](const auto &other) {
+                   return pair_vertices.count(other.second) == 1;
+                 }))
+            continue;
           AssertThrow(near.size() == 1,
                       ExcMessage(invalid_mesh(file) + "two nodes coincide at "
                                  + coordinates<dim>(point)
                                  + " (a node defined twice, or a crack); "
-                                   "accepted: a conforming mesh of one body, "
-                                   "whose cells share their nodes."));
+                                   "accepted: a conforming mesh of each "
+                                   "body, whose cells share their nodes "
+                                   "(bodies may meet where a contact zone "
+                                   "and its Opposite boundary ids do)."));
         }
     }
 
@@ -531,9 +560,10 @@ namespace ViscoContact
     // widened by tolerance) are candidates.
     template <int dim>
     void
-    check_hanging_nodes(const Triangulation<dim> &triangulation,
-                        const double              tolerance,
-                        const std::string        &file)
+    check_hanging_nodes(const Triangulation<dim>     &triangulation,
+                        const std::set<unsigned int> &pair_vertices,
+                        const double                  tolerance,
+                        const std::string            &file)
     {
       const std::vector<std::pair<Point<dim>, unsigned int>> boundary_vertices
         = boundary_vertices_of(triangulation);
@@ -544,10 +574,13 @@ namespace ViscoContact
             {
               std::vector<Point<dim>> corners;
               std::set<unsigned int>  own;
+              bool                    on_pair = true;
               for (const unsigned int v : face->vertex_indices())
                 {
                   corners.push_back(face->vertex(v));
                   own.insert(face->vertex_index(v));
+                  on_pair
+                    = on_pair && pair_vertices.count(face->vertex_index(v));
                 }
               Point<dim> a = corners[0], b = corners[0];
               for (const Point<dim> &p : corners)
@@ -562,7 +595,8 @@ namespace ViscoContact
                                   std::back_inserter(inside));
               for (const auto &[point, index] : inside)
                 {
-                  if (own.count(index) > 0)
+                  if (own.count(index) > 0
+                      || (on_pair && pair_vertices.count(index) == 1))
                     continue;
                   const bool on_face
                     = lies_on_face<dim>(point, corners, tolerance);
@@ -576,7 +610,9 @@ namespace ViscoContact
                                  "(a hanging node: the mesh is not "
                                  "conforming); accepted: a conforming "
                                  "mesh, whose neighbouring cells share "
-                                 "whole faces."));
+                                 "whole faces (bodies may meet where a "
+                                 "contact zone and its Opposite boundary "
+                                 "ids do)."));
                 }
             }
     }
@@ -586,8 +622,9 @@ namespace ViscoContact
 
   template <int dim>
   void
-  check_mesh_conformity(const Triangulation<dim> &triangulation,
-                        const std::string        &file)
+  check_mesh_conformity(const Triangulation<dim>              &triangulation,
+                        const std::string                     &file,
+                        const std::vector<types::boundary_id> &pair_ids)
   {
     const std::vector<Point<dim>> &vertices = triangulation.get_vertices();
     const std::vector<bool>       &used     = triangulation.get_used_vertices();
@@ -599,9 +636,11 @@ namespace ViscoContact
           used_vertices.emplace_back(vertices[v], v);
           used_points.push_back(vertices[v]);
         }
-    const double tolerance = 1e-10 * extent_of(used_points);
-    check_coincident_nodes(used_vertices, tolerance, file);
-    check_hanging_nodes(triangulation, tolerance, file);
+    const double                 tolerance = 1e-10 * extent_of(used_points);
+    const std::set<unsigned int> pair_vertices
+      = pair_vertices_of(triangulation, pair_ids);
+    check_coincident_nodes(used_vertices, pair_vertices, tolerance, file);
+    check_hanging_nodes(triangulation, pair_vertices, tolerance, file);
   }
 
 
@@ -615,7 +654,11 @@ namespace ViscoContact
                    const std::vector<CellData<3>> &,
                    const std::string &);
   template void
-  check_mesh_conformity(const Triangulation<2> &, const std::string &);
+  check_mesh_conformity(const Triangulation<2> &,
+                        const std::string &,
+                        const std::vector<types::boundary_id> &);
   template void
-  check_mesh_conformity(const Triangulation<3> &, const std::string &);
+  check_mesh_conformity(const Triangulation<3> &,
+                        const std::string &,
+                        const std::vector<types::boundary_id> &);
 } // namespace ViscoContact

@@ -58,7 +58,8 @@ namespace ViscoContact
     std::string
     time_series_header(const std::vector<unsigned int> &contact_zone_numbers,
                        const std::vector<std::string>  &dirichlet_parts,
-                       const std::vector<unsigned int> &frictional_zones)
+                       const std::vector<unsigned int> &frictional_zones,
+                       const std::vector<unsigned int> &pair_zones)
     {
       std::string header
         = "step,time,active_set_iterations,unilateral_nodes,compliance_nodes,"
@@ -79,6 +80,13 @@ namespace ViscoContact
         for (unsigned int c = 0; c < dim; ++c)
           header += ",tangential_force_zone_" + std::to_string(number) + "_"
                     + "xyz"[c];
+      // Per contact pair the force on each side: on the zone's side (from
+      // the other body) and on the opposite side.
+      for (const unsigned int number : pair_zones)
+        for (const std::string side :
+             {"pair_force_zone_", "opposite_force_zone_"})
+          for (unsigned int c = 0; c < dim; ++c)
+            header += "," + side + std::to_string(number) + "_" + "xyz"[c];
       return header + "\n";
     }
   } // namespace
@@ -138,11 +146,12 @@ namespace ViscoContact
                                  ? OutputFolder::Replace::own
                                  : OutputFolder::Replace::never);
         if (!problem.parameters.resume)
-          output_folder->stage("time_series.csv",
-                               time_series_header<dim>(
-                                 problem.contact_zones.numbers(),
-                                 problem.prescribed.reaction_names(),
-                                 problem.contact_zones.frictional_numbers()));
+          output_folder->stage(
+            "time_series.csv",
+            time_series_header<dim>(problem.contact_zones.numbers(),
+                                    problem.prescribed.reaction_names(),
+                                    problem.contact_zones.frictional_numbers(),
+                                    problem.contact_zones.pair_numbers()));
       }
     output_folder->commit();
     if (problem.parameters.resume)
@@ -150,7 +159,8 @@ namespace ViscoContact
         *output_folder,
         time_series_header<dim>(problem.contact_zones.numbers(),
                                 problem.prescribed.reaction_names(),
-                                problem.contact_zones.frictional_numbers()),
+                                problem.contact_zones.frictional_numbers(),
+                                problem.contact_zones.pair_numbers()),
         resume_step);
   }
 
@@ -239,8 +249,16 @@ namespace ViscoContact
                                        return m->is_plastic();
                                      })
                     << (any_rate_independent ? " plastic)" : " viscoplastic)");
-    problem.pcout << ", contact " << (problem.contact_enabled ? "on" : "off")
-                  << ", "
+    problem.pcout << ", contact " << (problem.contact_enabled ? "on" : "off");
+    const auto pairs
+      = std::count_if(problem.contact_zones.descriptions().begin(),
+                      problem.contact_zones.descriptions().end(),
+                      [](const auto &zone) {
+                        return !zone.opposite_ids.empty();
+                      });
+    if (problem.contact_enabled && pairs > 0)
+      problem.pcout << " (" << pairs << " zone(s) between two bodies)";
+    problem.pcout << ", "
                   << (problem.parameters.stress_update
                           == Parameters::StressUpdate::explicit_euler
                         ? "explicit"
@@ -315,6 +333,11 @@ namespace ViscoContact
       = friction
           ? problem.contact_set.zone_tangential_forces(problem.mpi_communicator)
           : std::vector<Tensor<1, dim>>();
+    const bool pairs = problem.contact_enabled
+                       && !problem.contact_zones.pair_numbers().empty();
+    const std::vector<std::array<Tensor<1, dim>, 2>> side_forces
+      = pairs ? problem.contact_set.zone_side_forces(problem.mpi_communicator)
+              : std::vector<std::array<Tensor<1, dim>, 2>>();
     std::string failure;
     if (Utilities::MPI::this_mpi_process(problem.mpi_communicator) == 0)
       {
@@ -350,6 +373,18 @@ namespace ViscoContact
                       << (std::abs(tangential_forces[zone][c]) > 1e-12 * scale
                             ? tangential_forces[zone][c]
                             : 0.);
+          }
+        if (pairs)
+          {
+            const auto &zones = problem.contact_zones.descriptions();
+            for (unsigned int zone = 0; zone < zones.size(); ++zone)
+              if (!zones[zone].opposite_ids.empty())
+                for (const Tensor<1, dim> &side_force : side_forces[zone])
+                  for (unsigned int c = 0; c < dim; ++c)
+                    row << ','
+                        << (std::abs(side_force[c]) > 1e-12 * scale
+                              ? side_force[c]
+                              : 0.);
           }
         row << '\n';
         failure = output_folder->append("time_series.csv", row.str());

@@ -20,7 +20,11 @@ namespace ViscoContact
           ContactLaw::from_parameters(entries),
           zone.boundary_ids,
           {},
-          TangentialLaw::from_parameters(entries)};
+          TangentialLaw::from_parameters(entries),
+          entries.opposite_ids,
+          entries.search_distance == "auto"
+            ? 0.
+            : Utilities::string_to_double(entries.search_distance)};
         if (description.law.is_void())
           continue;
         if (entries.gap_direction != "normal")
@@ -99,6 +103,19 @@ namespace ViscoContact
     std::vector<unsigned int> result;
     for (const auto &zone : zones)
       if (zone.friction->has_friction())
+        result.push_back(zone.number);
+    return result;
+  }
+
+
+
+  template <int dim>
+  std::vector<unsigned int>
+  ContactZones<dim>::pair_numbers() const
+  {
+    std::vector<unsigned int> result;
+    for (const auto &zone : zones)
+      if (!zone.opposite_ids.empty())
         result.push_back(zone.number);
     return result;
   }

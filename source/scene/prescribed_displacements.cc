@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <sstream>
 
 namespace ViscoContact
 {
@@ -69,23 +70,38 @@ namespace ViscoContact
     const DoFHandler<dim>           &dof_handler,
     const AffineConstraints<double> &constraints) const
   {
-    const std::vector<std::string> free
+    const std::vector<FreeBody<dim>> free
       = free_rigid_motions(mapping, dof_handler, constraints, communicator);
     if (free.empty())
       return;
-    std::string motions;
-    for (const std::string &motion : free)
-      motions += (motions.empty() ? "" : "; ") + motion;
+    // Each body by its number and bounding box where the mesh has several.
+    std::ostringstream which;
+    for (const FreeBody<dim> &body : free)
+      {
+        which << (&body == &free.front() ? "" : ", and ") << "the body";
+        if (body.n_bodies > 1)
+          {
+            which << " " << body.number << " of the mesh's " << body.n_bodies
+                  << " bodies (the one in [" << body.lower[0] << ", "
+                  << body.upper[0] << "]";
+            for (unsigned int d = 1; d < dim; ++d)
+              which << " x [" << body.lower[d] << ", " << body.upper[d] << "]";
+            which << ")";
+          }
+        which << " free to move rigidly (";
+        for (const std::string &motion : body.motions)
+          which << (&motion == &body.motions.front() ? "" : "; ") << motion;
+        which << ")";
+      }
     AssertThrow(false,
                 ExcMessage(
-                  "The boundary conditions leave the body free to move "
-                  "rigidly ("
-                  + motions
-                  + "): the elastic operator is singular. Stop these motions "
+                  "The boundary conditions leave " + which.str()
+                  + ": the elastic operator is singular. Stop these motions "
                     "with <Clamped boundary ids>, <Symmetry boundary ids> or a "
                     "<Prescribed displacement N> in subsection <Boundary> (a "
-                    "contact zone does not hold a body); accepted: boundary "
-                    "conditions that leave no rigid motion free."));
+                    "contact zone, also one between two bodies, does not hold "
+                    "a body); accepted: boundary conditions that leave no "
+                    "rigid motion of any body free."));
   }
 
 
@@ -290,8 +306,11 @@ namespace ViscoContact
     for (std::uint64_t m = 0; m < n_levels; ++m)
       for (std::size_t d = 0; d < dirichlet_dofs.size(); d += stride)
         {
-          const DirichletDof &dof     = dirichlet_dofs[d];
-          std::string         problem = dirichlet
+          const DirichletDof &dof = dirichlet_dofs[d];
+          // A clamped part has no expression (its value is zero).
+          if (!dirichlet.prescribes_function(dof.part))
+            continue;
+          std::string problem = dirichlet
                                   .value(dof.part,
                                          dof.component,
                                          dof.location,

@@ -82,7 +82,8 @@ namespace ViscoContact
            ContactLaw::from_parameters(entries),
            {2},
            std::nullopt,
-           TangentialLaw::from_parameters(entries)}};
+           TangentialLaw::from_parameters(entries),
+           {}}};
         contact.setup(zones,
                       MappingQ<2>(1),
                       dof_handler,

@@ -1,0 +1,431 @@
+// Contact pairs: the mortar coupling of a zone's nodes to the opposite side
+// (contact_pairs.h), in parallel.
+
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/mpi.h>
+
+#include "contact_pairs/contact_pairs.h"
+#include "contact_pairs/mortar.h"
+#include "robustness/file_output.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace ViscoContact
+{
+  namespace
+  {
+    bool
+    in_list(const types::boundary_id               id,
+            const std::vector<types::boundary_id> &ids)
+    {
+      return std::find(ids.begin(), ids.end(), id) != ids.end();
+    }
+
+    std::string
+    pair_problem(const std::string &subsection, const std::string &what)
+    {
+      return "Invalid parameter <Opposite boundary ids> in subsection <"
+             + subsection + ">: " + what;
+    }
+
+    // A vertex of the opposite side as it travels between ranks: its
+    // location, its x-dof (which names it), and each component's dof
+    // expanded through its constraint, (dof, weight) pairs.
+    struct MasterVertex
+    {
+      Point<2>                location;
+      types::global_dof_index x_dof;
+      std::array<std::vector<std::pair<types::global_dof_index, double>>, 2>
+        components;
+    };
+    using MasterFace = std::array<MasterVertex, 2>;
+
+    // The two vertices of face f of cell in the order that makes the
+    // tangent turned clockwise point out of the cell (Mortar::Side).
+    std::array<unsigned int, 2>
+    outward_order(const DoFHandler<2>::active_cell_iterator &cell,
+                  const unsigned int                         f)
+    {
+      const Tensor<1, 2> t
+        = cell->face(f)->vertex(1) - cell->face(f)->vertex(0);
+      const Tensor<1, 2> normal({t[1], -t[0]});
+      if (normal * (cell->face(f)->center() - cell->center()) < 0)
+        return {{1, 0}};
+      return {{0, 1}};
+    }
+
+    // Doubles in and out of a message: locations, dof numbers (exact below
+    // 2^53) and weights.
+    void
+    pack(const MasterFace &face, std::vector<double> &message)
+    {
+      for (const MasterVertex &vertex : face)
+        {
+          message.insert(message.end(),
+                         {vertex.location[0],
+                          vertex.location[1],
+                          double(vertex.x_dof)});
+          for (const auto &entries : vertex.components)
+            {
+              message.push_back(entries.size());
+              for (const auto &[dof, weight] : entries)
+                message.insert(message.end(), {double(dof), weight});
+            }
+        }
+    }
+
+    std::vector<MasterFace>
+    unpack(const std::vector<double> &message)
+    {
+      std::vector<MasterFace> faces;
+      std::size_t             k = 0;
+      while (k < message.size())
+        {
+          MasterFace face;
+          for (MasterVertex &vertex : face)
+            {
+              vertex.location = Point<2>(message[k], message[k + 1]);
+              vertex.x_dof    = types::global_dof_index(message[k + 2]);
+              k += 3;
+              for (auto &entries : vertex.components)
+                {
+                  const std::size_t n = message[k++];
+                  for (std::size_t e = 0; e < n; ++e, k += 2)
+                    entries.emplace_back(types::global_dof_index(message[k]),
+                                         message[k + 1]);
+                }
+            }
+          faces.push_back(face);
+        }
+      return faces;
+    }
+
+    // The pieces of one pair zone on this rank: the zone's faces around its
+    // nodes (own and ghost cells), the opposite faces of its own cells, and
+    // the longest face of both among its own cells.
+    struct ZoneFaces
+    {
+      Mortar::Side                                    slave;
+      std::map<types::global_dof_index, unsigned int> slave_vertex_of_dof;
+      std::vector<MasterFace>                         own_master_faces;
+      double                                          longest_face = 0;
+    };
+
+    ZoneFaces
+    collect_faces(const ContactZoneDescription<2> &zone,
+                  const DoFHandler<2>             &dof_handler,
+                  const AffineConstraints<double> &constraints)
+    {
+      ZoneFaces faces;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (!cell->is_artificial())
+          for (const unsigned int f : cell->face_indices())
+            {
+              if (!cell->face(f)->at_boundary())
+                continue;
+              const types::boundary_id id    = cell->face(f)->boundary_id();
+              const bool               slave = in_list(id, zone.boundary_ids);
+              const std::array<unsigned int, 2> order = outward_order(cell, f);
+              if (cell->is_locally_owned()
+                  && (slave || in_list(id, zone.opposite_ids)))
+                faces.longest_face
+                  = std::max(faces.longest_face, cell->face(f)->measure());
+              if (slave)
+                {
+                  std::array<unsigned int, 2> segment;
+                  for (unsigned int n = 0; n < 2; ++n)
+                    {
+                      const unsigned int v = order[n];
+                      const auto [it, inserted]
+                        = faces.slave_vertex_of_dof.emplace(
+                          cell->face(f)->vertex_dof_index(v, 0),
+                          faces.slave.vertices.size());
+                      if (inserted)
+                        faces.slave.vertices.push_back(
+                          cell->face(f)->vertex(v));
+                      segment[n] = it->second;
+                    }
+                  faces.slave.segments.push_back(segment);
+                }
+              else if (cell->is_locally_owned()
+                       && in_list(id, zone.opposite_ids))
+                {
+                  MasterFace face;
+                  for (unsigned int n = 0; n < 2; ++n)
+                    {
+                      const unsigned int v = order[n];
+                      face[n].location     = cell->face(f)->vertex(v);
+                      face[n].x_dof = cell->face(f)->vertex_dof_index(v, 0);
+                      for (unsigned int c = 0; c < 2; ++c)
+                        {
+                          const types::global_dof_index dof
+                            = cell->face(f)->vertex_dof_index(v, c);
+                          if (!constraints.is_constrained(dof))
+                            face[n].components[c] = {{dof, 1.}};
+                          else if (const auto *entries
+                                   = constraints.get_constraint_entries(dof))
+                            face[n].components[c] = *entries;
+                        }
+                    }
+                  faces.own_master_faces.push_back(face);
+                }
+            }
+      return faces;
+    }
+
+    // The opposite faces near this rank's part of the zone: each rank's own
+    // opposite faces go to every rank whose zone faces, widened by the
+    // search distance, they meet.
+    std::vector<MasterFace>
+    exchange_master_faces(const ZoneFaces &faces,
+                          const double     search_distance,
+                          const MPI_Comm   communicator)
+    {
+      // This rank's box: lower and upper corner, or empty (lower > upper).
+      std::vector<double> box{1, 1, 0, 0};
+      if (!faces.slave.vertices.empty())
+        {
+          const BoundingBox<2> slave_box(faces.slave.vertices);
+          for (unsigned int d = 0; d < 2; ++d)
+            {
+              box[d]
+                = slave_box.get_boundary_points().first[d] - search_distance;
+              box[2 + d]
+                = slave_box.get_boundary_points().second[d] + search_distance;
+            }
+        }
+      const std::vector<std::vector<double>> boxes
+        = Utilities::MPI::all_gather(communicator, box);
+      const unsigned int my_rank
+        = Utilities::MPI::this_mpi_process(communicator);
+      std::map<unsigned int, std::vector<double>> messages;
+      std::vector<MasterFace>                     near;
+      for (const MasterFace &face : faces.own_master_faces)
+        for (unsigned int rank = 0; rank < boxes.size(); ++rank)
+          {
+            const std::vector<double> &b     = boxes[rank];
+            bool                       meets = b[0] <= b[2] && b[1] <= b[3];
+            for (unsigned int d = 0; d < 2 && meets; ++d)
+              meets = std::max(face[0].location[d], face[1].location[d]) >= b[d]
+                      && std::min(face[0].location[d], face[1].location[d])
+                           <= b[2 + d];
+            if (!meets)
+              continue;
+            if (rank == my_rank)
+              near.push_back(face);
+            else
+              pack(face, messages[rank]);
+          }
+      for (const auto &[rank, message] :
+           Utilities::MPI::some_to_some(communicator, messages))
+        {
+          const std::vector<MasterFace> received = unpack(message);
+          near.insert(near.end(), received.begin(), received.end());
+        }
+      return near;
+    }
+  } // namespace
+
+
+
+  // @sect4{ContactPairs::reinit}
+  template <int dim>
+  void
+  ContactPairs<dim>::reinit(
+    const std::vector<ContactZoneDescription<dim>> &zones,
+    const DoFHandler<dim>                          &dof_handler,
+    const AffineConstraints<double>                &constraints,
+    const MPI_Comm                                  communicator)
+  {
+    couplings.clear();
+    zone_is_pair.assign(zones.size(), false);
+    ghosts = IndexSet(dof_handler.n_dofs());
+    for (unsigned int z = 0; z < zones.size(); ++z)
+      {
+        zone_is_pair[z] = !zones[z].opposite_ids.empty();
+        if (!zone_is_pair[z])
+          continue;
+        if constexpr (dim != 2)
+          {
+            AssertThrow(false,
+                        ExcMessage(pair_problem(zones[z].subsection,
+                                                "contact pairs are available "
+                                                "in 2D; accepted: empty when "
+                                                "Dimension = 3.")));
+          }
+        else
+          {
+            const ZoneFaces faces
+              = collect_faces(zones[z], dof_handler, constraints);
+            const double search_distance
+              = zones[z].search_distance > 0
+                  ? zones[z].search_distance
+                  : Utilities::MPI::max(faces.longest_face, communicator);
+            const std::vector<MasterFace> near
+              = exchange_master_faces(faces, search_distance, communicator);
+
+            // The opposite side near this rank, each vertex once.
+            Mortar::Side                                    master;
+            std::vector<const MasterVertex *>               master_vertices;
+            std::map<types::global_dof_index, unsigned int> vertex_of_dof;
+            std::string                                     problem;
+            for (const MasterFace &face : near)
+              {
+                std::array<unsigned int, 2> segment;
+                for (unsigned int n = 0; n < 2; ++n)
+                  {
+                    const auto [it, inserted]
+                      = vertex_of_dof.emplace(face[n].x_dof,
+                                              master.vertices.size());
+                    if (inserted)
+                      {
+                        master.vertices.push_back(face[n].location);
+                        master_vertices.push_back(&face[n]);
+                      }
+                    segment[n] = it->second;
+                    if (problem.empty()
+                        && faces.slave_vertex_of_dof.count(face[n].x_dof) == 1)
+                      {
+                        std::ostringstream message;
+                        message << "the opposite side shares the node at ("
+                                << face[n].location
+                                << ") with the zone; accepted: boundary "
+                                   "parts of another body, which share no "
+                                   "node with the zone (a Gmsh mesh whose "
+                                   "bodies are separate components).";
+                        problem
+                          = pair_problem(zones[z].subsection, message.str());
+                      }
+                  }
+                master.segments.push_back(segment);
+              }
+            FileOutput::agree_on_problem(problem, communicator);
+
+            // The coupling of the nodes this rank owns.
+            const Mortar::Coupling coupling
+              = Mortar::couple(faces.slave, master, search_distance);
+            const IndexSet &owned   = dof_handler.locally_owned_dofs();
+            unsigned int    covered = 0;
+            for (const auto &[x_dof, j] : faces.slave_vertex_of_dof)
+              {
+                if (!owned.is_element(x_dof) || coupling.D[j] <= 0)
+                  continue;
+                ++covered;
+                NodeCoupling &node = couplings[{z, x_dof}];
+                node.weight        = coupling.D[j];
+                for (const auto &[k, M] : coupling.M[j])
+                  {
+                    const double coefficient = M / coupling.D[j];
+                    node.opposite_point += coefficient * master.vertices[k];
+                    for (unsigned int c = 0; c < 2; ++c)
+                      for (const auto &[dof, weight] :
+                           master_vertices[k]->components[c])
+                        {
+                          node.entries.emplace_back(dof,
+                                                    c,
+                                                    coefficient * weight);
+                          if (!owned.is_element(dof))
+                            ghosts.add_index(dof);
+                        }
+                  }
+              }
+            if (Utilities::MPI::sum(covered, communicator) == 0)
+              {
+                // Refused: how far the nearest facing face lies, from all
+                // of the opposite side (gathered on this path only).
+                const double unlimited = std::numeric_limits<double>::max();
+                Mortar::Side everything;
+                for (const MasterFace &face :
+                     exchange_master_faces(faces, unlimited, communicator))
+                  {
+                    everything.segments.push_back(
+                      {{static_cast<unsigned int>(everything.vertices.size()),
+                        static_cast<unsigned int>(everything.vertices.size()
+                                                  + 1)}});
+                    everything.vertices.push_back(face[0].location);
+                    everything.vertices.push_back(face[1].location);
+                  }
+                const double closest = Utilities::MPI::min(
+                  Mortar::couple(faces.slave, everything, 0.).closest_distance,
+                  communicator);
+                std::ostringstream message;
+                message << "no node of the zone has a face of the opposite "
+                           "side within the Search distance "
+                        << search_distance << " along its normal (";
+                if (std::isfinite(closest))
+                  message << "the nearest facing one lies " << closest
+                          << " from the zone";
+                else
+                  message << "no face of the opposite side faces the zone";
+                message << "); accepted: ids of boundary parts that face "
+                           "the zone within the Search distance.";
+                AssertThrow(false,
+                            ExcMessage(pair_problem(zones[z].subsection,
+                                                    message.str())));
+              }
+          }
+      }
+    ghosts.compress();
+  }
+
+
+
+  template <int dim>
+  const IndexSet &
+  ContactPairs<dim>::ghost_dofs() const
+  {
+    return ghosts;
+  }
+
+
+
+  // @sect4{ContactPairs::couple_nodes}
+  template <int dim>
+  void
+  ContactPairs<dim>::couple_nodes(
+    std::vector<typename ContactSet<dim>::NodeGeometry> &nodes,
+    std::vector<double>                                 &weights,
+    const Utilities::MPI::Partitioner                   &partitioner) const
+  {
+    unsigned int kept = 0;
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      {
+        auto      &node     = nodes[i];
+        const auto coupling = couplings.find({node.zone, node.dofs[0]});
+        if (zone_is_pair[node.zone] && coupling == couplings.end())
+          continue; // not covered by the opposite side
+        if (coupling != couplings.end())
+          {
+            weights[i] = coupling->second.weight;
+            node.opposite.clear();
+            for (const auto &[dof, component, coefficient] :
+                 coupling->second.entries)
+              node.opposite.push_back(
+                {dof,
+                 static_cast<unsigned int>(partitioner.global_to_local(dof)),
+                 component,
+                 coefficient});
+            node.opposite_gap
+              = node.direction
+                * (coupling->second.opposite_point - node.location);
+          }
+        if (kept != i)
+          {
+            nodes[kept]   = std::move(nodes[i]);
+            weights[kept] = weights[i];
+          }
+        ++kept;
+      }
+    nodes.resize(kept);
+    weights.resize(kept);
+  }
+
+
+
+  template class ContactPairs<2>;
+  template class ContactPairs<3>;
+} // namespace ViscoContact

@@ -1,0 +1,142 @@
+#!/bin/bash
+# The two-body patch test (parameters/two_block_patch_test.prm): a pad
+# (E2 = 500) pressed by D(t) = 0.01 min(t, 2 - t) onto a base (E1 = 1000),
+# both of height 1 and width 2, meshed separately with non-matching nodes
+# at their interface, in contact along a pair (Opposite boundary ids). Each
+# block is in uniaxial stress with the closed form
+#   p = max(0, D - s) / (1 / E1 + 1 / E2 + 1 / c),
+# s the zone's Initial gap (a clearance; negative: an interference) and c
+# the stiffness of a compliant layer between the bodies (none: 1 / c = 0).
+# The mortar coupling reproduces it to round-off (relative 1e-9) in every
+# step: the force 2 p on the pad's side, the forces 2 p up on the pad's
+# side and 2 p down on the base's side of the pair (time_series.csv), the
+# reaction -2 p of its top, +2 p at the base's support (action equals
+# reaction: all the pad's force reaches the base), the largest von Mises stress p, the contact area 2,
+# and p at every node of the contact profiles; the operator is factorised
+# once. Variants: quadrilaterals and triangles, cell-size ratios 6:8 and
+# 4:10, on 1, 2 and 3 ranks (the opposite side of a node on another rank),
+# the coarse side as the zone, a clearance, an interference, a compliant
+# layer (2 ranks), and Coulomb friction between the bodies (below). With
+# "quick" as second argument (the Debug build): the
+# quadrilaterals 6:8 on 1 rank and the triangles 4:10 on 2.
+#   run_two_bodies.sh EXECUTABLE [quick]
+set -u
+here=$(cd "$(dirname "$0")" && pwd)
+source "$here/robustness/helpers.sh"
+executable=$1 quick=${2:-}
+meshes=$here/../meshes
+
+# check NAME GAP INVERSE_LAYER_STIFFNESS [UP]: UP = -1 where the zone is
+# the base's top (the force on the zone's side then points down).
+check() {
+  awk -F, -v name="$1" -v s="$2" -v inverse_c="$3" -v up="${4:-1}" '
+    function near(a, b) { d = a - b; if (d < 0) d = -d
+                          m = b < 0 ? -b : b; return d <= 1e-9 * (m > 1 ? m : 1) }
+    NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i
+              pair = "pair_force_zone_1_"; opposite = "opposite_force_zone_1_"; next }
+    { t = $col["time"]; D = 0.01 * (t < 2 - t ? t : 2 - t)
+      p = D - s; if (p < 0) p = 0; p /= 1 / 1000 + 1 / 500 + inverse_c
+      if (!((pair "y") in col)) { print name ": no column " pair "y"; exit 1 }
+      if (!near($col["total_contact_force"], 2 * p) \
+          || !near($col["reaction_prescribed_1_y"], -2 * p) \
+          || !near($col["reaction_symmetry_2_y"], 2 * p) \
+          || !near($col[pair "y"], 2 * up * p) || !near($col[opposite "y"], -2 * up * p) \
+          || !near($col["max_von_mises"], p) || !near($col["peak_pressure"], p) \
+          || (p > 0 && !near($col["contact_area"], 2))) {
+        print name ": at t = " t " force " $col["total_contact_force"] ", reactions of the top " \
+              $col["reaction_prescribed_1_y"] " and of the base " $col["reaction_symmetry_2_y"] \
+              ", forces on the two sides " $col[pair "y"] " and " $col[opposite "y"] \
+              ", von Mises " $col["max_von_mises"] ", peak " $col["peak_pressure"] ", area " \
+              $col["contact_area"] "; expected p = " p ", force " 2 * p
+        exit 1 } }' results/time_series.csv || exit 1
+  for profile in results/contact_profile_*.csv; do
+    awk -F, -v name="$1" -v s="$2" -v inverse_c="$3" '
+      NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+      { t = $col["time"]; D = 0.01 * (t < 2 - t ? t : 2 - t)
+        p = D - s; if (p < 0) p = 0; p /= 1 / 1000 + 1 / 500 + inverse_c
+        d = $col["contact_pressure"] - p; if (d < 0) d = -d
+        if (d > 1e-9 * (p > 1 ? p : 1)) {
+          print name ": pressure " $col["contact_pressure"] " at x = " $col["x"] ", t = " t ", not " p; exit 1 } }' \
+      "$profile" || exit 1
+  done
+  grep -q "set up by the back end 1x" out.txt \
+    || fail "$1: the operator was set up more than once: $(grep 'operator:' out.txt)"
+}
+
+variant() { # MESH > variant.prm
+  sed -e "s|\.\./meshes/two_blocks_quadrilateral_6_8|$meshes/$1|" \
+    "$here/../parameters/two_block_patch_test.prm" | set_entry "Output directory" results
+}
+contact_entries() { sed -e "s/^\(subsection Contact\)$/\1\n$1/"; }
+
+n=0
+meshes_to_run="quadrilateral_6_8:1 quadrilateral_4_10:2 triangle_6_8:3 triangle_4_10:1"
+[ "$quick" = quick ] && meshes_to_run="quadrilateral_6_8:1 triangle_4_10:2"
+for mesh_ranks in $meshes_to_run; do
+  mesh=${mesh_ranks%:*} ranks=${mesh_ranks#*:}
+  cell=hypercube
+  case $mesh in triangle*) cell=simplex ;; esac
+  variant two_blocks_$mesh | set_entry "Cell type" $cell > variant.prm
+  run_scene variant.prm $ranks "$mesh, $ranks rank(s)"
+  check "$mesh, $ranks rank(s)" 0 0
+  n=$((n + 1))
+done
+if [ "$quick" = quick ]; then
+  echo "The two-body patch test is exact on $n meshes."
+  exit 0
+fi
+
+# The coarse side as the zone: the base's top meets the pad's bottom.
+variant two_blocks_quadrilateral_4_10 | set_entry "Contact boundary ids" 3 \
+  | set_entry "Opposite boundary ids" 4 > variant.prm
+run_scene variant.prm 1 "coarse side as the zone"
+check "coarse side as the zone" 0 0 -1
+
+# A clearance s = 0.002 and an interference s = -0.002 (Initial gap adds to
+# the distance of the sides).
+for s in 0.002 -0.002; do
+  variant two_blocks_triangle_6_8 | set_entry "Cell type" simplex \
+    | contact_entries "  set Initial gap = $s" > variant.prm
+  run_scene variant.prm 1 "Initial gap $s"
+  check "Initial gap $s" $s 0
+done
+
+# A compliant layer between the bodies, p = c r with c = 2000, no rigid
+# limit.
+variant two_blocks_quadrilateral_6_8 | set_entry "Unilateral constraint" false \
+  | set_entry "Normal compliance" true | set_entry "Layer thickness" 1 \
+  | contact_entries "  set Law = piecewise linear\n  set Breakpoints = 0\n  set Slopes = 0, 2000" \
+  > variant.prm
+run_scene variant.prm 2 "compliant layer, 2 ranks"
+check "compliant layer, 2 ranks" 0 0.0005
+
+# Coulomb friction between the bodies (mu = 0.3, nu = 0): the base clamped
+# at its bottom, the pad's top pressed down by 0.01 min(t, 1), then moved
+# sideways by 0.02 max(t - 1, 0). Once it slides (t >= 1.625) every node
+# slips, the tangential force of the pair is mu N to round-off, the
+# pair's forces on the two sides are -mu N and mu N along x, and the
+# reactions of the pad's top and of the base's bottom balance them: the
+# friction force reaches the other body whole.
+variant two_blocks_quadrilateral_6_8 | set_entry "Symmetry boundary ids" "" \
+  | set_entry "Clamped boundary ids" 2 | set_entry Components "x, y" \
+  | set_entry Displacement "0.02 * max(t - 1, 0); -0.01 * min(t, 1)" \
+  | set_entry "Poisson ratio" 0 | set_entry "End time" 2 | set_entry "Time step" 0.125 \
+  | contact_entries "  set Tangential law = Coulomb\n  set Friction coefficient = 0.3" \
+  > variant.prm
+run_scene variant.prm 2 "Coulomb friction, 2 ranks"
+awk -F, '
+  function near(a, b) { d = a - b; if (d < 0) d = -d; m = b < 0 ? -b : b; return d <= 1e-9 * (m > 1 ? m : 1) }
+  NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+  $col["time"] >= 1.625 {
+    N = $col["total_contact_force"]; F = $col["tangential_force_zone_1_x"]
+    if (N < 1 || $col["slip_nodes"] != 9 || !near(F, 0.3 * N) \
+        || !near($col["reaction_prescribed_1_x"], F) || !near($col["reaction_clamped_x"], -F) \
+        || !near($col["pair_force_zone_1_x"], -F) || !near($col["opposite_force_zone_1_x"], F) \
+        || !near($col["reaction_clamped_y"], N) || !near($col["reaction_prescribed_1_y"], -N)) {
+      print "Coulomb friction: at t = " $col["time"] " N = " N ", F = " F ", slipping nodes " \
+            $col["slip_nodes"] ", reactions of the top (" $col["reaction_prescribed_1_x"] ", " \
+            $col["reaction_prescribed_1_y"] ") and of the base (" $col["reaction_clamped_x"] ", " \
+            $col["reaction_clamped_y"] "); expected F = 0.3 N, all 9 nodes slipping"
+      exit 1 } }' results/time_series.csv || exit 1
+
+echo "The two-body patch test is exact on $n meshes, with the coarse side as the zone, a clearance, an interference and a compliant layer; Coulomb friction between the bodies slides at mu N."

@@ -64,6 +64,9 @@ namespace ViscoContact
     // The largest distance between paired faces (0: the longest face of
     // the two sides).
     double search_distance = 0;
+    // Whether the distance between the sides counts in the gap (else the
+    // zone's Initial gap alone).
+    bool measured_gap = true;
   };
 
   template <int dim>

@@ -310,6 +310,7 @@ namespace ViscoContact
       // meets (empty: a rigid obstacle).
       std::vector<types::boundary_id> opposite_ids;
       std::string                     search_distance = "auto";
+      std::string                     geometric_gap   = "measured";
       bool                unilateral_constraint = true; // rigid foundation
       bool                normal_compliance     = true; // the deformable layer
       double              gap                   = 0.01; // g, layer thickness

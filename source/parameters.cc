@@ -982,6 +982,16 @@ namespace ViscoContact
           "opposite side is paired with a face of the zone [m]; auto: the "
           "longest face of the two sides.",
           AutoOrPositive());
+        prm.add_parameter(
+          "Geometric gap",
+          geometric_gap,
+          "A contact pair: measured: the gap of a node is the distance "
+          "between the two sides along its normal (on the mesh's faces) "
+          "plus Initial gap; ignored: Initial gap alone, for two sides that "
+          "discretise the same curve with different nodes (a curved "
+          "interface whose polygons would otherwise show gaps of the order "
+          "of h^2 / radius between them).",
+          Patterns::Selection("measured|ignored"));
         prm.add_parameter("Unilateral constraint",
                           unilateral_constraint,
                           "Rigid foundation under the layer: u_nu <= g.",

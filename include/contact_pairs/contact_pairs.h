@@ -85,7 +85,7 @@ namespace ViscoContact
     // By zone index and the node's x-dof.
     std::map<std::pair<unsigned int, types::global_dof_index>, NodeCoupling>
                       couplings;
-    std::vector<bool> zone_is_pair;
+    std::vector<bool> zone_is_pair, zone_measures_gap;
     IndexSet          ghosts;
   };
 } // namespace ViscoContact

@@ -243,6 +243,9 @@ namespace ViscoContact
   {
     couplings.clear();
     zone_is_pair.assign(zones.size(), false);
+    zone_measures_gap.clear();
+    for (const auto &zone : zones)
+      zone_measures_gap.push_back(zone.measured_gap);
     ghosts = IndexSet(dof_handler.n_dofs());
     for (unsigned int z = 0; z < zones.size(); ++z)
       {
@@ -410,8 +413,10 @@ namespace ViscoContact
                  component,
                  coefficient});
             node.opposite_gap
-              = node.direction
-                * (coupling->second.opposite_point - node.location);
+              = zone_measures_gap[node.zone]
+                  ? node.direction
+                      * (coupling->second.opposite_point - node.location)
+                  : 0.;
           }
         if (kept != i)
           {

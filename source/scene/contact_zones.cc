@@ -24,7 +24,8 @@ namespace ViscoContact
           entries.opposite_ids,
           entries.search_distance == "auto"
             ? 0.
-            : Utilities::string_to_double(entries.search_distance)};
+            : Utilities::string_to_double(entries.search_distance),
+          entries.geometric_gap == "measured"};
         if (description.law.is_void())
           continue;
         if (entries.gap_direction != "normal")

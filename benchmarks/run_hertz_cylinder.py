@@ -100,6 +100,15 @@ def run(executable, n, model, folder, fitted=None):
 
 
 def analyse(output, model):
+    e_star = E if model == "plane stress" else E / (1 - NU ** 2)
+    return analyse_hertz(output, e_star, R)
+
+
+def analyse_hertz(output, e_star, radius):
+    """The load P (twice the reaction of the half model's top), the
+    half-width a and the peak pressure p0 of the last profile against
+    Hertz's a = sqrt(4 P radius / (pi e_star)), p0 = 2 P / (pi a), and the
+    L2 error of all nodal pressures against Hertz's profile."""
     with open(os.path.join(output, "time_series.csv")) as f:
         last = list(csv.DictReader(f))[-1]
     load = 2 * abs(float(last["reaction_prescribed_1_y"]))
@@ -111,8 +120,7 @@ def analyse(output, model):
     k = max(i for i, (_, p) in enumerate(nodes) if p > 0)
     (x1, p1), (x2, p2) = nodes[k - 1], nodes[k]
     a = math.sqrt(x2 ** 2 + p2 ** 2 * (x2 ** 2 - x1 ** 2) / (p1 ** 2 - p2 ** 2))
-    e_star = E if model == "plane stress" else E / (1 - NU ** 2)
-    a_exact = math.sqrt(4 * load * R / (math.pi * e_star))
+    a_exact = math.sqrt(4 * load * radius / (math.pi * e_star))
     p0_exact = 2 * load / (math.pi * a_exact)
     # All nodal pressures against Hertz's profile p0 sqrt(1 - x^2/a^2) for
     # the computed load, in the norm of the lumped weights.

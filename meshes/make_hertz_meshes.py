@@ -30,7 +30,7 @@ Run from anywhere: python3 meshes/make_hertz_meshes.py
 import math
 import os
 
-from gmsh_format import gmsh_text
+from gmsh_format import gmsh_elements_text, gmsh_text
 
 R = 1.0
 
@@ -115,6 +115,37 @@ def half_disk(n, fitted=None):
     quads += [(mirrored(i, j), mirrored(i, j + 1), mirrored(i + 1, j + 1),
                mirrored(i + 1, j)) for j in range(n) for i in range(n)]
     return gmsh_text(nodes, lines, quads, [(2, "top"), (3, "contact")])
+
+
+def two_cylinders(n1, n2, r1=1.0, r2=2.0):
+    """Two cylinders touching at the origin, the half model x >= 0 (not
+    shipped; benchmarks/run_hertz_two_cylinders.py): above, the lower
+    quarter of a cylinder of radius r1 (the patch of quarter_disk(n1)
+    scaled by r1, material id 1); below, the mirror image y -> -y of the
+    patch of quarter_disk(n2) scaled by r2 (the upper quarter of a cylinder
+    of radius r2, material id 2). The two arcs have 2 n1 and 2 n2 segments,
+    both graded toward the contact point; their nodes differ but for the
+    one at the origin of each. Physical groups: 1 x = 0 (both), 2 the top
+    y = r1, 3 the upper arc, 4 the bottom y = -r2, 5 the lower arc."""
+    nodes, boundary, cells = [], [], []
+    for n, scale, flip, top, arc_tag, material in ((n1, r1 / R, 1, 2, 3, 1),
+                                                   (n2, r2 / R, -1, 4, 5, 2)):
+        first = len(nodes) + 1
+        index = lambda i, j: first + j * (n + 1) + i
+        for i, j, x, y in patch_nodes(n):
+            nodes.append((index(i, j), scale * x, flip * scale * y, 0.0))
+        for k in range(n):
+            boundary += [(1, 1, index(0, k), index(0, k + 1)),
+                         (1, top, index(k, n), index(k + 1, n)),
+                         (1, arc_tag, index(k, 0), index(k + 1, 0)),
+                         (1, arc_tag, index(n, k), index(n, k + 1))]
+        for j in range(n):
+            for i in range(n):
+                quad = [index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1)]
+                # The mirror image reverses the orientation.
+                cells.append((3, material) + tuple(quad if flip > 0 else quad[::-1]))
+    names = [(1, "symmetry"), (2, "top"), (3, "upper_arc"), (4, "bottom"), (5, "lower_arc")]
+    return gmsh_elements_text(nodes, boundary, cells, names, [(1, "upper"), (2, "lower")])
 
 
 if __name__ == "__main__":

@@ -2111,16 +2111,16 @@ namespace ViscoContact
     void
     AllParameters::check_method_entries() const
     {
-      // Contact pairs have rows across the two bodies, which only the
-      // condensed back end takes so far.
+      // Contact pairs have rows across the two bodies, which the
+      // matrix-free back end does not take so far.
       for (const ContactZone &zone : used_contact_zones())
         if (!zone.contact->opposite_ids.empty())
-          require(method == Method::automatic || method == Method::condensed,
+          require(method != Method::matrix_free,
                   "Linear solver",
                   "Method",
-                  method == Method::full_space ? "full space" : "matrix free",
-                  "auto or condensed when a contact zone has Opposite "
-                  "boundary ids (subsection <"
+                  "matrix free",
+                  "auto, condensed or full space when a contact zone has "
+                  "Opposite boundary ids (subsection <"
                     + zone.subsection + ">)");
       // The matrix-free operator evaluates tensor-product elements
       // (deal.II 9.4 has no multigrid hierarchy for simplex meshes), and it

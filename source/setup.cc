@@ -415,7 +415,8 @@ namespace ViscoContact
                                                 mapping,
                                                 dof_handler,
                                                 solution,
-                                                operator_data);
+                                                operator_data,
+                                                constraints);
     // Only the set-up of the operator is timed: the factorisation and the
     // compliance S (from the factor's last block) of the condensed back end, or
     // the AMG hierarchy of the full space one. K is symmetric (the argument

@@ -7,6 +7,8 @@
 
 #include <deal.II/fe/mapping.h>
 
+#include <deal.II/lac/affine_constraints.h>
+
 #include <deal.II/lac/vector.h>
 
 #include "back_ends/cost_model.h"
@@ -172,7 +174,9 @@ namespace ViscoContact
   // The back end of the given method (not automatic). layout is a
   // displacement vector with the run's partition; the AMG needs the
   // support points of the dofs for the rigid-body modes, the matrix-free
-  // back end what its operator is built from.
+  // back end what its operator is built from. With contact pairs the full
+  // space back end works in the dual mortar basis (dual_mortar_basis.h),
+  // which needs the displacement's constraints.
   template <int dim>
   std::unique_ptr<ContactSolver<dim>>
   create_contact_solver(const Parameters::Method         method,
@@ -180,7 +184,8 @@ namespace ViscoContact
                         const Mapping<dim>              &mapping,
                         const DoFHandler<dim>           &dof_handler,
                         const VectorType                &layout,
-                        const ElasticOperatorData<dim>  &operator_data);
+                        const ElasticOperatorData<dim>  &operator_data,
+                        const AffineConstraints<double> &constraints);
 
   // The constructors of the two back ends (condensed_contact_solver.cc,
   // full_space_contact_solver.cc), for create_contact_solver().

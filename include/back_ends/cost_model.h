@@ -40,7 +40,7 @@ namespace ViscoContact
     bool         simplex         = false;
     bool         implicit_update = false;
     // Whether a contact zone meets another body (rows across both sides:
-    // the condensed back end only, so far).
+    // not on the matrix-free back end, so far).
     bool   contact_pairs = false;
     double dofs          = 0;
     double contact_nodes = 0;

@@ -4,6 +4,9 @@
 #include <deal.II/base/exceptions.h>
 
 #include "back_ends/contact_solver.h"
+#include "contact_pairs/dual_mortar_basis.h"
+
+#include <algorithm>
 
 
 namespace ViscoContact
@@ -23,17 +26,26 @@ namespace ViscoContact
                         const Mapping<dim>              &mapping,
                         const DoFHandler<dim>           &dof_handler,
                         const VectorType                &layout,
-                        const ElasticOperatorData<dim>  &operator_data)
+                        const ElasticOperatorData<dim>  &operator_data,
+                        const AffineConstraints<double> &constraints)
   {
     Assert(method != Parameters::Method::automatic, ExcInternalError());
     if (method == Parameters::Method::condensed)
       return create_condensed_contact_solver<dim>(parameters, layout);
-    return create_full_space_contact_solver<dim>(
+    auto back_end = create_full_space_contact_solver<dim>(
       parameters,
       mapping,
       dof_handler,
       layout,
       method == Parameters::Method::matrix_free ? &operator_data : nullptr);
+    const auto zones = parameters.used_contact_zones();
+    if (std::any_of(zones.begin(), zones.end(), [](const auto &zone) {
+          return !zone.contact->opposite_ids.empty();
+        }))
+      return std::make_unique<DualMortarBasis<dim>>(std::move(back_end),
+                                                    constraints,
+                                                    layout);
+    return back_end;
   }
 
 
@@ -45,12 +57,14 @@ namespace ViscoContact
                         const Mapping<2> &,
                         const DoFHandler<2> &,
                         const VectorType &,
-                        const ElasticOperatorData<2> &);
+                        const ElasticOperatorData<2> &,
+                        const AffineConstraints<double> &);
   template std::unique_ptr<ContactSolver<3>>
   create_contact_solver(const Parameters::Method,
                         const Parameters::AllParameters &,
                         const Mapping<3> &,
                         const DoFHandler<3> &,
                         const VectorType &,
-                        const ElasticOperatorData<3> &);
+                        const ElasticOperatorData<3> &,
+                        const AffineConstraints<double> &);
 } // namespace ViscoContact

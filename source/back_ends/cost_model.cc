@@ -196,8 +196,6 @@ namespace ViscoContact
     switch (method)
       {
         case Parameters::Method::full_space:
-          if (scene.contact_pairs)
-            cost.unavailable = "contact pairs";
           cost.bytes_per_rank
             = library_bytes_per_rank
               + dofs_per_rank * full_space_bytes_per_dof(scene);

@@ -1302,14 +1302,19 @@ namespace ViscoContact
                                                 const Vector<double>  &x,
                                                 Vector<double>        &y)
   {
+    // The node's normal row on its own dofs (the frame's first direction):
+    // the rows of contact pairs are nodal in the basis the back end then
+    // works in (dual_mortar_basis.h).
     VectorType forces(b), response(b);
     forces = 0;
     for (unsigned int i = 0; i < contact.size(); ++i)
-      contact.add_normal(forces, i, x[i]);
+      contact.add_to_node(forces, i, contact.frame_row(i, {{1, 0, 0}}), x[i]);
     solve_without_contact(forces, response);
     y.reinit(contact.size());
     for (unsigned int i = 0; i < contact.size(); ++i)
-      y[i] = contact.normal_component(response, i);
+      y[i] = contact.node_component(response,
+                                    i,
+                                    contact.frame_row(i, {{1, 0, 0}}));
   }
 
 

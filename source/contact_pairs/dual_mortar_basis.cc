@@ -1,0 +1,199 @@
+// Contact pairs on the full space back end: the step problem in the dual
+// mortar basis (dual_mortar_basis.h).
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include "contact_pairs/dual_mortar_basis.h"
+
+namespace ViscoContact
+{
+  template <int dim>
+  DualMortarBasis<dim>::DualMortarBasis(
+    std::unique_ptr<ContactSolver<dim>> back_end,
+    const AffineConstraints<double>    &constraints,
+    const VectorType                   &layout)
+    : back_end(std::move(back_end))
+    , constraints(constraints)
+    , w(layout)
+  {}
+
+
+
+  template <int dim>
+  std::string
+  DualMortarBasis<dim>::description() const
+  {
+    return back_end->description()
+           + " (contact pairs in the dual mortar basis)";
+  }
+
+
+
+  // @sect4{DualMortarBasis::make_basis}
+  //
+  // T: the identity, and in the row of every free dof of a pair node the
+  // coefficients M_jk / D_j of the opposite side's dofs of the same
+  // component (ContactSet::NodeGeometry::opposite). A constrained component
+  // of a node keeps its identity row, so that T changes no constraint.
+  template <int dim>
+  void
+  DualMortarBasis<dim>::make_basis(const ContactSet<dim> &contact)
+  {
+    const IndexSet        &owned = w.locally_owned_elements();
+    DynamicSparsityPattern pattern(w.size(), w.size(), owned);
+    for (const auto d : owned)
+      pattern.add(d, d);
+    const auto free_dof = [&](const unsigned int i, const unsigned int c) {
+      return !constraints.is_constrained(contact.node(i).dofs[c]);
+    };
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      for (const auto &entry : contact.node(i).opposite)
+        if (free_dof(i, entry.component))
+          pattern.add(contact.node(i).dofs[entry.component], entry.dof);
+    T.reinit(owned, owned, pattern, w.get_mpi_communicator());
+    for (const auto d : owned)
+      T.add(d, d, 1.);
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      for (const auto &entry : contact.node(i).opposite)
+        if (free_dof(i, entry.component))
+          T.add(contact.node(i).dofs[entry.component],
+                entry.dof,
+                entry.coefficient);
+    T.compress(VectorOperation::add);
+  }
+
+
+
+  // @sect4{DualMortarBasis::set_operator}
+  template <int dim>
+  void
+  DualMortarBasis<dim>::set_operator(const MatrixType      &matrix,
+                                     const bool             symmetric,
+                                     const ContactSet<dim> &contact)
+  {
+    A = &matrix;
+    make_basis(contact);
+    MatrixType A_T;
+    matrix.mmult(A_T, T);
+    T.Tmmult(transformed_A, A_T);
+    back_end->set_operator(transformed_A, symmetric, contact);
+    this->counts = back_end->statistics();
+  }
+
+
+
+  template <int dim>
+  void
+  DualMortarBasis<dim>::to_basis(const VectorType &u)
+  {
+    // w = T^{-1} u = 2 u - T u.
+    T.vmult(w, u);
+    w.sadd(-1., 2., u);
+  }
+
+
+
+  template <int dim>
+  void
+  DualMortarBasis<dim>::from_basis(VectorType &u) const
+  {
+    T.vmult(u, w);
+  }
+
+
+
+  template <int dim>
+  void
+  DualMortarBasis<dim>::set_right_hand_side(const VectorType      &b,
+                                            const ContactSet<dim> &contact)
+  {
+    VectorType transformed_b(b);
+    T.Tvmult(transformed_b, b);
+    back_end->set_right_hand_side(transformed_b, contact);
+    this->counts = back_end->statistics();
+  }
+
+
+
+  // The back end solves for w from the start T^{-1} u; u = T w.
+  template <int dim>
+  LinearSolveReport
+  DualMortarBasis<dim>::solve_for_pieces(ContactSet<dim> &contact,
+                                         VectorType      &u,
+                                         const double     accuracy)
+  {
+    to_basis(u);
+    const LinearSolveReport report
+      = back_end->solve_for_pieces(contact, w, accuracy);
+    from_basis(u);
+    this->counts = back_end->statistics();
+    return report;
+  }
+
+
+
+  template <int dim>
+  void
+  DualMortarBasis<dim>::finish(const ContactSet<dim> &contact, VectorType &u)
+  {
+    to_basis(u);
+    back_end->finish(contact, w);
+    from_basis(u);
+    this->counts = back_end->statistics();
+  }
+
+
+
+  template <int dim>
+  void
+  DualMortarBasis<dim>::apply_operator(VectorType       &dst,
+                                       const VectorType &src) const
+  {
+    A->vmult(dst, src);
+  }
+
+
+
+  template <int dim>
+  LinearSolveReport
+  DualMortarBasis<dim>::solve_without_contact(const VectorType &b,
+                                              VectorType       &u)
+  {
+    VectorType transformed_b(b);
+    T.Tvmult(transformed_b, b);
+    to_basis(u);
+    const LinearSolveReport report
+      = back_end->solve_without_contact(transformed_b, w);
+    from_basis(u);
+    this->counts = back_end->statistics();
+    return report;
+  }
+
+
+
+  // N A^{-1} N^T = N_w (T^T A T)^{-1} N_w^T with the nodal rows N_w of the
+  // basis: the back end's own product.
+  template <int dim>
+  void
+  DualMortarBasis<dim>::apply_compliance(const ContactSet<dim> &contact,
+                                         const Vector<double>  &x,
+                                         Vector<double>        &y)
+  {
+    back_end->apply_compliance(contact, x, y);
+    this->counts = back_end->statistics();
+  }
+
+
+
+  template <int dim>
+  void
+  DualMortarBasis<dim>::forget_kept_state()
+  {
+    back_end->forget_kept_state();
+  }
+
+
+
+  template class DualMortarBasis<2>;
+  template class DualMortarBasis<3>;
+} // namespace ViscoContact

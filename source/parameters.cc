@@ -971,8 +971,8 @@ namespace ViscoContact
           "that this zone meets (empty: the zone meets a rigid obstacle). "
           "The law acts on the relative displacement of the two sides, "
           "coupled by mortar integrals on non-matching meshes; the gap is "
-          "their distance along the zone's normal plus Initial gap (2D, "
-          "the condensed back end; doc/model.md, section 8).",
+          "their distance along the zone's normal plus Initial gap (2D; "
+          "doc/model.md, section 8).",
           Patterns::List(Patterns::Integer(0, 255)));
         prm.add_parameter(
           "Search distance",
@@ -2111,17 +2111,6 @@ namespace ViscoContact
     void
     AllParameters::check_method_entries() const
     {
-      // Contact pairs have rows across the two bodies, which the
-      // matrix-free back end does not take so far.
-      for (const ContactZone &zone : used_contact_zones())
-        if (!zone.contact->opposite_ids.empty())
-          require(method != Method::matrix_free,
-                  "Linear solver",
-                  "Method",
-                  "matrix free",
-                  "auto, condensed or full space when a contact zone has "
-                  "Opposite boundary ids (subsection <"
-                    + zone.subsection + ">)");
       // The matrix-free operator evaluates tensor-product elements
       // (deal.II 9.4 has no multigrid hierarchy for simplex meshes), and it
       // is the elastic K: the implicit update's tangent changes in every

@@ -18,7 +18,9 @@
 # the coarse side as the zone, a clearance, an interference, a compliant
 # layer (2 ranks), and Coulomb friction between the bodies (below); then
 # on the full space back end (1e-7: its Krylov tolerance) two meshes, the
-# clearance, the layer and the friction, on 1 and 2 ranks. With
+# clearance, the layer and the friction, on 1 and 2 ranks; and on the
+# matrix-free back end (quadrilaterals) a mesh, an interference and the
+# friction, on 1 and 2 ranks. With
 # "quick" as second argument (the Debug build): the
 # quadrilaterals 6:8 on 1 rank and the triangles 4:10 on 2.
 #   run_two_bodies.sh EXECUTABLE [quick]
@@ -68,6 +70,7 @@ check() {
     || fail "$1: the operator was set up more than once: $(grep 'operator:' out.txt)"
 }
 full_space() { cat; printf '\nsubsection Linear solver\n  set Method = full space\nend\n'; }
+matrix_free() { cat; printf '\nsubsection Linear solver\n  set Method = matrix free\nend\n'; }
 
 variant() { # MESH > variant.prm
   sed -e "s|\.\./meshes/two_blocks_quadrilateral_6_8|$meshes/$1|" \
@@ -170,4 +173,17 @@ sliding | full_space > variant.prm
 run_scene variant.prm 2 "full space, Coulomb friction, 2 ranks"
 check_sliding "full space, Coulomb friction, 2 ranks"
 
-echo "The two-body patch test is exact on $n meshes, with the coarse side as the zone, a clearance, an interference and a compliant layer; Coulomb friction between the bodies slides at mu N; the full space back end agrees."
+# The matrix-free back end (quadrilaterals; the operator T^T A T applied
+# without a matrix): the same, to its Krylov tolerance.
+variant two_blocks_quadrilateral_4_10 | matrix_free > variant.prm
+run_scene variant.prm 1 "matrix free, quadrilaterals 4:10"
+check "matrix free, quadrilaterals 4:10" 0 0
+variant two_blocks_quadrilateral_6_8 | contact_entries "  set Initial gap = -0.002" \
+  | matrix_free > variant.prm
+run_scene variant.prm 2 "matrix free, interference, 2 ranks"
+check "matrix free, interference, 2 ranks" -0.002 0
+sliding | matrix_free > variant.prm
+run_scene variant.prm 2 "matrix free, Coulomb friction, 2 ranks"
+check_sliding "matrix free, Coulomb friction, 2 ranks"
+
+echo "The two-body patch test is exact on $n meshes, with the coarse side as the zone, a clearance, an interference and a compliant layer; Coulomb friction between the bodies slides at mu N; the full space and matrix-free back ends agree."

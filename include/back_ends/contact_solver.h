@@ -158,6 +158,16 @@ namespace ViscoContact
     forget_kept_state()
     {}
 
+    // Contact pairs without a matrix (dual_mortar_basis.h): work in the
+    // basis u = T w, i.e. with the operator T^T A T, which a back end that
+    // only applies A has to apply itself. Only the matrix-free back end
+    // does.
+    virtual void
+    work_in_basis(const MatrixType &)
+    {
+      AssertThrow(false, ExcInternalError());
+    }
+
     // The counts so far, for the run summary.
     const Statistics &
     statistics() const

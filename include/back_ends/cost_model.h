@@ -39,11 +39,8 @@ namespace ViscoContact
     unsigned int dim             = 2;
     bool         simplex         = false;
     bool         implicit_update = false;
-    // Whether a contact zone meets another body (rows across both sides:
-    // not on the matrix-free back end, so far).
-    bool   contact_pairs = false;
-    double dofs          = 0;
-    double contact_nodes = 0;
+    double       dofs            = 0;
+    double       contact_nodes   = 0;
     // Unknowns per contact node in the dense problem of the condensed back
     // end: 1 without friction, dim with it.
     unsigned int node_unknowns = 1;

@@ -31,14 +31,21 @@ namespace ViscoContact
   // contact set and T^T A T once per operator (two sparse products, as the
   // operator's set-up by the back end costs anyway), hands the back end the
   // problem in w, and returns u = T w. The back end sees nodal rows (its
-  // frame rows, ContactSet::frame_row()) and needs no change.
+  // frame rows, ContactSet::frame_row()) and needs no change. Without a
+  // matrix (the matrix-free back end) there is no T^T A T to form: the back
+  // end applies T, A and T^T in turn, and preconditions with
+  // T^{-1} M^{-1} T^{-T}, M its multigrid of A, which approximates
+  // (T^T A T)^{-1} exactly as M approximates A^{-1}.
   template <int dim>
   class DualMortarBasis : public ContactSolver<dim>
   {
   public:
+    // matrix_free: the back end has no matrix; it applies T^T A T itself
+    // (ContactSolver::work_in_basis()).
     DualMortarBasis(std::unique_ptr<ContactSolver<dim>> back_end,
                     const AffineConstraints<double>    &constraints,
-                    const VectorType                   &layout);
+                    const VectorType                   &layout,
+                    const bool                          matrix_free);
 
     std::string
     description() const override;
@@ -79,6 +86,7 @@ namespace ViscoContact
     std::unique_ptr<ContactSolver<dim>> back_end;
     const AffineConstraints<double>    &constraints;
     const MatrixType                   *A = nullptr;
+    const bool                          matrix_free;
     MatrixType                          T, transformed_A;
     // The step problem's unknown in the basis, w.
     VectorType w;

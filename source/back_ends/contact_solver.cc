@@ -42,9 +42,11 @@ namespace ViscoContact
     if (std::any_of(zones.begin(), zones.end(), [](const auto &zone) {
           return !zone.contact->opposite_ids.empty();
         }))
-      return std::make_unique<DualMortarBasis<dim>>(std::move(back_end),
-                                                    constraints,
-                                                    layout);
+      return std::make_unique<DualMortarBasis<dim>>(
+        std::move(back_end),
+        constraints,
+        layout,
+        method == Parameters::Method::matrix_free);
     return back_end;
   }
 

@@ -207,9 +207,7 @@ namespace ViscoContact
                                * dofs_per_rank;
           break;
         case Parameters::Method::matrix_free:
-          if (scene.contact_pairs)
-            cost.unavailable = "contact pairs";
-          else if (scene.simplex)
+          if (scene.simplex)
             cost.unavailable = "simplex mesh";
           else if (scene.implicit_update)
             cost.unavailable = "implicit update";

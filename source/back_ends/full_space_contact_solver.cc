@@ -136,6 +136,10 @@ namespace ViscoContact
     // next solve, as a resumed run builds it.
     void
     forget_kept_state() override;
+    // Without a matrix: apply T^T A T and precondition with
+    // T^{-1} M^{-1} T^{-T} (T^{-1} = 2 I - T, dual_mortar_basis.h).
+    void
+    work_in_basis(const MatrixType &T) override;
 
   private:
     using Apply = std::function<void(VectorType &, const VectorType &)>;
@@ -296,6 +300,14 @@ namespace ViscoContact
     // Krylov method applies once per iteration each: allocated once here
     // instead of once per application.
     VectorType operator_scratch, preconditioner_scratch;
+
+    // Without a matrix and with contact pairs: the basis T of the step
+    // problem, and work vectors of its products.
+    const MatrixType  *basis = nullptr;
+    mutable VectorType basis_scratch, basis_result;
+    // M^{-1} of the matrix-free multigrid, in the basis if there is one.
+    void
+    precondition_matrix_free(VectorType &dst, const VectorType &src) const;
   };
 
 
@@ -1170,7 +1182,7 @@ namespace ViscoContact
   {
     if (matrix_free)
       return [this](VectorType &dst, const VectorType &src) {
-        matrix_free->precondition(dst, src);
+        precondition_matrix_free(dst, src);
       };
     if (factorization)
       return [this](VectorType &dst, const VectorType &src) {
@@ -1240,10 +1252,49 @@ namespace ViscoContact
   FullSpaceContactSolver<dim>::apply_operator(VectorType       &dst,
                                               const VectorType &src) const
   {
-    if (matrix_free)
+    if (matrix_free && basis)
+      {
+        basis->vmult(basis_scratch, src);
+        matrix_free->vmult(basis_result, basis_scratch);
+        basis->Tvmult(dst, basis_result);
+      }
+    else if (matrix_free)
       matrix_free->vmult(dst, src);
     else
       A->vmult(dst, src);
+  }
+
+
+
+  template <int dim>
+  void
+  FullSpaceContactSolver<dim>::work_in_basis(const MatrixType &T)
+  {
+    AssertThrow(matrix_free_data, ExcInternalError());
+    basis = &T;
+    basis_scratch.reinit(b);
+    basis_result.reinit(b);
+  }
+
+
+
+  template <int dim>
+  void
+  FullSpaceContactSolver<dim>::precondition_matrix_free(
+    VectorType       &dst,
+    const VectorType &src) const
+  {
+    if (!basis)
+      {
+        matrix_free->precondition(dst, src);
+        return;
+      }
+    // T^{-T} src = 2 src - T^T src, M^{-1}, then T^{-1} = 2 I - T.
+    basis->Tvmult(basis_scratch, src);
+    basis_scratch.sadd(-1., 2., src);
+    matrix_free->precondition(basis_result, basis_scratch);
+    basis->vmult(dst, basis_result);
+    dst.sadd(-1., 2., basis_result);
   }
 
 
@@ -1264,7 +1315,7 @@ namespace ViscoContact
     Apply prec;
     if (matrix_free)
       prec = [&](VectorType &dst, const VectorType &src) {
-        matrix_free->precondition(dst, src);
+        precondition_matrix_free(dst, src);
       };
     else if (factorization)
       prec = [&](VectorType &dst, const VectorType &src) {

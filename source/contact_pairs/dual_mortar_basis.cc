@@ -11,9 +11,11 @@ namespace ViscoContact
   DualMortarBasis<dim>::DualMortarBasis(
     std::unique_ptr<ContactSolver<dim>> back_end,
     const AffineConstraints<double>    &constraints,
-    const VectorType                   &layout)
+    const VectorType                   &layout,
+    const bool                          matrix_free)
     : back_end(std::move(back_end))
     , constraints(constraints)
+    , matrix_free(matrix_free)
     , w(layout)
   {}
 
@@ -73,6 +75,13 @@ namespace ViscoContact
   {
     A = &matrix;
     make_basis(contact);
+    if (matrix_free)
+      {
+        back_end->work_in_basis(T);
+        back_end->set_operator(matrix, symmetric, contact);
+        this->counts = back_end->statistics();
+        return;
+      }
     MatrixType A_T;
     matrix.mmult(A_T, T);
     T.Tmmult(transformed_A, A_T);
@@ -144,12 +153,24 @@ namespace ViscoContact
 
 
 
+  // A src in u: without a matrix, the back end's A between T^{-1} and
+  // T^{-T} (its operator is T^T A T).
   template <int dim>
   void
   DualMortarBasis<dim>::apply_operator(VectorType       &dst,
                                        const VectorType &src) const
   {
-    A->vmult(dst, src);
+    if (!matrix_free)
+      {
+        A->vmult(dst, src);
+        return;
+      }
+    VectorType w_src(src), w_dst(src);
+    T.vmult(w_src, src);
+    w_src.sadd(-1., 2., src);
+    back_end->apply_operator(w_dst, w_src);
+    T.Tvmult(dst, w_dst);
+    dst.sadd(-1., 2., w_dst);
   }
 
 

@@ -155,9 +155,6 @@ namespace ViscoContact
       if (zone.contact->tangential_law
           != Parameters::TangentialLawType::frictionless)
         scene.node_unknowns = dim;
-    for (const auto &zone : parameters.used_contact_zones())
-      scene.contact_pairs
-        = scene.contact_pairs || !zone.contact->opposite_ids.empty();
     scene.ranks = Utilities::MPI::n_mpi_processes(communicator);
     scene.steps
       = std::max(1.,

@@ -275,6 +275,9 @@ namespace ViscoContact
     contact_area(const MPI_Comm communicator) const;
     double
     peak_pressure(const MPI_Comm communicator) const;
+    // The same per zone: {contact area, peak pressure} of each.
+    std::vector<std::array<double, 2>>
+    zone_areas_and_peaks(const MPI_Comm communicator) const;
 
   private:
     ContactLaws               contact_laws;

@@ -960,4 +960,26 @@ namespace ViscoContact
       peak = std::max(peak, contact_pressure(i));
     return Utilities::MPI::max(peak, communicator);
   }
+
+
+
+  std::vector<std::array<double, 2>>
+  ContactNodes::zone_areas_and_peaks(const MPI_Comm communicator) const
+  {
+    const unsigned int  n_zones = contact_laws.n_zones();
+    std::vector<double> areas(n_zones, 0.), peaks(n_zones, 0.);
+    for (unsigned int i = 0; i < size(); ++i)
+      {
+        if (status(i) > 0 && z[i] > 0)
+          areas[zone(i)] += w[i];
+        peaks[zone(i)] = std::max(peaks[zone(i)], contact_pressure(i));
+      }
+    const std::vector<double> local_areas = areas, local_peaks = peaks;
+    Utilities::MPI::sum(local_areas, communicator, areas);
+    Utilities::MPI::max(local_peaks, communicator, peaks);
+    std::vector<std::array<double, 2>> result(n_zones);
+    for (unsigned int zone = 0; zone < n_zones; ++zone)
+      result[zone] = {{areas[zone], peaks[zone]}};
+    return result;
+  }
 } // namespace ViscoContact

@@ -9,7 +9,8 @@
 # the stiffness of a compliant layer between the bodies (none: 1 / c = 0).
 # The mortar coupling reproduces it to round-off (relative 1e-9) in every
 # step: the force 2 p on the pad's side, the forces 2 p up on the pad's
-# side and 2 p down on the base's side of the pair (time_series.csv), the
+# side and 2 p down on the base's side of the pair, the pair's contact
+# area 2 and peak pressure p (time_series.csv), the
 # reaction -2 p of its top, +2 p at the base's support (action equals
 # reaction: all the pad's force reaches the base), the largest von Mises stress p, the contact area 2,
 # and p at every node of the contact profiles; the operator is factorised
@@ -48,6 +49,8 @@ check() {
           || !near($col["reaction_prescribed_1_y"], -2 * p) \
           || !near($col["reaction_symmetry_2_y"], 2 * p) \
           || !near($col[pair "y"], 2 * up * p) || !near($col[opposite "y"], -2 * up * p) \
+          || !near($col["peak_pressure_zone_1"], p) \
+          || (p > 0 && !near($col["contact_area_zone_1"], 2)) \
           || !near($col["max_von_mises"], p) || !near($col["peak_pressure"], p) \
           || (p > 0 && !near($col["contact_area"], 2))) {
         print name ": at t = " t " force " $col["total_contact_force"] ", reactions of the top " \

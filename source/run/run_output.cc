@@ -80,13 +80,18 @@ namespace ViscoContact
         for (unsigned int c = 0; c < dim; ++c)
           header += ",tangential_force_zone_" + std::to_string(number) + "_"
                     + "xyz"[c];
-      // Per contact pair the force on each side: on the zone's side (from
-      // the other body) and on the opposite side.
+      // Per contact pair the force on each side (on the zone's side, from
+      // the other body, and on the opposite side), the contact area and the
+      // peak pressure.
       for (const unsigned int number : pair_zones)
-        for (const std::string side :
-             {"pair_force_zone_", "opposite_force_zone_"})
-          for (unsigned int c = 0; c < dim; ++c)
-            header += "," + side + std::to_string(number) + "_" + "xyz"[c];
+        {
+          for (const std::string side :
+               {"pair_force_zone_", "opposite_force_zone_"})
+            for (unsigned int c = 0; c < dim; ++c)
+              header += "," + side + std::to_string(number) + "_" + "xyz"[c];
+          header += ",contact_area_zone_" + std::to_string(number)
+                    + ",peak_pressure_zone_" + std::to_string(number);
+        }
       return header + "\n";
     }
   } // namespace
@@ -338,6 +343,10 @@ namespace ViscoContact
     const std::vector<std::array<Tensor<1, dim>, 2>> side_forces
       = pairs ? problem.contact_set.zone_side_forces(problem.mpi_communicator)
               : std::vector<std::array<Tensor<1, dim>, 2>>();
+    const std::vector<std::array<double, 2>> zone_areas
+      = pairs
+          ? problem.contact_set.zone_areas_and_peaks(problem.mpi_communicator)
+          : std::vector<std::array<double, 2>>();
     std::string failure;
     if (Utilities::MPI::this_mpi_process(problem.mpi_communicator) == 0)
       {
@@ -379,12 +388,16 @@ namespace ViscoContact
             const auto &zones = problem.contact_zones.descriptions();
             for (unsigned int zone = 0; zone < zones.size(); ++zone)
               if (!zones[zone].opposite_ids.empty())
-                for (const Tensor<1, dim> &side_force : side_forces[zone])
-                  for (unsigned int c = 0; c < dim; ++c)
-                    row << ','
-                        << (std::abs(side_force[c]) > 1e-12 * scale
-                              ? side_force[c]
-                              : 0.);
+                {
+                  for (const Tensor<1, dim> &side_force : side_forces[zone])
+                    for (unsigned int c = 0; c < dim; ++c)
+                      row << ','
+                          << (std::abs(side_force[c]) > 1e-12 * scale
+                                ? side_force[c]
+                                : 0.);
+                  row << ',' << zone_areas[zone][0] << ','
+                      << zone_areas[zone][1];
+                }
           }
         row << '\n';
         failure = output_folder->append("time_series.csv", row.str());

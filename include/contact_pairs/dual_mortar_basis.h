@@ -74,9 +74,12 @@ namespace ViscoContact
     forget_kept_state() override;
 
   private:
-    // T from the pair nodes of the contact set.
+    // T from the pair nodes of the contact set, after check_basis() has
+    // refused the scenes it does not make nodal (collective).
     void
     make_basis(const ContactSet<dim> &contact);
+    void
+    check_basis(const ContactSet<dim> &contact);
     // w = T^{-1} u (the start of a Krylov solve), u = T w.
     void
     to_basis(const VectorType &u);

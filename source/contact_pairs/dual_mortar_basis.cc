@@ -4,6 +4,9 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include "contact_pairs/dual_mortar_basis.h"
+#include "robustness/file_output.h"
+
+#include <sstream>
 
 namespace ViscoContact
 {
@@ -41,6 +44,7 @@ namespace ViscoContact
   void
   DualMortarBasis<dim>::make_basis(const ContactSet<dim> &contact)
   {
+    check_basis(contact);
     const IndexSet        &owned = w.locally_owned_elements();
     DynamicSparsityPattern pattern(w.size(), w.size(), owned);
     for (const auto d : owned)
@@ -62,6 +66,66 @@ namespace ViscoContact
                 entry.dof,
                 entry.coefficient);
     T.compress(VectorOperation::add);
+  }
+
+
+
+  // @sect4{DualMortarBasis::check_basis}
+  //
+  // Where the basis does not make the rows nodal, it is refused on every
+  // rank before a solve: an opposite side's dof that is a free dof of a
+  // pair node (two pairs that meet at a vertex: then T^{-1} is not 2 I - T),
+  // and a pair node whose constrained component the rows need (a plane of
+  // symmetry that is not normal to the node's directions: the opposite
+  // side's share of that component has no free dof of the node to go to).
+  // The condensed back end takes both, as it takes any rows.
+  template <int dim>
+  void
+  DualMortarBasis<dim>::check_basis(const ContactSet<dim> &contact)
+  {
+    VectorType pair_dofs(w);
+    pair_dofs = 0;
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      if (!contact.node(i).opposite.empty())
+        for (unsigned int c = 0; c < dim; ++c)
+          if (!constraints.is_constrained(contact.node(i).dofs[c]))
+            pair_dofs.local_element(contact.node(i).local_dofs[c]) = 1;
+    pair_dofs.update_ghost_values();
+    std::string problem;
+    for (unsigned int i = 0; i < contact.size() && problem.empty(); ++i)
+      {
+        const auto &node = contact.node(i);
+        for (const auto &entry : node.opposite)
+          {
+            bool needed = false;
+            for (unsigned int j = 0; j < 1 + node.n_tangents; ++j)
+              needed = needed
+                       || (j == 0 ? node.direction
+                                  : node.tangents[j - 1])[entry.component]
+                            != 0.;
+            const bool constrained
+              = constraints.is_constrained(node.dofs[entry.component]);
+            if (pair_dofs.local_element(entry.local_dof) != 0
+                || (constrained && needed))
+              {
+                std::ostringstream message;
+                message << "Invalid parameter <Method> in subsection <Linear "
+                           "solver>: the contact pair node at ("
+                        << node.location
+                        << (constrained
+                              ? ") lies on a plane of symmetry that its "
+                                "contact directions cross"
+                              : ") meets an opposite side that is itself "
+                                "the zone of a contact pair")
+                        << ", which the full space and matrix-free back "
+                           "ends cannot take in the dual mortar basis; "
+                           "accepted: Method = condensed for this scene.";
+                problem = message.str();
+                break;
+              }
+          }
+      }
+    FileOutput::agree_on_problem(problem, w.get_mpi_communicator());
   }
 
 

@@ -15,6 +15,8 @@ square by its diagonal from (x_i, y_j) to (x_i+1, y_j+1). Boundary tags:
   6  the right sides x = 2 of both blocks
 parameters/two_block_patch_test.prm and tests/run_two_bodies.sh use them.
 
+three_blocks.msh: a base and two pads, see three_blocks().
+
 Run from anywhere: python3 meshes/make_two_body_meshes.py
 """
 import os
@@ -44,9 +46,45 @@ def blocks(a, b, simplex):
     return gmsh_elements_text(nodes, boundary, cells, names, [(1, "base"), (2, "pad")])
 
 
+def three_blocks():
+    """A base [0, 2] x [0, 1] (4 x 2 squares, material id 1) and two pads
+    on it, [0, 0.9] x [1, 2] and [1.1, 2] x [1, 2] (3 x 3 squares each,
+    material id 2), three bodies. Boundary tags: 1 x = 0, 2 the base's
+    bottom, 3 the base's top for x < 1, 7 for x > 1, 4 the first pad's
+    bottom, 8 the second pad's, 5 the pads' tops, 6 x = 2, 9 the pads'
+    inner sides. The base's vertex (1, 1) ends both parts of its top
+    (tests/bad_input/pair_pairs_meet.prm)."""
+    nodes, boundary, cells = [], [], []
+
+    def block(x0, x1, y0, y1, nx, ny, material, tags):
+        """tags: left, right, bottom (a function of x), top."""
+        first = len(nodes) + 1
+        v = lambda i, j: first + j * (nx + 1) + i
+        for j in range(ny + 1):
+            for i in range(nx + 1):
+                nodes.append((v(i, j), x0 + (x1 - x0) * i / nx, y0 + (y1 - y0) * j / ny, 0.0))
+        for j in range(ny):
+            boundary.extend([(1, tags[0], v(0, j), v(0, j + 1)), (1, tags[1], v(nx, j), v(nx, j + 1))])
+        for i in range(nx):
+            x = x0 + (x1 - x0) * (i + 0.5) / nx
+            boundary.extend([(1, tags[2], v(i, 0), v(i + 1, 0)), (1, tags[3](x), v(i, ny), v(i + 1, ny))])
+            for j in range(ny):
+                cells.append((3, material, v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)))
+
+    block(0.0, 2.0, 0.0, 1.0, 4, 2, 1, (1, 6, 2, lambda x: 3 if x < 1 else 7))
+    block(0.0, 0.9, 1.0, 2.0, 3, 3, 2, (1, 9, 4, lambda x: 5))
+    block(1.1, 2.0, 1.0, 2.0, 3, 3, 2, (9, 6, 8, lambda x: 5))
+    names = [(1, "x_0"), (2, "base_bottom"), (3, "base_top_left"), (4, "pad_1_bottom"),
+             (5, "pad_tops"), (6, "x_2"), (7, "base_top_right"), (8, "pad_2_bottom"),
+             (9, "pad_inner_sides")]
+    return gmsh_elements_text(nodes, boundary, cells, names, [(1, "base"), (2, "pads")])
+
+
 if __name__ == "__main__":
     folder = os.path.dirname(os.path.abspath(__file__))
     for name, simplex in (("quadrilateral", False), ("triangle", True)):
         for a, b in ((6, 8), (4, 10)):
             with open(os.path.join(folder, "two_blocks_%s_%d_%d.msh" % (name, a, b)), "w") as f:
                 f.write(blocks(a, b, simplex))
+    with open(os.path.join(folder, "three_blocks.msh"), "w") as f:
+        f.write(three_blocks())

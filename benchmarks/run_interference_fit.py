@@ -35,6 +35,14 @@ the two contact pressures against the closed form of compound cylinders
 of each interface with their orders, bounded in --check as above
 (ASSEMBLY_BOUNDS, ASSEMBLY_ORDERS).
 
+Then the relaxation of the fit with a viscoplastic ring (Perzyna,
+lambda = 100, sigma_Y = 2; the interference grown in t < 0.1 and held to
+T = 1; n = 8): the contact force at T with the time steps of
+RELAXATION_STEPS, which has no closed form; --check requires the force at
+T below 0.8 times the elastic one (the fit relaxes) and the differences
+between successive steps to fall with at least 0.8 times their observed
+orders (RELAXATION_ORDERS, about 1: the scheme is of first order in k).
+
     benchmarks/run_interference_fit.py [--executable build/viscoplastic_contact]
         [--figure doc/figures/interference_fit.png] [--check] [--meshes 8,16,32,64]
 """
@@ -139,6 +147,51 @@ def analyse(output):
 ASSEMBLY_RADII = (1.0, 1.5, 2.0)
 ASSEMBLY_MATERIALS = ((1000.0, 0.3), (500.0, 0.25), (2000.0, 0.35))
 ASSEMBLY_DELTAS = (0.01, 0.005)
+
+
+# The relaxation of the fit with a viscoplastic ring (Perzyna, lambda =
+# 100, sigma_Y = 2; the shaft elastic): the interference grown in t < 0.1,
+# then held to T = 1, on the mesh n = 8, with these time steps.
+RELAXATION_STEPS = (0.1, 0.05, 0.025, 0.0125, 0.00625)
+# The observed orders of the differences of the final contact force
+# between successive steps; --check requires 0.8 times each.
+RELAXATION_ORDERS = (1.27, 1.17, 1.07)
+
+
+def run_relaxation(executable, k, folder):
+    """The final contact force of the viscoplastic fit with the step k and
+    the force at the end of the first step."""
+    sys.path.insert(0, os.path.join(TOP, "meshes"))
+    from make_interference_meshes import shaft_and_ring
+    mesh = os.path.join(folder, "relaxation.msh")
+    if not os.path.exists(mesh):
+        with open(mesh, "w") as f:
+            f.write(shaft_and_ring(8))
+    with open(os.path.join(TOP, "parameters", "interference_fit.prm")) as f:
+        text = f.read()
+    text = set_entry(text, "Mesh file", mesh)
+    text = set_entry(text, "Write vtu", "false")
+    text = set_entry(text, "Initial gap", "-%g * min(10 * t, 1)" % DELTA)
+    text = set_entry(text, "Time step", k)
+    text = re.sub(r"(?ms)^subsection Material\b.*?^end\n",
+                  lambda _: "subsection Material\n  set Material ids = 1\n"
+                  "  set Young's modulus = %g\n  set Poisson ratio = %g\n"
+                  "  set Plasticity = false\nend\nsubsection Material 2\n"
+                  "  set Material ids = 2\n  set Young's modulus = %g\n"
+                  "  set Poisson ratio = %g\n  set Plasticity = true\n"
+                  "  set Viscosity = 100\n  set Yield stress = 2\nend\n" % (E, NU, E, NU),
+                  text, count=1)
+    output = os.path.join(folder, "relaxation_%g" % k)
+    text = set_entry(text, "Output directory", output)
+    prm = output + ".prm"
+    with open(prm, "w") as f:
+        f.write(text)
+    result = subprocess.run([executable, prm], capture_output=True, text=True)
+    if result.returncode != 0:
+        sys.exit("The relaxation with k = %g failed:\n%s" % (k, result.stderr))
+    with open(os.path.join(output, "time_series.csv")) as f:
+        rows = list(csv.DictReader(f))
+    return float(rows[-1]["total_contact_force"])
 
 
 def lame_pressures(radii, materials, deltas, plane_strain=False):
@@ -283,6 +336,8 @@ def main():
         for gap in GAPS:
             series[gap] = [dict(analyse(run(arguments.executable, n, folder, gap)), n=n)
                            for n in meshes]
+        relaxation = [run_relaxation(arguments.executable, k, folder)
+                      for k in RELAXATION_STEPS]
         for model in MODELS:
             pressures = lame_pressures(ASSEMBLY_RADII, ASSEMBLY_MATERIALS, ASSEMBLY_DELTAS,
                                        model == "plane strain")
@@ -302,6 +357,21 @@ def main():
                                    model == "plane strain")
         print("\nThe assembly, %s (Lame: p1 = %.6g, p2 = %.6g):\n" % ((model,) + tuple(pressures)))
         print_table(results, ASSEMBLY_KEYS, ("mean p1", "L2 p1", "mean p2", "L2 p2"))
+
+    # The elastic fit's force, Lame's p pi B / 2: the relaxed force is
+    # below it.
+    elastic_force = P * math.pi * B / 2
+    differences = [abs(a - b) for a, b in zip(relaxation, relaxation[1:])]
+    relaxation_orders = [math.log(a / b) / math.log(2)
+                         for a, b in zip(differences, differences[1:])]
+    print("\nRelaxation with a viscoplastic ring (n = 8), the contact force at "
+          "T = 1 (elastic, Lame: %.4g):\n" % elastic_force)
+    print("| k | force at T | difference to k/2 | order |")
+    print("|---|---|---|---|")
+    for j, k in enumerate(RELAXATION_STEPS):
+        print("| %g | %.6g | %s | %s |"
+              % (k, relaxation[j], "%.2e" % differences[j] if j < len(differences) else "",
+                 "%.2f" % relaxation_orders[j - 1] if 0 < j < len(differences) else ""))
 
     if arguments.figure:
         import matplotlib
@@ -333,6 +403,13 @@ def main():
         for model in MODELS:
             failures += check_series("assembly, " + model, assembly[model], ASSEMBLY_KEYS,
                                      ASSEMBLY_BOUNDS[model], ASSEMBLY_ORDERS[model])
+        if relaxation[-1] > 0.8 * elastic_force:
+            failures.append("relaxation: the force at T = 1, %.4g, is not below 0.8 times "
+                            "the elastic %.4g" % (relaxation[-1], elastic_force))
+        for j, order in enumerate(relaxation_orders):
+            if order < 0.8 * RELAXATION_ORDERS[j]:
+                failures.append("relaxation: order %.2f below 0.8 x %.2f"
+                                % (order, RELAXATION_ORDERS[j]))
         if failures:
             sys.exit("\n".join(failures))
         print("Every error within its bound, every order at least 0.8 times the observed one.")

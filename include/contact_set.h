@@ -16,6 +16,7 @@
 #include "contact_nodes.h"
 #include "back_ends/linear_algebra.h"
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <optional>
@@ -42,6 +43,15 @@ namespace ViscoContact
                           const std::vector<types::boundary_id> &boundary_ids,
                           VectorType                            &weights,
                           VectorType &weighted_normals);
+
+  // Whether a boundary id is one of the given ones (a zone's faces, its
+  // opposite side's).
+  inline bool
+  is_one_of(const types::boundary_id               id,
+            const std::vector<types::boundary_id> &ids)
+  {
+    return std::find(ids.begin(), ids.end(), id) != ids.end();
+  }
 
   // A contact zone as the contact set needs it: its number (1 for
   // subsection Contact, N for Contact zone N) and the subsection of the

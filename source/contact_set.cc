@@ -31,14 +31,6 @@ namespace ViscoContact
 {
   namespace
   {
-    // Whether a boundary id is one of the given ones.
-    bool
-    is_one_of(const types::boundary_id               id,
-              const std::vector<types::boundary_id> &ids)
-    {
-      return std::find(ids.begin(), ids.end(), id) != ids.end();
-    }
-
     // A vertex of Gamma_3 may be hanging (on adapted 3D meshes: the middle
     // of an edge between a refined and an unrefined contact face). It is no
     // contact node, since its displacement is the average of its parents';

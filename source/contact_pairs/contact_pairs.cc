@@ -18,13 +18,6 @@ namespace ViscoContact
 {
   namespace
   {
-    bool
-    in_list(const types::boundary_id               id,
-            const std::vector<types::boundary_id> &ids)
-    {
-      return std::find(ids.begin(), ids.end(), id) != ids.end();
-    }
-
     std::string
     pair_problem(const std::string &subsection, const std::string &what)
     {
@@ -128,10 +121,10 @@ namespace ViscoContact
               if (!cell->face(f)->at_boundary())
                 continue;
               const types::boundary_id id    = cell->face(f)->boundary_id();
-              const bool               slave = in_list(id, zone.boundary_ids);
+              const bool               slave = is_one_of(id, zone.boundary_ids);
               const std::array<unsigned int, 2> order = outward_order(cell, f);
               if (cell->is_locally_owned()
-                  && (slave || in_list(id, zone.opposite_ids)))
+                  && (slave || is_one_of(id, zone.opposite_ids)))
                 faces.longest_face
                   = std::max(faces.longest_face, cell->face(f)->measure());
               if (slave)
@@ -152,7 +145,7 @@ namespace ViscoContact
                   faces.slave.segments.push_back(segment);
                 }
               else if (cell->is_locally_owned()
-                       && in_list(id, zone.opposite_ids))
+                       && is_one_of(id, zone.opposite_ids))
                 {
                   MasterFace face;
                   for (unsigned int n = 0; n < 2; ++n)

@@ -15,13 +15,21 @@ square by its diagonal from (x_i, y_j) to (x_i+1, y_j+1). Boundary tags:
   6  the right sides x = 2 of both blocks
 parameters/two_block_patch_test.prm and tests/run_two_bodies.sh use them.
 
+two_blocks_{hexahedron,tetrahedron}_A_B.msh: the same in 3D, blocks of
+depth 1: the base [0, 2] x [0, 1] x [0, 1] with A x A/2 x 2 cubes' cells,
+the pad [0, 2] x [0, 1] x [1, 2] with B x B/2 x 2 (tetrahedra: Kuhn's six
+per cell). Boundary tags as in 2D with y -> z, and 7 the front sides
+y = 0, 8 the back sides y = 1 of both blocks.
+
 three_blocks.msh: a base and two pads, see three_blocks().
 
 Run from anywhere: python3 meshes/make_two_body_meshes.py
 """
+import itertools
 import os
 
 from gmsh_format import gmsh_elements_text
+from make_example_meshes import permutation_sign
 
 
 def blocks(a, b, simplex):
@@ -43,6 +51,56 @@ def blocks(a, b, simplex):
                           else [(3, material, p, q, r, s)])
     names = [(1, "left_sides"), (2, "base_bottom"), (3, "base_top"), (4, "pad_bottom"),
              (5, "pad_top"), (6, "right_sides")]
+    return gmsh_elements_text(nodes, boundary, cells, names, [(1, "base"), (2, "pad")])
+
+
+def blocks_3d(a, b, simplex):
+    nodes, boundary, cells = [], [], []
+    for n, z0, material, bottom, top in ((a, 0.0, 1, 2, 3), (b, 1.0, 2, 4, 5)):
+        first = len(nodes) + 1
+        size = (n, n // 2, 2)
+        v = lambda i, j, k: first + (k * (size[1] + 1) + j) * (size[0] + 1) + i
+        for k in range(size[2] + 1):
+            for j in range(size[1] + 1):
+                for i in range(size[0] + 1):
+                    nodes.append((v(i, j, k), 2.0 * i / size[0], j / size[1], z0 + k / size[2]))
+        # The faces of the block's surface: (tag, fixed axis, fixed index).
+        for tag, axis, fixed in ((1, 0, 0), (6, 0, size[0]), (7, 1, 0), (8, 1, size[1]),
+                                 (bottom, 2, 0), (top, 2, size[2])):
+            others = [d for d in range(3) if d != axis]
+            for p in range(size[others[0]]):
+                for q in range(size[others[1]]):
+                    corners = []
+                    for dp, dq in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                        ijk = [0, 0, 0]
+                        ijk[axis], ijk[others[0]], ijk[others[1]] = fixed, p + dp, q + dq
+                        corners.append(v(*ijk))
+                    if simplex:
+                        # Kuhn's diagonal of the face: lowest to highest corner.
+                        boundary += [(2, tag, corners[0], corners[1], corners[2]),
+                                     (2, tag, corners[0], corners[2], corners[3])]
+                    else:
+                        boundary.append((3, tag) + tuple(corners))
+        for k in range(size[2]):
+            for j in range(size[1]):
+                for i in range(size[0]):
+                    if not simplex:
+                        cells.append((5, material, v(i, j, k), v(i + 1, j, k), v(i + 1, j + 1, k),
+                                      v(i, j + 1, k), v(i, j, k + 1), v(i + 1, j, k + 1),
+                                      v(i + 1, j + 1, k + 1), v(i, j + 1, k + 1)))
+                        continue
+                    # Kuhn's six tetrahedra around the diagonal from the lowest
+                    # to the highest corner, positively oriented.
+                    for order in itertools.permutations(range(3)):
+                        step, path = [0, 0, 0], [(i, j, k)]
+                        for axis in order:
+                            step[axis] = 1
+                            path.append((i + step[0], j + step[1], k + step[2]))
+                        if permutation_sign(order) < 0:
+                            path[1], path[2] = path[2], path[1]
+                        cells.append((4, material) + tuple(v(*corner) for corner in path))
+    names = [(1, "left_sides"), (2, "base_bottom"), (3, "base_top"), (4, "pad_bottom"),
+             (5, "pad_top"), (6, "right_sides"), (7, "front_sides"), (8, "back_sides")]
     return gmsh_elements_text(nodes, boundary, cells, names, [(1, "base"), (2, "pad")])
 
 
@@ -86,5 +144,9 @@ if __name__ == "__main__":
         for a, b in ((6, 8), (4, 10)):
             with open(os.path.join(folder, "two_blocks_%s_%d_%d.msh" % (name, a, b)), "w") as f:
                 f.write(blocks(a, b, simplex))
+    for name, simplex in (("hexahedron", False), ("tetrahedron", True)):
+        for a, b in ((6, 8), (4, 10)):
+            with open(os.path.join(folder, "two_blocks_%s_%d_%d.msh" % (name, a, b)), "w") as f:
+                f.write(blocks_3d(a, b, simplex))
     with open(os.path.join(folder, "three_blocks.msh"), "w") as f:
         f.write(three_blocks())

@@ -1150,20 +1150,12 @@ namespace ViscoContact
                     "a finite bound g >= 0");
           }
         if (!opposite_ids.empty())
-          {
-            require(dim == 2,
-                    subsection,
-                    "Opposite boundary ids",
-                    prm.get("Opposite boundary ids"),
-                    "empty when Dimension = 3 (contact pairs are available "
-                    "in 2D)");
-            require(gap_direction == "normal",
-                    subsection,
-                    "Gap direction",
-                    gap_direction,
-                    "normal on a contact pair (Opposite boundary ids): the "
-                    "gap is measured along the zone's normals");
-          }
+          require(gap_direction == "normal",
+                  subsection,
+                  "Gap direction",
+                  gap_direction,
+                  "normal on a contact pair (Opposite boundary ids): the "
+                  "gap is measured along the zone's normals");
         if (normal_compliance)
           require(gap > 0,
                   subsection,

@@ -35,27 +35,27 @@ meshes=$here/../meshes
 # the base's top (the force on the zone's side then points down). The
 # relative tolerance is $tolerance: 1e-9 on the condensed back end, 1e-7 on
 # the full space back end (its Krylov tolerance).
-tolerance=1e-9
+tolerance=1e-9 axis=y
 check() {
-  awk -F, -v name="$1" -v s="$2" -v inverse_c="$3" -v up="${4:-1}" -v tol=$tolerance '
+  awk -F, -v name="$1" -v s="$2" -v inverse_c="$3" -v up="${4:-1}" -v tol=$tolerance -v axis=$axis '
     function near(a, b) { d = a - b; if (d < 0) d = -d
                           m = b < 0 ? -b : b; return d <= tol * (m > 1 ? m : 1) }
     NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i
               pair = "pair_force_zone_1_"; opposite = "opposite_force_zone_1_"; next }
     { t = $col["time"]; D = 0.01 * (t < 2 - t ? t : 2 - t)
       p = D - s; if (p < 0) p = 0; p /= 1 / 1000 + 1 / 500 + inverse_c
-      if (!((pair "y") in col)) { print name ": no column " pair "y"; exit 1 }
+      if (!((pair axis) in col)) { print name ": no column " pair axis; exit 1 }
       if (!near($col["total_contact_force"], 2 * p) \
-          || !near($col["reaction_prescribed_1_y"], -2 * p) \
-          || !near($col["reaction_symmetry_2_y"], 2 * p) \
-          || !near($col[pair "y"], 2 * up * p) || !near($col[opposite "y"], -2 * up * p) \
+          || !near($col["reaction_prescribed_1_" axis], -2 * p) \
+          || !near($col["reaction_symmetry_2_" axis], 2 * p) \
+          || !near($col[pair axis], 2 * up * p) || !near($col[opposite axis], -2 * up * p) \
           || !near($col["peak_pressure_zone_1"], p) \
           || (p > 0 && !near($col["contact_area_zone_1"], 2)) \
           || !near($col["max_von_mises"], p) || !near($col["peak_pressure"], p) \
           || (p > 0 && !near($col["contact_area"], 2))) {
         print name ": at t = " t " force " $col["total_contact_force"] ", reactions of the top " \
-              $col["reaction_prescribed_1_y"] " and of the base " $col["reaction_symmetry_2_y"] \
-              ", forces on the two sides " $col[pair "y"] " and " $col[opposite "y"] \
+              $col["reaction_prescribed_1_" axis] " and of the base " $col["reaction_symmetry_2_" axis] \
+              ", forces on the two sides " $col[pair axis] " and " $col[opposite axis] \
               ", von Mises " $col["max_von_mises"] ", peak " $col["peak_pressure"] ", area " \
               $col["contact_area"] "; expected p = " p ", force " 2 * p
         exit 1 } }' results/time_series.csv || exit 1
@@ -94,7 +94,13 @@ for mesh_ranks in $meshes_to_run; do
   n=$((n + 1))
 done
 if [ "$quick" = quick ]; then
-  echo "The two-body patch test is exact on $n meshes."
+  axis=z
+  sed -e "s|\.\./meshes/two_blocks_hexahedron_6_8|$meshes/two_blocks_tetrahedron_4_10|" \
+    "$here/../parameters/two_block_patch_test_3d.prm" | set_entry "Output directory" results \
+    | set_entry "Cell type" simplex > variant.prm
+  run_scene variant.prm 2 "3D, tetrahedra 4:10, 2 ranks"
+  check "3D, tetrahedra 4:10, 2 ranks" 0 0
+  echo "The two-body patch test is exact on $((n + 1)) meshes."
   exit 0
 fi
 
@@ -136,20 +142,20 @@ sliding() { # > variant.prm
     | set_entry "Poisson ratio" 0 | set_entry "End time" 2 | set_entry "Time step" 0.125 \
     | contact_entries "  set Tangential law = Coulomb\n  set Friction coefficient = 0.3"
 }
-check_sliding() { # NAME
-  awk -F, -v name="$1" -v tol=$tolerance '
+check_sliding() { # NAME [SLIPPING_NODES]
+  awk -F, -v name="$1" -v tol=$tolerance -v axis=$axis -v slipping=${2:-9} '
     function near(a, b) { d = a - b; if (d < 0) d = -d; m = b < 0 ? -b : b; return d <= tol * (m > 1 ? m : 1) }
     NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
     $col["time"] >= 1.625 {
       N = $col["total_contact_force"]; F = $col["tangential_force_zone_1_x"]
-      if (N < 1 || $col["slip_nodes"] != 9 || !near(F, 0.3 * N) \
+      if (N < 1 || $col["slip_nodes"] != slipping || !near(F, 0.3 * N) \
           || !near($col["reaction_prescribed_1_x"], F) || !near($col["reaction_clamped_x"], -F) \
           || !near($col["pair_force_zone_1_x"], -F) || !near($col["opposite_force_zone_1_x"], F) \
-          || !near($col["reaction_clamped_y"], N) || !near($col["reaction_prescribed_1_y"], -N)) {
+          || !near($col["reaction_clamped_" axis], N) || !near($col["reaction_prescribed_1_" axis], -N)) {
         print name ": at t = " $col["time"] " N = " N ", F = " F ", slipping nodes " \
               $col["slip_nodes"] ", reactions of the top (" $col["reaction_prescribed_1_x"] ", " \
-              $col["reaction_prescribed_1_y"] ") and of the base (" $col["reaction_clamped_x"] ", " \
-              $col["reaction_clamped_y"] "); expected F = 0.3 N, all 9 nodes slipping"
+              $col["reaction_prescribed_1_" axis] ") and of the base (" $col["reaction_clamped_x"] ", " \
+              $col["reaction_clamped_" axis] "); expected F = 0.3 N, all " slipping " nodes slipping"
         exit 1 } }' results/time_series.csv || exit 1
 }
 sliding > variant.prm
@@ -189,4 +195,62 @@ sliding | matrix_free > variant.prm
 run_scene variant.prm 2 "matrix free, Coulomb friction, 2 ranks"
 check_sliding "matrix free, Coulomb friction, 2 ranks"
 
-echo "The two-body patch test is exact on $n meshes, with the coarse side as the zone, a clearance, an interference and a compliant layer; Coulomb friction between the bodies slides at mu N; the full space and matrix-free back ends agree."
+# 3D (parameters/two_block_patch_test_3d.prm, blocks of depth 1: the same
+# closed forms along z): hexahedra and tetrahedra, cell-size ratios 6:8 and
+# 4:10, 1 to 3 ranks, a clearance, the compliant layer and Coulomb
+# friction (45 nodes slipping) on the condensed back end; hexahedra and
+# tetrahedra on the full space back end, hexahedra on the matrix-free one,
+# 1 and 2 ranks.
+axis=z tolerance=1e-9
+variant_3d() { # MESH > variant.prm
+  sed -e "s|\.\./meshes/two_blocks_hexahedron_6_8|$meshes/$1|" \
+    "$here/../parameters/two_block_patch_test_3d.prm" | set_entry "Output directory" results
+}
+sliding_3d() { # > variant.prm
+  variant_3d two_blocks_hexahedron_6_8 | set_entry "Symmetry boundary ids" "" \
+    | set_entry "Clamped boundary ids" 2 | set_entry Components "x, y, z" \
+    | set_entry Displacement "0.02 * max(t - 1, 0); 0; -0.01 * min(t, 1)" \
+    | set_entry "Poisson ratio" 0 | set_entry "End time" 2 | set_entry "Time step" 0.125 \
+    | contact_entries "  set Tangential law = Coulomb\n  set Friction coefficient = 0.3"
+}
+for mesh_ranks in hexahedron_6_8:1 hexahedron_4_10:3 tetrahedron_6_8:2 tetrahedron_4_10:1; do
+  mesh=${mesh_ranks%:*} ranks=${mesh_ranks#*:}
+  cell=hypercube
+  case $mesh in tetrahedron*) cell=simplex ;; esac
+  variant_3d two_blocks_$mesh | set_entry "Cell type" $cell > variant.prm
+  run_scene variant.prm $ranks "3D, $mesh, $ranks rank(s)"
+  check "3D, $mesh, $ranks rank(s)" 0 0
+  n=$((n + 1))
+done
+variant_3d two_blocks_tetrahedron_4_10 | set_entry "Cell type" simplex \
+  | contact_entries "  set Initial gap = 0.002" > variant.prm
+run_scene variant.prm 2 "3D, Initial gap 0.002, 2 ranks"
+check "3D, Initial gap 0.002, 2 ranks" 0.002 0
+variant_3d two_blocks_hexahedron_6_8 | set_entry "Unilateral constraint" false \
+  | set_entry "Normal compliance" true | set_entry "Layer thickness" 1 \
+  | contact_entries "  set Law = piecewise linear\n  set Breakpoints = 0\n  set Slopes = 0, 2000" \
+  > variant.prm
+run_scene variant.prm 1 "3D, compliant layer"
+check "3D, compliant layer" 0 0.0005
+sliding_3d > variant.prm
+run_scene variant.prm 2 "3D, Coulomb friction, 2 ranks"
+check_sliding "3D, Coulomb friction, 2 ranks" 45
+
+tolerance=1e-7
+variant_3d two_blocks_hexahedron_4_10 | full_space > variant.prm
+run_scene variant.prm 2 "3D, full space, hexahedra 4:10, 2 ranks"
+check "3D, full space, hexahedra 4:10, 2 ranks" 0 0
+variant_3d two_blocks_tetrahedron_6_8 | set_entry "Cell type" simplex | full_space > variant.prm
+run_scene variant.prm 1 "3D, full space, tetrahedra 6:8"
+check "3D, full space, tetrahedra 6:8" 0 0
+sliding_3d | full_space > variant.prm
+run_scene variant.prm 1 "3D, full space, Coulomb friction"
+check_sliding "3D, full space, Coulomb friction" 45
+variant_3d two_blocks_hexahedron_6_8 | matrix_free > variant.prm
+run_scene variant.prm 2 "3D, matrix free, hexahedra 6:8, 2 ranks"
+check "3D, matrix free, hexahedra 6:8, 2 ranks" 0 0
+sliding_3d | matrix_free > variant.prm
+run_scene variant.prm 1 "3D, matrix free, Coulomb friction"
+check_sliding "3D, matrix free, Coulomb friction" 45
+
+echo "The two-body patch test is exact on $n meshes (2D and 3D), with the coarse side as the zone, a clearance, an interference and a compliant layer; Coulomb friction between the bodies slides at mu N; the full space and matrix-free back ends agree."

@@ -49,7 +49,7 @@ namespace ViscoContact
     // Collective. Refuses on every rank, naming the entry: an opposite
     // side that shares nodes with the zone, or that lies within the search
     // distance of no node of the zone (with the distance of the nearest
-    // facing face); a pair in 3D.
+    // facing face).
     void
     reinit(const std::vector<ContactZoneDescription<dim>> &zones,
            const DoFHandler<dim>                          &dof_handler,

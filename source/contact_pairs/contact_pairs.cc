@@ -28,40 +28,59 @@ namespace ViscoContact
     // A vertex of the opposite side as it travels between ranks: its
     // location, its x-dof (which names it), and each component's dof
     // expanded through its constraint, (dof, weight) pairs.
+    template <int dim>
     struct MasterVertex
     {
-      Point<2>                location;
+      Point<dim>              location;
       types::global_dof_index x_dof;
-      std::array<std::vector<std::pair<types::global_dof_index, double>>, 2>
+      std::array<std::vector<std::pair<types::global_dof_index, double>>, dim>
         components;
     };
-    using MasterFace = std::array<MasterVertex, 2>;
+    template <int dim>
+    using MasterFace = std::vector<MasterVertex<dim>>;
 
-    // The two vertices of face f of cell in the order that makes the
-    // tangent turned clockwise point out of the cell (Mortar::Side).
-    std::array<unsigned int, 2>
-    outward_order(const DoFHandler<2>::active_cell_iterator &cell,
-                  const unsigned int                         f)
+    // The vertices of face f of cell in the order of Mortar::Side: in 2D
+    // the tangent turned clockwise, in 3D the normal of the cyclic order
+    // (0, 1, 2) or (0, 1, 3, 2) by the right hand, points out of the cell.
+    template <int dim>
+    std::vector<unsigned int>
+    outward_order(const typename DoFHandler<dim>::active_cell_iterator &cell,
+                  const unsigned int                                    f)
     {
-      const Tensor<1, 2> t
-        = cell->face(f)->vertex(1) - cell->face(f)->vertex(0);
-      const Tensor<1, 2> normal({t[1], -t[0]});
-      if (normal * (cell->face(f)->center() - cell->center()) < 0)
-        return {{1, 0}};
-      return {{0, 1}};
+      const auto                face = cell->face(f);
+      std::vector<unsigned int> order{0, 1};
+      Tensor<1, dim>            normal;
+      if constexpr (dim == 2)
+        {
+          const Tensor<1, 2> t = face->vertex(1) - face->vertex(0);
+          normal               = Tensor<1, 2>({t[1], -t[0]});
+        }
+      else
+        {
+          order = face->n_vertices() == 3
+                    ? std::vector<unsigned int>{0, 1, 2}
+                    : std::vector<unsigned int>{0, 1, 3, 2};
+          normal
+            = cross_product_3d(face->vertex(order[1]) - face->vertex(order[0]),
+                               face->vertex(order[2]) - face->vertex(order[0]));
+        }
+      if (normal * (face->center() - cell->center()) < 0)
+        std::reverse(order.begin(), order.end());
+      return order;
     }
 
-    // Doubles in and out of a message: locations, dof numbers (exact below
-    // 2^53) and weights.
+    // Doubles in and out of a message: the number of vertices, locations,
+    // dof numbers (exact below 2^53) and weights.
+    template <int dim>
     void
-    pack(const MasterFace &face, std::vector<double> &message)
+    pack(const MasterFace<dim> &face, std::vector<double> &message)
     {
-      for (const MasterVertex &vertex : face)
+      message.push_back(face.size());
+      for (const MasterVertex<dim> &vertex : face)
         {
-          message.insert(message.end(),
-                         {vertex.location[0],
-                          vertex.location[1],
-                          double(vertex.x_dof)});
+          for (unsigned int d = 0; d < dim; ++d)
+            message.push_back(vertex.location[d]);
+          message.push_back(double(vertex.x_dof));
           for (const auto &entries : vertex.components)
             {
               message.push_back(entries.size());
@@ -71,19 +90,20 @@ namespace ViscoContact
         }
     }
 
-    std::vector<MasterFace>
+    template <int dim>
+    std::vector<MasterFace<dim>>
     unpack(const std::vector<double> &message)
     {
-      std::vector<MasterFace> faces;
-      std::size_t             k = 0;
+      std::vector<MasterFace<dim>> faces;
+      std::size_t                  k = 0;
       while (k < message.size())
         {
-          MasterFace face;
-          for (MasterVertex &vertex : face)
+          MasterFace<dim> face(static_cast<std::size_t>(message[k++]));
+          for (MasterVertex<dim> &vertex : face)
             {
-              vertex.location = Point<2>(message[k], message[k + 1]);
-              vertex.x_dof    = types::global_dof_index(message[k + 2]);
-              k += 3;
+              for (unsigned int d = 0; d < dim; ++d)
+                vertex.location[d] = message[k++];
+              vertex.x_dof = types::global_dof_index(message[k++]);
               for (auto &entries : vertex.components)
                 {
                   const std::size_t n = message[k++];
@@ -92,28 +112,30 @@ namespace ViscoContact
                                          message[k + 1]);
                 }
             }
-          faces.push_back(face);
+          faces.push_back(std::move(face));
         }
       return faces;
     }
 
     // The pieces of one pair zone on this rank: the zone's faces around its
     // nodes (own and ghost cells), the opposite faces of its own cells, and
-    // the longest face of both among its own cells.
+    // the longest face (diameter in 3D) of both among its own cells.
+    template <int dim>
     struct ZoneFaces
     {
-      Mortar::Side                                    slave;
+      Mortar::Side<dim>                               slave;
       std::map<types::global_dof_index, unsigned int> slave_vertex_of_dof;
-      std::vector<MasterFace>                         own_master_faces;
+      std::vector<MasterFace<dim>>                    own_master_faces;
       double                                          longest_face = 0;
     };
 
-    ZoneFaces
-    collect_faces(const ContactZoneDescription<2> &zone,
-                  const DoFHandler<2>             &dof_handler,
-                  const AffineConstraints<double> &constraints)
+    template <int dim>
+    ZoneFaces<dim>
+    collect_faces(const ContactZoneDescription<dim> &zone,
+                  const DoFHandler<dim>             &dof_handler,
+                  const AffineConstraints<double>   &constraints)
     {
-      ZoneFaces faces;
+      ZoneFaces<dim> faces;
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (!cell->is_artificial())
           for (const unsigned int f : cell->face_indices())
@@ -122,17 +144,20 @@ namespace ViscoContact
                 continue;
               const types::boundary_id id    = cell->face(f)->boundary_id();
               const bool               slave = is_one_of(id, zone.boundary_ids);
-              const std::array<unsigned int, 2> order = outward_order(cell, f);
-              if (cell->is_locally_owned()
-                  && (slave || is_one_of(id, zone.opposite_ids)))
+              if (!slave
+                  && !(cell->is_locally_owned()
+                       && is_one_of(id, zone.opposite_ids)))
+                continue;
+              const std::vector<unsigned int> order
+                = outward_order<dim>(cell, f);
+              if (cell->is_locally_owned())
                 faces.longest_face
-                  = std::max(faces.longest_face, cell->face(f)->measure());
+                  = std::max(faces.longest_face, cell->face(f)->diameter());
               if (slave)
                 {
-                  std::array<unsigned int, 2> segment;
-                  for (unsigned int n = 0; n < 2; ++n)
+                  std::vector<unsigned int> vertices;
+                  for (const unsigned int v : order)
                     {
-                      const unsigned int v = order[n];
                       const auto [it, inserted]
                         = faces.slave_vertex_of_dof.emplace(
                           cell->face(f)->vertex_dof_index(v, 0),
@@ -140,20 +165,19 @@ namespace ViscoContact
                       if (inserted)
                         faces.slave.vertices.push_back(
                           cell->face(f)->vertex(v));
-                      segment[n] = it->second;
+                      vertices.push_back(it->second);
                     }
-                  faces.slave.segments.push_back(segment);
+                  faces.slave.faces.push_back(vertices);
                 }
-              else if (cell->is_locally_owned()
-                       && is_one_of(id, zone.opposite_ids))
+              else
                 {
-                  MasterFace face;
-                  for (unsigned int n = 0; n < 2; ++n)
+                  MasterFace<dim> face(order.size());
+                  for (unsigned int n = 0; n < order.size(); ++n)
                     {
                       const unsigned int v = order[n];
                       face[n].location     = cell->face(f)->vertex(v);
                       face[n].x_dof = cell->face(f)->vertex_dof_index(v, 0);
-                      for (unsigned int c = 0; c < 2; ++c)
+                      for (unsigned int c = 0; c < dim; ++c)
                         {
                           const types::global_dof_index dof
                             = cell->face(f)->vertex_dof_index(v, c);
@@ -173,21 +197,24 @@ namespace ViscoContact
     // The opposite faces near this rank's part of the zone: each rank's own
     // opposite faces go to every rank whose zone faces, widened by the
     // search distance, they meet.
-    std::vector<MasterFace>
-    exchange_master_faces(const ZoneFaces &faces,
-                          const double     search_distance,
-                          const MPI_Comm   communicator)
+    template <int dim>
+    std::vector<MasterFace<dim>>
+    exchange_master_faces(const ZoneFaces<dim> &faces,
+                          const double          search_distance,
+                          const MPI_Comm        communicator)
     {
       // This rank's box: lower and upper corner, or empty (lower > upper).
-      std::vector<double> box{1, 1, 0, 0};
+      std::vector<double> box(2 * dim, 0.);
+      for (unsigned int d = 0; d < dim; ++d)
+        box[d] = 1;
       if (!faces.slave.vertices.empty())
         {
-          const BoundingBox<2> slave_box(faces.slave.vertices);
-          for (unsigned int d = 0; d < 2; ++d)
+          const BoundingBox<dim> slave_box(faces.slave.vertices);
+          for (unsigned int d = 0; d < dim; ++d)
             {
               box[d]
                 = slave_box.get_boundary_points().first[d] - search_distance;
-              box[2 + d]
+              box[dim + d]
                 = slave_box.get_boundary_points().second[d] + search_distance;
             }
         }
@@ -196,16 +223,23 @@ namespace ViscoContact
       const unsigned int my_rank
         = Utilities::MPI::this_mpi_process(communicator);
       std::map<unsigned int, std::vector<double>> messages;
-      std::vector<MasterFace>                     near;
-      for (const MasterFace &face : faces.own_master_faces)
+      std::vector<MasterFace<dim>>                near;
+      for (const MasterFace<dim> &face : faces.own_master_faces)
         for (unsigned int rank = 0; rank < boxes.size(); ++rank)
           {
             const std::vector<double> &b     = boxes[rank];
-            bool                       meets = b[0] <= b[2] && b[1] <= b[3];
-            for (unsigned int d = 0; d < 2 && meets; ++d)
-              meets = std::max(face[0].location[d], face[1].location[d]) >= b[d]
-                      && std::min(face[0].location[d], face[1].location[d])
-                           <= b[2 + d];
+            bool                       meets = true;
+            for (unsigned int d = 0; d < dim && meets; ++d)
+              {
+                double low  = std::numeric_limits<double>::max(),
+                       high = std::numeric_limits<double>::lowest();
+                for (const MasterVertex<dim> &vertex : face)
+                  {
+                    low  = std::min(low, vertex.location[d]);
+                    high = std::max(high, vertex.location[d]);
+                  }
+                meets = b[d] <= b[dim + d] && high >= b[d] && low <= b[dim + d];
+              }
             if (!meets)
               continue;
             if (rank == my_rank)
@@ -216,7 +250,7 @@ namespace ViscoContact
       for (const auto &[rank, message] :
            Utilities::MPI::some_to_some(communicator, messages))
         {
-          const std::vector<MasterFace> received = unpack(message);
+          const std::vector<MasterFace<dim>> received = unpack<dim>(message);
           near.insert(near.end(), received.begin(), received.end());
         }
       return near;
@@ -245,124 +279,111 @@ namespace ViscoContact
         zone_is_pair[z] = !zones[z].opposite_ids.empty();
         if (!zone_is_pair[z])
           continue;
-        if constexpr (dim != 2)
+        const ZoneFaces<dim> faces
+          = collect_faces(zones[z], dof_handler, constraints);
+        const double search_distance
+          = zones[z].search_distance > 0
+              ? zones[z].search_distance
+              : Utilities::MPI::max(faces.longest_face, communicator);
+        const std::vector<MasterFace<dim>> near
+          = exchange_master_faces(faces, search_distance, communicator);
+
+        // The opposite side near this rank, each vertex once.
+        Mortar::Side<dim>                               master;
+        std::vector<const MasterVertex<dim> *>          master_vertices;
+        std::map<types::global_dof_index, unsigned int> vertex_of_dof;
+        std::string                                     problem;
+        for (const MasterFace<dim> &face : near)
           {
-            AssertThrow(false,
-                        ExcMessage(pair_problem(zones[z].subsection,
-                                                "contact pairs are available "
-                                                "in 2D; accepted: empty when "
-                                                "Dimension = 3.")));
+            std::vector<unsigned int> vertices;
+            for (unsigned int n = 0; n < face.size(); ++n)
+              {
+                const auto [it, inserted]
+                  = vertex_of_dof.emplace(face[n].x_dof,
+                                          master.vertices.size());
+                if (inserted)
+                  {
+                    master.vertices.push_back(face[n].location);
+                    master_vertices.push_back(&face[n]);
+                  }
+                vertices.push_back(it->second);
+                if (problem.empty()
+                    && faces.slave_vertex_of_dof.count(face[n].x_dof) == 1)
+                  {
+                    std::ostringstream message;
+                    message << "the opposite side shares the node at ("
+                            << face[n].location
+                            << ") with the zone; accepted: boundary "
+                               "parts of another body, which share no "
+                               "node with the zone (a Gmsh mesh whose "
+                               "bodies are separate components).";
+                    problem = pair_problem(zones[z].subsection, message.str());
+                  }
+              }
+            master.faces.push_back(vertices);
           }
-        else
+        FileOutput::agree_on_problem(problem, communicator);
+
+        // The coupling of the nodes this rank owns.
+        const Mortar::Coupling<dim> coupling
+          = Mortar::couple(faces.slave, master, search_distance);
+        const IndexSet &owned   = dof_handler.locally_owned_dofs();
+        unsigned int    covered = 0;
+        for (const auto &[x_dof, j] : faces.slave_vertex_of_dof)
           {
-            const ZoneFaces faces
-              = collect_faces(zones[z], dof_handler, constraints);
-            const double search_distance
-              = zones[z].search_distance > 0
-                  ? zones[z].search_distance
-                  : Utilities::MPI::max(faces.longest_face, communicator);
-            const std::vector<MasterFace> near
-              = exchange_master_faces(faces, search_distance, communicator);
-
-            // The opposite side near this rank, each vertex once.
-            Mortar::Side                                    master;
-            std::vector<const MasterVertex *>               master_vertices;
-            std::map<types::global_dof_index, unsigned int> vertex_of_dof;
-            std::string                                     problem;
-            for (const MasterFace &face : near)
+            if (!owned.is_element(x_dof) || coupling.D[j] <= 0)
+              continue;
+            ++covered;
+            NodeCoupling &node = couplings[{z, x_dof}];
+            node.weight        = coupling.D[j];
+            for (const auto &[k, M] : coupling.M[j])
               {
-                std::array<unsigned int, 2> segment;
-                for (unsigned int n = 0; n < 2; ++n)
-                  {
-                    const auto [it, inserted]
-                      = vertex_of_dof.emplace(face[n].x_dof,
-                                              master.vertices.size());
-                    if (inserted)
-                      {
-                        master.vertices.push_back(face[n].location);
-                        master_vertices.push_back(&face[n]);
-                      }
-                    segment[n] = it->second;
-                    if (problem.empty()
-                        && faces.slave_vertex_of_dof.count(face[n].x_dof) == 1)
-                      {
-                        std::ostringstream message;
-                        message << "the opposite side shares the node at ("
-                                << face[n].location
-                                << ") with the zone; accepted: boundary "
-                                   "parts of another body, which share no "
-                                   "node with the zone (a Gmsh mesh whose "
-                                   "bodies are separate components).";
-                        problem
-                          = pair_problem(zones[z].subsection, message.str());
-                      }
-                  }
-                master.segments.push_back(segment);
+                const double coefficient = M / coupling.D[j];
+                node.opposite_point += coefficient * master.vertices[k];
+                for (unsigned int c = 0; c < dim; ++c)
+                  for (const auto &[dof, weight] :
+                       master_vertices[k]->components[c])
+                    {
+                      node.entries.emplace_back(dof, c, coefficient * weight);
+                      if (!owned.is_element(dof))
+                        ghosts.add_index(dof);
+                    }
               }
-            FileOutput::agree_on_problem(problem, communicator);
-
-            // The coupling of the nodes this rank owns.
-            const Mortar::Coupling coupling
-              = Mortar::couple(faces.slave, master, search_distance);
-            const IndexSet &owned   = dof_handler.locally_owned_dofs();
-            unsigned int    covered = 0;
-            for (const auto &[x_dof, j] : faces.slave_vertex_of_dof)
+          }
+        if (Utilities::MPI::sum(covered, communicator) == 0)
+          {
+            // Refused: how far the nearest facing face lies, from all
+            // of the opposite side (gathered on this path only).
+            const double      unlimited = std::numeric_limits<double>::max();
+            Mortar::Side<dim> everything;
+            for (const MasterFace<dim> &face :
+                 exchange_master_faces(faces, unlimited, communicator))
               {
-                if (!owned.is_element(x_dof) || coupling.D[j] <= 0)
-                  continue;
-                ++covered;
-                NodeCoupling &node = couplings[{z, x_dof}];
-                node.weight        = coupling.D[j];
-                for (const auto &[k, M] : coupling.M[j])
+                everything.faces.emplace_back();
+                for (const MasterVertex<dim> &vertex : face)
                   {
-                    const double coefficient = M / coupling.D[j];
-                    node.opposite_point += coefficient * master.vertices[k];
-                    for (unsigned int c = 0; c < 2; ++c)
-                      for (const auto &[dof, weight] :
-                           master_vertices[k]->components[c])
-                        {
-                          node.entries.emplace_back(dof,
-                                                    c,
-                                                    coefficient * weight);
-                          if (!owned.is_element(dof))
-                            ghosts.add_index(dof);
-                        }
+                    everything.faces.back().push_back(
+                      everything.vertices.size());
+                    everything.vertices.push_back(vertex.location);
                   }
               }
-            if (Utilities::MPI::sum(covered, communicator) == 0)
-              {
-                // Refused: how far the nearest facing face lies, from all
-                // of the opposite side (gathered on this path only).
-                const double unlimited = std::numeric_limits<double>::max();
-                Mortar::Side everything;
-                for (const MasterFace &face :
-                     exchange_master_faces(faces, unlimited, communicator))
-                  {
-                    everything.segments.push_back(
-                      {{static_cast<unsigned int>(everything.vertices.size()),
-                        static_cast<unsigned int>(everything.vertices.size()
-                                                  + 1)}});
-                    everything.vertices.push_back(face[0].location);
-                    everything.vertices.push_back(face[1].location);
-                  }
-                const double closest = Utilities::MPI::min(
-                  Mortar::couple(faces.slave, everything, 0.).closest_distance,
-                  communicator);
-                std::ostringstream message;
-                message << "no node of the zone has a face of the opposite "
-                           "side within the Search distance "
-                        << search_distance << " along its normal (";
-                if (std::isfinite(closest))
-                  message << "the nearest facing one lies " << closest
-                          << " from the zone";
-                else
-                  message << "no face of the opposite side faces the zone";
-                message << "); accepted: ids of boundary parts that face "
-                           "the zone within the Search distance.";
-                AssertThrow(false,
-                            ExcMessage(pair_problem(zones[z].subsection,
-                                                    message.str())));
-              }
+            const double closest = Utilities::MPI::min(
+              Mortar::couple(faces.slave, everything, 0.).closest_distance,
+              communicator);
+            std::ostringstream message;
+            message << "no node of the zone has a face of the opposite "
+                       "side within the Search distance "
+                    << search_distance << " along its normal (";
+            if (std::isfinite(closest))
+              message << "the nearest facing one lies " << closest
+                      << " from the zone";
+            else
+              message << "no face of the opposite side faces the zone";
+            message << "); accepted: ids of boundary parts that face "
+                       "the zone within the Search distance.";
+            AssertThrow(false,
+                        ExcMessage(
+                          pair_problem(zones[z].subsection, message.str())));
           }
       }
     ghosts.compress();

@@ -146,9 +146,26 @@ namespace ViscoContact
         this->counts = back_end->statistics();
         return;
       }
-    MatrixType A_T;
+    // Trilinos' product leaves out the terms of a stored zero of A (an
+    // exact zero coupling of two components on a regular mesh), so the rows
+    // of one node's components could differ in their columns, which the
+    // back ends need equal: the product takes the pattern of the same
+    // product with all values 1, and the values of T^T A T.
+    const auto ones = [](const MatrixType &source) {
+      MatrixType copy;
+      copy.copy_from(source);
+      for (auto entry = copy.begin(); entry != copy.end(); ++entry)
+        entry->value() = 1.;
+      return copy;
+    };
+    const MatrixType ones_A = ones(matrix), ones_T = ones(T);
+    MatrixType       A_T, product;
+    ones_A.mmult(A_T, ones_T);
+    ones_T.Tmmult(transformed_A, A_T);
     matrix.mmult(A_T, T);
-    T.Tmmult(transformed_A, A_T);
+    T.Tmmult(product, A_T);
+    transformed_A = 0;
+    transformed_A.add(1., product);
     back_end->set_operator(transformed_A, symmetric, contact);
     this->counts = back_end->statistics();
   }

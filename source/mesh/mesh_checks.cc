@@ -532,6 +532,40 @@ namespace ViscoContact
 
 
 
+    // Whether point lies within tolerance of a vertex of a face in 3D that
+    // is a vertex of a contact pair, or of an edge whose two ends are: where
+    // two bodies meet along a pair, the nodes of one lie on the corners and
+    // edges the other's pair faces share with its other faces.
+    template <int dim, typename FaceIterator>
+    bool
+    lies_on_pair_edge(const Point<dim>             &point,
+                      const FaceIterator           &face,
+                      const std::set<unsigned int> &pair_vertices,
+                      const double                  tolerance)
+    {
+      if constexpr (dim == 3)
+        for (const unsigned int v : face->vertex_indices())
+          if (pair_vertices.count(face->vertex_index(v)) == 1
+              && (point - face->vertex(v)).norm() <= tolerance)
+            return true;
+      if constexpr (dim == 3)
+        for (unsigned int l = 0; l < face->n_lines(); ++l)
+          {
+            const auto line = face->line(l);
+            if (pair_vertices.count(line->vertex_index(0)) == 0
+                || pair_vertices.count(line->vertex_index(1)) == 0)
+              continue;
+            const Tensor<1, 3> e = line->vertex(1) - line->vertex(0),
+                               x = point - line->vertex(0);
+            const double t       = std::clamp((x * e) / (e * e), 0., 1.);
+            if ((x - t * e).norm() <= tolerance)
+              return true;
+          }
+      return false;
+    }
+
+
+
     // The vertices of the faces on the boundary, each once, with their
     // numbers.
     template <int dim>
@@ -596,7 +630,12 @@ namespace ViscoContact
               for (const auto &[point, index] : inside)
                 {
                   if (own.count(index) > 0
-                      || (on_pair && pair_vertices.count(index) == 1))
+                      || (pair_vertices.count(index) == 1
+                          && (on_pair
+                              || lies_on_pair_edge<dim>(point,
+                                                        face,
+                                                        pair_vertices,
+                                                        tolerance))))
                     continue;
                   const bool on_face
                     = lies_on_face<dim>(point, corners, tolerance);

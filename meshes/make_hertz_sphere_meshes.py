@@ -19,6 +19,7 @@ the parameter file):
 Run from anywhere: python3 meshes/make_hertz_sphere_meshes.py
 """
 import itertools
+import math
 import os
 
 from gmsh_format import gmsh_elements_text
@@ -42,19 +43,33 @@ def hertz_sphere_block(n, simplex=False, length=L, mirrored=False):
     hexahedron (from its corner (1, 0, 0) to (0, 1, 1)), the faces cut to
     match: the same mesh reflected in its cells' x index, a second
     conforming split to compare with."""
+    nodes, boundary, cells = graded_cube(n, simplex, length, mirrored)
+    return gmsh_elements_text(nodes, boundary, cells, NAMES, [(10, "block")])
+
+
+def graded_cube(n, simplex=False, length=L, mirrored=False, first=1, material=10,
+                tags=(1, 2, 3, 4, 5, 6), point_map=None, y_graded_down=False):
+    """The nodes, boundary faces and cells of the graded cube (node numbers
+    from first, the cells' material id, the tags of the faces x = 0, z = 0,
+    y = 0, y = L, x = L, z = L), y graded toward y = L (or toward y = 0 if
+    y_graded_down), its points moved by point_map if given."""
     graded = [length * (k / n) ** 2 for k in range(n + 1)]
-    coordinate = (lambda i: graded[i], lambda j: length - graded[n - j], lambda k: graded[k])
-    index = lambda i, j, k: (k * (n + 1) + j) * (n + 1) + i + 1
+    coordinate = (lambda i: graded[i],
+                  (lambda j: graded[j]) if y_graded_down else (lambda j: length - graded[n - j]),
+                  lambda k: graded[k])
+    index = lambda i, j, k: (k * (n + 1) + j) * (n + 1) + i + first
     nodes, where = [], {}
     for k in range(n + 1):
         for j in range(n + 1):
             for i in range(n + 1):
                 point = (coordinate[0](i), coordinate[1](j), coordinate[2](k))
+                if point_map:
+                    point = point_map(*point)
                 nodes.append((index(i, j, k),) + point)
                 where[index(i, j, k)] = point
     boundary, cells = [], []
     # The faces on the surface: (tag, axis, index of the plane).
-    for tag, axis, fixed in ((1, 0, 0), (2, 2, 0), (3, 1, 0), (4, 1, n), (5, 0, n), (6, 2, n)):
+    for tag, axis, fixed in zip(tags, (0, 2, 1, 1, 0, 2), (0, 0, 0, n, n, n)):
         others = [a for a in range(3) if a != axis]
         for p in range(n):
             for q in range(n):
@@ -82,7 +97,7 @@ def hertz_sphere_block(n, simplex=False, length=L, mirrored=False):
                 if simplex and mirrored:
                     v = lambda a, b, c: index(i + 1 - a, j + b, k + c)
                 if not simplex:
-                    cells.append((5, 10, v(0, 0, 0), v(1, 0, 0), v(1, 1, 0), v(0, 1, 0),
+                    cells.append((5, material, v(0, 0, 0), v(1, 0, 0), v(1, 1, 0), v(0, 1, 0),
                                   v(0, 0, 1), v(1, 0, 1), v(1, 1, 1), v(0, 1, 1)))
                     continue
                 for order in itertools.permutations(range(3)):
@@ -92,8 +107,32 @@ def hertz_sphere_block(n, simplex=False, length=L, mirrored=False):
                         path.append(v(*step))
                     if signed_volume([where[p] for p in path]) < 0:
                         path[1], path[2] = path[2], path[1]
-                    cells.append((4, 10) + tuple(path))
-    return gmsh_elements_text(nodes, boundary, cells, NAMES, [(10, "block")])
+                    cells.append((4, material) + tuple(path))
+    return nodes, boundary, cells
+
+
+def sphere_on_block(n_block, n_sphere, simplex=False, radius=2.0, top=2.5):
+    """Two elastic bodies (benchmarks/run_hertz_sphere_on_block.py): below,
+    the block of hertz_sphere_block(n_block) (material id 1, its tags); on
+    it, the quarter of a body whose bottom is the sphere of the given radius
+    touching the block's top at the corner (0, L, 0), and whose top is the
+    plane y = top: the graded cube of n_sphere cells, x and z as the
+    block's, each vertical line of nodes spread from the sphere to the top
+    graded toward the sphere (material id 2). Tags of the upper body: 1
+    x = 0 and 2 z = 0 (as the block's), 7 its spherical bottom, 8 its top,
+    9 its sides x = L and z = L."""
+    nodes, boundary, cells = graded_cube(n_block, simplex, material=1)
+
+    def on_sphere(x, y, z):
+        bottom = L + radius - math.sqrt(radius ** 2 - x ** 2 - z ** 2)
+        return (x, bottom + y / L * (top - bottom), z)
+
+    upper = graded_cube(n_sphere, simplex, first=len(nodes) + 1, material=2,
+                        tags=(1, 2, 7, 8, 9, 9), point_map=on_sphere, y_graded_down=True)
+    names = NAMES[:4] + [(5, "side_x"), (6, "side_z"), (7, "sphere"), (8, "sphere_top"),
+                         (9, "sphere_sides")]
+    return gmsh_elements_text(nodes + upper[0], boundary + upper[1], cells + upper[2],
+                              names, [(1, "block"), (2, "sphere")])
 
 
 if __name__ == "__main__":
@@ -102,3 +141,6 @@ if __name__ == "__main__":
     # writes the others where it needs them.
     with open(os.path.join(folder, "hertz_sphere_hexahedron_8.msh"), "w") as f:
         f.write(hertz_sphere_block(8))
+    # The mesh of parameters/hertz_sphere_on_block.prm.
+    with open(os.path.join(folder, "hertz_sphere_on_block_6_9.msh"), "w") as f:
+        f.write(sphere_on_block(6, 9))

@@ -11,6 +11,8 @@
 
 #include <deal.II/fe/mapping.h>
 
+#include <deal.II/grid/tria.h>
+
 #include <deal.II/lac/affine_constraints.h>
 
 #include <string>
@@ -43,6 +45,16 @@ namespace ViscoContact
     Point<dim>               lower, upper;
     std::vector<std::string> motions;
   };
+
+  // The bodies of the mesh: the body number (from 0, in the order of the
+  // coarse cells) of every active cell this rank knows, by
+  // active_cell_index() (artificial cells: numbers::invalid_unsigned_int),
+  // and in n_bodies their number. Collective.
+  template <int dim>
+  std::vector<unsigned int>
+  body_of_cells(const Triangulation<dim> &triangulation,
+                const MPI_Comm            communicator,
+                unsigned int             &n_bodies);
 
   template <int dim>
   std::vector<FreeBody<dim>>

@@ -93,110 +93,6 @@ namespace ViscoContact
 
 
 
-    // The bodies of the mesh, its connected components (cells joined by a
-    // vertex): the body number of every active cell this rank knows (by
-    // active_cell_index(); artificial cells get none), and the number of
-    // bodies. A rank sees only its own and its ghost cells, so each cell
-    // starts with the global id of its coarse cell, every rank joins its
-    // cells by their vertices and gives each component the smallest id in
-    // it, and the owners send their cells' ids to the ranks that see them
-    // as ghosts, until no id changes on any rank (a few rounds: as many as
-    // ranks a body spans in a row). The bodies are numbered in the order of
-    // their smallest coarse cell id, the same on every rank.
-    template <int dim>
-    std::vector<unsigned int>
-    body_of_cells(const Triangulation<dim> &triangulation,
-                  const MPI_Comm            communicator,
-                  unsigned int             &n_bodies)
-    {
-      constexpr auto                     none = numbers::invalid_coarse_cell_id;
-      std::vector<types::coarse_cell_id> label(triangulation.n_active_cells(),
-                                               none);
-      for (const auto &cell : triangulation.active_cell_iterators())
-        if (!cell->is_artificial())
-          label[cell->active_cell_index()] = cell->id().get_coarse_cell_id();
-      const bool parallel_mesh
-        = dynamic_cast<const parallel::TriangulationBase<dim> *>(&triangulation)
-          != nullptr;
-      for (bool changed = true; changed;)
-        {
-          if (parallel_mesh)
-            GridTools::exchange_cell_data_to_ghosts<types::coarse_cell_id,
-                                                    Triangulation<dim>>(
-              triangulation,
-              [&](const auto &cell) {
-                return std_cxx17::optional<types::coarse_cell_id>(
-                  label[cell->active_cell_index()]);
-              },
-              [&](const auto &cell, const types::coarse_cell_id &id) {
-                label[cell->active_cell_index()] = id;
-              });
-          // Union-find over the cells this rank knows, by shared vertices.
-          std::vector<unsigned int> root(label.size());
-          std::iota(root.begin(), root.end(), 0u);
-          const auto find = [&](unsigned int c) {
-            while (root[c] != c)
-              c = root[c] = root[root[c]];
-            return c;
-          };
-          std::vector<unsigned int> cell_at_vertex(
-            triangulation.n_vertices(),
-            numbers::invalid_unsigned_int);
-          for (const auto &cell : triangulation.active_cell_iterators())
-            if (!cell->is_artificial())
-              for (const unsigned int v : cell->vertex_indices())
-                {
-                  unsigned int &other = cell_at_vertex[cell->vertex_index(v)];
-                  if (other == numbers::invalid_unsigned_int)
-                    other = cell->active_cell_index();
-                  else
-                    {
-                      const unsigned int a = find(other),
-                                         b = find(cell->active_cell_index());
-                      root[std::max(a, b)] = std::min(a, b);
-                    }
-                }
-          std::map<unsigned int, types::coarse_cell_id> smallest;
-          for (const auto &cell : triangulation.active_cell_iterators())
-            if (!cell->is_artificial())
-              {
-                const unsigned int c = cell->active_cell_index();
-                auto it    = smallest.emplace(find(c), label[c]).first;
-                it->second = std::min(it->second, label[c]);
-              }
-          bool local_change = false;
-          for (const auto &cell : triangulation.active_cell_iterators())
-            if (!cell->is_artificial())
-              {
-                const unsigned int          c  = cell->active_cell_index();
-                const types::coarse_cell_id id = smallest.at(find(c));
-                local_change                   = local_change
-                               || (cell->is_locally_owned() && id != label[c]);
-                label[c] = id;
-              }
-          changed
-            = Utilities::MPI::max(local_change ? 1u : 0u, communicator) > 0;
-        }
-      std::set<types::coarse_cell_id> own_labels;
-      for (const auto &cell : triangulation.active_cell_iterators())
-        if (cell->is_locally_owned())
-          own_labels.insert(label[cell->active_cell_index()]);
-      const std::set<types::coarse_cell_id> all_labels
-        = Utilities::MPI::compute_set_union(own_labels, communicator);
-      const std::vector<types::coarse_cell_id> labels(all_labels.begin(),
-                                                      all_labels.end());
-      n_bodies = labels.size();
-      std::vector<unsigned int> body(label.size(),
-                                     numbers::invalid_unsigned_int);
-      for (unsigned int c = 0; c < label.size(); ++c)
-        if (label[c] != none)
-          body[c] = std::lower_bound(labels.begin(), labels.end(), label[c])
-                    - labels.begin();
-      return body;
-    }
-
-
-
     // The bounding box of every body over the locally owned cells of all
     // ranks. One reduction: the maxima of the negated lower corners and of
     // the upper corners.
@@ -481,6 +377,109 @@ namespace ViscoContact
   // owners; (3) the modes at the support points of the dofs needed
   // here and by other ranks, then sent to those; (4) G, summed over the
   // ranks; (5) its null space and the names of the motions.
+  // @sect4{body_of_cells}
+  //
+  // The bodies of the mesh, its connected components (cells joined by a
+  // vertex): the body number of every active cell this rank knows (by
+  // active_cell_index(); artificial cells get none), and the number of
+  // bodies. A rank sees only its own and its ghost cells, so each cell
+  // starts with the global id of its coarse cell, every rank joins its
+  // cells by their vertices and gives each component the smallest id in
+  // it, and the owners send their cells' ids to the ranks that see them
+  // as ghosts, until no id changes on any rank (a few rounds: as many as
+  // ranks a body spans in a row). The bodies are numbered in the order of
+  // their smallest coarse cell id, the same on every rank.
+  template <int dim>
+  std::vector<unsigned int>
+  body_of_cells(const Triangulation<dim> &triangulation,
+                const MPI_Comm            communicator,
+                unsigned int             &n_bodies)
+  {
+    constexpr auto                     none = numbers::invalid_coarse_cell_id;
+    std::vector<types::coarse_cell_id> label(triangulation.n_active_cells(),
+                                             none);
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (!cell->is_artificial())
+        label[cell->active_cell_index()] = cell->id().get_coarse_cell_id();
+    const bool parallel_mesh
+      = dynamic_cast<const parallel::TriangulationBase<dim> *>(&triangulation)
+        != nullptr;
+    for (bool changed = true; changed;)
+      {
+        if (parallel_mesh)
+          GridTools::exchange_cell_data_to_ghosts<types::coarse_cell_id,
+                                                  Triangulation<dim>>(
+            triangulation,
+            [&](const auto &cell) {
+              return std_cxx17::optional<types::coarse_cell_id>(
+                label[cell->active_cell_index()]);
+            },
+            [&](const auto &cell, const types::coarse_cell_id &id) {
+              label[cell->active_cell_index()] = id;
+            });
+        // Union-find over the cells this rank knows, by shared vertices.
+        std::vector<unsigned int> root(label.size());
+        std::iota(root.begin(), root.end(), 0u);
+        const auto find = [&](unsigned int c) {
+          while (root[c] != c)
+            c = root[c] = root[root[c]];
+          return c;
+        };
+        std::vector<unsigned int> cell_at_vertex(triangulation.n_vertices(),
+                                                 numbers::invalid_unsigned_int);
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (!cell->is_artificial())
+            for (const unsigned int v : cell->vertex_indices())
+              {
+                unsigned int &other = cell_at_vertex[cell->vertex_index(v)];
+                if (other == numbers::invalid_unsigned_int)
+                  other = cell->active_cell_index();
+                else
+                  {
+                    const unsigned int a = find(other),
+                                       b = find(cell->active_cell_index());
+                    root[std::max(a, b)] = std::min(a, b);
+                  }
+              }
+        std::map<unsigned int, types::coarse_cell_id> smallest;
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (!cell->is_artificial())
+            {
+              const unsigned int c  = cell->active_cell_index();
+              auto               it = smallest.emplace(find(c), label[c]).first;
+              it->second            = std::min(it->second, label[c]);
+            }
+        bool local_change = false;
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (!cell->is_artificial())
+            {
+              const unsigned int          c  = cell->active_cell_index();
+              const types::coarse_cell_id id = smallest.at(find(c));
+              local_change
+                = local_change || (cell->is_locally_owned() && id != label[c]);
+              label[c] = id;
+            }
+        changed = Utilities::MPI::max(local_change ? 1u : 0u, communicator) > 0;
+      }
+    std::set<types::coarse_cell_id> own_labels;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        own_labels.insert(label[cell->active_cell_index()]);
+    const std::set<types::coarse_cell_id> all_labels
+      = Utilities::MPI::compute_set_union(own_labels, communicator);
+    const std::vector<types::coarse_cell_id> labels(all_labels.begin(),
+                                                    all_labels.end());
+    n_bodies = labels.size();
+    std::vector<unsigned int> body(label.size(), numbers::invalid_unsigned_int);
+    for (unsigned int c = 0; c < label.size(); ++c)
+      if (label[c] != none)
+        body[c] = std::lower_bound(labels.begin(), labels.end(), label[c])
+                  - labels.begin();
+    return body;
+  }
+
+
+
   template <int dim>
   std::vector<FreeBody<dim>>
   free_rigid_motions(const Mapping<dim>              &mapping,
@@ -628,6 +627,10 @@ namespace ViscoContact
 
 
 
+  template std::vector<unsigned int>
+  body_of_cells(const Triangulation<2> &, const MPI_Comm, unsigned int &);
+  template std::vector<unsigned int>
+  body_of_cells(const Triangulation<3> &, const MPI_Comm, unsigned int &);
   template std::vector<FreeBody<2>>
   free_rigid_motions(const Mapping<2> &,
                      const DoFHandler<2> &,

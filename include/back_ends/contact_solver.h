@@ -158,10 +158,10 @@ namespace ViscoContact
     forget_kept_state()
     {}
 
-    // Contact pairs without a matrix (dual_mortar_basis.h): work in the
-    // basis u = T w, i.e. with the operator T^T A T, which a back end that
-    // only applies A has to apply itself. Only the matrix-free back end
-    // does.
+    // Contact pairs (dual_mortar_basis.h): work in the basis u = T w, i.e.
+    // with the operator T^T A T, which a back end that only applies A has
+    // to apply itself, and whose near-null space is T^{-1} times A's. Only
+    // the full space and matrix-free back ends do.
     virtual void
     work_in_basis(const MatrixType &)
     {

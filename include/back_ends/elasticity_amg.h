@@ -40,7 +40,8 @@ namespace ViscoContact
   compute_rigid_body_modes(const Mapping<dim>    &mapping,
                            const DoFHandler<dim> &dof_handler,
                            const Epetra_Map      &row_map,
-                           const MPI_Comm         communicator);
+                           const MPI_Comm         communicator,
+                           const bool             per_body = false);
 
   // ML's smoothed aggregation on matrix with the given near-null space:
   // elliptic settings when symmetric, nonsymmetric ones otherwise.

@@ -11,6 +11,7 @@
 
 #include "back_ends/elasticity_amg.h"
 #include "back_ends/rigid_body_modes.h"
+#include "rigid_motions.h"
 
 #include <Teuchos_ParameterList.hpp>
 
@@ -30,12 +31,19 @@ namespace ViscoContact
   // could not represent the rotations of parts of the body, the low-energy
   // modes of elasticity. The modes depend on the mesh and the dofs only, not
   // on the operator, so they are computed once per mesh.
+  //
+  // With per_body, each body of the mesh (its connected components) has
+  // modes of its own, zero on the other bodies: two bodies in contact
+  // along a pair slide along each other at little cost, a low-energy mode
+  // of the coupled operator that the modes of the whole mesh cannot give an
+  // aggregate spanning both sides.
   template <int dim>
   RigidBodyModes
   compute_rigid_body_modes(const Mapping<dim>    &mapping,
                            const DoFHandler<dim> &dof_handler,
                            const Epetra_Map      &row_map,
-                           const MPI_Comm         communicator)
+                           const MPI_Comm         communicator,
+                           const bool             per_body)
   {
     // The location of every dof, and which vector component each locally
     // owned dof belongs to.
@@ -50,8 +58,28 @@ namespace ViscoContact
     // Three modes in 2D (two translations, one rotation), six in 3D, laid
     // out like the rows of the matrix, so that ML can read them next to it.
     const unsigned int n_modes = (dim == 2 ? 3 : 6);
-    RigidBodyModes     result;
-    result.modes = std::make_unique<Epetra_MultiVector>(row_map, n_modes);
+    // The body of every locally owned row (0 without per_body).
+    unsigned int                                    n_bodies = 1;
+    std::map<types::global_dof_index, unsigned int> body_of_dof;
+    if (per_body)
+      {
+        const std::vector<unsigned int> body_of_cell
+          = body_of_cells(dof_handler.get_triangulation(),
+                          communicator,
+                          n_bodies);
+        std::vector<types::global_dof_index> dofs;
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (!cell->is_artificial())
+            {
+              dofs.resize(cell->get_fe().n_dofs_per_cell());
+              cell->get_dof_indices(dofs);
+              for (const auto dof : dofs)
+                body_of_dof[dof] = body_of_cell[cell->active_cell_index()];
+            }
+      }
+    RigidBodyModes result;
+    result.modes
+      = std::make_unique<Epetra_MultiVector>(row_map, n_bodies * n_modes);
     // Per locally owned row: find its component c, then write component c
     // of each mode at the row's support point x.
     for (int local = 0; local < row_map.NumMyElements(); ++local)
@@ -61,10 +89,11 @@ namespace ViscoContact
         while (c < dim && !component_dofs[c].is_element(dof))
           ++c;
         Assert(c < dim, ExcInternalError());
-        const Point<dim> &x     = support_points.at(dof);
-        const auto        modes = rigid_body_mode_components(c, x);
+        const Point<dim>  &x     = support_points.at(dof);
+        const auto         modes = rigid_body_mode_components(c, x);
+        const unsigned int first = per_body ? body_of_dof.at(dof) * n_modes : 0;
         for (unsigned int mode = 0; mode < modes.size(); ++mode)
-          (*result.modes)[mode][local] = modes[mode];
+          (*result.modes)[first + mode][local] = modes[mode];
         // Rows in blocks of dim, one block per vertex, in component order.
         if (c != static_cast<unsigned int>(local) % dim)
           result.node_blocks = false;
@@ -135,10 +164,12 @@ namespace ViscoContact
   compute_rigid_body_modes(const Mapping<2> &,
                            const DoFHandler<2> &,
                            const Epetra_Map &,
-                           const MPI_Comm);
+                           const MPI_Comm,
+                           const bool);
   template RigidBodyModes
   compute_rigid_body_modes(const Mapping<3> &,
                            const DoFHandler<3> &,
                            const Epetra_Map &,
-                           const MPI_Comm);
+                           const MPI_Comm,
+                           const bool);
 } // namespace ViscoContact

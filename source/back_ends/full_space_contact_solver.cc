@@ -136,8 +136,10 @@ namespace ViscoContact
     // next solve, as a resumed run builds it.
     void
     forget_kept_state() override;
-    // Without a matrix: apply T^T A T and precondition with
-    // T^{-1} M^{-1} T^{-T} (T^{-1} = 2 I - T, dual_mortar_basis.h).
+    // Contact pairs (dual_mortar_basis.h): without a matrix, apply
+    // T^T A T and precondition with T^{-1} M^{-1} T^{-T} (T^{-1} = 2 I - T);
+    // with one (T^T A T, formed by the caller), give the AMG the rigid-body
+    // modes of each body in the basis, T^{-1} r.
     void
     work_in_basis(const MatrixType &T) override;
 
@@ -301,10 +303,15 @@ namespace ViscoContact
     // instead of once per application.
     VectorType operator_scratch, preconditioner_scratch;
 
-    // Without a matrix and with contact pairs: the basis T of the step
-    // problem, and work vectors of its products.
-    const MatrixType  *basis = nullptr;
-    mutable VectorType basis_scratch, basis_result;
+    // With contact pairs: the basis T of the step problem, work vectors of
+    // its products (without a matrix), and the rigid-body modes in the
+    // basis (with one).
+    const MatrixType                   *basis = nullptr;
+    mutable VectorType                  basis_scratch, basis_result;
+    std::unique_ptr<Epetra_MultiVector> basis_modes;
+    // The near-null space of the operator in the basis of the step problem.
+    const Epetra_MultiVector &
+    near_null_space() const;
     // M^{-1} of the matrix-free multigrid, in the basis if there is one.
     void
     precondition_matrix_free(VectorType &dst, const VectorType &src) const;
@@ -401,7 +408,18 @@ namespace ViscoContact
         = compute_rigid_body_modes(mapping,
                                    dof_handler,
                                    matrix.trilinos_matrix().RowMap(),
-                                   communicator);
+                                   communicator,
+                                   /*per_body=*/basis != nullptr);
+    if (!factorization && basis && !basis_modes)
+      {
+        // T^{-1} r = 2 r - T r.
+        basis_modes
+          = std::make_unique<Epetra_MultiVector>(*rigid_body_modes.modes);
+        basis->trilinos_matrix().Multiply(false,
+                                          *rigid_body_modes.modes,
+                                          *basis_modes);
+        basis_modes->Update(2., *rigid_body_modes.modes, -1.);
+      }
     if (factorization)
       {
         factorization->factorize(matrix, is_symmetric);
@@ -767,8 +785,7 @@ namespace ViscoContact
     const ContactSet<dim> &contact)
   {
     const Epetra_CrsMatrix &matrix = *contact_matrix;
-    contact_modes
-      = std::make_unique<Epetra_MultiVector>(*rigid_body_modes.modes);
+    contact_modes = std::make_unique<Epetra_MultiVector>(near_null_space());
     for (unsigned int i = 0; i < contact.size(); ++i)
       for (unsigned int b = 0; b < amg_fixed(terms[i]); ++b)
         for (int mode = 0; mode < contact_modes->NumVectors(); ++mode)
@@ -1270,10 +1287,22 @@ namespace ViscoContact
   void
   FullSpaceContactSolver<dim>::work_in_basis(const MatrixType &T)
   {
-    AssertThrow(matrix_free_data, ExcInternalError());
     basis = &T;
-    basis_scratch.reinit(b);
-    basis_result.reinit(b);
+    basis_modes.reset();
+    if (matrix_free_data)
+      {
+        basis_scratch.reinit(b);
+        basis_result.reinit(b);
+      }
+  }
+
+
+
+  template <int dim>
+  const Epetra_MultiVector &
+  FullSpaceContactSolver<dim>::near_null_space() const
+  {
+    return basis_modes ? *basis_modes : *rigid_body_modes.modes;
   }
 
 
@@ -1325,9 +1354,7 @@ namespace ViscoContact
       {
         if (!operator_amg_built)
           {
-            build_amg(A->trilinos_matrix(),
-                      *rigid_body_modes.modes,
-                      operator_amg);
+            build_amg(A->trilinos_matrix(), near_null_space(), operator_amg);
             operator_amg_built = true;
             ++this->counts.operator_setups;
           }

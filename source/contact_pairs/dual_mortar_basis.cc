@@ -139,9 +139,9 @@ namespace ViscoContact
   {
     A = &matrix;
     make_basis(contact);
+    back_end->work_in_basis(T);
     if (matrix_free)
       {
-        back_end->work_in_basis(T);
         back_end->set_operator(matrix, symmetric, contact);
         this->counts = back_end->statistics();
         return;

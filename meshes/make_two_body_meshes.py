@@ -23,6 +23,9 @@ y = 0, 8 the back sides y = 1 of both blocks.
 
 three_blocks.msh: a base and two pads, see three_blocks().
 
+layered_strip.msh: a thin layer on a base, non-matching, see
+layered_strip().
+
 Run from anywhere: python3 meshes/make_two_body_meshes.py
 """
 import itertools
@@ -54,9 +57,11 @@ def blocks(a, b, simplex):
     return gmsh_elements_text(nodes, boundary, cells, names, [(1, "base"), (2, "pad")])
 
 
-def blocks_3d(a, b, simplex):
+def blocks_3d(a, b, simplex, separation=0.0):
+    """separation: the base moved down by that much (a gap between the
+    blocks; benchmarks/run_two_body_cost.py)."""
     nodes, boundary, cells = [], [], []
-    for n, z0, material, bottom, top in ((a, 0.0, 1, 2, 3), (b, 1.0, 2, 4, 5)):
+    for n, z0, material, bottom, top in ((a, -separation, 1, 2, 3), (b, 1.0, 2, 4, 5)):
         first = len(nodes) + 1
         size = (n, n // 2, 2)
         v = lambda i, j, k: first + (k * (size[1] + 1) + j) * (size[0] + 1) + i
@@ -102,6 +107,31 @@ def blocks_3d(a, b, simplex):
     names = [(1, "left_sides"), (2, "base_bottom"), (3, "base_top"), (4, "pad_bottom"),
              (5, "pad_top"), (6, "right_sides"), (7, "front_sides"), (8, "back_sides")]
     return gmsh_elements_text(nodes, boundary, cells, names, [(1, "base"), (2, "pad")])
+
+
+def layered_strip(nb=16, nl=22):
+    """A base [0, 4] x [0, 0.5] (nb x 2 squares' cells, material id 1) and a
+    layer [0, 4] x [0.5, 0.75] on it (nl x 2 cells, material id 2), two
+    bodies (parameters/softening_interface.prm). Boundary tags: 1 x = 0 of
+    both, 2 the base's bottom, 3 the base's top, 4 the layer's bottom, 5 the
+    layer's top, 6 x = 4 of both."""
+    nodes, boundary, cells = [], [], []
+    for n, y0, height, material, bottom, top in ((nb, 0.0, 0.5, 1, 2, 3),
+                                                  (nl, 0.5, 0.25, 2, 4, 5)):
+        first = len(nodes) + 1
+        v = lambda i, j: first + j * (n + 1) + i
+        for j in range(3):
+            for i in range(n + 1):
+                nodes.append((v(i, j), 4.0 * i / n, y0 + height * j / 2, 0.0))
+        for i in range(n):
+            boundary += [(1, bottom, v(i, 0), v(i + 1, 0)), (1, top, v(i, 2), v(i + 1, 2))]
+        for j in range(2):
+            boundary += [(1, 1, v(0, j), v(0, j + 1)), (1, 6, v(n, j), v(n, j + 1))]
+            for i in range(n):
+                cells.append((3, material, v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)))
+    names = [(1, "left_sides"), (2, "base_bottom"), (3, "base_top"), (4, "layer_bottom"),
+             (5, "layer_top"), (6, "right_sides")]
+    return gmsh_elements_text(nodes, boundary, cells, names, [(1, "base"), (2, "layer")])
 
 
 def three_blocks():
@@ -150,3 +180,5 @@ if __name__ == "__main__":
                 f.write(blocks_3d(a, b, simplex))
     with open(os.path.join(folder, "three_blocks.msh"), "w") as f:
         f.write(three_blocks())
+    with open(os.path.join(folder, "layered_strip.msh"), "w") as f:
+        f.write(layered_strip())

@@ -36,14 +36,31 @@ meshes=$here/../meshes
 # relative tolerance is $tolerance: 1e-9 on the condensed back end, 1e-7 on
 # the full space back end (its Krylov tolerance).
 tolerance=1e-9 axis=y
+# The contact pressure at time t: linear, the pad's top pushed down by
+# D = 0.01 min(t, 2 - t); softening, by D = 0.02 min(t, 2 - t) onto a
+# layer with the law p(r) = 2000 r up to r = 0.002, then 4 - 100 (r - 0.002)
+# (softening) up to the rigid limit r = 0.006, where p = 3.6. With
+# C = 1 / E1 + 1 / E2 = 0.003 the columns in series give D = r + C p(r):
+# r = D / 7 up to D = 0.014, r = (D - 0.0126) / 0.7 up to D = 0.0168, then
+# r = 0.006 and p = (D - 0.006) / C.
+closed_form='
+  function pressure(t,   D, p, r) {
+    if (law == "softening") {
+      D = 0.02 * (t < 2 - t ? t : 2 - t)
+      if (D <= 0.014) return 2000 * D / 7
+      if (D <= 0.0168) { r = (D - 0.0126) / 0.7; return 4 - 100 * (r - 0.002) }
+      return (D - 0.006) / 0.003 }
+    D = 0.01 * (t < 2 - t ? t : 2 - t)
+    p = D - s; if (p < 0) p = 0
+    return p / (1 / 1000 + 1 / 500 + inverse_c) }'
 check() {
-  awk -F, -v name="$1" -v s="$2" -v inverse_c="$3" -v up="${4:-1}" -v tol=$tolerance -v axis=$axis '
+  awk -F, -v name="$1" -v s="$2" -v inverse_c="$3" -v up="${4:-1}" -v law="${5:-linear}" \
+    -v tol=$tolerance -v axis=$axis "$closed_form"'
     function near(a, b) { d = a - b; if (d < 0) d = -d
                           m = b < 0 ? -b : b; return d <= tol * (m > 1 ? m : 1) }
     NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i
               pair = "pair_force_zone_1_"; opposite = "opposite_force_zone_1_"; next }
-    { t = $col["time"]; D = 0.01 * (t < 2 - t ? t : 2 - t)
-      p = D - s; if (p < 0) p = 0; p /= 1 / 1000 + 1 / 500 + inverse_c
+    { t = $col["time"]; p = pressure(t)
       if (!((pair axis) in col)) { print name ": no column " pair axis; exit 1 }
       if (!near($col["total_contact_force"], 2 * p) \
           || !near($col["reaction_prescribed_1_" axis], -2 * p) \
@@ -60,10 +77,10 @@ check() {
               $col["contact_area"] "; expected p = " p ", force " 2 * p
         exit 1 } }' results/time_series.csv || exit 1
   for profile in results/contact_profile_*.csv; do
-    awk -F, -v name="$1" -v s="$2" -v inverse_c="$3" -v tol=$tolerance '
+    awk -F, -v name="$1" -v s="$2" -v inverse_c="$3" -v law="${5:-linear}" -v tol=$tolerance \
+      "$closed_form"'
       NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
-      { t = $col["time"]; D = 0.01 * (t < 2 - t ? t : 2 - t)
-        p = D - s; if (p < 0) p = 0; p /= 1 / 1000 + 1 / 500 + inverse_c
+      { t = $col["time"]; p = pressure(t)
         d = $col["contact_pressure"] - p; if (d < 0) d = -d
         if (d > tol * (p > 1 ? p : 1)) {
           print name ": pressure " $col["contact_pressure"] " at x = " $col["x"] ", t = " t ", not " p; exit 1 } }' \
@@ -127,6 +144,19 @@ variant two_blocks_quadrilateral_6_8 | set_entry "Unilateral constraint" false \
   > variant.prm
 run_scene variant.prm 2 "compliant layer, 2 ranks"
 check "compliant layer, 2 ranks" 0 0.0005
+
+# A softening layer between the bodies with its rigid limit (the paper's
+# law as an interface: the closed form of the columns in series, above),
+# pressed to D = 0.02 through the rising branch, the softening one and the
+# rigid limit, and back.
+softening() { # MESH > variant.prm
+  variant $1 | set_entry "Normal compliance" true | set_entry "Layer thickness" 0.006 \
+    | set_entry Displacement "-0.02 * min(t, 2 - t)" | set_entry "Time step" 0.0625 \
+    | contact_entries "  set Law = piecewise linear\n  set Breakpoints = 0, 0.002\n  set Slopes = 0, 2000, -100"
+}
+softening two_blocks_triangle_4_10 | set_entry "Cell type" simplex > variant.prm
+run_scene variant.prm 1 "softening layer"
+check "softening layer" 0 0 1 softening
 
 # Coulomb friction between the bodies (mu = 0.3, nu = 0): the base clamped
 # at its bottom, the pad's top pressed down by 0.01 min(t, 1), then moved

@@ -367,16 +367,6 @@ namespace ViscoContact
 
 
 
-  // @sect4{free_rigid_motions}
-  //
-  // In five steps: (1) the constrained dofs this rank owns and the dofs
-  // their constraints refer to; (2) those of the latter whose support
-  // points this rank does not know (not locally relevant: a constraint
-  // between distant dofs, as of periodicity, or a chain that closing the
-  // constraints resolved beyond the ghost layer) are asked of their
-  // owners; (3) the modes at the support points of the dofs needed
-  // here and by other ranks, then sent to those; (4) G, summed over the
-  // ranks; (5) its null space and the names of the motions.
   // @sect4{body_of_cells}
   //
   // The bodies of the mesh, its connected components (cells joined by a
@@ -480,6 +470,16 @@ namespace ViscoContact
 
 
 
+  // @sect4{free_rigid_motions}
+  //
+  // In five steps: (1) the constrained dofs this rank owns and the dofs
+  // their constraints refer to; (2) those of the latter whose support
+  // points this rank does not know (not locally relevant: a constraint
+  // between distant dofs, as of periodicity, or a chain that closing the
+  // constraints resolved beyond the ghost layer) are asked of their
+  // owners; (3) the modes at the support points of the dofs needed
+  // here and by other ranks, then sent to those; (4) G, summed over the
+  // ranks; (5) its null space and the names of the motions.
   template <int dim>
   std::vector<FreeBody<dim>>
   free_rigid_motions(const Mapping<dim>              &mapping,

@@ -415,9 +415,11 @@ namespace ViscoContact
         // T^{-1} r = 2 r - T r.
         basis_modes
           = std::make_unique<Epetra_MultiVector>(*rigid_body_modes.modes);
-        basis->trilinos_matrix().Multiply(false,
-                                          *rigid_body_modes.modes,
-                                          *basis_modes);
+        const int error
+          = basis->trilinos_matrix().Multiply(false,
+                                              *rigid_body_modes.modes,
+                                              *basis_modes);
+        AssertThrow(error == 0, ExcTrilinosError(error));
         basis_modes->Update(2., *rigid_body_modes.modes, -1.);
       }
     if (factorization)

@@ -331,7 +331,8 @@ namespace ViscoContact
         unsigned int    covered = 0;
         for (const auto &[x_dof, j] : faces.slave_vertex_of_dof)
           {
-            if (!owned.is_element(x_dof) || coupling.D[j] <= 0)
+            AssertThrow(std::isfinite(coupling.D[j]), ExcInternalError());
+            if (!owned.is_element(x_dof) || !(coupling.D[j] > 0))
               continue;
             ++covered;
             NodeCoupling &node = couplings[{z, x_dof}];

@@ -150,22 +150,29 @@ namespace ViscoContact
     // exact zero coupling of two components on a regular mesh), so the rows
     // of one node's components could differ in their columns, which the
     // back ends need equal: the product takes the pattern of the same
-    // product with all values 1, and the values of T^T A T.
-    const auto ones = [](const MatrixType &source) {
-      MatrixType copy;
-      copy.copy_from(source);
-      for (auto entry = copy.begin(); entry != copy.end(); ++entry)
-        entry->value() = 1.;
-      return copy;
-    };
-    const MatrixType ones_A = ones(matrix), ones_T = ones(T);
-    MatrixType       A_T, product;
-    ones_A.mmult(A_T, ones_T);
-    ones_T.Tmmult(transformed_A, A_T);
-    matrix.mmult(A_T, T);
-    T.Tmmult(product, A_T);
-    transformed_A = 0;
-    transformed_A.add(1., product);
+    // product with all values 1, and the values of T^T A T. (The values
+    // are set to 1 through Epetra: deal.II 9.4's matrix iterator costs
+    // O(n) per row.)
+    {
+      const auto ones = [](const MatrixType &source) {
+        MatrixType copy;
+        copy.copy_from(source);
+        const int error = const_cast<Epetra_CrsMatrix &>(copy.trilinos_matrix())
+                            .PutScalar(1.);
+        AssertThrow(error == 0, ExcTrilinosError(error));
+        return copy;
+      };
+      MatrixType A_T;
+      ones(matrix).mmult(A_T, ones(T));
+      ones(T).Tmmult(transformed_A, A_T);
+    }
+    {
+      MatrixType A_T, product;
+      matrix.mmult(A_T, T);
+      T.Tmmult(product, A_T);
+      transformed_A = 0;
+      transformed_A.add(1., product);
+    }
     back_end->set_operator(transformed_A, symmetric, contact);
     this->counts = back_end->statistics();
   }

@@ -228,11 +228,19 @@ namespace ViscoContact
                   jacobian[d][1] = (1 - st[0]) * (p[3][d] - p[0][d])
                                    + st[0] * (p[2][d] - p[1][d]);
                 }
+            AssertThrow(std::abs(determinant(jacobian)) > 0,
+                        ExcMessage("A contact face is collapsed: its local "
+                                   "coordinates are not defined."));
             const Tensor<1, 2> step = invert(jacobian) * residual;
             st -= step;
             if (p.size() == 3 || step.norm() < 1e-14)
-              break;
+              return st;
           }
+        AssertThrow(false,
+                    ExcMessage("The local coordinates of a point on a "
+                               "quadrilateral contact face did not converge "
+                               "(a face too warped, or not convex, seen along "
+                               "the other side's normal)."));
         return st;
       }
 
@@ -261,10 +269,11 @@ namespace ViscoContact
           {
             const Point<2>    &a    = clip[e];
             const Tensor<1, 2> edge = clip[(e + 1) % clip.size()] - a;
-            // How far a point lies to the left of the edge (inside).
+            // How far a point lies to the left of the edge (inside), times
+            // the edge's length (only the sign and ratios of two are used:
+            // a collapsed edge leaves every point inside).
             const auto inside = [&](const Point<2> &q) {
-              return (edge[0] * (q[1] - a[1]) - edge[1] * (q[0] - a[0]))
-                     / edge.norm();
+              return edge[0] * (q[1] - a[1]) - edge[1] * (q[0] - a[0]);
             };
             std::vector<Point<2>> kept;
             for (unsigned int i = 0; i < subject.size(); ++i)
@@ -338,7 +347,12 @@ namespace ViscoContact
               centre += slave.vertices[j] / double(n);
             }
           const Tensor<1, 3> normal = face_normal(x);
-          Tensor<1, 3>       e_1    = x[1] - x[0];
+          // The first axis along the longest edge (an edge may be
+          // collapsed).
+          Tensor<1, 3> e_1;
+          for (unsigned int k = 0; k < n; ++k)
+            if ((x[(k + 1) % n] - x[k]).norm() > e_1.norm())
+              e_1 = x[(k + 1) % n] - x[k];
           e_1 -= (e_1 * normal) * normal;
           e_1 /= e_1.norm();
           const Tensor<1, 3> e_2      = cross_product_3d(normal, e_1);

@@ -544,23 +544,24 @@ namespace ViscoContact
                       const double                  tolerance)
     {
       if constexpr (dim == 3)
-        for (const unsigned int v : face->vertex_indices())
-          if (pair_vertices.count(face->vertex_index(v)) == 1
-              && (point - face->vertex(v)).norm() <= tolerance)
-            return true;
-      if constexpr (dim == 3)
-        for (unsigned int l = 0; l < face->n_lines(); ++l)
-          {
-            const auto line = face->line(l);
-            if (pair_vertices.count(line->vertex_index(0)) == 0
-                || pair_vertices.count(line->vertex_index(1)) == 0)
-              continue;
-            const Tensor<1, 3> e = line->vertex(1) - line->vertex(0),
-                               x = point - line->vertex(0);
-            const double t       = std::clamp((x * e) / (e * e), 0., 1.);
-            if ((x - t * e).norm() <= tolerance)
+        {
+          for (const unsigned int v : face->vertex_indices())
+            if (pair_vertices.count(face->vertex_index(v)) == 1
+                && (point - face->vertex(v)).norm() <= tolerance)
               return true;
-          }
+          for (unsigned int l = 0; l < face->n_lines(); ++l)
+            {
+              const auto line = face->line(l);
+              if (pair_vertices.count(line->vertex_index(0)) == 0
+                  || pair_vertices.count(line->vertex_index(1)) == 0)
+                continue;
+              const Tensor<1, 3> e = line->vertex(1) - line->vertex(0),
+                                 x = point - line->vertex(0);
+              const double t       = std::clamp((x * e) / (e * e), 0., 1.);
+              if ((x - t * e).norm() <= tolerance)
+                return true;
+            }
+        }
       return false;
     }
 

@@ -80,8 +80,9 @@ def run(executable, refinements, method, rigid, folder, ranks=1):
     return {"time per step": number(r"time loop \(without output\): *([0-9.eE+-]+) s")
                              / len(steps),
             # The finest mesh (Initial cycles start on coarser ones).
-            "dofs": max(int(n) for n in
-                        re.findall(r"([0-9]+) (?:displacement )?dofs", result.stdout)),
+            "dofs": max(int(n) for n in re.findall(
+                r"(?:^Mesh: |^Initial cycles done: ).*?([0-9]+) (?:displacement )?dofs",
+                result.stdout, re.MULTILINE)),
             # The steps after the first (wall_time is cumulative), which
             # set up the back end on the run's mesh.
             "later steps": (float(steps[-1]["wall_time"]) - float(steps[0]["wall_time"]))

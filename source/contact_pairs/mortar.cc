@@ -1,5 +1,6 @@
 // Mortar coupling of two sides with the dual basis (mortar.h).
 
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/quadrature_lib.h>
 
@@ -365,7 +366,8 @@ namespace ViscoContact
           std::vector<Point<2>> slave_polygon;
           for (const Point<3> &y : x)
             slave_polygon.push_back(in_plane(y));
-          const double face_area = signed_area(slave_polygon);
+          const double         face_area = signed_area(slave_polygon);
+          const BoundingBox<2> slave_box(slave_polygon);
           AssertThrow(face_area > 0, ExcMessage("A slave face has area zero."));
 
           std::vector<FacePoint> points;
@@ -376,6 +378,11 @@ namespace ViscoContact
               std::vector<Point<2>> master_polygon;
               for (const Point<3> &y : master_faces[g])
                 master_polygon.push_back(in_plane(y));
+              // Most master faces lie beside the slave face: their boxes
+              // in the plane do not meet, and nothing is clipped.
+              if (BoundingBox<2>(master_polygon).get_neighbor_type(slave_box)
+                  == NeighborType::not_neighbors)
+                continue;
               std::vector<Point<2>> reversed(master_polygon.rbegin(),
                                              master_polygon.rend());
               if (signed_area(reversed) <= 1e-12 * face_area)

@@ -377,3 +377,63 @@ TEST(Mortar, PartlyCoveredAndFacingAway3D)
   EXPECT_EQ(std::accumulate(beyond.D.begin(), beyond.D.end(), 0.), 0.);
   EXPECT_NEAR(beyond.closest_distance, 0.1, 1e-15);
 }
+
+// 3D: two independently meshed patches of one sphere (radius 1, around its
+// north pole): warped quadrilaterals (6 x 6, the slave side, normals out of
+// the sphere) against triangles (7 x 7 squares cut in two, the master side,
+// normals into it, covering the slave patch). Every vertex lies on the
+// sphere, the faces are chords of it: the rows still sum to D_j, every D_j
+// is positive, the vertex normals are radial, and the weighted gap per unit
+// D_j stays within 5/3 of the sum of the two sides' sagittas d^2 / (8 R),
+// d the longest face diagonal, as for arcs in 2D.
+TEST(Mortar, NonMatchingPatchesOfOneSphere3D)
+{
+  const auto patch = [](const unsigned int n,
+                        const double       half_width,
+                        const bool         triangles,
+                        const bool         outward) {
+    Mortar::Side<3> side = flat_side_3d(n,
+                                        n,
+                                        Point<2>(-half_width, -half_width),
+                                        Point<2>(half_width, half_width),
+                                        triangles,
+                                        outward,
+                                        false);
+    for (Point<3> &vertex : side.vertices)
+      {
+        vertex[2] = 1;
+        vertex /= vertex.norm();
+      }
+    return side;
+  };
+  const Mortar::Side<3>     slave   = patch(6, 0.5, false, true);
+  const Mortar::Side<3>     master  = patch(7, 0.6, true, false);
+  const Mortar::Coupling<3> c       = Mortar::couple(slave, master);
+  const auto                sagitta = [](const Mortar::Side<3> &side) {
+    double diagonal = 0;
+    for (const auto &face : side.faces)
+      for (unsigned int a = 0; a < face.size(); ++a)
+        for (unsigned int b = 0; b < a; ++b)
+          diagonal = std::max(
+            diagonal,
+            (side.vertices[face[a]] - side.vertices[face[b]]).norm());
+    return diagonal * diagonal / 8;
+  };
+  const double              bound = 5. / 3 * (sagitta(slave) + sagitta(master));
+  const std::vector<double> gaps
+    = Mortar::weighted_gaps(c,
+                            slave,
+                            master,
+                            std::vector<Tensor<1, 3>>(slave.vertices.size()),
+                            std::vector<Tensor<1, 3>>(master.vertices.size()));
+  for (unsigned int j = 0; j < slave.vertices.size(); ++j)
+    {
+      double sum = 0;
+      for (const auto &[k, m] : c.M[j])
+        sum += m;
+      EXPECT_GT(c.D[j], 0) << "vertex " << j;
+      EXPECT_NEAR(sum, c.D[j], 1e-14) << "vertex " << j;
+      EXPECT_NEAR(c.normals[j] * slave.vertices[j], 1, 1e-2) << "vertex " << j;
+      EXPECT_LE(std::abs(gaps[j]), bound * c.D[j]) << "vertex " << j;
+    }
+}

@@ -316,7 +316,10 @@ namespace ViscoContact
 
     // The nodal contact fields of the output at the contact nodes of this
     // rank (zero elsewhere): contact pressure z/w, its parts carried by the
-    // layer and by the foundation, and the status.
+    // layer and by the foundation, and the status; on the opposite side of
+    // a contact pair the contact pressure too, the normal force the zone's
+    // nodes exert on each of its vertices over the vertex's lumped weight.
+    // Collective where there are pairs.
     void
     fill_output_fields(VectorType &contact_pressure,
                        VectorType &compliance_pressure,
@@ -354,6 +357,29 @@ namespace ViscoContact
     // nodes are sorted).
     void
     make_rows();
+
+    // The vertices of the opposite sides of the pairs that this rank owns,
+    // for the output: their displacement dofs (local in the layout's
+    // numbering), scalar dof, lumped weight and unit outward normal.
+    struct OppositeVertex
+    {
+      std::array<unsigned int, dim> local_dofs;
+      types::global_dof_index       scalar_dof;
+      double                        weight;
+      Tensor<1, dim>                normal;
+    };
+    void
+    find_opposite_vertices(
+      const std::vector<ContactZoneDescription<dim>> &zones,
+      const Mapping<dim>                             &mapping,
+      const DoFHandler<dim>                          &dof_handler,
+      const DoFHandler<dim>                          &scalar_dof_handler,
+      const Quadrature<dim - 1>                      &face_quadrature,
+      const AffineConstraints<double>                &hanging_constraints,
+      const VectorType                               &layout);
+    std::vector<OppositeVertex> opposite_vertices;
+    // The displacement layout, for the opposite side's forces.
+    std::shared_ptr<const Utilities::MPI::Partitioner> layout_partitioner;
 
     std::vector<NodeGeometry> geometry;
     // Row j of node i: row_entries[row_begin[node_first_row[i] + j]] up to

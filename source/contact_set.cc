@@ -239,6 +239,13 @@ namespace ViscoContact
     // coupling with the opposite side.
     if (pairs)
       pairs->couple_nodes(geometry, node_weights, *layout.get_partitioner());
+    find_opposite_vertices(zones,
+                           mapping,
+                           dof_handler,
+                           scalar_dof_handler,
+                           face_quadrature,
+                           hanging_constraints,
+                           layout);
     std::vector<unsigned int> node_zones(geometry.size());
     for (unsigned int i = 0; i < geometry.size(); ++i)
       node_zones[i] = geometry[i].zone;
@@ -854,6 +861,78 @@ namespace ViscoContact
 
 
 
+  // @sect4{ContactSet::find_opposite_vertices}
+  //
+  // The lumped weights and weighted normals of the opposite sides, as those
+  // of the zones in setup(), and the owned vertices that carry a weight.
+  template <int dim>
+  void
+  ContactSet<dim>::find_opposite_vertices(
+    const std::vector<ContactZoneDescription<dim>> &zones,
+    const Mapping<dim>                             &mapping,
+    const DoFHandler<dim>                          &dof_handler,
+    const DoFHandler<dim>                          &scalar_dof_handler,
+    const Quadrature<dim - 1>                      &face_quadrature,
+    const AffineConstraints<double>                &hanging_constraints,
+    const VectorType                               &layout)
+  {
+    opposite_vertices.clear();
+    layout_partitioner = layout.get_partitioner();
+    if (!pairs)
+      return;
+    std::vector<types::boundary_id> opposite_ids;
+    for (const ContactZoneDescription<dim> &zone : zones)
+      opposite_ids.insert(opposite_ids.end(),
+                          zone.opposite_ids.begin(),
+                          zone.opposite_ids.end());
+    VectorType weights(layout), weighted_normals(layout);
+    assemble_lumped_weights(mapping,
+                            dof_handler,
+                            face_quadrature,
+                            opposite_ids,
+                            weights,
+                            weighted_normals);
+    for (VectorType *vector : {&weights, &weighted_normals})
+      pass_on_hanging_values(*vector, hanging_constraints, layout);
+    std::set<types::global_dof_index> seen;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary()
+              && is_one_of(cell->face(f)->boundary_id(), opposite_ids))
+            for (const unsigned int v : cell->face(f)->vertex_indices())
+              {
+                const types::global_dof_index x_dof
+                  = cell->face(f)->vertex_dof_index(v, 0);
+                if (!layout_partitioner->in_local_range(x_dof)
+                    || weights(x_dof) <= 0 || !seen.insert(x_dof).second)
+                  continue;
+                OppositeVertex vertex;
+                vertex.weight = weights(x_dof);
+                for (unsigned int c = 0; c < dim; ++c)
+                  {
+                    const types::global_dof_index dof
+                      = cell->face(f)->vertex_dof_index(v, c);
+                    vertex.local_dofs[c]
+                      = layout_partitioner->global_to_local(dof);
+                    vertex.normal[c] = weighted_normals(dof);
+                  }
+                if (vertex.normal.norm() == 0)
+                  continue;
+                vertex.normal /= vertex.normal.norm();
+                const typename DoFHandler<dim>::active_cell_iterator
+                  scalar_cell(&dof_handler.get_triangulation(),
+                              cell->level(),
+                              cell->index(),
+                              &scalar_dof_handler);
+                vertex.scalar_dof
+                  = scalar_cell->face(f)->vertex_dof_index(v, 0);
+                opposite_vertices.push_back(vertex);
+              }
+  }
+
+
+
   // @sect4{ContactSet::fill_output_fields}
   //
   // The nodal contact fields of the graphical output, in the layout of the
@@ -871,6 +950,31 @@ namespace ViscoContact
                               &foundation_pressure_field,
                               &contact_status_field})
       *field = 0;
+    if (pairs)
+      {
+        // The force of every pair node on the opposite side (as in
+        // zone_side_forces()), gathered at the owners of its dofs.
+        VectorType force(layout_partitioner);
+        for (unsigned int i = 0; i < size(); ++i)
+          {
+            Tensor<1, dim> node_force = z[i] * geometry[i].direction;
+            if (geometry[i].n_tangents > 0)
+              node_force += tangential_vector(i, t[i]);
+            for (const auto &entry : geometry[i].opposite)
+              force.local_element(entry.local_dof)
+                += entry.coefficient * node_force[entry.component];
+          }
+        force.compress(VectorOperation::add);
+        for (const OppositeVertex &vertex : opposite_vertices)
+          {
+            double normal_force = 0;
+            for (unsigned int c = 0; c < dim; ++c)
+              normal_force
+                += force.local_element(vertex.local_dofs[c]) * vertex.normal[c];
+            contact_pressure_field(vertex.scalar_dof)
+              = -normal_force / vertex.weight;
+          }
+      }
     for (unsigned int i = 0; i < size(); ++i)
       {
         const types::global_dof_index dof = geometry[i].scalar_dof;

@@ -89,6 +89,24 @@ check() {
   [ $tolerance != 1e-9 ] || grep -q "set up by the back end 1x" out.txt \
     || fail "$1: the operator was set up more than once: $(grep 'operator:' out.txt)"
 }
+# check_both_sides NAME: in the last .vtu record (every piece), each point
+# of the interface (the coordinate along $axis equal to 1) of either body
+# has the contact pressure of the last step (peak_pressure_zone_1, which
+# check() compares with p), to the 1e-6 of Float32: the zone's nodes
+# theirs, the opposite side's the force the zone exerts on them over their
+# lumped weights.
+check_both_sides() {
+  local last p
+  last=$(ls results/solution_*.pvtu | tail -1)
+  p=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+               { p = $col["peak_pressure_zone_1"] } END { print p }' results/time_series.csv)
+  for piece in "${last%.pvtu}".*.vtu; do
+    /usr/bin/python3 "$here/vtu_points.py" "$piece" contact_pressure || exit 1
+  done | awk -v name="$1" -v p="$p" -v k=$([ $axis = y ] && echo 2 || echo 3) '
+    $k > 1 - 1e-6 && $k < 1 + 1e-6 { ++n; d = $4 - p; if (d < 0) d = -d
+      if (d > 1e-6 * p) { print name ": contact_pressure " $4 " at (" $1 ", " $2 ", " $3 ") in the .vtu, not " p; bad = 1; exit 1 } }
+    END { if (!bad && n == 0) { print name ": no interface point in the .vtu"; exit 1 } }' || exit 1
+}
 full_space() { cat; printf '\nsubsection Linear solver\n  set Method = full space\nend\n'; }
 matrix_free() { cat; printf '\nsubsection Linear solver\n  set Method = matrix free\nend\n'; }
 
@@ -108,6 +126,7 @@ for mesh_ranks in $meshes_to_run; do
   variant two_blocks_$mesh | set_entry "Cell type" $cell > variant.prm
   run_scene variant.prm $ranks "$mesh, $ranks rank(s)"
   check "$mesh, $ranks rank(s)" 0 0
+  check_both_sides "$mesh, $ranks rank(s)"
   n=$((n + 1))
 done
 if [ "$quick" = quick ]; then
@@ -250,6 +269,7 @@ for mesh_ranks in hexahedron_6_8:1 hexahedron_4_10:3 tetrahedron_6_8:2 tetrahedr
   variant_3d two_blocks_$mesh | set_entry "Cell type" $cell > variant.prm
   run_scene variant.prm $ranks "3D, $mesh, $ranks rank(s)"
   check "3D, $mesh, $ranks rank(s)" 0 0
+  check_both_sides "3D, $mesh, $ranks rank(s)"
   n=$((n + 1))
 done
 variant_3d two_blocks_tetrahedron_4_10 | set_entry "Cell type" simplex \

@@ -43,7 +43,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.join(HERE, "..")
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(TOP, "meshes"))
-from run_hertz_cylinder import analyse_hertz  # noqa: E402
+from run_hertz_cylinder import analyse_hertz, profile_measures  # noqa: E402
 from run_hertz_two_cylinders import (DISPLACEMENT, E1, E2, E_STAR, NU, R1,  # noqa: E402
                                      R2, R_STAR, SCENE)
 from make_hertz_meshes import two_cylinders  # noqa: E402
@@ -160,26 +160,6 @@ def run_getfem(n, folder, slave=1):
     return rows, elapsed, model.nbdof(), iterations
 
 
-def hertz_measures(rows):
-    """a, p0, the L2 error and the load of a profile (x, p, w), as
-    analyse_hertz() of run_hertz_cylinder.py takes them from the
-    program's output."""
-    load = 2 * sum(p * w for _, p, w in rows)
-    # Nodes out of contact have a force of round-off.
-    k = max(i for i, (_, p, _) in enumerate(rows) if p > 1e-6 * rows[0][1])
-    (x1, p1, _), (x2, p2, _) = rows[k - 1], rows[k]
-    a = math.sqrt(x2 ** 2 + p2 ** 2 * (x2 ** 2 - x1 ** 2) / (p1 ** 2 - p2 ** 2))
-    a_exact = math.sqrt(4 * load * R_STAR / (math.pi * E_STAR))
-    p0_exact = 2 * load / (math.pi * a_exact)
-    difference = norm = 0.0
-    for x, p, w in rows:
-        exact = p0_exact * math.sqrt(max(0.0, 1 - x ** 2 / a_exact ** 2))
-        difference += w * (p - exact) ** 2
-        norm += w * exact ** 2
-    return {"P": load, "a": a, "p0": rows[0][1], "a exact": a_exact,
-            "p0 exact": p0_exact, "L2 error": math.sqrt(difference / norm)}
-
-
 def run_program(executable, n, folder):
     mesh = os.path.join(folder, "two_cylinders_%d.msh" % n)
     with open(mesh, "w") as f:
@@ -221,8 +201,12 @@ def main():
             runs = [("this program", ours, wall, dofs, "%d active-set" % ours["iterations"])]
             for slave, name in ((1, "GetFEM, upper slave"), (2, "GetFEM, lower slave")):
                 rows, seconds, count, newton = run_getfem(n, folder, slave)
-                runs.append((name, hertz_measures(rows), seconds, count,
-                             "%d Newton" % newton))
+                # The load of the half model twice; nodes out of contact
+                # have a force of round-off.
+                load = 2 * sum(p * w for _, p, w in rows)
+                runs.append((name,
+                             profile_measures(rows, load, E_STAR, R_STAR, 1e-6 * rows[0][1]),
+                             seconds, count, "%d Newton" % newton))
         for name, r, seconds, count, steps in runs:
             print("| %d | %s | %d | %.4g | %.4g | %.2f%% | %.4g | %.2f%% | %.2f%% | %.3g "
                   "| %s |"

@@ -116,8 +116,14 @@ def analyse_hertz(output, e_star, radius):
     with open(profile) as f:
         rows = sorted((float(r["x"]), float(r["contact_pressure"]),
                        float(r["weight"])) for r in csv.DictReader(f))
+    return profile_measures(rows, load, e_star, radius)
+
+
+def profile_measures(rows, load, e_star, radius, in_contact=0.0):
+    """analyse_hertz() of a profile of nodes (x, p, w) sorted in x and a
+    load; a node is in contact where p > in_contact."""
     nodes = [(x, p) for x, p, _ in rows]
-    k = max(i for i, (_, p) in enumerate(nodes) if p > 0)
+    k = max(i for i, (_, p) in enumerate(nodes) if p > in_contact)
     (x1, p1), (x2, p2) = nodes[k - 1], nodes[k]
     a = math.sqrt(x2 ** 2 + p2 ** 2 * (x2 ** 2 - x1 ** 2) / (p1 ** 2 - p2 ** 2))
     a_exact = math.sqrt(4 * load * radius / (math.pi * e_star))

@@ -138,16 +138,27 @@ def analyse(output):
     profile = sorted(glob.glob(os.path.join(output, "contact_profile_*.csv")))[-1]
     with open(profile) as f:
         rows = list(csv.DictReader(f))
+    result = profile_measures(rows, force, E_STAR, R)
+    result.update({"F": force, "F Hertz": hertz_force(D), "curve": curve,
+                   "F error": abs(force - hertz_force(D)) / hertz_force(D)})
+    return result
+
+
+def profile_measures(rows, force, e_star, radius):
+    """a, p0 and the L2 error of a quarter model's contact profile (rows of
+    the program's CSV) against Hertz's values for the force F (4 times the
+    quarter's): the zero of the pressure along the x axis extrapolated from
+    the last two nodes in contact (p^2 linear in x^2), the pressure at the
+    contact point, all nodal pressures against p0 sqrt(1 - r^2/a^2) in the
+    norm of the lumped weights."""
     axis = sorted((float(r["x"]), float(r["contact_pressure"]))
                   for r in rows if abs(float(r["z"])) < 1e-12)
     k = max(i for i, (_, p) in enumerate(axis) if p > 0)
     (x1, p1), (x2, p2) = axis[k - 1], axis[k]
     a = math.sqrt(x2 ** 2 + p2 ** 2 * (x2 ** 2 - x1 ** 2) / (p1 ** 2 - p2 ** 2))
-    a_hertz = (3 * force * R / (4 * E_STAR)) ** (1 / 3)
+    a_hertz = (3 * force * radius / (4 * e_star)) ** (1 / 3)
     p0_hertz = 3 * force / (2 * math.pi * a_hertz ** 2)
     p0 = axis[0][1]
-    # The pressure of every node against Hertz's profile for the computed
-    # force, p0 sqrt(1 - r^2/a^2), in the norm of the lumped weights.
     difference = norm = 0.0
     for r in rows:
         radius2 = float(r["x"]) ** 2 + float(r["z"]) ** 2
@@ -155,13 +166,11 @@ def analyse(output):
         weight = float(r["weight"])
         difference += weight * (float(r["contact_pressure"]) - exact) ** 2
         norm += weight * exact ** 2
-    return {"F": force, "F Hertz": hertz_force(D), "curve": curve, "a": a,
-            "L2 error": math.sqrt(difference / norm),
+    return {"a": a, "L2 error": math.sqrt(difference / norm),
             "a Hertz": a_hertz, "p0": p0, "p0 Hertz": p0_hertz,
             "nodes": sum(1 for r in rows if float(r["contact_pressure"]) > 0),
             "a error": abs(a - a_hertz) / a_hertz,
-            "p0 error": abs(p0 - p0_hertz) / p0_hertz,
-            "F error": abs(force - hertz_force(D)) / hertz_force(D)}
+            "p0 error": abs(p0 - p0_hertz) / p0_hertz}
 
 
 def cost(executable, n, method, ranks):

@@ -48,6 +48,8 @@ sys.path.insert(0, os.path.join(TOP, "scripts"))
 sys.path.insert(0, os.path.join(TOP, "meshes"))
 from vc_scripts import set_prm_entries  # noqa: E402
 from make_hertz_sphere_meshes import sphere_on_block  # noqa: E402
+sys.path.insert(0, HERE)
+from run_hertz_sphere import profile_measures  # noqa: E402
 
 R, E1, E2, NU = 2.0, 1000.0, 2000.0, 0.3
 E_STAR = 1 / ((1 - NU ** 2) / E1 + (1 - NU ** 2) / E2)
@@ -98,25 +100,9 @@ def analyse(output):
     profile = sorted(glob.glob(os.path.join(output, "contact_profile_*.csv")))[-1]
     with open(profile) as f:
         rows = list(csv.DictReader(f))
-    axis = sorted((float(r["x"]), float(r["contact_pressure"]))
-                  for r in rows if abs(float(r["z"])) < 1e-12)
-    k = max(i for i, (_, p) in enumerate(axis) if p > 0)
-    (x1, p1), (x2, p2) = axis[k - 1], axis[k]
-    a = math.sqrt(x2 ** 2 + p2 ** 2 * (x2 ** 2 - x1 ** 2) / (p1 ** 2 - p2 ** 2))
-    a_hertz = (3 * force * R / (4 * E_STAR)) ** (1 / 3)
-    p0_hertz = 3 * force / (2 * math.pi * a_hertz ** 2)
-    p0 = axis[0][1]
-    difference = norm = 0.0
-    for r in rows:
-        radius2 = float(r["x"]) ** 2 + float(r["z"]) ** 2
-        exact = p0_hertz * math.sqrt(max(0.0, 1 - radius2 / a_hertz ** 2))
-        weight = float(r["weight"])
-        difference += weight * (float(r["contact_pressure"]) - exact) ** 2
-        norm += weight * exact ** 2
-    return {"F": force, "a": a, "a Hertz": a_hertz, "p0": p0, "p0 Hertz": p0_hertz,
-            "a error": abs(a - a_hertz) / a_hertz, "p0 error": abs(p0 - p0_hertz) / p0_hertz,
-            "L2 error": math.sqrt(difference / norm), "balance": balance / force,
-            "nodes": sum(1 for r in rows if float(r["contact_pressure"]) > 0)}
+    result = profile_measures(rows, force, E_STAR, R)
+    result.update({"F": force, "balance": balance / force})
+    return result
 
 
 def order(coarse, fine):

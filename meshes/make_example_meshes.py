@@ -39,11 +39,10 @@ support on these oblique faces.
 
 Run from anywhere: python3 meshes/make_example_meshes.py
 """
-import itertools
 import math
 import os
 
-from gmsh_format import gmsh_elements_text, gmsh_text
+from gmsh_format import box_cell_elements, box_face_elements, gmsh_elements_text, gmsh_text
 
 ANGLE = math.radians(30.0)
 
@@ -85,13 +84,6 @@ def two_layer_column(n):
             tags.append(10 if 2 * j < n else 20)
     return gmsh_text(nodes, lines, quads, [(1, "left"), (2, "right"), (3, "support"), (4, "top")],
                      tags, [(10, "stiff"), (20, "soft")])
-
-
-def permutation_sign(order):
-    """+1 for an even permutation of (0, 1, 2), -1 for an odd one: the sign
-    of the volume of Kuhn's tetrahedron along that order of the axes."""
-    inversions = sum(1 for a in range(3) for b in range(a + 1, 3) if order[a] > order[b])
-    return -1 if inversions % 2 else 1
 
 
 def rotation(dim):
@@ -144,30 +136,11 @@ def columns(n, dim, simplex=False, count=2, rotate=None):
                             others = [a for a in range(3) if a != axis]
                             ijk[axis], ijk[others[0]], ijk[others[1]] = fixed, p + dp, q + dq
                             corners.append(v(*ijk))
-                        if simplex:
-                            # Kuhn's diagonal of the face: lowest to highest corner.
-                            boundary += [(2, tag, corners[0], corners[1], corners[2]),
-                                         (2, tag, corners[0], corners[2], corners[3])]
-                        else:
-                            boundary.append((3, tag) + tuple(corners))
+                        boundary += box_face_elements(tag, corners, simplex)
             for k in range(n):
                 for j in range(n):
                     for i in range(n):
-                        if not simplex:
-                            cells.append((5, 10, v(i, j, k), v(i + 1, j, k), v(i + 1, j + 1, k), v(i, j + 1, k),
-                                          v(i, j, k + 1), v(i + 1, j, k + 1), v(i + 1, j + 1, k + 1),
-                                          v(i, j + 1, k + 1)))
-                            continue
-                        # Kuhn's six tetrahedra around the diagonal from the lowest
-                        # to the highest corner, positively oriented.
-                        for order in itertools.permutations(range(3)):
-                            step, path = [0, 0, 0], [(i, j, k)]
-                            for axis in order:
-                                step[axis] = 1
-                                path.append((i + step[0], j + step[1], k + step[2]))
-                            if permutation_sign(order) < 0:
-                                path[1], path[2] = path[2], path[1]
-                            cells.append((4, 10) + tuple(v(*corner) for corner in path))
+                        cells += box_cell_elements(v, i, j, k, simplex, 10)
     names = [(1, "left_sides"), (2, "right_sides"), (3, "support_1"), (4, "tops")]
     if count > 1:
         names.append((5, "support_2"))

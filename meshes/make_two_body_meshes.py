@@ -28,11 +28,9 @@ layered_strip().
 
 Run from anywhere: python3 meshes/make_two_body_meshes.py
 """
-import itertools
 import os
 
-from gmsh_format import gmsh_elements_text
-from make_example_meshes import permutation_sign
+from gmsh_format import box_cell_elements, box_face_elements, gmsh_elements_text
 
 
 def blocks(a, b, simplex):
@@ -80,30 +78,11 @@ def blocks_3d(a, b, simplex, separation=0.0):
                         ijk = [0, 0, 0]
                         ijk[axis], ijk[others[0]], ijk[others[1]] = fixed, p + dp, q + dq
                         corners.append(v(*ijk))
-                    if simplex:
-                        # Kuhn's diagonal of the face: lowest to highest corner.
-                        boundary += [(2, tag, corners[0], corners[1], corners[2]),
-                                     (2, tag, corners[0], corners[2], corners[3])]
-                    else:
-                        boundary.append((3, tag) + tuple(corners))
+                    boundary += box_face_elements(tag, corners, simplex)
         for k in range(size[2]):
             for j in range(size[1]):
                 for i in range(size[0]):
-                    if not simplex:
-                        cells.append((5, material, v(i, j, k), v(i + 1, j, k), v(i + 1, j + 1, k),
-                                      v(i, j + 1, k), v(i, j, k + 1), v(i + 1, j, k + 1),
-                                      v(i + 1, j + 1, k + 1), v(i, j + 1, k + 1)))
-                        continue
-                    # Kuhn's six tetrahedra around the diagonal from the lowest
-                    # to the highest corner, positively oriented.
-                    for order in itertools.permutations(range(3)):
-                        step, path = [0, 0, 0], [(i, j, k)]
-                        for axis in order:
-                            step[axis] = 1
-                            path.append((i + step[0], j + step[1], k + step[2]))
-                        if permutation_sign(order) < 0:
-                            path[1], path[2] = path[2], path[1]
-                        cells.append((4, material) + tuple(v(*corner) for corner in path))
+                    cells += box_cell_elements(v, i, j, k, simplex, material)
     names = [(1, "left_sides"), (2, "base_bottom"), (3, "base_top"), (4, "pad_bottom"),
              (5, "pad_top"), (6, "right_sides"), (7, "front_sides"), (8, "back_sides")]
     return gmsh_elements_text(nodes, boundary, cells, names, [(1, "base"), (2, "pad")])

@@ -79,7 +79,9 @@ namespace ViscoContact
       std::vector<Tensor<1, dim>>                 normals;
       // The smallest distance along a slave normal between a slave face and
       // a master face that faces it and overlaps it, within the search
-      // distance or not (infinity: none).
+      // distance or not (infinity: none). In 3D only the master faces whose
+      // boxes come within the search distance of the slave face's box are
+      // looked at: all of them with an infinite search distance.
       double closest_distance = std::numeric_limits<double>::infinity();
     };
 

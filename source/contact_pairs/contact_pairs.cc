@@ -369,7 +369,7 @@ namespace ViscoContact
                   }
               }
             const double closest = Utilities::MPI::min(
-              Mortar::couple(faces.slave, everything, 0.).closest_distance,
+              Mortar::couple(faces.slave, everything).closest_distance,
               communicator);
             std::ostringstream message;
             message << "no node of the zone has a face of the opposite "

@@ -8,6 +8,8 @@
 #include <deal.II/lac/identity_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <deal.II/numerics/rtree.h>
+
 #include "contact_pairs/mortar.h"
 
 #include <algorithm>
@@ -317,16 +319,23 @@ namespace ViscoContact
       coupling.normals.assign(n_slave, Tensor<1, 3>());
       const QGaussSimplex<2> rule(3);
 
-      std::vector<std::vector<Point<3>>> master_faces;
-      std::vector<Tensor<1, 3>>          master_normals;
+      std::vector<std::vector<Point<3>>>                   master_faces;
+      std::vector<Tensor<1, 3>>                            master_normals;
+      std::vector<std::pair<BoundingBox<3>, unsigned int>> master_boxes;
       for (const std::vector<unsigned int> &face : master.faces)
         {
           std::vector<Point<3>> x;
           for (const unsigned int k : face)
             x.push_back(master.vertices[k]);
           master_normals.push_back(face_normal(x));
+          master_boxes.emplace_back(BoundingBox<3>(x), master_faces.size());
           master_faces.push_back(std::move(x));
         }
+      // The master faces a slave face can meet lie in its box widened by
+      // the search distance: an R-tree of their boxes finds them, instead
+      // of trying every master face against every slave face.
+      const bool within_reach = std::isfinite(search_distance);
+      const auto master_tree  = pack_rtree(master_boxes);
 
       // A quadrature point of a slave face: its weight, the slave shape
       // functions, the master face and its shape functions.
@@ -366,23 +375,32 @@ namespace ViscoContact
           std::vector<Point<2>> slave_polygon;
           for (const Point<3> &y : x)
             slave_polygon.push_back(in_plane(y));
-          const double         face_area = signed_area(slave_polygon);
-          const BoundingBox<2> slave_box(slave_polygon);
+          const double face_area = signed_area(slave_polygon);
           AssertThrow(face_area > 0, ExcMessage("A slave face has area zero."));
 
+          std::vector<unsigned int> candidates;
+          if (within_reach)
+            {
+              BoundingBox<3> reach(x);
+              reach.extend(search_distance);
+              std::vector<std::pair<BoundingBox<3>, unsigned int>> near;
+              master_tree.query(boost::geometry::index::intersects(reach),
+                                std::back_inserter(near));
+              for (const auto &[box, g] : near)
+                candidates.push_back(g);
+            }
+          else
+            for (unsigned int g = 0; g < master_faces.size(); ++g)
+              candidates.push_back(g);
+
           std::vector<FacePoint> points;
-          for (unsigned int g = 0; g < master_faces.size(); ++g)
+          for (const unsigned int g : candidates)
             {
               if (normal * master_normals[g] >= 0)
                 continue;
               std::vector<Point<2>> master_polygon;
               for (const Point<3> &y : master_faces[g])
                 master_polygon.push_back(in_plane(y));
-              // Most master faces lie beside the slave face: their boxes
-              // in the plane do not meet, and nothing is clipped.
-              if (BoundingBox<2>(master_polygon).get_neighbor_type(slave_box)
-                  == NeighborType::not_neighbors)
-                continue;
               std::vector<Point<2>> reversed(master_polygon.rbegin(),
                                              master_polygon.rend());
               if (signed_area(reversed) <= 1e-12 * face_area)

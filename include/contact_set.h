@@ -14,6 +14,7 @@
 #include <deal.II/lac/affine_constraints.h>
 
 #include "contact_nodes.h"
+#include "contact_pairs/opposite_side.h"
 #include "back_ends/linear_algebra.h"
 
 #include <algorithm>
@@ -43,6 +44,14 @@ namespace ViscoContact
                           const std::vector<types::boundary_id> &boundary_ids,
                           VectorType                            &weights,
                           VectorType &weighted_normals);
+
+  // The values of the hanging vertices of Gamma_3 passed on to their
+  // parents with the weights of their constraints (contact_set.cc).
+  // Collective.
+  void
+  pass_on_hanging_values(VectorType                      &vector,
+                         const AffineConstraints<double> &constraints,
+                         const VectorType                &layout);
 
   // Whether a boundary id is one of the given ones (a zone's faces, its
   // opposite side's).
@@ -297,6 +306,19 @@ namespace ViscoContact
     // zones).
     std::string
     profile_text(const double time) const;
+    // The header of the profiles on rank 0 (empty on the others).
+    std::string
+    profile_header() const;
+    // With contact pairs: this rank's block of the profile of the opposite
+    // sides, the same columns for the vertices the zones cover
+    // (OppositeSide). Collective.
+    bool
+    has_pairs() const;
+    std::string
+    opposite_profile_text(const double time) const;
+    // The number of a zone (1 for subsection Contact, N for Contact zone N).
+    unsigned int
+    zone_number(const unsigned int zone) const;
 
     // For a change of mesh: the contact pressure as a nodal field of the
     // displacement's layout, z_i / w_i at the first dof of each node and
@@ -314,21 +336,20 @@ namespace ViscoContact
                    const VectorType &pressure,
                    const bool        with_friction);
 
-    // The nodal contact fields of the output at the contact nodes of this
-    // rank (zero elsewhere): contact pressure z/w, its parts carried by the
-    // layer and by the foundation, and the status; on the opposite side of
-    // a contact pair the contact pressure too, the normal force the zone's
-    // nodes exert on each of its vertices over the vertex's lumped weight.
-    // Collective where there are pairs.
+    // The nodal contact fields of the output (in the scalar layout) at the
+    // contact nodes of this rank, zero elsewhere, named by
+    // output_field_names(): the contact pressure z/w, its parts carried by
+    // the layer and by the foundation, the status and the penetration r;
+    // on the opposite side of a contact pair what its vertices receive
+    // from the zone (OppositeSide). Collective where there are pairs.
+    static std::vector<std::string>
+    output_field_names();
     void
-    fill_output_fields(VectorType &contact_pressure,
-                       VectorType &compliance_pressure,
-                       VectorType &foundation_pressure,
-                       VectorType &contact_status) const;
+    fill_output_fields(std::vector<VectorType> &fields) const;
     // The friction fields, likewise: the tangential traction t / w and the
     // slip increment of the last step (output_slip()) as vectors (in the
     // displacement layout), and the friction state (0 free or frictionless,
-    // 1 stick, 2 slip; scalar layout).
+    // 1 stick, 2 slip; scalar layout); on the opposite sides too.
     void
     fill_friction_fields(VectorType &tangential_traction,
                          VectorType &slip,
@@ -358,28 +379,8 @@ namespace ViscoContact
     void
     make_rows();
 
-    // The vertices of the opposite sides of the pairs that this rank owns,
-    // for the output: their displacement dofs (local in the layout's
-    // numbering), scalar dof, lumped weight and unit outward normal.
-    struct OppositeVertex
-    {
-      std::array<unsigned int, dim> local_dofs;
-      types::global_dof_index       scalar_dof;
-      double                        weight;
-      Tensor<1, dim>                normal;
-    };
-    void
-    find_opposite_vertices(
-      const std::vector<ContactZoneDescription<dim>> &zones,
-      const Mapping<dim>                             &mapping,
-      const DoFHandler<dim>                          &dof_handler,
-      const DoFHandler<dim>                          &scalar_dof_handler,
-      const Quadrature<dim - 1>                      &face_quadrature,
-      const AffineConstraints<double>                &hanging_constraints,
-      const VectorType                               &layout);
-    std::vector<OppositeVertex> opposite_vertices;
-    // The displacement layout, for the opposite side's forces.
-    std::shared_ptr<const Utilities::MPI::Partitioner> layout_partitioner;
+    // The opposite sides of the pairs, for the output.
+    OppositeSide<dim> opposite;
 
     std::vector<NodeGeometry> geometry;
     // Row j of node i: row_entries[row_begin[node_first_row[i] + j]] up to

@@ -29,37 +29,36 @@
 
 namespace ViscoContact
 {
-  namespace
+  // @sect4{pass_on_hanging_values}
+  //
+  // A vertex of Gamma_3 may be hanging (on adapted 3D meshes: the middle
+  // of an edge between a refined and an unrefined contact face). It is no
+  // contact node, since its displacement is the average of its parents';
+  // its weight and weighted normal go to those parents with the weights of
+  // its constraint. The result is the row sums of the boundary mass matrix
+  // of the conforming (constrained) space, C^T M C 1 = C^T M 1, as without
+  // hanging vertices. Each rank passes on the values of the hanging dofs
+  // it owns (the parents are locally relevant: they lie on the same
+  // cells); on meshes without hanging vertices on Gamma_3 nothing is
+  // added. Collective.
+  void
+  pass_on_hanging_values(VectorType                      &vector,
+                         const AffineConstraints<double> &constraints,
+                         const VectorType                &layout)
   {
-    // A vertex of Gamma_3 may be hanging (on adapted 3D meshes: the middle
-    // of an edge between a refined and an unrefined contact face). It is no
-    // contact node, since its displacement is the average of its parents';
-    // its weight and weighted normal go to those parents with the weights of
-    // its constraint. The result is the row sums of the boundary mass matrix
-    // of the conforming (constrained) space, C^T M C 1 = C^T M 1, as without
-    // hanging vertices. Each rank passes on the values of the hanging dofs
-    // it owns (the parents are locally relevant: they lie on the same
-    // cells); on meshes without hanging vertices on Gamma_3 nothing is
-    // added. Collective.
-    void
-    pass_on_hanging_values(VectorType                      &vector,
-                           const AffineConstraints<double> &constraints,
-                           const VectorType                &layout)
-    {
-      const auto &partitioner = *layout.get_partitioner();
-      VectorType  passed_on(layout);
-      passed_on = 0;
-      for (types::global_dof_index dof = partitioner.local_range().first;
-           dof < partitioner.local_range().second;
-           ++dof)
-        if (vector(dof) != 0 && constraints.is_constrained(dof))
-          if (const auto *entries = constraints.get_constraint_entries(dof))
-            for (const auto &[parent, coefficient] : *entries)
-              passed_on(parent) += coefficient * vector(dof);
-      passed_on.compress(VectorOperation::add);
-      vector += passed_on;
-    }
-  } // namespace
+    const auto &partitioner = *layout.get_partitioner();
+    VectorType  passed_on(layout);
+    passed_on = 0;
+    for (types::global_dof_index dof = partitioner.local_range().first;
+         dof < partitioner.local_range().second;
+         ++dof)
+      if (vector(dof) != 0 && constraints.is_constrained(dof))
+        if (const auto *entries = constraints.get_constraint_entries(dof))
+          for (const auto &[parent, coefficient] : *entries)
+            passed_on(parent) += coefficient * vector(dof);
+    passed_on.compress(VectorOperation::add);
+    vector += passed_on;
+  }
 
 
 
@@ -239,13 +238,13 @@ namespace ViscoContact
     // coupling with the opposite side.
     if (pairs)
       pairs->couple_nodes(geometry, node_weights, *layout.get_partitioner());
-    find_opposite_vertices(zones,
-                           mapping,
-                           dof_handler,
-                           scalar_dof_handler,
-                           face_quadrature,
-                           hanging_constraints,
-                           layout);
+    opposite.setup(zones,
+                   mapping,
+                   dof_handler,
+                   scalar_dof_handler,
+                   face_quadrature,
+                   hanging_constraints,
+                   layout);
     std::vector<unsigned int> node_zones(geometry.size());
     for (unsigned int i = 0; i < geometry.size(); ++i)
       node_zones[i] = geometry[i].zone;
@@ -776,26 +775,7 @@ namespace ViscoContact
   ContactSet<dim>::profile_text(const double time) const
   {
     std::ostringstream out;
-    out << std::setprecision(10);
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      {
-        const char *coordinates[3] = {"x", "y", "z"};
-        for (unsigned int d = 0; d < dim; ++d)
-          out << coordinates[d] << ',';
-        out << "time,u_nu,compliance_pressure,foundation_pressure,"
-               "contact_pressure,nodal_force,weight,status"
-            << (laws().n_zones() > 1 ? ",zone" : "");
-        // With friction: the stick/slip state, the tangential traction t / w
-        // and the slip increment of the last step, as vectors of space.
-        if (has_friction())
-          {
-            out << ",friction_state";
-            for (const std::string field : {"tangential_traction_", "slip_"})
-              for (unsigned int d = 0; d < dim; ++d)
-                out << ',' << field << coordinates[d];
-          }
-        out << '\n';
-      }
+    out << std::setprecision(10) << profile_header();
     // The foundation's pressure is what the layer does not carry.
     for (unsigned int i = 0; i < size(); ++i)
       {
@@ -821,6 +801,61 @@ namespace ViscoContact
         out << '\n';
       }
     return out.str();
+  }
+
+
+
+  template <int dim>
+  std::string
+  ContactSet<dim>::profile_header() const
+  {
+    if (Utilities::MPI::this_mpi_process(communicator) != 0)
+      return "";
+    std::ostringstream out;
+    const char        *coordinates[3] = {"x", "y", "z"};
+    for (unsigned int d = 0; d < dim; ++d)
+      out << coordinates[d] << ',';
+    out << "time,u_nu,compliance_pressure,foundation_pressure,"
+           "contact_pressure,nodal_force,weight,status"
+        << (laws().n_zones() > 1 ? ",zone" : "");
+    // With friction: the stick/slip state, the tangential traction t / w
+    // and the slip increment of the last step, as vectors of space.
+    if (has_friction())
+      {
+        out << ",friction_state";
+        for (const std::string field : {"tangential_traction_", "slip_"})
+          for (unsigned int d = 0; d < dim; ++d)
+            out << ',' << field << coordinates[d];
+      }
+    out << '\n';
+    return out.str();
+  }
+
+
+
+  template <int dim>
+  bool
+  ContactSet<dim>::has_pairs() const
+  {
+    return pairs != nullptr;
+  }
+
+
+
+  template <int dim>
+  std::string
+  ContactSet<dim>::opposite_profile_text(const double time) const
+  {
+    return OppositeSide<dim>::profile_text(opposite.states(*this), *this, time);
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  ContactSet<dim>::zone_number(const unsigned int zone) const
+  {
+    return zone_numbers[zone];
   }
 
 
@@ -861,129 +896,57 @@ namespace ViscoContact
 
 
 
-  // @sect4{ContactSet::find_opposite_vertices}
-  //
-  // The lumped weights and weighted normals of the opposite sides, as those
-  // of the zones in setup(), and the owned vertices that carry a weight.
-  template <int dim>
-  void
-  ContactSet<dim>::find_opposite_vertices(
-    const std::vector<ContactZoneDescription<dim>> &zones,
-    const Mapping<dim>                             &mapping,
-    const DoFHandler<dim>                          &dof_handler,
-    const DoFHandler<dim>                          &scalar_dof_handler,
-    const Quadrature<dim - 1>                      &face_quadrature,
-    const AffineConstraints<double>                &hanging_constraints,
-    const VectorType                               &layout)
-  {
-    opposite_vertices.clear();
-    layout_partitioner = layout.get_partitioner();
-    if (!pairs)
-      return;
-    std::vector<types::boundary_id> opposite_ids;
-    for (const ContactZoneDescription<dim> &zone : zones)
-      opposite_ids.insert(opposite_ids.end(),
-                          zone.opposite_ids.begin(),
-                          zone.opposite_ids.end());
-    VectorType weights(layout), weighted_normals(layout);
-    assemble_lumped_weights(mapping,
-                            dof_handler,
-                            face_quadrature,
-                            opposite_ids,
-                            weights,
-                            weighted_normals);
-    for (VectorType *vector : {&weights, &weighted_normals})
-      pass_on_hanging_values(*vector, hanging_constraints, layout);
-    std::set<types::global_dof_index> seen;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary()
-              && is_one_of(cell->face(f)->boundary_id(), opposite_ids))
-            for (const unsigned int v : cell->face(f)->vertex_indices())
-              {
-                const types::global_dof_index x_dof
-                  = cell->face(f)->vertex_dof_index(v, 0);
-                if (!layout_partitioner->in_local_range(x_dof)
-                    || weights(x_dof) <= 0 || !seen.insert(x_dof).second)
-                  continue;
-                OppositeVertex vertex;
-                vertex.weight = weights(x_dof);
-                for (unsigned int c = 0; c < dim; ++c)
-                  {
-                    const types::global_dof_index dof
-                      = cell->face(f)->vertex_dof_index(v, c);
-                    vertex.local_dofs[c]
-                      = layout_partitioner->global_to_local(dof);
-                    vertex.normal[c] = weighted_normals(dof);
-                  }
-                if (vertex.normal.norm() == 0)
-                  continue;
-                vertex.normal /= vertex.normal.norm();
-                const typename DoFHandler<dim>::active_cell_iterator
-                  scalar_cell(&dof_handler.get_triangulation(),
-                              cell->level(),
-                              cell->index(),
-                              &scalar_dof_handler);
-                vertex.scalar_dof
-                  = scalar_cell->face(f)->vertex_dof_index(v, 0);
-                opposite_vertices.push_back(vertex);
-              }
-  }
-
-
-
   // @sect4{ContactSet::fill_output_fields}
   //
   // The nodal contact fields of the graphical output, in the layout of the
   // scalar dof handler: zero everywhere, the values of the nodes at their
-  // scalar dofs. The caller updates the ghost entries before writing.
+  // scalar dofs, and on the opposite sides of pairs those the vertices
+  // receive (OppositeSide). The caller updates the ghost entries before
+  // writing.
+  template <int dim>
+  std::vector<std::string>
+  ContactSet<dim>::output_field_names()
+  {
+    return {"contact_pressure",
+            "compliance_pressure",
+            "foundation_pressure",
+            "contact_status",
+            "penetration"};
+  }
+
+
+
   template <int dim>
   void
-  ContactSet<dim>::fill_output_fields(VectorType &contact_pressure_field,
-                                      VectorType &compliance_pressure_field,
-                                      VectorType &foundation_pressure_field,
-                                      VectorType &contact_status_field) const
+  ContactSet<dim>::fill_output_fields(std::vector<VectorType> &fields) const
   {
-    for (VectorType *field : {&contact_pressure_field,
-                              &compliance_pressure_field,
-                              &foundation_pressure_field,
-                              &contact_status_field})
-      *field = 0;
+    AssertDimension(fields.size(), output_field_names().size());
+    for (VectorType &field : fields)
+      field = 0;
+    const auto set = [&fields](const types::global_dof_index dof,
+                               const double                  pressure,
+                               const double                  compliance,
+                               const double                  status,
+                               const double                  penetration) {
+      fields[0](dof) = pressure;
+      fields[1](dof) = compliance;
+      fields[2](dof) = pressure - compliance;
+      fields[3](dof) = status;
+      fields[4](dof) = penetration;
+    };
     if (pairs)
-      {
-        // The force of every pair node on the opposite side (as in
-        // zone_side_forces()), gathered at the owners of its dofs.
-        VectorType force(layout_partitioner);
-        for (unsigned int i = 0; i < size(); ++i)
-          {
-            Tensor<1, dim> node_force = z[i] * geometry[i].direction;
-            if (geometry[i].n_tangents > 0)
-              node_force += tangential_vector(i, t[i]);
-            for (const auto &entry : geometry[i].opposite)
-              force.local_element(entry.local_dof)
-                += entry.coefficient * node_force[entry.component];
-          }
-        force.compress(VectorOperation::add);
-        for (const OppositeVertex &vertex : opposite_vertices)
-          {
-            double normal_force = 0;
-            for (unsigned int c = 0; c < dim; ++c)
-              normal_force
-                += force.local_element(vertex.local_dofs[c]) * vertex.normal[c];
-            contact_pressure_field(vertex.scalar_dof)
-              = -normal_force / vertex.weight;
-          }
-      }
+      for (const auto &vertex : opposite.states(*this))
+        set(vertex.scalar_dof,
+            vertex.contact_pressure,
+            vertex.compliance_pressure,
+            vertex.status,
+            vertex.penetration);
     for (unsigned int i = 0; i < size(); ++i)
-      {
-        const types::global_dof_index dof = geometry[i].scalar_dof;
-        contact_pressure_field(dof)       = contact_pressure(i);
-        compliance_pressure_field(dof)    = compliance_pressure(i);
-        foundation_pressure_field(dof)
-          = contact_pressure(i) - compliance_pressure(i);
-        contact_status_field(dof) = status(i);
-      }
+      set(geometry[i].scalar_dof,
+          contact_pressure(i),
+          compliance_pressure(i),
+          status(i),
+          r[i]);
   }
 
 
@@ -997,17 +960,31 @@ namespace ViscoContact
     for (VectorType *field :
          {&tangential_traction, &slip, &friction_state_field})
       *field = 0;
+    const auto set = [&](const std::array<unsigned int, dim> &local_dofs,
+                         const types::global_dof_index        scalar_dof,
+                         const Tensor<1, dim>                &traction,
+                         const Tensor<1, dim>                &step,
+                         const unsigned int                   state) {
+      for (unsigned int c = 0; c < dim; ++c)
+        {
+          tangential_traction.local_element(local_dofs[c]) = traction[c];
+          slip.local_element(local_dofs[c])                = step[c];
+        }
+      friction_state_field(scalar_dof) = state;
+    };
+    if (pairs)
+      for (const auto &vertex : opposite.states(*this))
+        set(vertex.local_dofs,
+            vertex.scalar_dof,
+            vertex.tangential_traction,
+            vertex.slip,
+            vertex.friction_state);
     for (unsigned int i = 0; i < size(); ++i)
-      {
-        const Tensor<1, dim> traction = tangential_vector(i, t[i]) / weight(i);
-        const Tensor<1, dim> step     = output_slip(i);
-        for (unsigned int c = 0; c < dim; ++c)
-          {
-            tangential_traction(geometry[i].dofs[c]) = traction[c];
-            slip(geometry[i].dofs[c])                = step[c];
-          }
-        friction_state_field(geometry[i].scalar_dof) = friction_state(i);
-      }
+      set(geometry[i].local_dofs,
+          geometry[i].scalar_dof,
+          tangential_vector(i, t[i]) / weight(i),
+          output_slip(i),
+          friction_state(i));
   }
 
 

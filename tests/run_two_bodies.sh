@@ -44,6 +44,13 @@ tolerance=1e-9 axis=y
 # r = D / 7 up to D = 0.014, r = (D - 0.0126) / 0.7 up to D = 0.0168, then
 # r = 0.006 and p = (D - 0.006) / C.
 closed_form='
+  function penetration(t,   D) {
+    if (law == "softening") {
+      D = 0.02 * (t < 2 - t ? t : 2 - t)
+      if (D <= 0.014) return D / 7
+      if (D <= 0.0168) return (D - 0.0126) / 0.7
+      return 0.006 }
+    return pressure(t) * inverse_c }
   function pressure(t,   D, p, r) {
     if (law == "softening") {
       D = 0.02 * (t < 2 - t ? t : 2 - t)
@@ -76,14 +83,22 @@ check() {
               ", von Mises " $col["max_von_mises"] ", peak " $col["peak_pressure"] ", area " \
               $col["contact_area"] "; expected p = " p ", force " 2 * p
         exit 1 } }' results/time_series.csv || exit 1
-  for profile in results/contact_profile_*.csv; do
+  # Both sides' profiles: the pressure p and, where p > 0, the
+  # penetration r (the average of the zone's on the opposite side).
+  ls results/opposite_profile_*.csv > /dev/null 2>&1 || fail "$1: no opposite_profile_*.csv"
+  for profile in results/contact_profile_*.csv results/opposite_profile_*.csv; do
     awk -F, -v name="$1" -v s="$2" -v inverse_c="$3" -v law="${5:-linear}" -v tol=$tolerance \
       "$closed_form"'
       NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
       { t = $col["time"]; p = pressure(t)
         d = $col["contact_pressure"] - p; if (d < 0) d = -d
         if (d > tol * (p > 1 ? p : 1)) {
-          print name ": pressure " $col["contact_pressure"] " at x = " $col["x"] ", t = " t ", not " p; exit 1 } }' \
+          print name ": pressure " $col["contact_pressure"] " at x = " $col["x"] ", t = " t \
+                " in " FILENAME ", not " p; exit 1 }
+        r = penetration(t); d = $col["u_nu"] - r; if (d < 0) d = -d
+        if (p > 0 && d > tol) {
+          print name ": penetration " $col["u_nu"] " at x = " $col["x"] ", t = " t \
+                " in " FILENAME ", not " r; exit 1 } }' \
       "$profile" || exit 1
   done
   [ $tolerance != 1e-9 ] || grep -q "set up by the back end 1x" out.txt \
@@ -94,17 +109,21 @@ check() {
 # has the contact pressure of the last step (peak_pressure_zone_1, which
 # check() compares with p), to the 1e-6 of Float32: the zone's nodes
 # theirs, the opposite side's the force the zone exerts on them over their
-# lumped weights.
+# lumped weights; and the contact status 2 (on the unilateral limit) with
+# a zero penetration.
 check_both_sides() {
   local last p
   last=$(ls results/solution_*.pvtu | tail -1)
   p=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
                { p = $col["peak_pressure_zone_1"] } END { print p }' results/time_series.csv)
   for piece in "${last%.pvtu}".*.vtu; do
-    /usr/bin/python3 "$here/vtu_points.py" "$piece" contact_pressure || exit 1
+    /usr/bin/python3 "$here/vtu_points.py" "$piece" contact_pressure contact_status penetration \
+      || exit 1
   done | awk -v name="$1" -v p="$p" -v k=$([ $axis = y ] && echo 2 || echo 3) '
     $k > 1 - 1e-6 && $k < 1 + 1e-6 { ++n; d = $4 - p; if (d < 0) d = -d
-      if (d > 1e-6 * p) { print name ": contact_pressure " $4 " at (" $1 ", " $2 ", " $3 ") in the .vtu, not " p; bad = 1; exit 1 } }
+      if (d > 1e-6 * p || $5 != 2 || $6 > 1e-9 || $6 < -1e-9) {
+        print name ": contact_pressure " $4 ", status " $5 ", penetration " $6 " at (" $1 ", " $2 ", " $3 \
+              ") in the .vtu, not " p ", 2, 0"; bad = 1; exit 1 } }
     END { if (!bad && n == 0) { print name ": no interface point in the .vtu"; exit 1 } }' || exit 1
 }
 full_space() { cat; printf '\nsubsection Linear solver\n  set Method = full space\nend\n'; }
@@ -189,6 +208,7 @@ sliding() { # > variant.prm
     | set_entry "Clamped boundary ids" 2 | set_entry Components "x, y" \
     | set_entry Displacement "0.02 * max(t - 1, 0); -0.01 * min(t, 1)" \
     | set_entry "Poisson ratio" 0 | set_entry "End time" 2 | set_entry "Time step" 0.125 \
+    | set_entry "Profile times" "1, 2" \
     | contact_entries "  set Tangential law = Coulomb\n  set Friction coefficient = 0.3"
 }
 check_sliding() { # NAME [SLIPPING_NODES]
@@ -206,6 +226,23 @@ check_sliding() { # NAME [SLIPPING_NODES]
               $col["reaction_prescribed_1_" axis] ") and of the base (" $col["reaction_clamped_x"] ", " \
               $col["reaction_clamped_" axis] "); expected F = 0.3 N, all " slipping " nodes slipping"
         exit 1 } }' results/time_series.csv || exit 1
+  # At t = 2 every node of both sides slips (state 2) by the step's
+  # 0.0025 along x (the opposite side's relative to the zone: -0.0025),
+  # and the tangential traction that each side exerts on the other is
+  # mu p along x, with the sign of its slip.
+  for side in contact:1 opposite:-1; do
+    awk -F, -v name="$1" -v tol=$tolerance -v side=${side%:*} -v sign=${side#*:} '
+      function near(a, b) { d = a - b; if (d < 0) d = -d; m = b < 0 ? -b : b; return d <= tol * (m > 1 ? m : 1) }
+      NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+      { ++n; p = $col["contact_pressure"]
+        if ($col["friction_state"] != 2 || !near($col["slip_x"], sign * 0.0025) \
+            || !near($col["tangential_traction_x"], sign * 0.3 * p) || p <= 0) {
+          print name ": on the " side " side at x = " $col["x"] ": state " $col["friction_state"] \
+                ", slip " $col["slip_x"] ", traction " $col["tangential_traction_x"] ", pressure " p \
+                "; expected 2, " sign * 0.0025 ", " sign * 0.3 * p; exit 1 } }
+      END { if (n == 0) { print name ": no line in the " side " profile at t = 2"; exit 1 } }' \
+      results/${side%:*}_profile_0016.csv || exit 1
+  done
 }
 sliding > variant.prm
 run_scene variant.prm 2 "Coulomb friction, 2 ranks"
@@ -260,6 +297,7 @@ sliding_3d() { # > variant.prm
     | set_entry "Clamped boundary ids" 2 | set_entry Components "x, y, z" \
     | set_entry Displacement "0.02 * max(t - 1, 0); 0; -0.01 * min(t, 1)" \
     | set_entry "Poisson ratio" 0 | set_entry "End time" 2 | set_entry "Time step" 0.125 \
+    | set_entry "Profile times" "1, 2" \
     | contact_entries "  set Tangential law = Coulomb\n  set Friction coefficient = 0.3"
 }
 for mesh_ranks in hexahedron_6_8:1 hexahedron_4_10:3 tetrahedron_6_8:2 tetrahedron_4_10:1; do

@@ -410,7 +410,9 @@ namespace ViscoContact
   // @sect4{RunOutput::write_contact_profile}
   //
   // contact_profile_NNNN.csv: the state of every contact node along
-  // Gamma_3 (contact_set.h), written by all ranks into one file.
+  // Gamma_3 (contact_set.h), written by all ranks into one file; with
+  // contact pairs also opposite_profile_NNNN.csv, the same columns at the
+  // vertices of the opposite sides that the zones cover (OppositeSide).
   //
   // Collective: each rank formats the lines of its own contact nodes, and the
   // blocks are written in rank order at offsets from a prefix sum, so no rank
@@ -421,17 +423,28 @@ namespace ViscoContact
                                         const unsigned int              step,
                                         const double                    time)
   {
-    std::ostringstream name;
-    name << "contact_profile_" << std::setw(4) << std::setfill('0') << step
-         << ".csv";
-    output_folder->record_files({name.str()});
-    const std::string text = problem.contact_set.profile_text(time);
-    output_folder->stage_collectively(name.str(),
-                                      "",
-                                      text.data(),
-                                      text.size(),
-                                      problem.mpi_communicator);
-    output_folder->commit();
+    std::vector<std::pair<std::string, std::string>> profiles;
+    const auto name = [step](const std::string &kind) {
+      std::ostringstream name;
+      name << kind << "_profile_" << std::setw(4) << std::setfill('0') << step
+           << ".csv";
+      return name.str();
+    };
+    profiles.emplace_back(name("contact"),
+                          problem.contact_set.profile_text(time));
+    if (problem.contact_set.has_pairs())
+      profiles.emplace_back(name("opposite"),
+                            problem.contact_set.opposite_profile_text(time));
+    for (const auto &[file, text] : profiles)
+      {
+        output_folder->record_files({file});
+        output_folder->stage_collectively(file,
+                                          "",
+                                          text.data(),
+                                          text.size(),
+                                          problem.mpi_communicator);
+        output_folder->commit();
+      }
   }
 
 
@@ -561,11 +574,9 @@ namespace ViscoContact
           {&stress_zz, "stress_zz"}})
       if (field->size() > 0)
         data_out.add_data_vector(*field, name, DataOut<dim>::type_cell_data);
-    const char *contact_names[4] = {"contact_pressure",
-                                    "compliance_pressure",
-                                    "foundation_pressure",
-                                    "contact_status"};
-    for (unsigned int i = 0; i < 4; ++i)
+    const std::vector<std::string> contact_names
+      = ContactSet<dim>::output_field_names();
+    for (unsigned int i = 0; i < contact.size(); ++i)
       data_out.add_data_vector(scalar_dof_handler,
                                contact[i],
                                contact_names[i]);
@@ -665,12 +676,10 @@ namespace ViscoContact
           }
       }
 
-    fields.contact.assign(4, VectorType(problem.scalar_partitioner));
+    fields.contact.assign(ContactSet<dim>::output_field_names().size(),
+                          VectorType(problem.scalar_partitioner));
     if (problem.contact_enabled)
-      problem.contact_set.fill_output_fields(fields.contact[0],
-                                             fields.contact[1],
-                                             fields.contact[2],
-                                             fields.contact[3]);
+      problem.contact_set.fill_output_fields(fields.contact);
     for (VectorType &field : fields.contact)
       field.update_ghost_values();
     if (problem.contact_enabled && problem.contact_set.has_friction())

@@ -281,7 +281,7 @@ namespace PreconditionerComparison
     DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
     // The benchmark's scenes are clamped and loaded: no prescribed
     // displacements or symmetry planes.
-    make_displacement_constraints(mapping,
+    make_displacement_constraints(hp::MappingCollection<dim>(mapping),
                                   dof_handler,
                                   {DirichletPart{parameters.clamped_ids, {}}},
                                   {},
@@ -336,9 +336,9 @@ namespace PreconditionerComparison
                                         parameters.yield_stress);
     // K as the program assembles it; b by the loop below.
     assemble_elastic_operator<dim>(
-      mapping,
+      hp::MappingCollection<dim>(mapping),
       dof_handler,
-      stress_quadrature,
+      hp::QCollection<dim>(stress_quadrature),
       [&](const auto &) -> const auto & {
         return material.elasticity_tensor();
       },
@@ -812,7 +812,7 @@ namespace PreconditionerComparison
       [&](const DoFHandler<dim>     &level_dofs,
           const IndexSet            &relevant,
           AffineConstraints<double> &level_constraints) {
-        make_displacement_constraints(mapping,
+        make_displacement_constraints(hp::MappingCollection<dim>(mapping),
                                       level_dofs,
                                       {DirichletPart{parameters.clamped_ids,
                                                      {}}},

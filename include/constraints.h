@@ -14,7 +14,7 @@
 #include <deal.II/dofs/dof_handler.h>
 
 #include <deal.II/fe/component_mask.h>
-#include <deal.II/fe/mapping.h>
+#include <deal.II/hp/mapping_collection.h>
 
 #include <deal.II/lac/affine_constraints.h>
 
@@ -44,7 +44,7 @@ namespace ViscoContact
   template <int dim>
   void
   make_displacement_constraints(
-    const Mapping<dim>                    &mapping,
+    const hp::MappingCollection<dim>      &mapping,
     const DoFHandler<dim>                 &dof_handler,
     const std::vector<DirichletPart>      &dirichlet_parts,
     const std::vector<types::boundary_id> &symmetry_ids,
@@ -58,10 +58,10 @@ namespace ViscoContact
   // every rank, naming the entry. Collective.
   template <int dim>
   Tensor<1, dim>
-  symmetry_plane_normal(const Mapping<dim>      &mapping,
-                        const DoFHandler<dim>   &dof_handler,
-                        const types::boundary_id id,
-                        const MPI_Comm           communicator);
+  symmetry_plane_normal(const hp::MappingCollection<dim> &mapping,
+                        const DoFHandler<dim>            &dof_handler,
+                        const types::boundary_id          id,
+                        const MPI_Comm                    communicator);
 } // namespace ViscoContact
 
 #endif

@@ -9,7 +9,8 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
-#include <deal.II/fe/mapping.h>
+#include <deal.II/hp/mapping_collection.h>
+#include <deal.II/hp/q_collection.h>
 
 #include <deal.II/lac/affine_constraints.h>
 
@@ -38,9 +39,9 @@ namespace ViscoContact
   // doc/model.md, section 2, on any mesh.
   template <int dim>
   void
-  assemble_lumped_weights(const Mapping<dim>        &mapping,
-                          const DoFHandler<dim>     &dof_handler,
-                          const Quadrature<dim - 1> &face_quadrature,
+  assemble_lumped_weights(const hp::MappingCollection<dim> &mapping,
+                          const DoFHandler<dim>            &dof_handler,
+                          const hp::QCollection<dim - 1>   &face_quadrature,
                           const std::vector<types::boundary_id> &boundary_ids,
                           VectorType                            &weights,
                           VectorType &weighted_normals);
@@ -164,10 +165,10 @@ namespace ViscoContact
     // those of the hanging nodes alone.
     void
     setup(const std::vector<ContactZoneDescription<dim>> &zones,
-          const Mapping<dim>                             &mapping,
+          const hp::MappingCollection<dim>               &mapping,
           const DoFHandler<dim>                          &dof_handler,
           const DoFHandler<dim>                          &scalar_dof_handler,
-          const Quadrature<dim - 1>                      &face_quadrature,
+          const hp::QCollection<dim - 1>                 &face_quadrature,
           const AffineConstraints<double>                &constraints,
           const AffineConstraints<double>                &hanging_constraints,
           const VectorType                               &layout);

@@ -6,7 +6,8 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
-#include <deal.II/fe/mapping.h>
+#include <deal.II/hp/mapping_collection.h>
+#include <deal.II/hp/q_collection.h>
 
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -20,7 +21,8 @@ namespace ViscoContact
   using namespace dealii;
 
   // K_ij = (E eps(phi_j), eps(phi_i)) on the locally owned cells of
-  // dof_handler, integrated with quadrature (the program's stress points),
+  // dof_handler, integrated with quadrature (the program's stress points;
+  // the collections have an entry per element of dof_handler),
   // the constrained rows and columns condensed as the cell matrices are
   // added, and compressed: the elastic operator of the program
   // (ViscoplasticContact::assemble_elastic_operator()), for the benchmark
@@ -32,12 +34,12 @@ namespace ViscoContact
 
   template <int dim>
   void
-  assemble_elastic_operator(const Mapping<dim>              &mapping,
-                            const DoFHandler<dim>           &dof_handler,
-                            const Quadrature<dim>           &quadrature,
-                            const ElasticityOfCell<dim>     &elasticity,
-                            const AffineConstraints<double> &constraints,
-                            TrilinosWrappers::SparseMatrix  &matrix);
+  assemble_elastic_operator(const hp::MappingCollection<dim> &mapping,
+                            const DoFHandler<dim>            &dof_handler,
+                            const hp::QCollection<dim>       &quadrature,
+                            const ElasticityOfCell<dim>      &elasticity,
+                            const AffineConstraints<double>  &constraints,
+                            TrilinosWrappers::SparseMatrix   &matrix);
 
   // Without a matrix: the dim x dim blocks K_ii of the given vertices (the
   // dofs of each, by component), from the cells around them, owned and
@@ -47,9 +49,9 @@ namespace ViscoContact
   template <int dim>
   std::vector<Tensor<2, dim>>
   elastic_node_blocks(
-    const Mapping<dim>                                          &mapping,
+    const hp::MappingCollection<dim>                            &mapping,
     const DoFHandler<dim>                                       &dof_handler,
-    const Quadrature<dim>                                       &quadrature,
+    const hp::QCollection<dim>                                  &quadrature,
     const ElasticityOfCell<dim>                                 &elasticity,
     const std::vector<std::array<types::global_dof_index, dim>> &node_dofs);
 } // namespace ViscoContact

@@ -35,7 +35,8 @@ namespace ViscoContact
     enum class CellType
     {
       simplex,
-      hypercube
+      hypercube,
+      mixed
     };
 
     // How the generated box is cut into simplices. In 2D each square

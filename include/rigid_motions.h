@@ -9,7 +9,7 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
-#include <deal.II/fe/mapping.h>
+#include <deal.II/hp/mapping_collection.h>
 
 #include <deal.II/grid/tria.h>
 
@@ -58,10 +58,10 @@ namespace ViscoContact
 
   template <int dim>
   std::vector<FreeBody<dim>>
-  free_rigid_motions(const Mapping<dim>              &mapping,
-                     const DoFHandler<dim>           &dof_handler,
-                     const AffineConstraints<double> &constraints,
-                     const MPI_Comm                   communicator);
+  free_rigid_motions(const hp::MappingCollection<dim> &mapping,
+                     const DoFHandler<dim>            &dof_handler,
+                     const AffineConstraints<double>  &constraints,
+                     const MPI_Comm                    communicator);
 } // namespace ViscoContact
 
 #endif

@@ -11,7 +11,8 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
-#include <deal.II/fe/mapping.h>
+#include <deal.II/hp/mapping_collection.h>
+#include <deal.II/hp/q_collection.h>
 
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/full_matrix.h>
@@ -47,12 +48,13 @@ namespace ViscoContact
 
     // The owned cells of dof_handler (linear elements: the scalar dofs of a
     // cell are its vertices), their dofs in the storage of vectors with
-    // partitioner, and the values at the points of quadrature. A cell with
+    // partitioner, and the values at the points of quadrature (an entry per
+    // element of dof_handler, all with the same number of points). A cell with
     // a dof that constraints constrain adds through them (distribute()).
     void
-    reinit(const Mapping<dim>                &mapping,
+    reinit(const hp::MappingCollection<dim>  &mapping,
            const DoFHandler<dim>             &dof_handler,
-           const Quadrature<dim>             &quadrature,
+           const hp::QCollection<dim>        &quadrature,
            const Utilities::MPI::Partitioner &partitioner,
            const AffineConstraints<double>   &constraints);
 
@@ -84,7 +86,9 @@ namespace ViscoContact
                ? 0
                : stress_point_JxW.size() / n_points_per_cell;
     }
-    // The n_vertices() * dim dofs of cell k.
+    // The n_vertices() * dim dofs of cell k (n_vertices() the most vertices
+    // of a cell: a cell with fewer repeats its first vertex's dofs, with
+    // zero gradients).
     const unsigned int *
     local_dofs(const unsigned int k) const
     {

@@ -33,6 +33,7 @@
 #include "constraints.h"
 #include "contact_nodes.h"
 #include "contact_set.h"
+#include "discretisation.h"
 #include "scene/contact_zones.h"
 #include "scene/loads.h"
 #include "elastic_operator.h"
@@ -158,7 +159,7 @@ namespace ViscoContact
     stress_point_state() const
     {
       return {dof_handler,
-              stress_quadrature,
+              discretisation.stress_quadrature[0],
               stress_points,
               quadrature_point_history,
               solution};
@@ -287,25 +288,17 @@ namespace ViscoContact
     RunPlan<dim> plan;
 
 
-    // Mesh, finite elements, quadratures, degrees of freedom. The reference
-    // cell (simplex or hypercube) decides the mapping, the element (P1 or Q1)
-    // and the quadratures; fe is the vector-valued element of the displacement.
-    // The stress quadrature holds the stress points (one per simplex, 2^dim
-    // Gauss points per hypercube), the load quadrature integrates the external
-    // loads. locally_relevant_dofs are those of the owned and the ghost cells:
-    // the owned ones and the ghosts of every displacement vector.
+    // Mesh, finite elements, quadratures, degrees of freedom. The cell types
+    // decide the mappings, the elements (P1 or Q1) and the quadratures
+    // (discretisation.h); locally_relevant_dofs are those of the owned and
+    // the ghost cells: the owned ones and the ghosts of every displacement
+    // vector.
     std::unique_ptr<parallel::DistributedTriangulationBase<dim>> triangulation;
-    const ReferenceCell                                          reference_cell;
-    const Mapping<dim>                                          &mapping;
-    const std::unique_ptr<FiniteElement<dim>>                    fe;
-    const std::unique_ptr<FiniteElement<dim>> scalar_fe; // nodal output
-    DoFHandler<dim>                           dof_handler;
-    DoFHandler<dim>                           scalar_dof_handler;
+    const Discretisation<dim>                                    discretisation;
+    DoFHandler<dim>                                              dof_handler;
+    DoFHandler<dim> scalar_dof_handler; // nodal output
     // The layout (owned entries and ghosts) of the nodal output fields.
     std::shared_ptr<const Utilities::MPI::Partitioner> scalar_partitioner;
-    const Quadrature<dim>                              stress_quadrature;
-    const Quadrature<dim>                              load_quadrature;
-    const Quadrature<dim - 1>                          face_quadrature;
     IndexSet                                           locally_owned_dofs;
     IndexSet                                           locally_relevant_dofs;
     AffineConstraints<double>                          constraints;

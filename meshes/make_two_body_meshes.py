@@ -21,6 +21,10 @@ the pad [0, 2] x [0, 1] x [1, 2] with B x B/2 x 2 (tetrahedra: Kuhn's six
 per cell). Boundary tags as in 2D with y -> z, and 7 the front sides
 y = 0, 8 the back sides y = 1 of both blocks.
 
+two_blocks_mixed_6_8.msh: the 2D blocks 6:8, the base of triangles, the
+pad of quadrilaterals; two_blocks_mixed_3d_4_10.msh: the 3D blocks 4:10,
+the base of hexahedra, the pad of tetrahedra (Cell type = mixed).
+
 three_blocks.msh: a base and two pads, see three_blocks().
 
 layered_strip.msh: a thin layer on a base, non-matching, see
@@ -33,9 +37,15 @@ import os
 from gmsh_format import box_cell_elements, box_face_elements, gmsh_elements_text
 
 
+def per_block(simplex):
+    """simplex: one value for both blocks, or (base's, pad's)."""
+    return tuple(simplex) if isinstance(simplex, tuple) else (simplex, simplex)
+
+
 def blocks(a, b, simplex):
     nodes, boundary, cells = [], [], []
     for block, (n, y0, material, bottom, top) in enumerate(((a, 0.0, 1, 2, 3), (b, 1.0, 2, 4, 5))):
+        block_simplex = per_block(simplex)[block]
         first = len(nodes) + 1
         rows = n // 2
         v = lambda i, j: first + j * (n + 1) + i
@@ -48,7 +58,7 @@ def blocks(a, b, simplex):
             boundary += [(1, 1, v(0, j), v(0, j + 1)), (1, 6, v(n, j), v(n, j + 1))]
             for i in range(n):
                 p, q, r, s = v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)
-                cells += ([(2, material, p, q, r), (2, material, p, r, s)] if simplex
+                cells += ([(2, material, p, q, r), (2, material, p, r, s)] if block_simplex
                           else [(3, material, p, q, r, s)])
     names = [(1, "left_sides"), (2, "base_bottom"), (3, "base_top"), (4, "pad_bottom"),
              (5, "pad_top"), (6, "right_sides")]
@@ -59,7 +69,9 @@ def blocks_3d(a, b, simplex, separation=0.0):
     """separation: the base moved down by that much (a gap between the
     blocks; benchmarks/run_two_body_cost.py)."""
     nodes, boundary, cells = [], [], []
-    for n, z0, material, bottom, top in ((a, -separation, 1, 2, 3), (b, 1.0, 2, 4, 5)):
+    for block, (n, z0, material, bottom, top) in enumerate(((a, -separation, 1, 2, 3),
+                                                            (b, 1.0, 2, 4, 5))):
+        block_simplex = per_block(simplex)[block]
         first = len(nodes) + 1
         size = (n, n // 2, 2)
         v = lambda i, j, k: first + (k * (size[1] + 1) + j) * (size[0] + 1) + i
@@ -78,11 +90,11 @@ def blocks_3d(a, b, simplex, separation=0.0):
                         ijk = [0, 0, 0]
                         ijk[axis], ijk[others[0]], ijk[others[1]] = fixed, p + dp, q + dq
                         corners.append(v(*ijk))
-                    boundary += box_face_elements(tag, corners, simplex)
+                    boundary += box_face_elements(tag, corners, block_simplex)
         for k in range(size[2]):
             for j in range(size[1]):
                 for i in range(size[0]):
-                    cells += box_cell_elements(v, i, j, k, simplex, material)
+                    cells += box_cell_elements(v, i, j, k, block_simplex, material)
     names = [(1, "left_sides"), (2, "base_bottom"), (3, "base_top"), (4, "pad_bottom"),
              (5, "pad_top"), (6, "right_sides"), (7, "front_sides"), (8, "back_sides")]
     return gmsh_elements_text(nodes, boundary, cells, names, [(1, "base"), (2, "pad")])
@@ -157,6 +169,11 @@ if __name__ == "__main__":
         for a, b in ((6, 8), (4, 10)):
             with open(os.path.join(folder, "two_blocks_%s_%d_%d.msh" % (name, a, b)), "w") as f:
                 f.write(blocks_3d(a, b, simplex))
+    # Mixed: simplices on one side, hypercubes on the other.
+    with open(os.path.join(folder, "two_blocks_mixed_6_8.msh"), "w") as f:
+        f.write(blocks(6, 8, (True, False)))
+    with open(os.path.join(folder, "two_blocks_mixed_3d_4_10.msh"), "w") as f:
+        f.write(blocks_3d(4, 10, (False, True)))
     with open(os.path.join(folder, "three_blocks.msh"), "w") as f:
         f.write(three_blocks())
     with open(os.path.join(folder, "layered_strip.msh"), "w") as f:

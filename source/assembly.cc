@@ -7,6 +7,8 @@
 
 #include <deal.II/fe/fe_values.h>
 
+#include <deal.II/hp/fe_values.h>
+
 #include "elastic_operator.h"
 #include "robustness/file_output.h"
 #include "viscoplastic_contact.h"
@@ -27,29 +29,32 @@ namespace ViscoContact
   // lower triangle of the cell matrix is computed, and then mirrored.
   template <int dim>
   void
-  assemble_elastic_operator(const Mapping<dim>              &mapping,
-                            const DoFHandler<dim>           &dof_handler,
-                            const Quadrature<dim>           &quadrature,
-                            const ElasticityOfCell<dim>     &elasticity,
-                            const AffineConstraints<double> &constraints,
-                            TrilinosWrappers::SparseMatrix  &matrix)
+  assemble_elastic_operator(const hp::MappingCollection<dim> &mapping,
+                            const DoFHandler<dim>            &dof_handler,
+                            const hp::QCollection<dim>       &quadrature,
+                            const ElasticityOfCell<dim>      &elasticity,
+                            const AffineConstraints<double>  &constraints,
+                            TrilinosWrappers::SparseMatrix   &matrix)
   {
-    FEValues<dim>                    fe_values(mapping,
-                            dof_handler.get_fe(),
-                            quadrature,
-                            update_gradients | update_JxW_values);
-    const FEValuesExtractors::Vector displacement(0);
-    const unsigned int dofs_per_cell = dof_handler.get_fe().n_dofs_per_cell();
-    FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
-    std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
-    std::vector<SymmetricTensor<2, dim>> strains(dofs_per_cell);
+    hp::FEValues<dim>                    hp_fe_values(mapping,
+                                   dof_handler.get_fe_collection(),
+                                   quadrature,
+                                   update_gradients | update_JxW_values);
+    const FEValuesExtractors::Vector     displacement(0);
+    FullMatrix<double>                   cell_matrix;
+    std::vector<types::global_dof_index> local_dof_indices;
+    std::vector<SymmetricTensor<2, dim>> strains;
 
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           const SymmetricTensor<4, dim> &E = elasticity(cell);
-          fe_values.reinit(cell);
-          cell_matrix = 0;
+          hp_fe_values.reinit(cell);
+          const FEValues<dim> &fe_values = hp_fe_values.get_present_fe_values();
+          const unsigned int   dofs_per_cell = cell->get_fe().n_dofs_per_cell();
+          cell_matrix.reinit(dofs_per_cell, dofs_per_cell);
+          local_dof_indices.resize(dofs_per_cell);
+          strains.resize(dofs_per_cell);
           for (const unsigned int q : fe_values.quadrature_point_indices())
             {
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
@@ -85,9 +90,9 @@ namespace ViscoContact
   template <int dim>
   std::vector<Tensor<2, dim>>
   elastic_node_blocks(
-    const Mapping<dim>                                          &mapping,
+    const hp::MappingCollection<dim>                            &mapping,
     const DoFHandler<dim>                                       &dof_handler,
-    const Quadrature<dim>                                       &quadrature,
+    const hp::QCollection<dim>                                  &quadrature,
     const ElasticityOfCell<dim>                                 &elasticity,
     const std::vector<std::array<types::global_dof_index, dim>> &node_dofs)
   {
@@ -98,16 +103,17 @@ namespace ViscoContact
     for (unsigned int i = 0; i < node_dofs.size(); ++i)
       for (unsigned int c = 0; c < dim; ++c)
         node_of_dof[node_dofs[i][c]] = {i, c};
-    FEValues<dim>                    fe_values(mapping,
-                            dof_handler.get_fe(),
-                            quadrature,
-                            update_gradients | update_JxW_values);
-    const FEValuesExtractors::Vector displacement(0);
-    const unsigned int dofs_per_cell = dof_handler.get_fe().n_dofs_per_cell();
-    std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
+    hp::FEValues<dim>                    hp_fe_values(mapping,
+                                   dof_handler.get_fe_collection(),
+                                   quadrature,
+                                   update_gradients | update_JxW_values);
+    const FEValuesExtractors::Vector     displacement(0);
+    std::vector<types::global_dof_index> dof_indices;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (!cell->is_artificial())
         {
+          const unsigned int dofs_per_cell = cell->get_fe().n_dofs_per_cell();
+          dof_indices.resize(dofs_per_cell);
           cell->get_dof_indices(dof_indices);
           std::vector<std::pair<unsigned int, decltype(node_of_dof.begin())>>
             local;
@@ -118,7 +124,8 @@ namespace ViscoContact
           if (local.empty())
             continue;
           const SymmetricTensor<4, dim> &E = elasticity(cell);
-          fe_values.reinit(cell);
+          hp_fe_values.reinit(cell);
+          const FEValues<dim> &fe_values = hp_fe_values.get_present_fe_values();
           for (const unsigned int q : fe_values.quadrature_point_indices())
             for (const auto &[k, row] : local)
               {
@@ -192,20 +199,9 @@ namespace ViscoContact
     // the contributions to dofs other ranks own.
     external_load = 0;
     loads.set_time(time);
-    const unsigned int                   dofs_per_cell = fe->n_dofs_per_cell();
-    Vector<double>                       cell_rhs(dofs_per_cell);
-    std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
-    FEValues<dim>                        fe_values(mapping,
-                            *fe,
-                            load_quadrature,
-                            update_values | update_quadrature_points
-                              | update_JxW_values);
-    FEFaceValues<dim>                    fe_face_values(mapping,
-                                     *fe,
-                                     face_quadrature,
-                                     update_values | update_quadrature_points
-                                       | update_normal_vectors
-                                       | update_JxW_values);
+    Vector<double>                       cell_rhs;
+    std::vector<types::global_dof_index> local_dof_indices;
+    LoadValues<dim>                      values(discretisation);
     // The first value that is not finite, if any (check_scene_values() has
     // checked the loads before the run, possibly only at some of the points).
     std::string problem;
@@ -213,8 +209,9 @@ namespace ViscoContact
       // Cells without any load contribute nothing and are skipped. The
       // constraints drop the entries of Dirichlet dofs and distribute those
       // of hanging nodes.
-      if (loads.cell_load(cell, fe_values, fe_face_values, cell_rhs, problem))
+      if (loads.cell_load(cell, values.cell, values.face, cell_rhs, problem))
         {
+          local_dof_indices.resize(cell->get_fe().n_dofs_per_cell());
           cell->get_dof_indices(local_dof_indices);
           constraints.distribute_local_to_global(cell_rhs,
                                                  local_dof_indices,
@@ -247,7 +244,7 @@ namespace ViscoContact
     // Zero also in the ghost entries, which collect the contributions to dofs
     // of other ranks until compress().
     history_load            = 0;
-    const unsigned int  n_q = stress_quadrature.size();
+    const unsigned int  n_q = discretisation.n_stress_points();
     std::vector<double> cell_vector(stress_points.n_vertices() * dim);
     // The history of stress point q of the k-th owned cell is record
     // k * n_q + q; the cells of elastic materials have none.
@@ -295,10 +292,10 @@ namespace ViscoContact
   {
     TimerOutput::Scope t(report.timer(), "Assemble tangent system");
     // Reset values only; the sparsity pattern of K is kept.
-    tangent_matrix                               = 0;
-    internal_force                               = 0;
-    const unsigned int                   n_q     = stress_quadrature.size();
-    const unsigned int                   n_a     = stress_points.n_vertices();
+    tangent_matrix                           = 0;
+    internal_force                           = 0;
+    const unsigned int                   n_q = discretisation.n_stress_points();
+    const unsigned int                   n_a = stress_points.n_vertices();
     const unsigned int                   n_local = n_a * dim;
     FullMatrix<double>                   cell_matrix(n_local, n_local);
     Vector<double>                       cell_force(n_local);
@@ -380,31 +377,31 @@ namespace ViscoContact
 
 
   template void
-  assemble_elastic_operator(const Mapping<2> &,
+  assemble_elastic_operator(const hp::MappingCollection<2> &,
                             const DoFHandler<2> &,
-                            const Quadrature<2> &,
+                            const hp::QCollection<2> &,
                             const ElasticityOfCell<2> &,
                             const AffineConstraints<double> &,
                             TrilinosWrappers::SparseMatrix &);
   template void
-  assemble_elastic_operator(const Mapping<3> &,
+  assemble_elastic_operator(const hp::MappingCollection<3> &,
                             const DoFHandler<3> &,
-                            const Quadrature<3> &,
+                            const hp::QCollection<3> &,
                             const ElasticityOfCell<3> &,
                             const AffineConstraints<double> &,
                             TrilinosWrappers::SparseMatrix &);
   template std::vector<Tensor<2, 2>>
   elastic_node_blocks<2>(
-    const Mapping<2> &,
+    const hp::MappingCollection<2> &,
     const DoFHandler<2> &,
-    const Quadrature<2> &,
+    const hp::QCollection<2> &,
     const ElasticityOfCell<2> &,
     const std::vector<std::array<types::global_dof_index, 2>> &);
   template std::vector<Tensor<2, 3>>
   elastic_node_blocks<3>(
-    const Mapping<3> &,
+    const hp::MappingCollection<3> &,
     const DoFHandler<3> &,
-    const Quadrature<3> &,
+    const hp::QCollection<3> &,
     const ElasticityOfCell<3> &,
     const std::vector<std::array<types::global_dof_index, 3>> &);
   template class ViscoplasticContact<2>;

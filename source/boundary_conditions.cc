@@ -8,6 +8,8 @@
 
 #include <deal.II/lac/vector.h>
 
+#include <deal.II/hp/fe_values.h>
+
 #include "robustness/file_output.h"
 #include "time_schedule.h"
 #include "viscoplastic_contact.h"
@@ -35,10 +37,10 @@ namespace ViscoContact
   {
     FileOutput::agree_on_problem(
       loads.first_non_finite_value(stress_points.cells(),
-                                   mapping,
-                                   *fe,
-                                   load_quadrature,
-                                   face_quadrature,
+                                   discretisation.mapping,
+                                   discretisation.fe,
+                                   discretisation.load_quadrature,
+                                   discretisation.face_quadrature,
                                    schedule),
       mpi_communicator);
     std::string problem = prescribed.first_non_finite_value(schedule);
@@ -118,21 +120,11 @@ namespace ViscoContact
       return forces;
     VectorType residual(solution);
     residual                    = 0;
-    const unsigned int  n_q     = stress_quadrature.size();
+    const unsigned int  n_q     = discretisation.n_stress_points();
     const unsigned int  n_local = stress_points.n_vertices() * dim;
     std::vector<double> cell_vector(n_local);
-    Vector<double>      cell_load(n_local);
-    FEValues<dim>       fe_values(mapping,
-                            *fe,
-                            load_quadrature,
-                            update_values | update_quadrature_points
-                              | update_JxW_values);
-    FEFaceValues<dim>   fe_face_values(mapping,
-                                     *fe,
-                                     face_quadrature,
-                                     update_values | update_quadrature_points
-                                       | update_normal_vectors
-                                       | update_JxW_values);
+    Vector<double>      cell_load;
+    LoadValues<dim>     load_values(discretisation);
     loads.set_time(time);
     std::string problem;
     double     *values = residual.get_values(); // owned entries, then ghosts
@@ -145,15 +137,16 @@ namespace ViscoContact
             k,
             q,
             make_array_view(cell_vector));
-        if (loads.cell_load(stress_points.cells()[k],
-                            fe_values,
-                            fe_face_values,
+        const auto &cell = stress_points.cells()[k];
+        if (loads.cell_load(cell,
+                            load_values.cell,
+                            load_values.face,
                             cell_load,
                             problem))
-          for (unsigned int a = 0; a < stress_points.n_vertices(); ++a)
+          for (unsigned int a = 0; a < cell->n_vertices(); ++a)
             for (unsigned int c = 0; c < dim; ++c)
               cell_vector[a * dim + c]
-                -= cell_load(fe->component_to_system_index(c, a));
+                -= cell_load(cell->get_fe().component_to_system_index(c, a));
         for (unsigned int i = 0; i < n_local; ++i)
           values[stress_points.local_dofs(k)[i]] += cell_vector[i];
       }

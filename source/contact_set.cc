@@ -16,6 +16,8 @@
 
 #include <deal.II/lac/full_matrix.h>
 
+#include <deal.II/hp/fe_values.h>
+
 #include "contact_pairs/contact_pairs.h"
 #include "contact_set.h"
 #include "robustness/file_output.h"
@@ -77,23 +79,21 @@ namespace ViscoContact
   // weighted normal component by component at its dim dofs.
   template <int dim>
   void
-  assemble_lumped_weights(const Mapping<dim>        &mapping,
-                          const DoFHandler<dim>     &dof_handler,
-                          const Quadrature<dim - 1> &face_quadrature,
+  assemble_lumped_weights(const hp::MappingCollection<dim> &mapping,
+                          const DoFHandler<dim>            &dof_handler,
+                          const hp::QCollection<dim - 1>   &face_quadrature,
                           const std::vector<types::boundary_id> &boundary_ids,
                           VectorType                            &weights,
                           VectorType &weighted_normals)
   {
     // Values, JxW and normals on the faces; the mapping is the run's
     // (linear) one.
-    const FiniteElement<dim>            &fe = dof_handler.get_fe();
-    FEFaceValues<dim>                    fe_face_values(mapping,
-                                     fe,
-                                     face_quadrature,
-                                     update_values | update_JxW_values
-                                       | update_normal_vectors);
-    std::vector<types::global_dof_index> local_dof_indices(
-      fe.n_dofs_per_cell());
+    hp::FEFaceValues<dim>                hp_face_values(mapping,
+                                         dof_handler.get_fe_collection(),
+                                         face_quadrature,
+                                         update_values | update_JxW_values
+                                           | update_normal_vectors);
+    std::vector<types::global_dof_index> local_dof_indices;
     weights          = 0;
     weighted_normals = 0;
     // Only faces on the named boundary parts of locally owned cells.
@@ -103,7 +103,11 @@ namespace ViscoContact
           if (cell->face(f)->at_boundary()
               && is_one_of(cell->face(f)->boundary_id(), boundary_ids))
             {
-              fe_face_values.reinit(cell, f);
+              const FiniteElement<dim> &fe = cell->get_fe();
+              hp_face_values.reinit(cell, f);
+              const FEFaceValues<dim> &fe_face_values
+                = hp_face_values.get_present_fe_values();
+              local_dof_indices.resize(fe.n_dofs_per_cell());
               cell->get_dof_indices(local_dof_indices);
               // phi_i(x_q) JxW_q, for the weight (component 0) and for each
               // component of the weighted normal.
@@ -169,13 +173,13 @@ namespace ViscoContact
   template <int dim>
   void
   ContactSet<dim>::setup(const std::vector<ContactZoneDescription<dim>> &zones,
-                         const Mapping<dim>              &mapping,
-                         const DoFHandler<dim>           &dof_handler,
-                         const DoFHandler<dim>           &scalar_dof_handler,
-                         const Quadrature<dim - 1>       &face_quadrature,
-                         const AffineConstraints<double> &constraints,
-                         const AffineConstraints<double> &hanging_constraints,
-                         const VectorType                &layout)
+                         const hp::MappingCollection<dim> &mapping,
+                         const DoFHandler<dim>            &dof_handler,
+                         const DoFHandler<dim>            &scalar_dof_handler,
+                         const hp::QCollection<dim - 1>   &face_quadrature,
+                         const AffineConstraints<double>  &constraints,
+                         const AffineConstraints<double>  &hanging_constraints,
+                         const VectorType                 &layout)
   {
     // The lumped weights and weighted normals of all vertices of Gamma_3 (of
     // every zone), in the displacement layout, with the values of hanging
@@ -467,7 +471,9 @@ namespace ViscoContact
                 {
                   NodeGeometry node;
                   for (unsigned int c = 0; c < dim; ++c)
-                    node.dofs[c] = cell->face(f)->vertex_dof_index(v, c);
+                    node.dofs[c]
+                      = cell->face(f)
+                          ->vertex_dof_index(v, c, cell->active_fe_index());
                   // A vertex becomes a node of this rank if this rank owns it
                   // (its dim dofs have the same owner, so the x-dof decides),
                   // it has not been taken already, and not all of its
@@ -547,8 +553,10 @@ namespace ViscoContact
                                 cell->level(),
                                 cell->index(),
                                 &scalar_dof_handler);
-                  node.scalar_dof
-                    = scalar_cell->face(f)->vertex_dof_index(v, 0);
+                  node.scalar_dof = scalar_cell->face(f)->vertex_dof_index(
+                    v,
+                    0,
+                    scalar_cell->active_fe_index());
                   geometry.push_back(node);
                 }
     return problem;
@@ -1134,16 +1142,16 @@ namespace ViscoContact
 
   // The instantiations for 2D and 3D.
   template void
-  assemble_lumped_weights(const Mapping<2> &,
+  assemble_lumped_weights(const hp::MappingCollection<2> &,
                           const DoFHandler<2> &,
-                          const Quadrature<1> &,
+                          const hp::QCollection<1> &,
                           const std::vector<types::boundary_id> &,
                           VectorType &,
                           VectorType &);
   template void
-  assemble_lumped_weights(const Mapping<3> &,
+  assemble_lumped_weights(const hp::MappingCollection<3> &,
                           const DoFHandler<3> &,
-                          const Quadrature<2> &,
+                          const hp::QCollection<2> &,
                           const std::vector<types::boundary_id> &,
                           VectorType &,
                           VectorType &);

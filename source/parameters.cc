@@ -338,11 +338,17 @@ namespace ViscoContact
           prm,
           "Cell type",
           cell_type,
-          {{"simplex", CellType::simplex}, {"hypercube", CellType::hypercube}},
+          {{"simplex", CellType::simplex},
+           {"hypercube", CellType::hypercube},
+           {"mixed", CellType::mixed}},
           "simplex: triangles/tetrahedra (see Simplex pattern), P1 "
           "displacement, piecewise-constant stress; hypercube: "
           "quadrilaterals/hexahedra, Q1 displacement, stresses at the 2^dim "
-          "Gauss points.");
+          "Gauss points; mixed: a Mesh file with both (say one body of "
+          "each, joined by a contact pair), each cell with its element "
+          "(every cell carries 2^dim stress points, a simplex as many copies "
+          "of its one). Mixed meshes run on the condensed and full space "
+          "back ends, without mesh refinement, initial or step cycles.");
         add_selection(
           prm,
           "Simplex pattern",
@@ -445,9 +451,27 @@ namespace ViscoContact
                 "Geometry",
                 "Contact refinement levels",
                 prm.get("Contact refinement levels"),
-                "0 for Cell type = simplex (deal.II 9.4 has no hanging-node "
-                "constraints on simplices); any number up to 20 for "
-                "hypercube meshes");
+                "0 for Cell type = simplex or mixed (deal.II 9.4 has no "
+                "hanging-node constraints on simplices); any number up to 20 "
+                "for hypercube meshes");
+        // A mixed mesh comes from a file, and is the run's mesh: deal.II
+        // 9.4 refines triangles next to quadrilaterals without a
+        // guarantee of consistent faces.
+        if (cell_type == CellType::mixed)
+          {
+            require(!mesh_file.empty(),
+                    "Geometry",
+                    "Cell type",
+                    "mixed",
+                    "simplex or hypercube for the generated box; mixed "
+                    "needs a Mesh file with both kinds of cells");
+            require(global_refinements == 0,
+                    "Geometry",
+                    "Global refinements",
+                    prm.get("Global refinements"),
+                    "0 when Cell type = mixed (the mesh file is the run's "
+                    "mesh)");
+          }
       }
       prm.leave_subsection();
     }
@@ -2113,9 +2137,9 @@ namespace ViscoContact
               "Linear solver",
               "Method",
               "matrix free",
-              "auto, condensed or full space when Cell type = simplex "
-              "(subsection <Geometry>): the matrix-free back end's multigrid "
-              "needs hypercube cells");
+              "auto, condensed or full space when Cell type = simplex or "
+              "mixed (subsection <Geometry>): the matrix-free back end's "
+              "multigrid needs hypercube cells");
       require(stress_update == StressUpdate::explicit_euler,
               "Linear solver",
               "Method",
@@ -2217,7 +2241,8 @@ namespace ViscoContact
                 "Mesh adaptation",
                 "Adaptive refinement",
                 "true",
-                "false when Cell type = simplex or a convergence study runs "
+                "false when Cell type = simplex or mixed or a convergence "
+                "study runs "
                 "(adaptive meshes need hypercube cells on p4est: deal.II "
                 "9.4's fully distributed triangulation of triangles and "
                 "tetrahedra cannot refine)");

@@ -49,6 +49,8 @@
 #include <deal.II/fe/fe.h>
 #include <deal.II/fe/fe_values.h>
 
+#include <deal.II/hp/fe_values.h>
+
 #include <deal.II/grid/grid_tools.h>
 
 #include <deal.II/lac/full_matrix.h>
@@ -196,23 +198,28 @@ namespace ViscoContact
     // a dof to evaluate.
     template <int dim>
     std::vector<ModeValues<dim>>
-    modes_at_support_points(const Mapping<dim>                  &mapping,
+    modes_at_support_points(const hp::MappingCollection<dim>    &mapping,
                             const DoFHandler<dim>               &dof_handler,
                             const IndexSet                      &to_evaluate,
                             const std::vector<unsigned int>     &cell_bodies,
                             const std::vector<BoundingBox<dim>> &boxes)
     {
-      const FiniteElement<dim>    &fe = dof_handler.get_fe();
       std::vector<ModeValues<dim>> values(to_evaluate.n_elements());
       std::vector<bool>            evaluated(to_evaluate.n_elements(), false);
-      FEValues<dim>                fe_values(mapping,
-                              fe,
-                              Quadrature<dim>(fe.get_unit_support_points()),
-                              update_quadrature_points);
-      std::vector<types::global_dof_index> dof_indices(fe.n_dofs_per_cell());
+      hp::QCollection<dim>         support_points;
+      for (const auto &element : dof_handler.get_fe_collection())
+        support_points.push_back(
+          Quadrature<dim>(element.get_unit_support_points()));
+      hp::FEValues<dim>                    hp_fe_values(mapping,
+                                     dof_handler.get_fe_collection(),
+                                     support_points,
+                                     update_quadrature_points);
+      std::vector<types::global_dof_index> dof_indices;
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (!cell->is_artificial())
           {
+            const FiniteElement<dim> &fe = cell->get_fe();
+            dof_indices.resize(fe.n_dofs_per_cell());
             cell->get_dof_indices(dof_indices);
             bool reinitialized = false;
             for (unsigned int k = 0; k < dof_indices.size(); ++k)
@@ -222,8 +229,10 @@ namespace ViscoContact
                   if (evaluated[n])
                     continue;
                   if (!reinitialized)
-                    fe_values.reinit(cell);
+                    hp_fe_values.reinit(cell);
                   reinitialized = true;
+                  const FEValues<dim> &fe_values
+                    = hp_fe_values.get_present_fe_values();
                   const BoundingBox<dim> &box
                     = boxes[cell_bodies[cell->active_cell_index()]];
                   values[n]
@@ -482,17 +491,17 @@ namespace ViscoContact
   // ranks; (5) its null space and the names of the motions.
   template <int dim>
   std::vector<FreeBody<dim>>
-  free_rigid_motions(const Mapping<dim>              &mapping,
-                     const DoFHandler<dim>           &dof_handler,
-                     const AffineConstraints<double> &constraints,
-                     const MPI_Comm                   communicator)
+  free_rigid_motions(const hp::MappingCollection<dim> &mapping,
+                     const DoFHandler<dim>            &dof_handler,
+                     const AffineConstraints<double>  &constraints,
+                     const MPI_Comm                    communicator)
   {
-    constexpr unsigned int    n_modes = n_rigid_modes<dim>;
-    const FiniteElement<dim> &fe      = dof_handler.get_fe();
-    AssertThrow(fe.n_components() == dim && fe.is_primitive()
-                  && fe.has_support_points(),
-                ExcMessage("free_rigid_motions() needs a primitive element "
-                           "with dim components and support points."));
+    constexpr unsigned int n_modes = n_rigid_modes<dim>;
+    for (const auto &fe : dof_handler.get_fe_collection())
+      AssertThrow(fe.n_components() == dim && fe.is_primitive()
+                    && fe.has_support_points(),
+                  ExcMessage("free_rigid_motions() needs primitive elements "
+                             "with dim components and support points."));
 
     // (0) The bodies, and the body of every constrained dof this rank owns
     // (a constraint couples dofs of one body only).
@@ -506,10 +515,11 @@ namespace ViscoContact
                    communicator);
     const IndexSet &owned = dof_handler.locally_owned_dofs();
     std::map<types::global_dof_index, unsigned int> line_body;
-    std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+    std::vector<types::global_dof_index>            cell_dofs;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
+          cell_dofs.resize(cell->get_fe().n_dofs_per_cell());
           cell->get_dof_indices(cell_dofs);
           for (const auto i : cell_dofs)
             if (owned.is_element(i) && constraints.is_constrained(i))
@@ -632,12 +642,12 @@ namespace ViscoContact
   template std::vector<unsigned int>
   body_of_cells(const Triangulation<3> &, const MPI_Comm, unsigned int &);
   template std::vector<FreeBody<2>>
-  free_rigid_motions(const Mapping<2> &,
+  free_rigid_motions(const hp::MappingCollection<2> &,
                      const DoFHandler<2> &,
                      const AffineConstraints<double> &,
                      const MPI_Comm);
   template std::vector<FreeBody<3>>
-  free_rigid_motions(const Mapping<3> &,
+  free_rigid_motions(const hp::MappingCollection<3> &,
                      const DoFHandler<3> &,
                      const AffineConstraints<double> &,
                      const MPI_Comm);

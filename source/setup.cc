@@ -11,6 +11,8 @@
 
 #include <deal.II/fe/fe_values.h>
 
+#include <deal.II/hp/fe_values.h>
+
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparsity_tools.h>
 
@@ -63,7 +65,7 @@ namespace ViscoContact
         const unsigned int group_size
           = mesh_group_size(parameters, mpi_communicator);
         pcout << "Mesh built in " << timer.wall_time() << " s";
-        if (parameters.cell_type == Parameters::CellType::simplex)
+        if (parameters.cell_type != Parameters::CellType::hypercube)
           pcout << " (one rank in every " << group_size
                 << " builds the whole mesh and hands out the parts)";
         pcout << std::endl;
@@ -105,12 +107,14 @@ namespace ViscoContact
     if (report_memory)
       report.record_peak_memory("after the operator");
     setup_stress_points();
-    prescribed.reinit(mapping,
+    prescribed.reinit(discretisation.mapping,
                       dof_handler,
                       locally_relevant_dofs,
                       stress_points,
                       solution);
-    prescribed.check_rigid_motions(mapping, dof_handler, constraints);
+    prescribed.check_rigid_motions(discretisation.mapping,
+                                   dof_handler,
+                                   constraints);
     setup_contact();
     if (report_memory)
       report.record_peak_memory("after the stress points and contact nodes");
@@ -138,9 +142,10 @@ namespace ViscoContact
       // displacement, and a scalar one with one dof per vertex for the nodal
       // contact fields of the output.
       dof_handler.reinit(*triangulation);
-      dof_handler.distribute_dofs(*fe);
+      discretisation.distribute_dofs(dof_handler, discretisation.fe);
       scalar_dof_handler.reinit(*triangulation);
-      scalar_dof_handler.distribute_dofs(*scalar_fe);
+      discretisation.distribute_dofs(scalar_dof_handler,
+                                     discretisation.scalar_fe);
       IndexSet scalar_relevant;
       DoFTools::extract_locally_relevant_dofs(scalar_dof_handler,
                                               scalar_relevant);
@@ -163,7 +168,7 @@ namespace ViscoContact
       // every right-hand side of the run; the prescribed values enter each
       // step as a lifting (set_dirichlet_values()). Hanging nodes appear
       // where the mesh is refined toward Gamma_3.
-      prescribed.make_constraints(mapping,
+      prescribed.make_constraints(discretisation.mapping,
                                   dof_handler,
                                   locally_relevant_dofs,
                                   constraints);
@@ -243,9 +248,9 @@ namespace ViscoContact
   ViscoplasticContact<dim>::assemble_elastic_operator()
   {
     TimerOutput::Scope t(report.timer(), "Setup: assemble elastic operator");
-    ViscoContact::assemble_elastic_operator(mapping,
+    ViscoContact::assemble_elastic_operator(discretisation.mapping,
                                             dof_handler,
-                                            stress_quadrature,
+                                            discretisation.stress_quadrature,
                                             materials.cell_elasticity(),
                                             constraints,
                                             stiffness_matrix);
@@ -266,14 +271,14 @@ namespace ViscoContact
   ViscoplasticContact<dim>::setup_stress_points()
   {
     TimerOutput::Scope t(report.timer(), "Setup: stress points");
-    stress_points.reinit(mapping,
+    stress_points.reinit(discretisation.mapping,
                          dof_handler,
-                         stress_quadrature,
+                         discretisation.stress_quadrature,
                          *solution.get_partitioner(),
                          constraints);
     materials.set_cells(stress_points.cells());
     quadrature_point_history.assign(std::size_t(stress_points.n_cells())
-                                      * stress_quadrature.size(),
+                                      * discretisation.n_stress_points(),
                                     QuadraturePointHistory<dim>());
   }
 
@@ -301,10 +306,10 @@ namespace ViscoContact
       return;
     TimerOutput::Scope t(report.timer(), "Setup: contact nodes");
     contact_set.setup(contact_zones.descriptions(),
-                      mapping,
+                      discretisation.mapping,
                       dof_handler,
                       scalar_dof_handler,
-                      face_quadrature,
+                      discretisation.face_quadrature,
                       constraints,
                       prescribed.hanging_node_constraints(),
                       solution);
@@ -322,9 +327,9 @@ namespace ViscoContact
         for (unsigned int i = 0; i < contact_set.size(); ++i)
           node_dofs.push_back(contact_set.node(i).dofs);
         contact_set.set_operator(
-          elastic_node_blocks<dim>(mapping,
+          elastic_node_blocks<dim>(discretisation.mapping,
                                    dof_handler,
-                                   stress_quadrature,
+                                   discretisation.stress_quadrature,
                                    materials.cell_elasticity(),
                                    node_dofs));
       }
@@ -350,7 +355,7 @@ namespace ViscoContact
         const IndexSet on_contact
           = DoFTools::extract_boundary_dofs(
               dof_handler,
-              fe->component_mask(FEValuesExtractors::Scalar(0)),
+              discretisation.fe.component_mask(FEValuesExtractors::Scalar(0)),
               std::set<types::boundary_id>(contact_ids.begin(),
                                            contact_ids.end()))
             & locally_owned_dofs;
@@ -394,7 +399,7 @@ namespace ViscoContact
     // from: the coarser meshes get the constraints of the same boundary
     // parts.
     const ElasticOperatorData<dim> operator_data{
-      mapping,
+      discretisation.mapping[0],
       dof_handler,
       constraints,
       [this](const types::material_id id) -> const SymmetricTensor<4, dim> & {
@@ -403,7 +408,7 @@ namespace ViscoContact
       [this](const DoFHandler<dim>     &level_dofs,
              const IndexSet            &relevant,
              AffineConstraints<double> &level_constraints) {
-        make_displacement_constraints(mapping,
+        make_displacement_constraints(discretisation.mapping,
                                       level_dofs,
                                       prescribed.parts().parts(),
                                       parameters.symmetry_ids,
@@ -412,7 +417,7 @@ namespace ViscoContact
       }};
     contact_solver = create_contact_solver<dim>(plan.back_end().method,
                                                 parameters,
-                                                mapping,
+                                                discretisation.mapping,
                                                 dof_handler,
                                                 solution,
                                                 operator_data,
@@ -545,18 +550,23 @@ namespace ViscoContact
   // not planar.
   template <int dim>
   Tensor<1, dim>
-  symmetry_plane_normal(const Mapping<dim>      &mapping,
-                        const DoFHandler<dim>   &dof_handler,
-                        const types::boundary_id id,
-                        const MPI_Comm           communicator)
+  symmetry_plane_normal(const hp::MappingCollection<dim> &mapping,
+                        const DoFHandler<dim>            &dof_handler,
+                        const types::boundary_id          id,
+                        const MPI_Comm                    communicator)
   {
-    const ReferenceCell cell_type = dof_handler.get_fe().reference_cell();
-    FEFaceValues<dim>   face_values(
-      mapping,
-      dof_handler.get_fe(),
-      cell_type.face_reference_cell(0)
-        .template get_gauss_type_quadrature<dim - 1>(1),
-      update_normal_vectors | update_JxW_values | update_quadrature_points);
+    // The midpoint rule of each element's faces.
+    hp::QCollection<dim - 1> midpoints;
+    for (const auto &element : dof_handler.get_fe_collection())
+      midpoints.push_back(element.reference_cell()
+                            .face_reference_cell(0)
+                            .template get_gauss_type_quadrature<dim - 1>(1));
+    hp::FEFaceValues<dim>                              hp_face_values(mapping,
+                                         dof_handler.get_fe_collection(),
+                                         midpoints,
+                                         update_normal_vectors
+                                           | update_JxW_values
+                                           | update_quadrature_points);
     std::vector<std::pair<Tensor<1, dim>, Point<dim>>> faces;
     Tensor<1, dim>                                     sum;
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -565,7 +575,9 @@ namespace ViscoContact
           if (cell->face(f)->at_boundary()
               && cell->face(f)->boundary_id() == id)
             {
-              face_values.reinit(cell, f);
+              hp_face_values.reinit(cell, f);
+              const FEFaceValues<dim> &face_values
+                = hp_face_values.get_present_fe_values();
               sum += face_values.normal_vector(0) * face_values.JxW(0);
               faces.emplace_back(face_values.normal_vector(0),
                                  face_values.quadrature_point(0));
@@ -611,7 +623,7 @@ namespace ViscoContact
     template <int dim>
     void
     make_symmetry_constraints(
-      const Mapping<dim>                    &mapping,
+      const hp::MappingCollection<dim>      &mapping,
       const DoFHandler<dim>                 &dof_handler,
       const std::vector<types::boundary_id> &symmetry_ids,
       AffineConstraints<double>             &constraints)
@@ -634,10 +646,11 @@ namespace ViscoContact
                 if (face->boundary_id() == symmetry_ids[p])
                   for (const unsigned int v : face->vertex_indices())
                     {
+                      const unsigned int element = cell->active_fe_index();
                       auto &[dofs, planes]
-                        = vertices[face->vertex_dof_index(v, 0)];
+                        = vertices[face->vertex_dof_index(v, 0, element)];
                       for (unsigned int c = 0; c < dim; ++c)
-                        dofs[c] = face->vertex_dof_index(v, c);
+                        dofs[c] = face->vertex_dof_index(v, c, element);
                       bool known = false;
                       for (const auto &n : planes)
                         known
@@ -717,7 +730,7 @@ namespace ViscoContact
   template <int dim>
   void
   make_displacement_constraints(
-    const Mapping<dim>                    &mapping,
+    const hp::MappingCollection<dim>      &mapping,
     const DoFHandler<dim>                 &dof_handler,
     const std::vector<DirichletPart>      &dirichlet_parts,
     const std::vector<types::boundary_id> &symmetry_ids,
@@ -760,7 +773,7 @@ namespace ViscoContact
   template class ViscoplasticContact<2>;
   template class ViscoplasticContact<3>;
   template void
-  make_displacement_constraints(const Mapping<2> &,
+  make_displacement_constraints(const hp::MappingCollection<2> &,
                                 const DoFHandler<2> &,
                                 const std::vector<DirichletPart> &,
                                 const std::vector<types::boundary_id> &,
@@ -768,17 +781,17 @@ namespace ViscoContact
                                 AffineConstraints<double> &,
                                 AffineConstraints<double> *);
   template Tensor<1, 2>
-  symmetry_plane_normal(const Mapping<2> &,
+  symmetry_plane_normal(const hp::MappingCollection<2> &,
                         const DoFHandler<2> &,
                         const types::boundary_id,
                         const MPI_Comm);
   template Tensor<1, 3>
-  symmetry_plane_normal(const Mapping<3> &,
+  symmetry_plane_normal(const hp::MappingCollection<3> &,
                         const DoFHandler<3> &,
                         const types::boundary_id,
                         const MPI_Comm);
   template void
-  make_displacement_constraints(const Mapping<3> &,
+  make_displacement_constraints(const hp::MappingCollection<3> &,
                                 const DoFHandler<3> &,
                                 const std::vector<DirichletPart> &,
                                 const std::vector<types::boundary_id> &,

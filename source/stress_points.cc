@@ -5,6 +5,8 @@
 
 #include <deal.II/fe/fe_values.h>
 
+#include <deal.II/hp/fe_values.h>
+
 #include "stress_points.h"
 
 #include <cmath>
@@ -31,13 +33,12 @@ namespace ViscoContact
     {
     public:
       CellShapes(
-        const Mapping<dim>       &mapping,
-        const FiniteElement<dim> &fe,
-        const Quadrature<dim>    &quadrature,
+        const hp::MappingCollection<dim> &mapping,
+        const hp::FECollection<dim>      &fe,
+        const hp::QCollection<dim>       &quadrature,
         const std::vector<typename DoFHandler<dim>::active_cell_iterator>
           &cells)
-        : fe(fe)
-        , cells(cells)
+        : cells(cells)
         , candidate(mapping,
                     fe,
                     quadrature,
@@ -54,7 +55,7 @@ namespace ViscoContact
              ++entry)
           {
             candidate.reinit(cells[representatives[entry->second]]);
-            if (same(values, values_of(candidate)))
+            if (same(values, values_of(candidate.get_present_fe_values())))
               return entry->second;
           }
         representatives.push_back(k);
@@ -71,8 +72,9 @@ namespace ViscoContact
       std::vector<double>
       values_of(const FEValues<dim> &fe_values) const
       {
-        std::vector<double> values;
-        double              JxW_scale = 0, gradient_scale = 0;
+        const FiniteElement<dim> &fe = fe_values.get_fe();
+        std::vector<double>       values;
+        double                    JxW_scale = 0, gradient_scale = 0;
         for (const unsigned int q : fe_values.quadrature_point_indices())
           {
             values.push_back(fe_values.JxW(q));
@@ -103,7 +105,7 @@ namespace ViscoContact
       std::size_t
       hash_of(const std::vector<double> &values) const
       {
-        const std::size_t n_JxW = candidate.n_quadrature_points;
+        const std::size_t n_JxW = n_points;
         const double scales[2]  = {values[values.size() - 2], values.back()};
         std::size_t  hash       = 0;
         const auto   add        = [&hash](const long long key) {
@@ -124,7 +126,10 @@ namespace ViscoContact
       bool
       same(const std::vector<double> &a, const std::vector<double> &b) const
       {
-        const std::size_t n_JxW     = candidate.n_quadrature_points;
+        // Cells of different types have different numbers of values.
+        if (a.size() != b.size())
+          return false;
+        const std::size_t n_JxW     = n_points;
         const double      scales[2] = {a[a.size() - 2], a.back()};
         for (std::size_t i = 0; i < a.size(); ++i)
           {
@@ -137,9 +142,12 @@ namespace ViscoContact
       }
 
 
-      const FiniteElement<dim>                                          &fe;
       const std::vector<typename DoFHandler<dim>::active_cell_iterator> &cells;
-      FEValues<dim>                                      candidate;
+      hp::FEValues<dim> candidate;
+      // The stress points of every cell (every element's quadrature has
+      // as many).
+      const std::size_t n_points
+        = candidate.get_quadrature_collection()[0].size();
       std::unordered_multimap<std::size_t, unsigned int> shapes_of_hash;
     };
   } // namespace
@@ -154,54 +162,67 @@ namespace ViscoContact
   template <int dim>
   void
   StressPointGeometry<dim>::reinit(
-    const Mapping<dim>                &mapping,
+    const hp::MappingCollection<dim>  &mapping,
     const DoFHandler<dim>             &dof_handler,
-    const Quadrature<dim>             &quadrature,
+    const hp::QCollection<dim>        &quadrature,
     const Utilities::MPI::Partitioner &partitioner,
     const AffineConstraints<double>   &constraints)
   {
-    this->constraints            = &constraints;
-    const FiniteElement<dim> &fe = dof_handler.get_fe();
+    this->constraints = &constraints;
     owned_cells.clear();
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         owned_cells.push_back(cell);
     const std::size_t n_cells = owned_cells.size();
-    n_points_per_cell         = quadrature.size();
+    n_points_per_cell         = quadrature[0].size();
     const unsigned int n_q    = n_points_per_cell;
+    for (const auto &rule : quadrature)
+      AssertThrow(rule.size() == n_q, ExcInternalError());
 
     // For the linear elements the scalar dofs of a cell are its vertices, so
-    // a cell has n_cell_vertices * dim displacement dofs.
-    n_cell_vertices = fe.base_element(0).n_dofs_per_cell();
+    // a cell has n_cell_vertices * dim displacement dofs. On a mesh of
+    // several cell types n_cell_vertices is the largest number: a cell with
+    // fewer vertices (a triangle among quadrilaterals) repeats the dofs of
+    // its first vertex in the places of the others, with zero gradients, so
+    // that they add nothing.
+    const hp::FECollection<dim> &elements = dof_handler.get_fe_collection();
+    n_cell_vertices                       = 0;
+    for (const auto &element : elements)
+      n_cell_vertices
+        = std::max(n_cell_vertices, element.base_element(0).n_dofs_per_cell());
     cell_local_dofs.resize(n_cells * n_cell_vertices * dim);
     cell_is_constrained.assign(n_cells, false);
     cell_shape.resize(n_cells);
-    FEValues<dim>                        fe_values(mapping,
-                            fe,
-                            quadrature,
-                            update_gradients | update_JxW_values);
-    std::vector<types::global_dof_index> dof_indices(fe.n_dofs_per_cell());
-    CellShapes<dim> shapes(mapping, fe, quadrature, owned_cells);
+    hp::FEValues<dim>                    hp_fe_values(mapping,
+                                   elements,
+                                   quadrature,
+                                   update_gradients | update_JxW_values);
+    std::vector<types::global_dof_index> dof_indices;
+    CellShapes<dim> shapes(mapping, elements, quadrature, owned_cells);
     for (std::size_t k = 0; k < n_cells; ++k)
       {
-        fe_values.reinit(owned_cells[k]);
+        const FiniteElement<dim> &fe = owned_cells[k]->get_fe();
+        hp_fe_values.reinit(owned_cells[k]);
+        dof_indices.resize(fe.n_dofs_per_cell());
         owned_cells[k]->get_dof_indices(dof_indices);
         // Every dof of an owned cell is locally relevant, so each has a
         // local index (owned or ghost). A cell with a constrained dof
         // (clamped, or hanging) is marked: its contributions must go
         // through the constraints.
+        const unsigned int n_a = fe.base_element(0).n_dofs_per_cell();
         for (unsigned int a = 0; a < n_cell_vertices; ++a)
           for (unsigned int d = 0; d < dim; ++d)
             {
               const types::global_dof_index dof
-                = dof_indices[fe.component_to_system_index(d, a)];
+                = dof_indices[fe.component_to_system_index(d, a < n_a ? a : 0)];
               cell_local_dofs[(k * n_cell_vertices + a) * dim + d]
                 = partitioner.global_to_local(dof);
               if (constraints.is_constrained(dof))
                 cell_is_constrained[k] = true;
             }
         // The cell's shape: that of an earlier cell with the same geometry.
-        cell_shape[k] = shapes.shape_of(fe_values, k);
+        cell_shape[k]
+          = shapes.shape_of(hp_fe_values.get_present_fe_values(), k);
       }
 
     // JxW and the gradients of the scalar shape functions N_a of each shape:
@@ -210,15 +231,20 @@ namespace ViscoContact
     // (eps(N_a e_c) = sym(e_c (x) grad N_a)).
     const std::vector<unsigned int> &representatives = shapes.representatives;
     stress_point_JxW.resize(representatives.size() * n_q);
-    stress_point_gradients.resize(representatives.size() * n_q
-                                  * n_cell_vertices);
+    stress_point_gradients.assign(representatives.size() * n_q
+                                    * n_cell_vertices,
+                                  Tensor<1, dim>());
     for (unsigned int shape = 0; shape < representatives.size(); ++shape)
       {
-        fe_values.reinit(owned_cells[representatives[shape]]);
+        const auto               &cell = owned_cells[representatives[shape]];
+        const FiniteElement<dim> &fe   = cell->get_fe();
+        hp_fe_values.reinit(cell);
+        const FEValues<dim> &fe_values = hp_fe_values.get_present_fe_values();
         for (unsigned int q = 0; q < n_q; ++q)
           {
             stress_point_JxW[shape * n_q + q] = fe_values.JxW(q);
-            for (unsigned int a = 0; a < n_cell_vertices; ++a)
+            for (unsigned int a = 0; a < fe.base_element(0).n_dofs_per_cell();
+                 ++a)
               stress_point_gradients[(shape * n_q + q) * n_cell_vertices + a]
                 = fe_values.shape_grad_component(
                   fe.component_to_system_index(0, a),

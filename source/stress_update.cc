@@ -285,7 +285,7 @@ namespace ViscoContact
     TimerOutput::Scope     t(report.timer(), "Stress update");
     const StressUpdateStep step
       = stress_update_step(parameters, current_time_step, next_time_step);
-    const unsigned int n_q     = stress_quadrature.size();
+    const unsigned int n_q     = discretisation.n_stress_points();
     const unsigned int n_local = stress_points.n_vertices() * dim;
 
     // The work at the stress points is independent from point to point, so

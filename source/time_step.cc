@@ -424,7 +424,7 @@ namespace ViscoContact
   ViscoplasticContact<dim>::rescale_history_increment(const double old_step,
                                                       const double new_step)
   {
-    const unsigned int n_q = stress_quadrature.size();
+    const unsigned int n_q = discretisation.n_stress_points();
     for (unsigned int k = 0; k < stress_points.cells().size(); ++k)
       if (materials.of_cell(k).is_plastic())
         for (unsigned int q = 0; q < n_q; ++q)

@@ -5,9 +5,6 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
-#include <deal.II/fe/fe_q.h>
-#include <deal.II/fe/fe_simplex_p.h>
-#include <deal.II/fe/fe_system.h>
 
 #include "scene/loads.h"
 #include "mesh/mesh.h"
@@ -27,76 +24,39 @@
 
 namespace ViscoContact
 {
-  namespace
-  {
-    // The two helpers of the constructor's initialiser list, which must decide
-    // before the body runs: the reference cell named by the parameter file's
-    // Cell type, and the scalar linear Lagrange element on it (P1 on triangles
-    // and tetrahedra, Q1 on quadrilaterals and hexahedra). The displacement
-    // element is dim copies of the scalar one (FESystem); the scalar one alone
-    // carries the nodal contact fields of the output.
-    template <int dim>
-    ReferenceCell
-    reference_cell_of(const Parameters::AllParameters &parameters)
-    {
-      return parameters.cell_type == Parameters::CellType::simplex
-               ? ReferenceCells::get_simplex<dim>()
-               : ReferenceCells::get_hypercube<dim>();
-    }
-
-    template <int dim>
-    std::unique_ptr<FiniteElement<dim>>
-    linear_element(const ReferenceCell &cell)
-    {
-      if (cell.is_simplex())
-        return std::make_unique<FE_SimplexP<dim>>(1);
-      return std::make_unique<FE_Q<dim>>(1);
-    }
-  } // namespace
 
 
 
   // @sect4{ViscoplasticContact::ViscoplasticContact}
   //
   // The choice between simplices and hypercubes is made here, once: the
-  // reference cell gives the mapping, the finite element (P1 or Q1) and the
-  // quadratures, and everything else is written for either. On simplices the P1
-  // strain is constant per cell and one stress point per cell is the
-  // piecewise-constant stress space; on hypercubes the stresses live at the
-  // 2^dim Gauss points (doc/model.md, section 2). The same stress quadrature is
-  // used to assemble K, so that (sigma, eps(v)) summed over the stress points
-  // is exactly (K u)(v) + (H, eps(v)): the operator and the history load are
-  // integrated alike.
+  // cell types give the mappings, the finite elements (P1 or Q1) and the
+  // quadratures (discretisation.h), and everything else is written for
+  // either. On simplices the P1 strain is constant per cell and one stress
+  // point per cell is the piecewise-constant stress space; on hypercubes the
+  // stresses live at the 2^dim Gauss points (doc/model.md, section 2). The
+  // same stress quadrature is used to assemble K, so that (sigma, eps(v))
+  // summed over the stress points is exactly (K u)(v) + (H, eps(v)): the
+  // operator and the history load are integrated alike.
   //
-  // The loads get a quadrature of their own (deal.II's Gauss-type rule of order
-  // 2 for the cell type), and the face quadrature is built on the reference
-  // face of the cell type (all faces of a cell have the same shape here).
-  // Nothing is done with the mesh yet: the constructor creates the element and
-  // the quadratures, and builds the scene from the parameters (materials,
-  // loads, Dirichlet parts, contact zones); run() builds everything else.
+  // Nothing is done with the mesh yet: the constructor creates the elements
+  // and the quadratures, and builds the scene from the parameters
+  // (materials, loads, Dirichlet parts, contact zones); run() builds
+  // everything else.
   template <int dim>
   ViscoplasticContact<dim>::ViscoplasticContact(
     const Parameters::AllParameters &parameters,
     const MPI_Comm                   communicator)
     : parameters(parameters)
     , mpi_communicator(communicator)
-    , mesh_group_root(parameters.cell_type == Parameters::CellType::simplex
+    , mesh_group_root(parameters.cell_type != Parameters::CellType::hypercube
                       && Utilities::MPI::this_mpi_process(communicator)
                              % mesh_group_size(parameters, communicator)
                            == 0)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
     , report(this->parameters, communicator, pcout, mesh_group_root)
     , plan(this->parameters, communicator, mesh_group_root)
-    , reference_cell(reference_cell_of<dim>(parameters))
-    , mapping(reference_cell.template get_default_linear_mapping<dim>())
-    , fe(std::make_unique<FESystem<dim>>(*linear_element<dim>(reference_cell),
-                                         dim))
-    , scalar_fe(linear_element<dim>(reference_cell))
-    , stress_quadrature(reference_cell.template get_gauss_type_quadrature<dim>(
-        reference_cell.is_simplex() ? 1 : 2))
-    , load_quadrature(reference_cell.template get_gauss_type_quadrature<dim>(2))
-    , face_quadrature(reference_cell.face_reference_cell(0)
-                        .template get_gauss_type_quadrature<dim - 1>(2))
+    , discretisation(parameters.cell_type)
     , materials(parameters)
     , loads(parameters)
     , prescribed(parameters, communicator)
@@ -142,7 +102,7 @@ namespace ViscoContact
     output.open_folder(parameters, mpi_communicator);
     plan.check_memory();
     plan.choose_initial_cycles();
-    plan.choose_step_cycles(reference_cell.is_simplex());
+    plan.choose_step_cycles(discretisation.has_simplices());
     make_grid();
     StopSignals::stop_if_received(mpi_communicator, "after the mesh");
     setup_on_mesh();
@@ -222,7 +182,7 @@ namespace ViscoContact
   ViscoplasticContact<dim>::prepare_output()
   {
     plan.check_output_volume(triangulation->n_global_active_cells(),
-                             reference_cell.n_vertices(),
+                             discretisation.max_vertices(),
                              schedule.n_steps());
     StopSignals::stop_if_received(mpi_communicator,
                                   "before the output folder was prepared");

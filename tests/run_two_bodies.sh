@@ -21,9 +21,11 @@
 # on the full space back end (1e-7: its Krylov tolerance) two meshes, the
 # clearance, the layer and the friction, on 1 and 2 ranks; and on the
 # matrix-free back end (quadrilaterals) a mesh, an interference and the
-# friction, on 1 and 2 ranks. With
+# friction, on 1 and 2 ranks; the 3D variants; and simplices on one side,
+# hypercubes on the other (Cell type = mixed), 2D and 3D, condensed and
+# full space. With
 # "quick" as second argument (the Debug build): the
-# quadrilaterals 6:8 on 1 rank and the triangles 4:10 on 2.
+# quadrilaterals 6:8 on 1 rank, the triangles 4:10 and the mixed mesh on 2.
 #   run_two_bodies.sh EXECUTABLE [quick]
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
@@ -148,6 +150,13 @@ for mesh_ranks in $meshes_to_run; do
   check_both_sides "$mesh, $ranks rank(s)"
   n=$((n + 1))
 done
+# Simplices on one side, hypercubes on the other (Cell type = mixed): a
+# base of triangles under a pad of quadrilaterals.
+variant two_blocks_mixed_6_8 | set_entry "Cell type" mixed > variant.prm
+run_scene variant.prm 2 "mixed 6:8, 2 ranks"
+check "mixed 6:8, 2 ranks" 0 0
+check_both_sides "mixed 6:8, 2 ranks"
+n=$((n + 1))
 if [ "$quick" = quick ]; then
   axis=z
   sed -e "s|\.\./meshes/two_blocks_hexahedron_6_8|$meshes/two_blocks_tetrahedron_4_10|" \
@@ -341,4 +350,21 @@ sliding_3d | matrix_free > variant.prm
 run_scene variant.prm 1 "3D, matrix free, Coulomb friction"
 check_sliding "3D, matrix free, Coulomb friction" 45
 
-echo "The two-body patch test is exact on $n meshes (2D and 3D), with the coarse side as the zone, a clearance, an interference and a compliant layer; Coulomb friction between the bodies slides at mu N; the full space and matrix-free back ends agree."
+# Mixed meshes on the full space back end, and in 3D: a base of hexahedra
+# under a pad of tetrahedra.
+axis=y tolerance=1e-7
+variant two_blocks_mixed_6_8 | set_entry "Cell type" mixed | full_space > variant.prm
+run_scene variant.prm 1 "full space, mixed 6:8"
+check "full space, mixed 6:8" 0 0
+axis=z tolerance=1e-9
+variant_3d two_blocks_mixed_3d_4_10 | set_entry "Cell type" mixed > variant.prm
+run_scene variant.prm 1 "3D, mixed 4:10"
+check "3D, mixed 4:10" 0 0
+check_both_sides "3D, mixed 4:10"
+n=$((n + 1))
+tolerance=1e-7
+variant_3d two_blocks_mixed_3d_4_10 | set_entry "Cell type" mixed | full_space > variant.prm
+run_scene variant.prm 2 "3D, full space, mixed 4:10, 2 ranks"
+check "3D, full space, mixed 4:10, 2 ranks" 0 0
+
+echo "The two-body patch test is exact on $n meshes (2D and 3D, simplices, hypercubes and both), with the coarse side as the zone, a clearance, an interference and a compliant layer; Coulomb friction between the bodies slides at mu N; the full space and matrix-free back ends agree."

@@ -494,9 +494,11 @@ check_lumped_weights(const bool simplex, const double angle)
   VectorType weights(complete_index_set(dof_handler.n_dofs()), MPI_COMM_SELF);
   VectorType normals(weights);
   assemble_lumped_weights<dim>(
-    cell.template get_default_linear_mapping<dim>(),
+    hp::MappingCollection<dim>(cell.template get_default_linear_mapping<dim>()),
     dof_handler,
-    cell.face_reference_cell(0).template get_gauss_type_quadrature<dim - 1>(2),
+    hp::QCollection<dim - 1>(
+      cell.face_reference_cell(0).template get_gauss_type_quadrature<dim - 1>(
+        2)),
     {7},
     weights,
     normals);
@@ -1248,9 +1250,9 @@ TEST(ActiveSetSolver, CondensationMatchesFullSpaceSolveAndKKT)
 
   // The free contact nodes (normal (0,-1): r = -u_y) and their weights.
   VectorType weights(complete_index_set(n), MPI_COMM_SELF), normals(weights);
-  assemble_lumped_weights<dim>(mapping,
+  assemble_lumped_weights<dim>(hp::MappingCollection<dim>(mapping),
                                dof_handler,
-                               face_quadrature,
+                               hp::QCollection<dim - 1>(face_quadrature),
                                {2},
                                weights,
                                normals);
@@ -2516,8 +2518,10 @@ namespace
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
     add_constraints(constraints);
     constraints.close();
-    const auto free
-      = free_rigid_motions(mapping, dof_handler, constraints, MPI_COMM_WORLD);
+    const auto free = free_rigid_motions(hp::MappingCollection<dim>(mapping),
+                                         dof_handler,
+                                         constraints,
+                                         MPI_COMM_WORLD);
     if (free.empty())
       return {};
     EXPECT_EQ(free.size(), 1u);
@@ -2720,7 +2724,7 @@ TEST(RigidMotions, TwoBodies)
           DoFTools::extract_locally_relevant_dofs(dof_handler));
         add(constraints);
         constraints.close();
-        return free_rigid_motions(mapping,
+        return free_rigid_motions(hp::MappingCollection<2>(mapping),
                                   dof_handler,
                                   constraints,
                                   MPI_COMM_WORLD);

@@ -7,6 +7,8 @@
 
 #include <deal.II/fe/mapping.h>
 
+#include <deal.II/hp/mapping_collection.h>
+
 #include <deal.II/lac/affine_constraints.h>
 
 #include <deal.II/lac/vector.h>
@@ -189,13 +191,13 @@ namespace ViscoContact
   // which needs the displacement's constraints.
   template <int dim>
   std::unique_ptr<ContactSolver<dim>>
-  create_contact_solver(const Parameters::Method         method,
-                        const Parameters::AllParameters &parameters,
-                        const Mapping<dim>              &mapping,
-                        const DoFHandler<dim>           &dof_handler,
-                        const VectorType                &layout,
-                        const ElasticOperatorData<dim>  &operator_data,
-                        const AffineConstraints<double> &constraints);
+  create_contact_solver(const Parameters::Method          method,
+                        const Parameters::AllParameters  &parameters,
+                        const hp::MappingCollection<dim> &mapping,
+                        const DoFHandler<dim>            &dof_handler,
+                        const VectorType                 &layout,
+                        const ElasticOperatorData<dim>   &operator_data,
+                        const AffineConstraints<double>  &constraints);
 
   // The constructors of the two back ends (condensed_contact_solver.cc,
   // full_space_contact_solver.cc), for create_contact_solver().
@@ -206,11 +208,11 @@ namespace ViscoContact
   template <int dim>
   std::unique_ptr<ContactSolver<dim>>
   create_full_space_contact_solver(
-    const Parameters::AllParameters &parameters,
-    const Mapping<dim>              &mapping,
-    const DoFHandler<dim>           &dof_handler,
-    const VectorType                &layout,
-    const ElasticOperatorData<dim>  *matrix_free_data);
+    const Parameters::AllParameters  &parameters,
+    const hp::MappingCollection<dim> &mapping,
+    const DoFHandler<dim>            &dof_handler,
+    const VectorType                 &layout,
+    const ElasticOperatorData<dim>   *matrix_free_data);
 } // namespace ViscoContact
 
 #endif

@@ -5,7 +5,7 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
-#include <deal.II/fe/mapping.h>
+#include <deal.II/hp/mapping_collection.h>
 
 #include <deal.II/lac/trilinos_precondition.h>
 
@@ -37,11 +37,11 @@ namespace ViscoContact
 
   template <int dim>
   RigidBodyModes
-  compute_rigid_body_modes(const Mapping<dim>    &mapping,
-                           const DoFHandler<dim> &dof_handler,
-                           const Epetra_Map      &row_map,
-                           const MPI_Comm         communicator,
-                           const bool             per_body = false);
+  compute_rigid_body_modes(const hp::MappingCollection<dim> &mapping,
+                           const DoFHandler<dim>            &dof_handler,
+                           const Epetra_Map                 &row_map,
+                           const MPI_Comm                    communicator,
+                           const bool                        per_body = false);
 
   // ML's smoothed aggregation on matrix with the given near-null space:
   // elliptic settings when symmetric, nonsymmetric ones otherwise.

@@ -7,7 +7,8 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
-#include <deal.II/fe/mapping.h>
+#include <deal.II/hp/mapping_collection.h>
+#include <deal.II/hp/q_collection.h>
 
 #include <deal.II/lac/affine_constraints.h>
 
@@ -56,10 +57,10 @@ namespace ViscoContact
     // lexicographic in the coordinates, as the profile's. Collective.
     void
     setup(const std::vector<ContactZoneDescription<dim>> &zones,
-          const Mapping<dim>                             &mapping,
+          const hp::MappingCollection<dim>               &mapping,
           const DoFHandler<dim>                          &dof_handler,
           const DoFHandler<dim>                          &scalar_dof_handler,
-          const Quadrature<dim - 1>                      &face_quadrature,
+          const hp::QCollection<dim - 1>                 &face_quadrature,
           const AffineConstraints<double>                &hanging_constraints,
           const VectorType                               &layout);
 

@@ -6,7 +6,7 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
-#include <deal.II/fe/mapping.h>
+#include <deal.II/hp/mapping_collection.h>
 
 #include <deal.II/numerics/data_out.h>
 
@@ -42,7 +42,7 @@ namespace ViscoContact
     const std::string                                                 &stem,
     const unsigned int                                                 step,
     const std::vector<typename DoFHandler<dim>::active_cell_iterator> &cells,
-    const Mapping<dim>                                                &mapping,
+    const hp::MappingCollection<dim>                                  &mapping,
     OutputFolder  &output_folder,
     const MPI_Comm communicator);
 } // namespace ViscoContact

@@ -14,6 +14,11 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping.h>
 
+#include <deal.II/hp/fe_collection.h>
+#include <deal.II/hp/fe_values.h>
+#include <deal.II/hp/mapping_collection.h>
+#include <deal.II/hp/q_collection.h>
+
 #include <deal.II/lac/vector.h>
 
 #include "parameters.h"
@@ -96,21 +101,21 @@ namespace ViscoContact
     // no load. problem gets the first value that is not finite.
     bool
     cell_load(const typename DoFHandler<dim>::active_cell_iterator &cell,
-              FEValues<dim>                                        &fe_values,
-              FEFaceValues<dim> &fe_face_values,
-              Vector<double>    &cell_rhs,
-              std::string       &problem) const;
+              hp::FEValues<dim>                                    &fe_values,
+              hp::FEFaceValues<dim> &fe_face_values,
+              Vector<double>        &cell_rhs,
+              std::string           &problem) const;
     // Every load at the points of the cells the assembly evaluates, at the
     // time levels of the schedule's grid: the message for the first value
     // that is not finite, or an empty string (not collective).
     std::string
     first_non_finite_value(
       const std::vector<typename DoFHandler<dim>::active_cell_iterator> &cells,
-      const Mapping<dim>        &mapping,
-      const FiniteElement<dim>  &fe,
-      const Quadrature<dim>     &load_quadrature,
-      const Quadrature<dim - 1> &face_quadrature,
-      const TimeSchedule        &schedule);
+      const hp::MappingCollection<dim> &mapping,
+      const hp::FECollection<dim>      &fe,
+      const hp::QCollection<dim>       &load_quadrature,
+      const hp::QCollection<dim - 1>   &face_quadrature,
+      const TimeSchedule               &schedule);
 
   private:
     struct SurfacePart

@@ -10,7 +10,7 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
-#include <deal.II/fe/mapping.h>
+#include <deal.II/hp/mapping_collection.h>
 
 #include <deal.II/lac/affine_constraints.h>
 
@@ -75,27 +75,27 @@ namespace ViscoContact
     // the planes of symmetry, the hanging nodes), kept open for the values of
     // each step.
     void
-    make_constraints(const Mapping<dim>        &mapping,
-                     const DoFHandler<dim>     &dof_handler,
-                     const IndexSet            &locally_relevant_dofs,
-                     AffineConstraints<double> &constraints);
+    make_constraints(const hp::MappingCollection<dim> &mapping,
+                     const DoFHandler<dim>            &dof_handler,
+                     const IndexSet                   &locally_relevant_dofs,
+                     AffineConstraints<double>        &constraints);
     // A scene whose constraints leave a rigid motion of a body free (of
     // each connected component of the mesh) is refused on every rank,
     // naming the bodies and the motions (collective).
     void
-    check_rigid_motions(const Mapping<dim>              &mapping,
-                        const DoFHandler<dim>           &dof_handler,
-                        const AffineConstraints<double> &constraints) const;
+    check_rigid_motions(const hp::MappingCollection<dim> &mapping,
+                        const DoFHandler<dim>            &dof_handler,
+                        const AffineConstraints<double>  &constraints) const;
     // The owned and ghost dofs of every part with their support points, the
     // owned vertices of the planes of symmetry, and the owned cells the
     // lifting and the reactions integrate over (collective). layout gives
     // the partition of the displacement vectors.
     void
-    reinit(const Mapping<dim>             &mapping,
-           const DoFHandler<dim>          &dof_handler,
-           const IndexSet                 &locally_relevant_dofs,
-           const StressPointGeometry<dim> &stress_points,
-           const VectorType               &layout);
+    reinit(const hp::MappingCollection<dim> &mapping,
+           const DoFHandler<dim>            &dof_handler,
+           const IndexSet                   &locally_relevant_dofs,
+           const StressPointGeometry<dim>   &stress_points,
+           const VectorType                 &layout);
     // The hanging nodes alone (the contact nodes and the transfers of
     // nodal fields need them apart from the Dirichlet constraints).
     const AffineConstraints<double> &
@@ -161,7 +161,7 @@ namespace ViscoContact
 
   private:
     void
-    setup_roller_vertices(const Mapping<dim>                &mapping,
+    setup_roller_vertices(const hp::MappingCollection<dim>  &mapping,
                           const DoFHandler<dim>             &dof_handler,
                           const std::vector<bool>           &dirichlet_dof,
                           const Utilities::MPI::Partitioner &partitioner);

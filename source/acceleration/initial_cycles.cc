@@ -73,7 +73,7 @@ namespace ViscoContact
         // meshes, whose indicator also looks at the plastic zone of step 1's
         // stresses (computed here, on the mesh that is left behind).
         bool marked = true;
-        if (problem.reference_cell.is_simplex())
+        if (problem.discretisation.has_simplices())
           {
             // A simplex mesh is built anew, one coarsening less.
             problem.schedule = run_schedule;

@@ -194,7 +194,7 @@ namespace ViscoContact
                                                    problem.mpi_communicator);
     ViscoplasticContact<dim> &coarse = *coarser->problem;
     coarse.pcout.set_condition(false);
-    coarse.plan.choose_step_cycles(problem.reference_cell.is_simplex());
+    coarse.plan.choose_step_cycles(problem.discretisation.has_simplices());
     coarse.make_grid();
     coarse.setup_on_mesh();
     AssertThrow(coarse.contact_enabled == problem.contact_enabled
@@ -222,7 +222,7 @@ namespace ViscoContact
     // one refined).
     coarser->coarser_vertices.reinit(problem.scalar_partitioner);
     std::vector<types::global_dof_index> dofs(
-      problem.scalar_fe->n_dofs_per_cell());
+      problem.discretisation.scalar_fe[0].n_dofs_per_cell());
     for (const auto &cell : problem.scalar_dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {

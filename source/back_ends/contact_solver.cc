@@ -21,13 +21,13 @@ namespace ViscoContact
   // AMG.
   template <int dim>
   std::unique_ptr<ContactSolver<dim>>
-  create_contact_solver(const Parameters::Method         method,
-                        const Parameters::AllParameters &parameters,
-                        const Mapping<dim>              &mapping,
-                        const DoFHandler<dim>           &dof_handler,
-                        const VectorType                &layout,
-                        const ElasticOperatorData<dim>  &operator_data,
-                        const AffineConstraints<double> &constraints)
+  create_contact_solver(const Parameters::Method          method,
+                        const Parameters::AllParameters  &parameters,
+                        const hp::MappingCollection<dim> &mapping,
+                        const DoFHandler<dim>            &dof_handler,
+                        const VectorType                 &layout,
+                        const ElasticOperatorData<dim>   &operator_data,
+                        const AffineConstraints<double>  &constraints)
   {
     Assert(method != Parameters::Method::automatic, ExcInternalError());
     if (method == Parameters::Method::condensed)
@@ -56,7 +56,7 @@ namespace ViscoContact
   template std::unique_ptr<ContactSolver<2>>
   create_contact_solver(const Parameters::Method,
                         const Parameters::AllParameters &,
-                        const Mapping<2> &,
+                        const hp::MappingCollection<2> &,
                         const DoFHandler<2> &,
                         const VectorType &,
                         const ElasticOperatorData<2> &,
@@ -64,7 +64,7 @@ namespace ViscoContact
   template std::unique_ptr<ContactSolver<3>>
   create_contact_solver(const Parameters::Method,
                         const Parameters::AllParameters &,
-                        const Mapping<3> &,
+                        const hp::MappingCollection<3> &,
                         const DoFHandler<3> &,
                         const VectorType &,
                         const ElasticOperatorData<3> &,

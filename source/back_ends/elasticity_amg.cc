@@ -42,11 +42,11 @@ namespace ViscoContact
   // zero columns of the other body's modes in its coarse spaces).
   template <int dim>
   RigidBodyModes
-  compute_rigid_body_modes(const Mapping<dim>    &mapping,
-                           const DoFHandler<dim> &dof_handler,
-                           const Epetra_Map      &row_map,
-                           const MPI_Comm         communicator,
-                           const bool             per_body)
+  compute_rigid_body_modes(const hp::MappingCollection<dim> &mapping,
+                           const DoFHandler<dim>            &dof_handler,
+                           const Epetra_Map                 &row_map,
+                           const MPI_Comm                    communicator,
+                           const bool                        per_body)
   {
     // The location of every dof, and which vector component each locally
     // owned dof belongs to.
@@ -56,7 +56,7 @@ namespace ViscoContact
     for (unsigned int c = 0; c < dim; ++c)
       component_dofs[c]
         = DoFTools::extract_dofs(dof_handler,
-                                 dof_handler.get_fe().component_mask(
+                                 dof_handler.get_fe_collection().component_mask(
                                    FEValuesExtractors::Scalar(c)));
     // Three modes in 2D (two translations, one rotation), six in 3D, laid
     // out like the rows of the matrix, so that ML can read them next to it.
@@ -164,13 +164,13 @@ namespace ViscoContact
 
 
   template RigidBodyModes
-  compute_rigid_body_modes(const Mapping<2> &,
+  compute_rigid_body_modes(const hp::MappingCollection<2> &,
                            const DoFHandler<2> &,
                            const Epetra_Map &,
                            const MPI_Comm,
                            const bool);
   template RigidBodyModes
-  compute_rigid_body_modes(const Mapping<3> &,
+  compute_rigid_body_modes(const hp::MappingCollection<3> &,
                            const DoFHandler<3> &,
                            const Epetra_Map &,
                            const MPI_Comm,

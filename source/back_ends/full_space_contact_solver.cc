@@ -98,11 +98,11 @@ namespace ViscoContact
   class FullSpaceContactSolver : public ContactSolver<dim>
   {
   public:
-    FullSpaceContactSolver(const Parameters::AllParameters &parameters,
-                           const Mapping<dim>              &mapping,
-                           const DoFHandler<dim>           &dof_handler,
-                           const VectorType                &layout,
-                           const ElasticOperatorData<dim>  *matrix_free_data);
+    FullSpaceContactSolver(const Parameters::AllParameters  &parameters,
+                           const hp::MappingCollection<dim> &mapping,
+                           const DoFHandler<dim>            &dof_handler,
+                           const VectorType                 &layout,
+                           const ElasticOperatorData<dim>   *matrix_free_data);
 
     std::string
     description() const override;
@@ -260,11 +260,11 @@ namespace ViscoContact
     // Preconditioner (subsection Linear solver), Tolerance (subsection
     // Active set solver), and what the AMG needs to build the rigid-body
     // modes.
-    const Parameters::Preconditioner preconditioner_type;
-    const double                     tolerance;
-    const MPI_Comm                   communicator;
-    const Mapping<dim>              &mapping;
-    const DoFHandler<dim>           &dof_handler;
+    const Parameters::Preconditioner  preconditioner_type;
+    const double                      tolerance;
+    const MPI_Comm                    communicator;
+    const hp::MappingCollection<dim> &mapping;
+    const DoFHandler<dim>            &dof_handler;
 
     // The operator of the current step problems (owned by the caller: the
     // elastic matrix or the current tangent), whether it is symmetric (which
@@ -328,11 +328,11 @@ namespace ViscoContact
   // vector b takes its partition from layout.
   template <int dim>
   FullSpaceContactSolver<dim>::FullSpaceContactSolver(
-    const Parameters::AllParameters &parameters,
-    const Mapping<dim>              &mapping,
-    const DoFHandler<dim>           &dof_handler,
-    const VectorType                &layout,
-    const ElasticOperatorData<dim>  *matrix_free_data)
+    const Parameters::AllParameters  &parameters,
+    const hp::MappingCollection<dim> &mapping,
+    const DoFHandler<dim>            &dof_handler,
+    const VectorType                 &layout,
+    const ElasticOperatorData<dim>   *matrix_free_data)
     : preconditioner_type(parameters.preconditioner)
     , tolerance(parameters.tolerance)
     , communicator(layout.get_mpi_communicator())
@@ -1406,11 +1406,11 @@ namespace ViscoContact
   template <int dim>
   std::unique_ptr<ContactSolver<dim>>
   create_full_space_contact_solver(
-    const Parameters::AllParameters &parameters,
-    const Mapping<dim>              &mapping,
-    const DoFHandler<dim>           &dof_handler,
-    const VectorType                &layout,
-    const ElasticOperatorData<dim>  *matrix_free_data)
+    const Parameters::AllParameters  &parameters,
+    const hp::MappingCollection<dim> &mapping,
+    const DoFHandler<dim>            &dof_handler,
+    const VectorType                 &layout,
+    const ElasticOperatorData<dim>   *matrix_free_data)
   {
     return std::make_unique<FullSpaceContactSolver<dim>>(parameters,
                                                          mapping,
@@ -1421,13 +1421,13 @@ namespace ViscoContact
 
   template std::unique_ptr<ContactSolver<2>>
   create_full_space_contact_solver(const Parameters::AllParameters &,
-                                   const Mapping<2> &,
+                                   const hp::MappingCollection<2> &,
                                    const DoFHandler<2> &,
                                    const VectorType &,
                                    const ElasticOperatorData<2> *);
   template std::unique_ptr<ContactSolver<3>>
   create_full_space_contact_solver(const Parameters::AllParameters &,
-                                   const Mapping<3> &,
+                                   const hp::MappingCollection<3> &,
                                    const DoFHandler<3> &,
                                    const VectorType &,
                                    const ElasticOperatorData<3> *);

@@ -560,9 +560,9 @@ namespace ViscoContact
                                                relevant);
     coarse_matrix.reinit(owned, owned, dsp, communicator);
     assemble_elastic_operator(
-      data.mapping,
+      hp::MappingCollection<dim>(data.mapping),
       dof_handler,
-      QGauss<dim>(2),
+      hp::QCollection<dim>(QGauss<dim>(2)),
       ElasticityOfCell<dim>(
         [this](const typename DoFHandler<dim>::active_cell_iterator &cell)
           -> const SymmetricTensor<4, dim> & {
@@ -571,7 +571,7 @@ namespace ViscoContact
       constraints,
       coarse_matrix);
     const RigidBodyModes modes
-      = compute_rigid_body_modes(data.mapping,
+      = compute_rigid_body_modes(hp::MappingCollection<dim>(data.mapping),
                                  dof_handler,
                                  coarse_matrix.trilinos_matrix().RowMap(),
                                  communicator);

@@ -160,7 +160,8 @@ namespace ViscoContact
                     {
                       const auto [it, inserted]
                         = faces.slave_vertex_of_dof.emplace(
-                          cell->face(f)->vertex_dof_index(v, 0),
+                          cell->face(f)
+                            ->vertex_dof_index(v, 0, cell->active_fe_index()),
                           faces.slave.vertices.size());
                       if (inserted)
                         faces.slave.vertices.push_back(
@@ -176,11 +177,16 @@ namespace ViscoContact
                     {
                       const unsigned int v = order[n];
                       face[n].location     = cell->face(f)->vertex(v);
-                      face[n].x_dof = cell->face(f)->vertex_dof_index(v, 0);
+                      face[n].x_dof
+                        = cell->face(f)
+                            ->vertex_dof_index(v, 0, cell->active_fe_index());
                       for (unsigned int c = 0; c < dim; ++c)
                         {
                           const types::global_dof_index dof
-                            = cell->face(f)->vertex_dof_index(v, c);
+                            = cell->face(f)->vertex_dof_index(
+                              v,
+                              c,
+                              cell->active_fe_index());
                           if (!constraints.is_constrained(dof))
                             face[n].components[c] = {{dof, 1.}};
                           else if (const auto *entries

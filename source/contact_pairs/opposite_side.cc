@@ -20,10 +20,10 @@ namespace ViscoContact
   void
   OppositeSide<dim>::setup(
     const std::vector<ContactZoneDescription<dim>> &zones,
-    const Mapping<dim>                             &mapping,
+    const hp::MappingCollection<dim>               &mapping,
     const DoFHandler<dim>                          &dof_handler,
     const DoFHandler<dim>                          &scalar_dof_handler,
-    const Quadrature<dim - 1>                      &face_quadrature,
+    const hp::QCollection<dim - 1>                 &face_quadrature,
     const AffineConstraints<double>                &hanging_constraints,
     const VectorType                               &layout)
   {
@@ -54,7 +54,9 @@ namespace ViscoContact
             for (const unsigned int v : cell->face(f)->vertex_indices())
               {
                 const types::global_dof_index x_dof
-                  = cell->face(f)->vertex_dof_index(v, 0);
+                  = cell->face(f)->vertex_dof_index(v,
+                                                    0,
+                                                    cell->active_fe_index());
                 if (!partitioner->in_local_range(x_dof) || weights(x_dof) <= 0
                     || !seen.insert(x_dof).second)
                   continue;
@@ -64,7 +66,8 @@ namespace ViscoContact
                 for (unsigned int c = 0; c < dim; ++c)
                   {
                     const types::global_dof_index dof
-                      = cell->face(f)->vertex_dof_index(v, c);
+                      = cell->face(f)
+                          ->vertex_dof_index(v, c, cell->active_fe_index());
                     vertex.local_dofs[c] = partitioner->global_to_local(dof);
                     vertex.normal[c]     = weighted_normals(dof);
                   }
@@ -77,7 +80,8 @@ namespace ViscoContact
                               cell->index(),
                               &scalar_dof_handler);
                 vertex.scalar_dof
-                  = scalar_cell->face(f)->vertex_dof_index(v, 0);
+                  = scalar_cell->face(f)
+                      ->vertex_dof_index(v, 0, scalar_cell->active_fe_index());
                 vertices.push_back(vertex);
               }
     std::sort(vertices.begin(),

@@ -472,18 +472,20 @@ namespace ViscoContact
                                  "4, ASCII) of a "
                                + std::to_string(dim)
                                + "D mesh. The reader says: " + reader_message));
-        // One cell of the wrong type is enough to reject the file.
+        // One cell of the wrong type is enough to reject the file (with
+        // Cell type = mixed, every type is right).
+        const bool mixed = parameters.cell_type == Parameters::CellType::mixed;
         for (const auto &cell : checked_mesh.active_cell_iterators())
-          AssertThrow(cell->reference_cell().is_simplex() == simplex,
-                      ExcMessage(
-                        "Invalid parameter <Mesh file> in subsection "
-                        "<Geometry>: value <"
-                        + file + ">: it has "
-                        + cell->reference_cell().to_string()
-                        + " cells; accepted: a mesh of "
-                        + (simplex ? "simplices" : "quadrilaterals/hexahedra")
-                        + " only, as <Cell type> = "
-                        + (simplex ? "simplex" : "hypercube") + " requires."));
+          AssertThrow(
+            mixed || cell->reference_cell().is_simplex() == simplex,
+            ExcMessage(
+              "Invalid parameter <Mesh file> in subsection "
+              "<Geometry>: value <"
+              + file + ">: it has " + cell->reference_cell().to_string()
+              + " cells; accepted: a mesh of "
+              + (simplex ? "simplices" : "quadrilaterals/hexahedra")
+              + " only, as <Cell type> = " + (simplex ? "simplex" : "hypercube")
+              + " requires (Cell type = mixed takes both)."));
         // Coincident nodes, conformity.
         // except between the two sides of a contact pair, whose ids must
         // then be on the mesh (every rank reads the whole file).
@@ -705,7 +707,7 @@ namespace ViscoContact
                           const bool                       multigrid_hierarchy)
   {
     std::unique_ptr<parallel::DistributedTriangulationBase<dim>> mesh;
-    if (parameters.cell_type == Parameters::CellType::simplex)
+    if (parameters.cell_type != Parameters::CellType::hypercube)
       {
         // Simplices: the group roots build and refine the whole mesh
         // serially and partition it into one part per rank (METIS sets the

@@ -257,9 +257,9 @@ namespace ViscoContact
   {
     Vector<float> indicators(problem.triangulation->n_active_cells());
     KellyErrorEstimator<dim>::estimate(
-      problem.mapping,
+      problem.discretisation.mapping[0],
       problem.dof_handler,
-      problem.face_quadrature,
+      problem.discretisation.face_quadrature,
       std::map<types::boundary_id, const Function<dim> *>(),
       problem.solution,
       indicators);
@@ -272,7 +272,7 @@ namespace ViscoContact
     VectorType touches_plastic(problem.scalar_partitioner),
       touches_elastic(problem.scalar_partitioner),
       contact_state(problem.scalar_partitioner);
-    const unsigned int n_q            = problem.stress_quadrature.size();
+    const unsigned int n_q = problem.discretisation.n_stress_points();
     const auto         scalar_cell_of = [&](const auto &cell) {
       return typename DoFHandler<dim>::active_cell_iterator(
         &problem.dof_handler.get_triangulation(),
@@ -515,7 +515,7 @@ namespace ViscoContact
     std::optional<StressPointCellTransfer<dim>> stress_point_transfer;
     if (transfer_stress_points)
       stress_point_transfer.emplace(mesh,
-                                    problem.stress_quadrature,
+                                    problem.discretisation.stress_quadrature[0],
                                     problem.stress_points.cells(),
                                     problem.quadrature_point_history);
 
@@ -616,7 +616,10 @@ namespace ViscoContact
     std::vector<unsigned int>            point_components;
     {
       DoFHandler<dim> next_dofs(*next_mesh);
-      next_dofs.distribute_dofs(*problem.fe);
+      // (Simplex or hypercube meshes only: Cell type = mixed has no
+      // initial cycles.)
+      const FiniteElement<dim> &fe = problem.discretisation.fe[0];
+      next_dofs.distribute_dofs(fe);
       const std::vector<types::boundary_id> contact_ids
         = problem.parameters.all_contact_ids();
       const IndexSet owned = next_dofs.locally_owned_dofs()
@@ -625,14 +628,13 @@ namespace ViscoContact
                                ComponentMask(),
                                std::set<types::boundary_id>(contact_ids.begin(),
                                                             contact_ids.end()));
-      FEValues<dim>                        support_values(problem.mapping,
-                                   *problem.fe,
+      FEValues<dim> support_values(problem.discretisation.mapping[0],
+                                   fe,
                                    Quadrature<dim>(
-                                     problem.fe->get_unit_support_points()),
+                                     fe.get_unit_support_points()),
                                    update_quadrature_points);
-      std::vector<types::global_dof_index> cell_dofs(
-        problem.fe->n_dofs_per_cell());
-      std::vector<bool> seen(owned.n_elements(), false);
+      std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+      std::vector<bool>                    seen(owned.n_elements(), false);
       for (const auto &cell : next_dofs.active_cell_iterators())
         if (cell->is_locally_owned())
           {
@@ -645,7 +647,7 @@ namespace ViscoContact
                   seen[owned.index_within_set(cell_dofs[i])] = true;
                   point_dofs.push_back(cell_dofs[i]);
                   point_components.push_back(
-                    problem.fe->system_to_component_index(i).first);
+                    fe.system_to_component_index(i).first);
                   points.push_back(support_values.quadrature_point(i));
                 }
           }
@@ -659,7 +661,9 @@ namespace ViscoContact
     std::vector<Tensor<1, dim>> u_values, pressure_values;
     {
       Utilities::MPI::RemotePointEvaluation<dim> evaluation;
-      evaluation.reinit(points, *problem.triangulation, problem.mapping);
+      evaluation.reinit(points,
+                        *problem.triangulation,
+                        problem.discretisation.mapping[0]);
       u_values        = VectorTools::point_values<dim>(evaluation,
                                                 problem.dof_handler,
                                                 problem.solution);
@@ -715,7 +719,7 @@ namespace ViscoContact
     [[maybe_unused]] const std::set<CellId>         &refined_parents)
   {
 #ifdef DEBUG
-    const unsigned int n_q = problem.stress_quadrature.size();
+    const unsigned int n_q = problem.discretisation.n_stress_points();
     if (problem.parameters.implicit_update()
         && problem.parameters.mesh_file.empty())
       for (unsigned int k = 0; k < problem.stress_points.cells().size(); ++k)

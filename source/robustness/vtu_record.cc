@@ -22,7 +22,7 @@ namespace ViscoContact
     const std::string                                                 &stem,
     const unsigned int                                                 step,
     const std::vector<typename DoFHandler<dim>::active_cell_iterator> &cells,
-    const Mapping<dim>                                                &mapping,
+    const hp::MappingCollection<dim>                                  &mapping,
     OutputFolder  &output_folder,
     const MPI_Comm communicator)
   {
@@ -141,7 +141,7 @@ namespace ViscoContact
     const std::string &,
     const unsigned int,
     const std::vector<typename DoFHandler<2>::active_cell_iterator> &,
-    const Mapping<2> &,
+    const hp::MappingCollection<2> &,
     OutputFolder &,
     const MPI_Comm);
   template std::string
@@ -151,7 +151,7 @@ namespace ViscoContact
     const std::string &,
     const unsigned int,
     const std::vector<typename DoFHandler<3>::active_cell_iterator> &,
-    const Mapping<3> &,
+    const hp::MappingCollection<3> &,
     OutputFolder &,
     const MPI_Comm);
 } // namespace ViscoContact

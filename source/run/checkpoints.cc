@@ -36,8 +36,8 @@ namespace ViscoContact
   {
     static_assert(sizeof(QuadraturePointHistory<dim>) % sizeof(double) == 0);
     return sizeof(CellId::binary_type)
-           + 5 * problem.fe->n_dofs_per_cell() * sizeof(double)
-           + problem.stress_quadrature.size()
+           + 5 * problem.discretisation.fe.max_dofs_per_cell() * sizeof(double)
+           + problem.discretisation.n_stress_points()
                * sizeof(QuadraturePointHistory<dim>);
   }
 
@@ -217,10 +217,13 @@ namespace ViscoContact
     // dof order, and the n_q stress-point records of the cell, copied as
     // raw bytes (QuadraturePointHistory is plain data: symmetric tensors and
     // doubles, with the zz components in 2D).
-    using Key                        = CellId::binary_type;
-    const unsigned int dofs_per_cell = problem.fe->n_dofs_per_cell();
-    const unsigned int n_q           = problem.stress_quadrature.size();
-    std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
+    // (dofs_per_cell the most of any cell: a cell with fewer, a triangle
+    // among quadrilaterals, fills its record with zeros.)
+    using Key = CellId::binary_type;
+    const unsigned int dofs_per_cell
+      = problem.discretisation.fe.max_dofs_per_cell();
+    const unsigned int n_q = problem.discretisation.n_stress_points();
+    std::vector<types::global_dof_index> dof_indices;
     // The cells in the order of stress_points.cells(); (*vector)(dof) reads
     // owned and ghost entries alike, which is why the vectors must have their
     // ghost values here.
@@ -230,16 +233,19 @@ namespace ViscoContact
           = problem.stress_points.cells()[k]->id().template to_binary<dim>();
         std::memcpy(out, &key, sizeof(Key));
         out += sizeof(Key);
-        problem.stress_points.cells()[k]->get_dof_indices(dof_indices);
+        const auto &cell = problem.stress_points.cells()[k];
+        dof_indices.resize(cell->get_fe().n_dofs_per_cell());
+        cell->get_dof_indices(dof_indices);
         for (const VectorType *vector :
              std::array<const VectorType *, 5>{{&problem.solution,
                                                 &vectors[0],
                                                 &vectors[1],
                                                 &vectors[2],
                                                 &vectors[3]}})
-          for (const types::global_dof_index dof : dof_indices)
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
             {
-              const double value = (*vector)(dof);
+              const double value
+                = i < dof_indices.size() ? (*vector)(dof_indices[i]) : 0.;
               std::memcpy(out, &value, sizeof(double));
               out += sizeof(double);
             }
@@ -538,9 +544,10 @@ namespace ViscoContact
     CellVectors                 &vectors,
     const std::function<void()> &check_header)
   {
-    using Key                           = CellId::binary_type;
-    const unsigned int dofs_per_cell    = problem.fe->n_dofs_per_cell();
-    const unsigned int n_q              = problem.stress_quadrature.size();
+    using Key = CellId::binary_type;
+    const unsigned int dofs_per_cell
+      = problem.discretisation.fe.max_dofs_per_cell();
+    const unsigned int n_q = problem.discretisation.n_stress_points();
     const std::size_t  bytes_per_record = record_size(problem);
     const unsigned int n_doubles
       = (bytes_per_record - sizeof(Key)) / sizeof(double);
@@ -568,7 +575,7 @@ namespace ViscoContact
       *target = 0;
     std::vector<unsigned int> times_found(problem.stress_points.cells().size(),
                                           0);
-    std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
+    std::vector<types::global_dof_index> dof_indices;
     bool                                 complete = true;
     const auto                           restore
       = [&](const std::string &key, const std::vector<double> &values) {
@@ -580,8 +587,10 @@ namespace ViscoContact
             }
           const unsigned int k = entry->second;
           ++times_found[k];
-          problem.stress_points.cells()[k]->get_dof_indices(dof_indices);
-          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          const auto &cell = problem.stress_points.cells()[k];
+          dof_indices.resize(cell->get_fe().n_dofs_per_cell());
+          cell->get_dof_indices(dof_indices);
+          for (unsigned int i = 0; i < dof_indices.size(); ++i)
             if (problem.locally_owned_dofs.is_element(dof_indices[i]))
               for (unsigned int v = 0; v < 5; ++v)
                 (*targets[v])(dof_indices[i]) = values[v * dofs_per_cell + i];

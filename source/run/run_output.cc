@@ -181,7 +181,7 @@ namespace ViscoContact
                                const unsigned int              n_steps) const
   {
     problem.pcout << "Mesh: " << problem.triangulation->n_global_active_cells()
-                  << ' ' << problem.reference_cell.to_string() << " cells, "
+                  << ' ' << problem.discretisation.describe() << " cells, "
                   << problem.dof_handler.n_dofs() << " displacement dofs, "
                   << (problem.contact_enabled
                         ? problem.contact_set.n_global_nodes()
@@ -198,7 +198,7 @@ namespace ViscoContact
       problem.pcout << "Initial cycles: step 1 on "
                     << problem.plan.initial_cycles()
                     << " coarser meshes first, from this one, "
-                    << (problem.reference_cell.is_simplex()
+                    << (problem.discretisation.has_simplices()
                           ? "each finer one built anew"
                         : problem.parameters.initial_refinement
                             == Parameters::InitialRefinement::global
@@ -285,8 +285,9 @@ namespace ViscoContact
                   << "Parallel: "
                   << Utilities::MPI::n_mpi_processes(problem.mpi_communicator)
                   << " MPI rank(s), "
-                  << (problem.reference_cell.is_simplex() ? "fully distributed"
-                                                          : "p4est")
+                  << (problem.discretisation.has_simplices()
+                        ? "fully distributed"
+                        : "p4est")
                   << " mesh\n";
   }
 
@@ -515,7 +516,7 @@ namespace ViscoContact
                                                 stem,
                                                 step,
                                                 problem.stress_points.cells(),
-                                                problem.mapping,
+                                                problem.discretisation.mapping,
                                                 *output_folder,
                                                 problem.mpi_communicator);
     // Only rank 0 keeps the list of records and rewrites solution.pvd with it
@@ -621,7 +622,7 @@ namespace ViscoContact
   {
     const unsigned int n_components = dim * (dim + 1) / 2;
     const unsigned int n_cells      = problem.triangulation->n_active_cells();
-    const unsigned int n_q          = problem.stress_quadrature.size();
+    const unsigned int n_q          = problem.discretisation.n_stress_points();
     Fields             fields;
     fields.stress.assign(n_components, Vector<float>(n_cells));
     fields.viscoplastic.assign(n_components, Vector<float>(n_cells));
@@ -714,7 +715,7 @@ namespace ViscoContact
   void
   RunOutput<dim>::print_summary(ViscoplasticContact<dim> &problem)
   {
-    const unsigned int n_q         = problem.stress_quadrature.size();
+    const unsigned int n_q         = problem.discretisation.n_stress_points();
     double             strain_norm = 0, stress_norm = 0;
     for (unsigned int k = 0; k < problem.stress_points.cells().size(); ++k)
       for (unsigned int q = 0; q < n_q; ++q)

@@ -97,7 +97,7 @@ namespace ViscoContact
   RunPlan<dim>::estimate_scene(double &cells) const
   {
     const bool simplex
-      = (parameters.cell_type == Parameters::CellType::simplex);
+      = (parameters.cell_type != Parameters::CellType::hypercube);
     double vertices = 0;
     if (parameters.mesh_file.empty())
       {
@@ -149,7 +149,7 @@ namespace ViscoContact
   {
     SceneSize scene;
     scene.dim     = dim;
-    scene.simplex = parameters.cell_type == Parameters::CellType::simplex;
+    scene.simplex = parameters.cell_type != Parameters::CellType::hypercube;
     scene.implicit_update = parameters.implicit_update();
     for (const auto &zone : parameters.used_contact_zones())
       if (zone.contact->tangential_law
@@ -313,7 +313,7 @@ namespace ViscoContact
         // are rebuilt from the first one: Checkpoints::restore_mesh()).
         first_step_cycles
           = (parameters.resume
-             && parameters.cell_type == Parameters::CellType::simplex)
+             && parameters.cell_type != Parameters::CellType::hypercube)
               ? 0
               : *set;
         return;

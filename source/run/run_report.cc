@@ -208,7 +208,7 @@ namespace ViscoContact
     line << std::setprecision(5) << "  peak memory " << when
          << " [MB]: sum over ranks " << Utilities::MPI::sum(peak, communicator)
          << ", largest rank " << Utilities::MPI::max(peak, communicator);
-    if (parameters.cell_type == Parameters::CellType::simplex)
+    if (parameters.cell_type != Parameters::CellType::hypercube)
       {
         const double root_peak
           = Utilities::MPI::max(mesh_group_root ? peak : 0., communicator);

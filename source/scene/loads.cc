@@ -11,6 +11,8 @@
 
 #include <deal.II/fe/fe_values.h>
 
+#include <deal.II/hp/fe_values.h>
+
 #include <deal.II/lac/vector.h>
 
 #include "scene/loads.h"
@@ -333,11 +335,11 @@ namespace ViscoContact
   std::string
   Loads<dim>::first_non_finite_value(
     const std::vector<typename DoFHandler<dim>::active_cell_iterator> &cells,
-    const Mapping<dim>                                                &mapping,
-    const FiniteElement<dim>                                          &fe,
-    const Quadrature<dim>     &load_quadrature,
-    const Quadrature<dim - 1> &face_quadrature,
-    const TimeSchedule        &schedule)
+    const hp::MappingCollection<dim>                                  &mapping,
+    const hp::FECollection<dim>                                       &fe,
+    const hp::QCollection<dim>     &load_quadrature,
+    const hp::QCollection<dim - 1> &face_quadrature,
+    const TimeSchedule             &schedule)
   {
     // The levels of the schedule's grid t_m = m k, m < N, and t_N = T.
     const std::uint64_t n_levels
@@ -348,21 +350,23 @@ namespace ViscoContact
     // points of each surface load come with their normals.
     std::vector<Point<dim>> body_points;
     std::vector<std::vector<std::pair<Point<dim>, Tensor<1, dim>>>>
-                      surface_points(n_surface_parts());
-    FEValues<dim>     fe_values(mapping,
-                            fe,
-                            load_quadrature,
-                            update_quadrature_points);
-    FEFaceValues<dim> fe_face_values(mapping,
-                                     fe,
-                                     face_quadrature,
-                                     update_quadrature_points
-                                       | update_normal_vectors);
+                          surface_points(n_surface_parts());
+    hp::FEValues<dim>     hp_fe_values(mapping,
+                                   fe,
+                                   load_quadrature,
+                                   update_quadrature_points);
+    hp::FEFaceValues<dim> hp_face_values(mapping,
+                                         fe,
+                                         face_quadrature,
+                                         update_quadrature_points
+                                           | update_normal_vectors);
     for (const auto &cell : cells)
       {
         if (!body_is_zero)
           {
-            fe_values.reinit(cell);
+            hp_fe_values.reinit(cell);
+            const FEValues<dim> &fe_values
+              = hp_fe_values.get_present_fe_values();
             for (const unsigned int q : fe_values.quadrature_point_indices())
               body_points.push_back(fe_values.quadrature_point(q));
           }
@@ -373,7 +377,9 @@ namespace ViscoContact
                 = surface_part_of(cell->face(f)->boundary_id());
               if (part == numbers::invalid_unsigned_int)
                 continue;
-              fe_face_values.reinit(cell, f);
+              hp_face_values.reinit(cell, f);
+              const FEFaceValues<dim> &fe_face_values
+                = hp_face_values.get_present_fe_values();
               for (const unsigned int q :
                    fe_face_values.quadrature_point_indices())
                 surface_points[part].emplace_back(
@@ -428,19 +434,20 @@ namespace ViscoContact
   bool
   Loads<dim>::cell_load(
     const typename DoFHandler<dim>::active_cell_iterator &cell,
-    FEValues<dim>                                        &fe_values,
-    FEFaceValues<dim>                                    &fe_face_values,
+    hp::FEValues<dim>                                    &hp_fe_values,
+    hp::FEFaceValues<dim>                                &hp_face_values,
     Vector<double>                                       &cell_rhs,
     std::string                                          &problem) const
   {
-    const FiniteElement<dim> &fe            = fe_values.get_fe();
+    const FiniteElement<dim> &fe            = cell->get_fe();
     const unsigned int        dofs_per_cell = fe.n_dofs_per_cell();
     Vector<double>            load_value(dim);
-    cell_rhs       = 0;
+    cell_rhs.reinit(dofs_per_cell);
     bool has_loads = false;
     if (!body_is_zero)
       {
-        fe_values.reinit(cell);
+        hp_fe_values.reinit(cell);
+        const FEValues<dim> &fe_values = hp_fe_values.get_present_fe_values();
         for (const unsigned int q : fe_values.quadrature_point_indices())
           {
             const std::string message
@@ -460,7 +467,9 @@ namespace ViscoContact
             = surface_part_of(cell->face(f)->boundary_id());
           if (part == numbers::invalid_unsigned_int)
             continue;
-          fe_face_values.reinit(cell, f);
+          hp_face_values.reinit(cell, f);
+          const FEFaceValues<dim> &fe_face_values
+            = hp_face_values.get_present_fe_values();
           for (const unsigned int q : fe_face_values.quadrature_point_indices())
             {
               const std::string message

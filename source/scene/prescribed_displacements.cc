@@ -40,10 +40,10 @@ namespace ViscoContact
   template <int dim>
   void
   PrescribedDisplacements<dim>::make_constraints(
-    const Mapping<dim>        &mapping,
-    const DoFHandler<dim>     &dof_handler,
-    const IndexSet            &locally_relevant_dofs,
-    AffineConstraints<double> &constraints)
+    const hp::MappingCollection<dim> &mapping,
+    const DoFHandler<dim>            &dof_handler,
+    const IndexSet                   &locally_relevant_dofs,
+    AffineConstraints<double>        &constraints)
   {
     make_displacement_constraints(mapping,
                                   dof_handler,
@@ -66,9 +66,9 @@ namespace ViscoContact
   template <int dim>
   void
   PrescribedDisplacements<dim>::check_rigid_motions(
-    const Mapping<dim>              &mapping,
-    const DoFHandler<dim>           &dof_handler,
-    const AffineConstraints<double> &constraints) const
+    const hp::MappingCollection<dim> &mapping,
+    const DoFHandler<dim>            &dof_handler,
+    const AffineConstraints<double>  &constraints) const
   {
     const std::vector<FreeBody<dim>> free
       = free_rigid_motions(mapping, dof_handler, constraints, communicator);
@@ -117,11 +117,11 @@ namespace ViscoContact
   template <int dim>
   void
   PrescribedDisplacements<dim>::reinit(
-    const Mapping<dim>             &mapping,
-    const DoFHandler<dim>          &dof_handler,
-    const IndexSet                 &locally_relevant_dofs,
-    const StressPointGeometry<dim> &stress_points,
-    const VectorType               &layout)
+    const hp::MappingCollection<dim> &mapping,
+    const DoFHandler<dim>            &dof_handler,
+    const IndexSet                   &locally_relevant_dofs,
+    const StressPointGeometry<dim>   &stress_points,
+    const VectorType                 &layout)
   {
     this->stress_points = &stress_points;
     dirichlet_dofs.clear();
@@ -155,7 +155,7 @@ namespace ViscoContact
                 for (const unsigned int c : dirichlet.components(p))
                   {
                     const types::global_dof_index index
-                      = face->vertex_dof_index(v, c);
+                      = face->vertex_dof_index(v, c, cell->active_fe_index());
                     if (!partitioner.in_local_range(index)
                         && !partitioner.is_ghost_entry(index))
                       continue;
@@ -236,7 +236,7 @@ namespace ViscoContact
   template <int dim>
   void
   PrescribedDisplacements<dim>::setup_roller_vertices(
-    const Mapping<dim>                &mapping,
+    const hp::MappingCollection<dim>  &mapping,
     const DoFHandler<dim>             &dof_handler,
     const std::vector<bool>           &dirichlet_dof,
     const Utilities::MPI::Partitioner &partitioner)
@@ -255,8 +255,9 @@ namespace ViscoContact
               if (face->boundary_id() == symmetry_ids[p])
                 for (const unsigned int v : face->vertex_indices())
                   {
+                    const unsigned int element = cell->active_fe_index();
                     const types::global_dof_index x_dof
-                      = face->vertex_dof_index(v, 0);
+                      = face->vertex_dof_index(v, 0, element);
                     if (!partitioner.in_local_range(x_dof)
                         || hanging_nodes.is_constrained(x_dof))
                       continue;
@@ -268,7 +269,7 @@ namespace ViscoContact
                         for (unsigned int c = 0; c < dim; ++c)
                           {
                             vertex.local_dofs[c] = partitioner.global_to_local(
-                              face->vertex_dof_index(v, c));
+                              face->vertex_dof_index(v, c, element));
                             vertex.dirichlet[c]
                               = dirichlet_dof[vertex.local_dofs[c]];
                           }

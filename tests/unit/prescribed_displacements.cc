@@ -24,6 +24,9 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q.h>
 
+#include <deal.II/hp/mapping_collection.h>
+#include <deal.II/hp/q_collection.h>
+
 #include <deal.II/grid/grid_generator.h>
 
 #include <deal.II/lac/full_matrix.h>
@@ -65,7 +68,7 @@ namespace
     Square(const Parameters::AllParameters &parameters)
       : triangulation(MPI_COMM_WORLD)
       , fe(FE_Q<2>(1), 2)
-      , mapping(1)
+      , mapping(MappingQ<2>(1))
       , prescribed(parameters)
     {
       GridGenerator::hyper_cube(triangulation, 0, 1, true);
@@ -82,7 +85,7 @@ namespace
       layout.reinit(dof_handler.locally_owned_dofs(), relevant, MPI_COMM_WORLD);
       stress_points.reinit(mapping,
                            dof_handler,
-                           QGauss<2>(2),
+                           hp::QCollection<2>(QGauss<2>(2)),
                            *layout.get_partitioner(),
                            constraints);
       prescribed.reinit(mapping, dof_handler, relevant, stress_points, layout);
@@ -90,7 +93,7 @@ namespace
 
     parallel::distributed::Triangulation<2> triangulation;
     const FESystem<2>                       fe;
-    const MappingQ<2>                       mapping;
+    const hp::MappingCollection<2>          mapping;
     DoFHandler<2>                           dof_handler;
     IndexSet                                relevant;
     AffineConstraints<double>               constraints;
@@ -198,7 +201,7 @@ TEST(PrescribedDisplacements, LiftingAsFEValuesAssemblesIt)
   // constraints.
   VectorType                           expected(square.layout);
   QGauss<2>                            quadrature(2);
-  FEValues<2>                          fe_values(square.mapping,
+  FEValues<2>                          fe_values(square.mapping[0],
                         square.fe,
                         quadrature,
                         update_gradients | update_JxW_values);

@@ -5,7 +5,7 @@
 // of a constant stress tested with it is tau : sym(A) times the volume, on a
 // mesh with hanging nodes too (whose cells add through the constraints),
 // and the tangent of an isotropic C gives the energy sym(A) : C : sym(A)
-// times the volume.
+// times the volume; on a mesh of triangles and quadrilaterals too.
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/index_set.h>
@@ -31,6 +31,7 @@
 
 #include <gtest/gtest.h>
 
+#include "discretisation.h"
 #include "stress_points.h"
 
 #include <cmath>
@@ -135,9 +136,9 @@ namespace
     const QGauss<dim>   quadrature(2);
 
     StressPointGeometry<dim> geometry;
-    geometry.reinit(mapping,
+    geometry.reinit(hp::MappingCollection<dim>(mapping),
                     dof_handler,
-                    quadrature,
+                    hp::QCollection<dim>(quadrature),
                     *u.get_partitioner(),
                     constraints);
     EXPECT_EQ(geometry.n_cells(), triangulation.n_locally_owned_active_cells());
@@ -221,7 +222,96 @@ namespace
                 (tau * symmetrize(A)) * total_volume,
                 1e-12 * std::abs(tau * symmetrize(A)) * total_volume);
   }
+
+  // [0, 2] x [0, 1] in squares of side 1/2: quadrilaterals for x < 1, each
+  // square cut into two triangles for x > 1 (Cell type = mixed, one body:
+  // the triangles share the vertices at x = 1 with the quadrilaterals).
+  // Every cell has the 4 stress points of the quadrilaterals (a triangle 4
+  // copies of its centroid, discretisation.h) and 4 vertices (a triangle
+  // repeats its first vertex's dofs with zero gradients), and the
+  // gradient of a linear field, the volume and the energy are exact on
+  // both kinds of cells.
+  void
+  check_mixed_geometry()
+  {
+    std::vector<Point<2>>    vertices;
+    std::vector<CellData<2>> cells;
+    const auto               v
+      = [](const unsigned int i, const unsigned int j) { return j * 5 + i; };
+    for (unsigned int j = 0; j <= 2; ++j)
+      for (unsigned int i = 0; i <= 4; ++i)
+        vertices.emplace_back(0.5 * i, 0.5 * j);
+    for (unsigned int j = 0; j < 2; ++j)
+      for (unsigned int i = 0; i < 4; ++i)
+        if (i < 2)
+          {
+            CellData<2> quadrilateral(4);
+            quadrilateral.vertices
+              = {v(i, j), v(i + 1, j), v(i, j + 1), v(i + 1, j + 1)};
+            cells.push_back(quadrilateral);
+          }
+        else
+          for (const std::vector<unsigned int> &corners :
+               {std::vector<unsigned int>{v(i, j),
+                                          v(i + 1, j),
+                                          v(i + 1, j + 1)},
+                std::vector<unsigned int>{v(i, j),
+                                          v(i + 1, j + 1),
+                                          v(i, j + 1)}})
+            {
+              CellData<2> triangle(3);
+              triangle.vertices = corners;
+              cells.push_back(triangle);
+            }
+    Triangulation<2> triangulation;
+    triangulation.create_triangulation(vertices, cells, SubCellData());
+
+    const Discretisation<2> discretisation(Parameters::CellType::mixed);
+    ASSERT_TRUE(discretisation.is_mixed());
+    DoFHandler<2> dof_handler(triangulation);
+    discretisation.distribute_dofs(dof_handler, discretisation.fe);
+    // The two kinds of cells share their vertices' dofs.
+    EXPECT_EQ(dof_handler.n_dofs(), 2 * vertices.size());
+    AffineConstraints<double> constraints;
+    constraints.close();
+    VectorType u(complete_index_set(dof_handler.n_dofs()), MPI_COMM_SELF);
+
+    StressPointGeometry<2> geometry;
+    geometry.reinit(discretisation.mapping,
+                    dof_handler,
+                    discretisation.stress_quadrature,
+                    *u.get_partitioner(),
+                    constraints);
+    EXPECT_EQ(geometry.n_cells(), 12u);
+    EXPECT_EQ(geometry.n_points(), 4u);
+    EXPECT_EQ(geometry.n_vertices(), 4u);
+    // One shape of each kind, two triangles (their cuts differ).
+    EXPECT_EQ(geometry.n_shapes(), 3u);
+
+    const Tensor<2, 2> A = gradient_of_the_field<2>();
+    VectorTools::interpolate(discretisation.mapping,
+                             dof_handler,
+                             LinearField<2>(A),
+                             u);
+    double volume = 0, triangle_volume = 0;
+    for (unsigned int k = 0; k < geometry.n_cells(); ++k)
+      for (unsigned int q = 0; q < geometry.n_points(); ++q)
+        {
+          const Tensor<2, 2> gradient = geometry.displacement_gradient(u, k, q);
+          EXPECT_LT((gradient - A).norm(), 1e-12 * A.norm());
+          volume += geometry.JxW(k, q);
+          if (geometry.cells()[k]->reference_cell().is_simplex())
+            triangle_volume += geometry.JxW(k, q);
+        }
+    EXPECT_NEAR(volume, 2., 1e-14);
+    EXPECT_NEAR(triangle_volume, 1., 1e-14);
+  }
 } // namespace
+
+TEST(StressPointGeometry, MixedTrianglesAndQuadrilaterals2D)
+{
+  check_mixed_geometry();
+}
 
 TEST(StressPointGeometry, ShearedBox2D)
 {

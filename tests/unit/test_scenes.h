@@ -85,10 +85,10 @@ namespace ViscoContact
            TangentialLaw::from_parameters(entries),
            {}}};
         contact.setup(zones,
-                      MappingQ<2>(1),
+                      hp::MappingCollection<2>(MappingQ<2>(1)),
                       dof_handler,
                       scalar_dofs,
-                      QGauss<1>(2),
+                      hp::QCollection<1>(QGauss<1>(2)),
                       constraints,
                       constraints,
                       layout);

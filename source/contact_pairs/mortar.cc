@@ -74,6 +74,18 @@ namespace ViscoContact
         double       low, high, xi_c, xi_d;
         unsigned int c, d;
       };
+      // The master segments a slave segment can meet lie in its box
+      // widened by the search distance (an R-tree of their boxes, as in
+      // 3D); without a finite search distance every one is tried.
+      std::vector<std::pair<BoundingBox<2>, unsigned int>> master_boxes;
+      for (unsigned int g = 0; g < master.faces.size(); ++g)
+        master_boxes.emplace_back(BoundingBox<2>(std::vector<Point<2>>{
+                                    master.vertices[master.faces[g][0]],
+                                    master.vertices[master.faces[g][1]]}),
+                                  g);
+      const bool                within_reach = std::isfinite(search_distance);
+      const auto                master_tree  = pack_rtree(master_boxes);
+      std::vector<unsigned int> candidates;
       for (const std::vector<unsigned int> &segment : slave.faces)
         {
           const unsigned int a = segment[0], b = segment[1];
@@ -87,10 +99,28 @@ namespace ViscoContact
           coupling.normals[a] += normal;
           coupling.normals[b] += normal;
 
-          std::vector<Overlap> overlaps;
-          for (const std::vector<unsigned int> &master_segment : master.faces)
+          candidates.clear();
+          if (within_reach)
             {
-              const unsigned int c = master_segment[0], d = master_segment[1];
+              BoundingBox<2> reach(std::vector<Point<2>>{x_a, x_b});
+              reach.extend(search_distance);
+              std::vector<std::pair<BoundingBox<2>, unsigned int>> near;
+              master_tree.query(boost::geometry::index::intersects(reach),
+                                std::back_inserter(near));
+              for (const auto &[box, g] : near)
+                candidates.push_back(g);
+              // In the order of the faces, as without the tree (the sums
+              // below then do not depend on the tree's order).
+              std::sort(candidates.begin(), candidates.end());
+            }
+          else
+            for (unsigned int g = 0; g < master.faces.size(); ++g)
+              candidates.push_back(g);
+
+          std::vector<Overlap> overlaps;
+          for (const unsigned int g : candidates)
+            {
+              const unsigned int c = master.faces[g][0], d = master.faces[g][1];
               const Point<2>    &x_c = master.vertices[c];
               const Point<2>    &x_d = master.vertices[d];
               if ((x_d - x_c).norm() == 0

@@ -7,6 +7,7 @@
 #include "contact_pairs/contact_pairs.h"
 #include "contact_pairs/mortar.h"
 #include "robustness/file_output.h"
+#include "robustness/mpi_tools.h"
 
 #include <algorithm>
 #include <array>
@@ -330,9 +331,28 @@ namespace ViscoContact
           }
         FileOutput::agree_on_problem(problem, communicator);
 
-        // The coupling of the nodes this rank owns.
-        const Mortar::Coupling<dim> coupling
-          = Mortar::couple(faces.slave, master, search_distance);
+        // The coupling of the nodes this rank owns. The mortar refuses
+        // faces it cannot integrate on (collapsed, or too warped seen along
+        // the other side's normal); the ranks where that happens stop
+        // every rank with the entry named, rather than leave the others
+        // waiting in the collective calls below.
+        Mortar::Coupling<dim>    coupling;
+        const Mortar::Side<dim> &slave   = faces.slave;
+        std::string              failure = MPITools::failure_of(
+          [&]() { coupling = Mortar::couple(slave, master, search_distance); });
+        if (!failure.empty())
+          {
+            const auto first = failure.find_first_not_of(" \n");
+            const auto last  = failure.find_last_not_of(" \n");
+            failure          = pair_problem(
+              zones[z].subsection,
+              "the mortar coupling of the zone with the opposite side "
+                       "failed: "
+                + failure.substr(first, last - first + 1)
+                + " Accepted: boundary parts whose faces are not collapsed "
+                           "and nearly planar.");
+          }
+        FileOutput::agree_on_problem(failure, communicator);
         const IndexSet &owned   = dof_handler.locally_owned_dofs();
         unsigned int    covered = 0;
         for (const auto &[x_dof, j] : faces.slave_vertex_of_dof)

@@ -348,7 +348,8 @@ namespace ViscoContact
           "each, joined by a contact pair), each cell with its element "
           "(every cell carries 2^dim stress points, a simplex as many copies "
           "of its one). Mixed meshes run on the condensed and full space "
-          "back ends, without mesh refinement, initial or step cycles.");
+          "back ends, with Global refinements, without adaptive meshes, "
+          "initial or step cycles.");
         add_selection(
           prm,
           "Simplex pattern",
@@ -454,24 +455,14 @@ namespace ViscoContact
                 "0 for Cell type = simplex or mixed (deal.II 9.4 has no "
                 "hanging-node constraints on simplices); any number up to 20 "
                 "for hypercube meshes");
-        // A mixed mesh comes from a file, and is the run's mesh: deal.II
-        // 9.4 refines triangles next to quadrilaterals without a
-        // guarantee of consistent faces.
+        // A mixed mesh comes from a file.
         if (cell_type == CellType::mixed)
-          {
-            require(!mesh_file.empty(),
-                    "Geometry",
-                    "Cell type",
-                    "mixed",
-                    "simplex or hypercube for the generated box; mixed "
-                    "needs a Mesh file with both kinds of cells");
-            require(global_refinements == 0,
-                    "Geometry",
-                    "Global refinements",
-                    prm.get("Global refinements"),
-                    "0 when Cell type = mixed (the mesh file is the run's "
-                    "mesh)");
-          }
+          require(!mesh_file.empty(),
+                  "Geometry",
+                  "Cell type",
+                  "mixed",
+                  "simplex or hypercube for the generated box; mixed "
+                  "needs a Mesh file with both kinds of cells");
       }
       prm.leave_subsection();
     }
@@ -2259,6 +2250,15 @@ namespace ViscoContact
                 initial_cycles_entry,
                 "auto or 0 when a convergence study runs (it builds its own "
                 "meshes)");
+      // The coarser meshes of the cycles are built and transferred with
+      // one element (mesh_adaptation.cc, step_cycles.cc).
+      if (cycles > 0)
+        require(cell_type != CellType::mixed,
+                "Mesh adaptation",
+                "Initial cycles",
+                initial_cycles_entry,
+                "auto or 0 when Cell type = mixed (the coarser meshes of "
+                "the cycles carry one element)");
       if (cycles > 0 && initial_refinement == InitialRefinement::adaptive)
         require(cell_type == CellType::hypercube,
                 "Mesh adaptation",
@@ -2322,6 +2322,9 @@ namespace ViscoContact
       refuse_unless(!study_enabled,
                     "0 when a convergence study runs (it builds its own "
                     "meshes)");
+      refuse_unless(cell_type != CellType::mixed,
+                    "0 when Cell type = mixed (the coarser meshes of the "
+                    "cycles carry one element)");
       refuse_unless(!adaptive_refinement,
                     "0 when Adaptive refinement = true (an adapted mesh is "
                     "not a uniform refinement of the coarser meshes)");

@@ -130,6 +130,7 @@ check_both_sides() {
 }
 full_space() { cat; printf '\nsubsection Linear solver\n  set Method = full space\nend\n'; }
 matrix_free() { cat; printf '\nsubsection Linear solver\n  set Method = matrix free\nend\n'; }
+condensed() { cat; printf '\nsubsection Linear solver\n  set Method = condensed\nend\n'; }
 
 variant() { # MESH > variant.prm
   sed -e "s|\.\./meshes/two_blocks_quadrilateral_6_8|$meshes/$1|" \
@@ -361,6 +362,13 @@ variant_3d two_blocks_mixed_3d_4_10 | set_entry "Cell type" mixed > variant.prm
 run_scene variant.prm 1 "3D, mixed 4:10"
 check "3D, mixed 4:10" 0 0
 check_both_sides "3D, mixed 4:10"
+n=$((n + 1))
+# Refined once (the fully distributed mesh refines both kinds of cells).
+variant_3d two_blocks_mixed_3d_4_10 \
+  | sed -e 's/^\( *set Cell type *=\).*/\1 mixed\n  set Global refinements = 1/' | condensed > variant.prm
+run_scene variant.prm 2 "3D, mixed 4:10 refined once, 2 ranks"
+grep -q "4928 Hex and Tet cells" out.txt || fail "3D, mixed 4:10 refined once: not the refined mesh: $(grep Mesh: out.txt)"
+check "3D, mixed 4:10 refined once, 2 ranks" 0 0
 n=$((n + 1))
 tolerance=1e-7
 variant_3d two_blocks_mixed_3d_4_10 | set_entry "Cell type" mixed | full_space > variant.prm

@@ -329,6 +329,12 @@ namespace ViscoContact
                          "them";
         return;
       }
+    if (parameters.cell_type == Parameters::CellType::mixed)
+      {
+        initial_reason = "the coarser meshes carry one element, and the "
+                         "mesh has two (Cell type = mixed)";
+        return;
+      }
     if (parameters.contact_refinements > 0
         || parameters.uniform_coarsenings() == 0)
       {

@@ -225,14 +225,15 @@ namespace
 
   // [0, 2] x [0, 1] in squares of side 1/2: quadrilaterals for x < 1, each
   // square cut into two triangles for x > 1 (Cell type = mixed, one body:
-  // the triangles share the vertices at x = 1 with the quadrilaterals).
+  // the triangles share the vertices at x = 1 with the quadrilaterals),
+  // refined globally.
   // Every cell has the 4 stress points of the quadrilaterals (a triangle 4
   // copies of its centroid, discretisation.h) and 4 vertices (a triangle
   // repeats its first vertex's dofs with zero gradients), and the
   // gradient of a linear field, the volume and the energy are exact on
   // both kinds of cells.
   void
-  check_mixed_geometry()
+  check_mixed_geometry(const unsigned int refinements)
   {
     std::vector<Point<2>>    vertices;
     std::vector<CellData<2>> cells;
@@ -265,13 +266,15 @@ namespace
             }
     Triangulation<2> triangulation;
     triangulation.create_triangulation(vertices, cells, SubCellData());
+    triangulation.refine_global(refinements);
 
     const Discretisation<2> discretisation(Parameters::CellType::mixed);
     ASSERT_TRUE(discretisation.is_mixed());
     DoFHandler<2> dof_handler(triangulation);
     discretisation.distribute_dofs(dof_handler, discretisation.fe);
-    // The two kinds of cells share their vertices' dofs.
-    EXPECT_EQ(dof_handler.n_dofs(), 2 * vertices.size());
+    // The two kinds of cells share their vertices' dofs, also where
+    // refinement has added vertices on the edges between them.
+    EXPECT_EQ(dof_handler.n_dofs(), 2 * triangulation.n_used_vertices());
     AffineConstraints<double> constraints;
     constraints.close();
     VectorType u(complete_index_set(dof_handler.n_dofs()), MPI_COMM_SELF);
@@ -282,11 +285,15 @@ namespace
                     discretisation.stress_quadrature,
                     *u.get_partitioner(),
                     constraints);
-    EXPECT_EQ(geometry.n_cells(), 12u);
+    EXPECT_EQ(geometry.n_cells(), 12u << (2 * refinements));
     EXPECT_EQ(geometry.n_points(), 4u);
     EXPECT_EQ(geometry.n_vertices(), 4u);
-    // One shape of each kind, two triangles (their cuts differ).
-    EXPECT_EQ(geometry.n_shapes(), 3u);
+    // One shape of quadrilaterals and two of triangles (their cuts differ;
+    // refined, each triangle's children take two shapes more).
+    if (refinements == 0)
+      {
+        EXPECT_EQ(geometry.n_shapes(), 3u);
+      }
 
     const Tensor<2, 2> A = gradient_of_the_field<2>();
     VectorTools::interpolate(discretisation.mapping,
@@ -310,7 +317,12 @@ namespace
 
 TEST(StressPointGeometry, MixedTrianglesAndQuadrilaterals2D)
 {
-  check_mixed_geometry();
+  check_mixed_geometry(0);
+}
+
+TEST(StressPointGeometry, MixedTrianglesAndQuadrilateralsRefined2D)
+{
+  check_mixed_geometry(2);
 }
 
 TEST(StressPointGeometry, ShearedBox2D)

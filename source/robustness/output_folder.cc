@@ -60,7 +60,7 @@ namespace ViscoContact
       static const std::regex names(
         "parameters\\.prm|solution\\.pvd|time_series\\.csv|convergence\\.csv|"
         "(solution|failed_step)_[0-9]+(\\.[0-9]+)?\\.(vtu|pvtu)|"
-        "contact_profile_[0-9]+\\.csv|checkpoint|runs");
+        "(contact|opposite)_profile_[0-9]+\\.csv|checkpoint|runs");
       return std::regex_match(name, names);
     }
 
@@ -72,17 +72,19 @@ namespace ViscoContact
     }
 
     // The step of a per-step file of the run (solution_0012.0.vtu,
-    // contact_profile_0012.csv, checkpoint/step_000012.bin, ...), or -1.
+    // contact_profile_0012.csv, opposite_profile_0012.csv,
+    // checkpoint/step_000012.bin, ...), or -1.
     long
     step_of(const std::string &name)
     {
       static const std::regex per_step(
         "((solution|failed_step)_([0-9]+)(\\.[0-9]+)?\\.(vtu|pvtu))|"
-        "(contact_profile_([0-9]+)\\.csv)|(checkpoint/step_([0-9]+)\\.bin)");
+        "((contact|opposite)_profile_([0-9]+)\\.csv)|"
+        "(checkpoint/step_([0-9]+)\\.bin)");
       std::smatch match;
       if (!std::regex_match(name, match, per_step))
         return -1;
-      for (const int group : {3, 7, 9})
+      for (const int group : {3, 8, 10})
         if (match[group].matched)
           return std::stol(match[group].str());
       return -1;
@@ -152,7 +154,7 @@ namespace ViscoContact
       static const std::regex files(
         "parameters\\.prm|solution\\.pvd|time_series\\.csv|convergence\\."
         "csv|(solution|failed_step)_[0-9]+(\\.[0-9]+)?\\.(vtu|pvtu)|"
-        "contact_profile_[0-9]+\\.csv|checkpoint/(step_[0-9]+\\.bin|"
+        "(contact|opposite)_profile_[0-9]+\\.csv|checkpoint/(step_[0-9]+\\.bin|"
         "checkpoint\\.info)");
       static const std::regex folders(
         "checkpoint|runs|runs/(reference|h_1_[0-9]+_k_[0-9][0-9.e+-]*)");

@@ -73,8 +73,8 @@ namespace ViscoContact
     // The most vertices of a cell.
     unsigned int
     max_vertices() const;
-    // The name of the cell types for the run's header ("quadrilateral",
-    // "triangle and quadrilateral").
+    // The names of the cell types for the run's header, deal.II's ("Quad",
+    // "Quad and Tri").
     std::string
     describe() const;
 

@@ -394,9 +394,14 @@ namespace ViscoContact
                     everything.vertices.push_back(vertex.location);
                   }
               }
-            const double closest = Utilities::MPI::min(
-              Mortar::couple(faces.slave, everything).closest_distance,
-              communicator);
+            // (A face the mortar cannot integrate on counts as none here,
+            // on the ranks that meet it, so that all reach the minimum.)
+            double nearest = std::numeric_limits<double>::infinity();
+            const Mortar::Side<dim> &zone_side = faces.slave;
+            MPITools::failure_of([&]() {
+              nearest = Mortar::couple(zone_side, everything).closest_distance;
+            });
+            const double closest = Utilities::MPI::min(nearest, communicator);
             std::ostringstream message;
             message << "no node of the zone has a face of the opposite "
                        "side within the Search distance "

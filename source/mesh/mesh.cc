@@ -404,8 +404,9 @@ namespace ViscoContact
   // numbering colorize uses for hypercubes: 2d and 2d+1 at x_d = 0 and L_d).
   //
   // A Gmsh file brings its own boundary ids (the physical groups of its
-  // boundary faces); its cells must all be of the chosen Cell type, since
-  // the finite element and the stress points are chosen from it.
+  // boundary faces); its cells must all be of the chosen Cell type (both
+  // kinds with mixed), since the finite elements and the stress points are
+  // chosen from it.
   //
   // Every problem with the file is reported as an invalid value of Mesh
   // file, with what is accepted, rather than as an exception from deep

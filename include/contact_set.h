@@ -148,6 +148,15 @@ namespace ViscoContact
       };
       std::vector<OppositeEntry> opposite;
       double                     opposite_gap = 0;
+      // For the output (OppositeSide): the opposite vertices by their
+      // x-dof (local in the layout) with the coefficients M_jk / D_j,
+      // whatever constraints their components have.
+      struct OppositeVertexShare
+      {
+        unsigned int x_local_dof;
+        double       coefficient;
+      };
+      std::vector<OppositeVertexShare> opposite_vertices;
     };
 
     // Contact pairs (zones with Opposite boundary ids, contact_pairs.h),

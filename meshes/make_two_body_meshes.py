@@ -21,6 +21,9 @@ the pad [0, 2] x [0, 1] x [1, 2] with B x B/2 x 2 (tetrahedra: Kuhn's six
 per cell). Boundary tags as in 2D with y -> z, and 7 the front sides
 y = 0, 8 the back sides y = 1 of both blocks.
 
+two_blocks_quadrilateral_6_8_turned.msh: the quadrilaterals 6:8 turned by
+45 degrees about the origin (oblique planes of symmetry).
+
 two_blocks_mixed_6_8.msh: the 2D blocks 6:8, the base of triangles, the
 pad of quadrilaterals; two_blocks_mixed_3d_4_10.msh: the 3D blocks 4:10,
 the base of hexahedra, the pad of tetrahedra (Cell type = mixed).
@@ -32,6 +35,7 @@ layered_strip().
 
 Run from anywhere: python3 meshes/make_two_body_meshes.py
 """
+import math
 import os
 
 from gmsh_format import box_cell_elements, box_face_elements, gmsh_elements_text
@@ -42,7 +46,8 @@ def per_block(simplex):
     return tuple(simplex) if isinstance(simplex, tuple) else (simplex, simplex)
 
 
-def blocks(a, b, simplex):
+def blocks(a, b, simplex, angle=0.0):
+    """angle: the whole mesh turned by that many degrees about the origin."""
     nodes, boundary, cells = [], [], []
     for block, (n, y0, material, bottom, top) in enumerate(((a, 0.0, 1, 2, 3), (b, 1.0, 2, 4, 5))):
         block_simplex = per_block(simplex)[block]
@@ -62,6 +67,9 @@ def blocks(a, b, simplex):
                           else [(3, material, p, q, r, s)])
     names = [(1, "left_sides"), (2, "base_bottom"), (3, "base_top"), (4, "pad_bottom"),
              (5, "pad_top"), (6, "right_sides")]
+    if angle != 0.0:
+        c, s = math.cos(math.radians(angle)), math.sin(math.radians(angle))
+        nodes = [(n, c * x - s * y, s * x + c * y, z) for n, x, y, z in nodes]
     return gmsh_elements_text(nodes, boundary, cells, names, [(1, "base"), (2, "pad")])
 
 
@@ -169,6 +177,10 @@ if __name__ == "__main__":
         for a, b in ((6, 8), (4, 10)):
             with open(os.path.join(folder, "two_blocks_%s_%d_%d.msh" % (name, a, b)), "w") as f:
                 f.write(blocks_3d(a, b, simplex))
+    # Turned by 45 degrees: the planes of symmetry x = 0 and y = 0 of the
+    # patch test become oblique.
+    with open(os.path.join(folder, "two_blocks_quadrilateral_6_8_turned.msh"), "w") as f:
+        f.write(blocks(6, 8, False, 45.0))
     # Mixed: simplices on one side, hypercubes on the other.
     with open(os.path.join(folder, "two_blocks_mixed_6_8.msh"), "w") as f:
         f.write(blocks(6, 8, (True, False)))

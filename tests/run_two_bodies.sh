@@ -169,6 +169,30 @@ if [ "$quick" = quick ]; then
   exit 0
 fi
 
+# The blocks turned by 45 degrees (nu = 0, the pad's top moved along the
+# turned axis): the planes of symmetry are oblique, and the vertices on
+# them have constrained components. Both profiles list every vertex of
+# their side (9 and 7) with the pressure p and a zero penetration.
+variant two_blocks_quadrilateral_6_8_turned | set_entry "Poisson ratio" 0 \
+  | set_entry Components "x, y" \
+  | set_entry Displacement "0.01 * min(t, 2 - t) * sin(pi / 4); -0.01 * min(t, 2 - t) * cos(pi / 4)" \
+  > variant.prm
+run_scene variant.prm 2 "turned by 45 degrees, 2 ranks"
+for side_lines in contact:9 opposite:7; do
+  for profile in results/${side_lines%:*}_profile_*.csv; do
+    awk -F, -v name="turned by 45 degrees" -v lines=${side_lines#*:} -v law=linear -v s=0 \
+      -v inverse_c=0 "$closed_form"'
+      NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+      { ++n; p = pressure($col["time"]); d = $col["contact_pressure"] - p; if (d < 0) d = -d
+        r = $col["u_nu"]; if (r < 0) r = -r
+        if (d > 1e-9 * p || r > 1e-12) {
+          print name ": pressure " $col["contact_pressure"] ", penetration " $col["u_nu"] \
+                " at (" $col["x"] ", " $col["y"] ") in " FILENAME ", not " p ", 0"; exit 1 } }
+      END { if (n != lines) { print name ": " n " lines in " FILENAME ", not " lines; exit 1 } }' \
+      "$profile" || exit 1
+  done
+done
+
 # The coarse side as the zone: the base's top meets the pad's bottom.
 variant two_blocks_quadrilateral_4_10 | set_entry "Contact boundary ids" 3 \
   | set_entry "Opposite boundary ids" 4 > variant.prm

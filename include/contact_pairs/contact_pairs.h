@@ -71,14 +71,16 @@ namespace ViscoContact
                  const Utilities::MPI::Partitioner &partitioner) const;
 
     // What the coupling gives a node: its weight D_j, the opposite side's
-    // point sum_k (M_jk / D_j) x_k, and the opposite displacement's
-    // components as (dof, component, coefficient).
+    // point sum_k (M_jk / D_j) x_k, the opposite displacement's components
+    // as (dof, component, coefficient), and the opposite vertices as
+    // (x-dof, M_jk / D_j), for the output.
     struct NodeCoupling
     {
       double     weight = 0;
       Point<dim> opposite_point;
       std::vector<std::tuple<types::global_dof_index, unsigned int, double>>
-        entries;
+                                                              entries;
+      std::vector<std::pair<types::global_dof_index, double>> vertices;
     };
 
   private:

@@ -367,6 +367,10 @@ namespace ViscoContact
               {
                 const double coefficient = M / coupling.D[j];
                 node.opposite_point += coefficient * master.vertices[k];
+                node.vertices.emplace_back(master_vertices[k]->x_dof,
+                                           coefficient);
+                if (!owned.is_element(master_vertices[k]->x_dof))
+                  ghosts.add_index(master_vertices[k]->x_dof);
                 for (unsigned int c = 0; c < dim; ++c)
                   for (const auto &[dof, weight] :
                        master_vertices[k]->components[c])
@@ -457,6 +461,11 @@ namespace ViscoContact
                 {dof,
                  static_cast<unsigned int>(partitioner.global_to_local(dof)),
                  component,
+                 coefficient});
+            node.opposite_vertices.clear();
+            for (const auto &[x_dof, coefficient] : coupling->second.vertices)
+              node.opposite_vertices.push_back(
+                {static_cast<unsigned int>(partitioner.global_to_local(x_dof)),
                  coefficient});
             node.opposite_gap
               = zone_measures_gap[node.zone]

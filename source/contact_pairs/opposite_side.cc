@@ -98,12 +98,16 @@ namespace ViscoContact
 
   // @sect4{OppositeSide::states}
   //
-  // Every sum runs over the entries (j, k, c) of the zone's rows, entry
-  // coefficient c_jk of component c of the opposite vertex k; each rank
-  // adds its own nodes' entries, the owners of the dofs receive the sums
-  // (compress(add)). The states of the node with the largest weight take
-  // two passes: the largest weight per dof first (compress(max)), then the
-  // states of the nodes that reach it.
+  // The forces sum over the entries (j, k, c) of the zone's rows, entry
+  // coefficient c_jk of component c of the opposite side's dof k (through
+  // the constraints of k: the force on the free dofs); the states over the
+  // opposite vertices of each node, at each vertex's x-dof, with the
+  // weights D_j c_jk = M_jk (so that a vertex whose components are
+  // constrained, on an oblique plane of symmetry, is averaged as any
+  // other). Each rank adds its own nodes' terms, the owners of the dofs
+  // receive the sums (compress(add)). The states of the node with the
+  // largest weight take two passes: the largest weight per vertex first
+  // (compress(max)), then the states of the nodes that reach it.
   template <int dim>
   std::vector<typename OppositeSide<dim>::VertexState>
   OppositeSide<dim>::states(const ContactSet<dim> &contact) const
@@ -119,9 +123,10 @@ namespace ViscoContact
     if (!partitioner)
       return result;
     VectorType force(partitioner), layer_force(partitioner),
-      mortar_weight(partitioner), penetration(partitioner), slip(partitioner),
+      mortar_weight(partitioner), penetration(partitioner),
       largest_weight(partitioner), dominant_state(partitioner);
-    const bool friction = contact.has_friction();
+    std::vector<VectorType> slip(dim, VectorType(partitioner));
+    const bool              friction = contact.has_friction();
     for (unsigned int j = 0; j < contact.size(); ++j)
       {
         const auto    &node       = contact.node(j);
@@ -130,25 +135,30 @@ namespace ViscoContact
           node_force += contact.tangential_vector(j, contact.t[j]);
         const Tensor<1, dim> node_layer_force
           = contact.compliance_pressure(j) * contact.weight(j) * node.direction;
-        const Tensor<1, dim> node_slip = contact.output_slip(j);
         for (const auto &entry : node.opposite)
           {
-            const unsigned int c       = entry.component;
-            const double       M_jk    = contact.weight(j) * entry.coefficient;
-            const unsigned int k       = entry.local_dof;
-            double            &largest = largest_weight.local_element(k);
-            force.local_element(k) += entry.coefficient * node_force[c];
-            layer_force.local_element(k)
-              += entry.coefficient * node_layer_force[c];
+            force.local_element(entry.local_dof)
+              += entry.coefficient * node_force[entry.component];
+            layer_force.local_element(entry.local_dof)
+              += entry.coefficient * node_layer_force[entry.component];
+          }
+        const Tensor<1, dim> node_slip = contact.output_slip(j);
+        for (const auto &share : node.opposite_vertices)
+          {
+            const unsigned int k    = share.x_local_dof;
+            const double       M_jk = contact.weight(j) * share.coefficient;
             mortar_weight.local_element(k) += M_jk;
             penetration.local_element(k) += M_jk * contact.r[j];
-            slip.local_element(k) += M_jk * node_slip[c];
-            largest = std::max(largest, M_jk);
+            for (unsigned int c = 0; c < dim; ++c)
+              slip[c].local_element(k) += M_jk * node_slip[c];
+            double &largest = largest_weight.local_element(k);
+            largest         = std::max(largest, M_jk);
           }
       }
-    for (VectorType *sum :
-         {&force, &layer_force, &mortar_weight, &penetration, &slip})
+    for (VectorType *sum : {&force, &layer_force, &mortar_weight, &penetration})
       sum->compress(VectorOperation::add);
+    for (VectorType &sum : slip)
+      sum.compress(VectorOperation::add);
     largest_weight.compress(VectorOperation::max);
     largest_weight.update_ghost_values();
     // The states of a node as one number (1 + status + 3 friction state +
@@ -162,10 +172,10 @@ namespace ViscoContact
                      ? static_cast<unsigned int>(contact.friction_state(j))
                      : 0u)
             + 9 * contact.zone(j);
-        for (const auto &entry : contact.node(j).opposite)
+        for (const auto &share : contact.node(j).opposite_vertices)
           {
-            const unsigned int k = entry.local_dof;
-            if (contact.weight(j) * entry.coefficient
+            const unsigned int k = share.x_local_dof;
+            if (contact.weight(j) * share.coefficient
                 >= largest_weight.local_element(k))
               dominant_state.local_element(k)
                 = std::max(dominant_state.local_element(k), code);
@@ -175,32 +185,25 @@ namespace ViscoContact
 
     for (unsigned int k = 0; k < vertices.size(); ++k)
       {
-        const Vertex  &vertex         = vertices[k];
-        VertexState   &state          = result[k];
-        double         covered_weight = 0, sum_penetration = 0, code = 0;
-        Tensor<1, dim> vertex_force, vertex_layer_force;
+        const Vertex      &vertex = vertices[k];
+        VertexState       &state  = result[k];
+        const unsigned int x_dof  = vertex.local_dofs[0];
+        Tensor<1, dim>     vertex_force, vertex_layer_force;
         for (unsigned int c = 0; c < dim; ++c)
           {
-            const unsigned int dof = vertex.local_dofs[c];
-            vertex_force[c]        = force.local_element(dof);
-            vertex_layer_force[c]  = layer_force.local_element(dof);
-            covered_weight += mortar_weight.local_element(dof);
-            sum_penetration += penetration.local_element(dof);
-            code = std::max(code, dominant_state.local_element(dof));
-            // This side's slip relative to the zone, the zone's reversed.
-            if (mortar_weight.local_element(dof) > 0)
-              state.slip[c]
-                = 0.
-                  - slip.local_element(dof) / mortar_weight.local_element(dof);
+            vertex_force[c] = force.local_element(vertex.local_dofs[c]);
+            vertex_layer_force[c]
+              = layer_force.local_element(vertex.local_dofs[c]);
           }
+        const double covered_weight = mortar_weight.local_element(x_dof);
         // A vertex that the zone covers on a sliver only (round-off of the
         // clipping) keeps zero.
-        state.covered = covered_weight > 1e-9 * dim * vertex.weight;
+        state.covered = covered_weight > 1e-9 * vertex.weight;
         if (!state.covered)
-          {
-            state.slip = Tensor<1, dim>();
-            continue;
-          }
+          continue;
+        // This side's slip relative to the zone, the zone's reversed.
+        for (unsigned int c = 0; c < dim; ++c)
+          state.slip[c] = 0. - slip[c].local_element(x_dof) / covered_weight;
         // The force the zone exerts on the vertex; minus its normal part
         // is the pressure on this side.
         // (0. - x: no negative zeros in the profile.)
@@ -208,14 +211,14 @@ namespace ViscoContact
         state.contact_pressure = state.normal_force / vertex.weight;
         state.compliance_pressure
           = 0. - vertex_layer_force * vertex.normal / vertex.weight;
-        state.penetration = sum_penetration / covered_weight;
+        state.penetration = penetration.local_element(x_dof) / covered_weight;
         // The tangential traction as on the zone: the one this body exerts
         // on the other, per unit area.
         state.tangential_traction
           = Tensor<1, dim>()
             - (vertex_force - (vertex_force * vertex.normal) * vertex.normal)
                 / vertex.weight;
-        if (code > 0)
+        if (const double code = dominant_state.local_element(x_dof); code > 0)
           {
             const unsigned int states = static_cast<unsigned int>(code) - 1;
             state.status              = states % 3;

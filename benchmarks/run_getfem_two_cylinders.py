@@ -34,7 +34,6 @@ import contextlib
 import math
 import os
 import re
-import subprocess
 import sys
 import tempfile
 import time
@@ -45,7 +44,7 @@ sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(TOP, "meshes"))
 from run_hertz_cylinder import analyse_hertz, profile_measures  # noqa: E402
 from run_hertz_two_cylinders import (DISPLACEMENT, E1, E2, E_STAR, NU, R1,  # noqa: E402
-                                     R2, R_STAR, SCENE)
+                                     R2, R_STAR, run)
 from make_hertz_meshes import two_cylinders  # noqa: E402
 
 
@@ -161,23 +160,13 @@ def run_getfem(n, folder, slave=1):
 
 
 def run_program(executable, n, folder):
-    mesh = os.path.join(folder, "two_cylinders_%d.msh" % n)
-    with open(mesh, "w") as f:
-        f.write(two_cylinders(n, 3 * n // 2, R1, R2))
-    output = os.path.join(folder, "output_%d" % n)
-    prm = os.path.join(folder, "two_cylinders_%d.prm" % n)
-    with open(prm, "w") as f:
-        f.write(SCENE.format(mesh=mesh, displacement=DISPLACEMENT, e1=E1, e2=E2, nu=NU,
-                             method="condensed", output=output))
-    result = subprocess.run([executable, prm], capture_output=True, text=True)
-    if result.returncode != 0:
-        sys.exit("The program's run on N = %d failed:\n%s" % (n, result.stderr))
+    output, stdout = run(executable, n, "condensed", folder)
     wall = float(re.search(r"Total wallclock time elapsed since start *\| *([0-9.eE+-]+)s",
-                           result.stdout).group(1))
-    dofs = int(re.search(r"([0-9]+) displacement dofs", result.stdout).group(1))
+                           stdout).group(1))
+    dofs = int(re.search(r"([0-9]+) displacement dofs", stdout).group(1))
     measures = analyse_hertz(output, E_STAR, R_STAR)
     measures["iterations"] = int(re.search(r"active-set iterations: ([0-9]+)",
-                                           result.stdout).group(1))
+                                           stdout).group(1))
     return measures, wall, dofs
 
 

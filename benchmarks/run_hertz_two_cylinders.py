@@ -123,7 +123,7 @@ def run(executable, n, method, folder):
     result = subprocess.run([executable, prm], capture_output=True, text=True)
     if result.returncode != 0:
         sys.exit("The run on N = %d failed:\n%s" % (n, result.stderr))
-    return output
+    return output, result.stdout
 
 
 def observed_order(coarse, fine):
@@ -142,8 +142,8 @@ def main():
     results = []
     with tempfile.TemporaryDirectory() as folder:
         for n in [int(n) for n in arguments.meshes.split(",")] + [arguments.reference]:
-            result = analyse_hertz(run(arguments.executable, n, arguments.method, folder),
-                                   E_STAR, R_STAR)
+            output, _ = run(arguments.executable, n, arguments.method, folder)
+            result = analyse_hertz(output, E_STAR, R_STAR)
             result["N"] = n
             results.append(result)
     reference = results.pop()

@@ -220,17 +220,11 @@ namespace ViscoContact
                                            weighted_normals);
     FileOutput::agree_on_problem(problem, communicator);
 
-    // Along Gamma_3: the order of the contact profiles. The order is
-    // lexicographic in the coordinates (x first), with a tolerance for
-    // coordinates that differ by rounding only; on the benchmark's bottom
-    // edge it is the order in x.
+    // Along Gamma_3: the order of the contact profiles.
     std::sort(geometry.begin(),
               geometry.end(),
               [](const NodeGeometry &a, const NodeGeometry &b) {
-                for (unsigned int d = 0; d < dim; ++d)
-                  if (std::abs(a.location[d] - b.location[d]) > 1e-12)
-                    return a.location[d] < b.location[d];
-                return false;
+                return precedes_in_profile(a.location, b.location);
               });
     // The weight of a node sits at its x-dof; the nodes start at r = z = 0,
     // stuck where the zone has friction, with a zero Tresca bound until

@@ -87,10 +87,7 @@ namespace ViscoContact
     std::sort(vertices.begin(),
               vertices.end(),
               [](const Vertex &a, const Vertex &b) {
-                for (unsigned int d = 0; d < dim; ++d)
-                  if (std::abs(a.location[d] - b.location[d]) > 1e-12)
-                    return a.location[d] < b.location[d];
-                return false;
+                return precedes_in_profile(a.location, b.location);
               });
   }
 

@@ -133,6 +133,19 @@ namespace ViscoContact
                  const std::vector<unsigned int> &tangential_directions,
                  const std::vector<double>       &tresca_bounds);
 
+    // The memory pressure m_i of every node for the step being solved (the
+    // explicit history term of the normal law, normal_memory.h): node i's
+    // graph is the law's moved up by m_i. Without a call there is none
+    // (has_memory() is false on every rank).
+    void
+    set_history_pressure(const std::vector<double> &pressures);
+    bool
+    has_memory() const;
+    double
+    history_pressure(const unsigned int i) const;
+    const std::vector<double> &
+    history_pressures() const;
+
     // The parameter c_i of the update rule, one per node: it must exceed
     // the steepest softening of the law, so that q = p + c r increases
     // strictly along the graph. If the nodes have not been placed yet, each
@@ -172,6 +185,12 @@ namespace ViscoContact
     // displacements s of u are the reference, the forces t as given.
     void
     accept_slip(const std::vector<Tangential> &tangential_displacements);
+    // The tangential displacement of each node's obstacle over the step
+    // being solved (a moving obstacle): a sticking node moves with it, and
+    // the slip is measured relative to it. Zero after accept_slip() and
+    // reset_slip().
+    void
+    set_obstacle_slip(const std::vector<Tangential> &obstacle_step);
     void
     reset_slip(const std::vector<Tangential> &tangential_displacements,
                const std::vector<Tangential> &tangential_forces);
@@ -242,6 +261,16 @@ namespace ViscoContact
     // The slip increment of the last accepted step, s_n - s_{n-1}.
     Tangential
     step_slip(const unsigned int i) const;
+    // The slip accumulated since the start (the sum of the steps' |slip|),
+    // which a weakening law's bound follows; settable for a restored
+    // checkpoint or a new mesh.
+    double
+    accumulated_slip(const unsigned int i) const;
+    void
+    set_accumulated_slip(const unsigned int i, const double slip);
+    // Whether a zone's law weakens with the slip.
+    bool
+    has_slip_weakening() const;
     double
     slip_bound(const unsigned int i) const;
     // The friction states over all ranks: stick, slip.
@@ -252,8 +281,9 @@ namespace ViscoContact
     // (penetrating the layer, or pressed by it), 0 out of contact.
     unsigned int
     status(const unsigned int i) const;
-    // The pressure of the layer, p(u_nu) (p(g-) at the rigid limit), and
-    // the total pressure z / w; the foundation carries the difference.
+    // The pressure of the layer, p(u_nu) with its memory pressure (p(g-) and
+    // the memory at the rigid limit), and the total pressure z / w; the
+    // foundation carries the difference.
     double
     compliance_pressure(const unsigned int i) const;
     double
@@ -285,12 +315,23 @@ namespace ViscoContact
     std::vector<double>       w, c;
     std::vector<unsigned int> node_pieces;
     bool                      placed = false;
+    // The memory pressures of the step, if the zones have memory.
+    std::vector<double> memory_pressures;
+    bool                with_memory = false;
 
     // Friction, per zone and per node (see set_friction(), update_friction()).
     std::vector<FrictionLaw>  zone_friction;
     std::vector<unsigned int> tangential_directions;
     std::vector<double>       tresca_bound;
     std::vector<Tangential>   slip_reference, slip_direction, last_slip;
+    // The obstacle's tangential displacement over the step (empty: none).
+    std::vector<Tangential> obstacle_slip;
+    // The slip accumulated up to the last accepted step.
+    std::vector<double> slip_path;
+    // Where node i sticks in the step: its tangential displacement at the
+    // last step moved with its obstacle.
+    Tangential
+                              stick_position(const unsigned int i) const;
     std::vector<unsigned int> friction_states;
     std::vector<double>       bounds, transverse_stiffness;
     double                    friction_tolerance = 1e-7;

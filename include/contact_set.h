@@ -275,6 +275,20 @@ namespace ViscoContact
     // where the zone is frictionless).
     std::vector<Tangential>
     tangential_displacements(const VectorType &u) const;
+    // The accumulated slip of every node (ContactNodes::accumulated_slip())
+    // as a nodal field at its x-dof, with the hanging-node constraints
+    // applied and the ghosts imported (for checkpoints and transfers), and
+    // back from such a field at the nodes of this rank.
+    VectorType
+    slip_path_field(const VectorType                &layout,
+                    const AffineConstraints<double> &hanging_constraints) const;
+    void
+    set_slip_path_from(const VectorType &field);
+    // A moving obstacle: each zone's translation over the step, whose
+    // tangential components at every frictional node become the node's
+    // obstacle slip (ContactNodes::set_obstacle_slip()).
+    void
+    set_obstacle_steps(const std::vector<Tensor<1, dim>> &zone_steps);
     // A vector of space from the tangential components of node i in its
     // frame, sum_j x_j tau_ij.
     Tensor<1, dim>
@@ -378,6 +392,10 @@ namespace ViscoContact
     fill_friction_fields(VectorType &tangential_traction,
                          VectorType &slip,
                          VectorType &friction_state) const;
+    // With a memory term: the memory pressure of the last step (scalar
+    // layout); on the opposite sides the mortar average of the zone's.
+    void
+    fill_memory_field(VectorType &memory_pressure) const;
 
   private:
     // The contact nodes of this rank into geometry, in the order the zones

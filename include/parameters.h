@@ -324,11 +324,23 @@ namespace ViscoContact
       // The obstacle: the gap s(x, t) along the direction d (doc/model.md).
       std::string initial_gap   = "0";
       std::string gap_direction = "normal";
+      // The obstacle's rigid translation o(t) since t = 0 (dim expressions
+      // in t; "0": it does not move).
+      std::string obstacle_motion = "0";
       // Friction (doc/model.md, section 7): the law, Tresca's bound g(x),
       // Coulomb's coefficient mu.
       TangentialLawType tangential_law       = TangentialLawType::frictionless;
       std::string       slip_bound           = "0";
       double            friction_coefficient = 0;
+      // Slip weakening: the bound times f(S), piecewise linear through
+      // (S_k, f_k) (empty: f = 1).
+      std::vector<double> weakening_slips;
+      std::vector<double> weakening_factors;
+      // The memory term of the normal law (doc/model.md, section 9): the
+      // kernel b(t) = sum_k a_k exp(-lambda_k t), weights a_k and rates
+      // lambda_k (empty: no memory).
+      std::vector<double> memory_weights;
+      std::vector<double> memory_rates;
 
       void
       add_parameters(ParameterHandler  &prm,

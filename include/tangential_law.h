@@ -2,6 +2,7 @@
 #define viscoplastic_contact_tangential_law_h
 
 #include <memory>
+#include <vector>
 
 namespace ViscoContact
 {
@@ -29,6 +30,20 @@ namespace ViscoContact
   // or not); Coulomb, g = mu z_i with the node's normal force of the step. A
   // new law is a class implementing this interface (one file) and a value
   // of the Tangential law entry (TangentialLaw::from_parameters()).
+  //
+  // Any of them may weaken with the slip (doc/model.md, section 7): the
+  // bound and the coupling times f(S), S the node's accumulated slip up to
+  // the last accepted step (explicit, as the paper's history), f piecewise
+  // linear through the points (S_k, f_k) and constant beyond them.
+  struct SlipWeakening
+  {
+    std::vector<double> slips;   // S_1 < ... < S_K (empty: f = 1)
+    std::vector<double> factors; // f_k >= 0
+
+    double
+    factor(const double accumulated_slip) const;
+  };
+
   class TangentialLaw
   {
   public:
@@ -60,6 +75,9 @@ namespace ViscoContact
     };
     virtual SlipForce
     slip_force(const double bound) const = 0;
+
+    // The weakening of the zone's law (f = 1 without one).
+    SlipWeakening weakening;
   };
 
   // No tangential force: the zone's nodes slide freely.

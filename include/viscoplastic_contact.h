@@ -40,6 +40,7 @@
 #include "material.h"
 #include "materials.h"
 #include "mesh/mesh_adaptation.h"
+#include "normal_memory.h"
 #include "parameters.h"
 #include "scene/prescribed_displacements.h"
 #include "robustness/checkpoint_file.h"
@@ -375,6 +376,10 @@ namespace ViscoContact
     // The contact zones of the scene, with their laws and obstacles
     // (scene/contact_zones.h).
     ContactZones<dim> contact_zones;
+    // The history of the memory term of the normal laws at the contact
+    // nodes (normal_memory.h): each step's memory pressures come from it,
+    // each accepted step adds to it.
+    NormalMemory normal_memory;
     // The gaps of the contact nodes at the given time (collective: a value
     // that is not finite stops all ranks, naming the entry).
     void

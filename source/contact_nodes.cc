@@ -13,6 +13,7 @@
 
 #include "contact_nodes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <iomanip>
@@ -134,6 +135,8 @@ namespace ViscoContact
     z.assign(w.size(), 0.);
     node_pieces.assign(w.size(), 0);
     placed = false;
+    memory_pressures.clear();
+    with_memory = false;
     set_friction(std::vector<FrictionLaw>(laws.n_zones(),
                                           std::make_shared<Frictionless>()),
                  std::vector<unsigned int>(w.size(), 0),
@@ -166,11 +169,48 @@ namespace ViscoContact
     slip_direction.assign(size(), zero);
     last_slip.assign(size(), zero);
     friction_states.assign(size(), free_tangential);
+    slip_path.assign(size(), 0.);
+    obstacle_slip.clear();
     bounds.assign(size(), 0.);
     transverse_stiffness.assign(size(), 0.);
     for (unsigned int i = 0; i < size(); ++i)
       if (tangential_directions[i] > 0)
         friction_states[i] = stick;
+  }
+
+
+
+  // @sect4{ContactNodes::set_history_pressure}
+  void
+  ContactNodes::set_history_pressure(const std::vector<double> &pressures)
+  {
+    AssertDimension(pressures.size(), size());
+    memory_pressures = pressures;
+    with_memory      = true;
+  }
+
+
+
+  bool
+  ContactNodes::has_memory() const
+  {
+    return with_memory;
+  }
+
+
+
+  double
+  ContactNodes::history_pressure(const unsigned int i) const
+  {
+    return with_memory ? memory_pressures[i] : 0.;
+  }
+
+
+
+  const std::vector<double> &
+  ContactNodes::history_pressures() const
+  {
+    return memory_pressures;
   }
 
 
@@ -207,8 +247,9 @@ namespace ViscoContact
   // @sect4{ContactNodes::update_pieces}
   //
   // The update rule at every node of this rank: q_i = z_i / w_i + c_i r_i
-  // from the last solve names the next piece (ContactLaw::next_piece). The
-  // counts are this rank's only; ContactNodes::solve() sums them.
+  // from the last solve names the next piece (ContactLaw::next_piece), on
+  // the law's graph once the memory pressure m_i is taken off. The counts
+  // are this rank's only; ContactNodes::solve() sums them.
   std::array<unsigned int, 3>
   ContactNodes::update_pieces(const bool with_friction)
   {
@@ -218,7 +259,8 @@ namespace ViscoContact
         const unsigned int next
           = contact_laws.next_piece(node_zones[i],
                                     node_pieces[i],
-                                    z[i] / w[i] + c[i] * r[i],
+                                    z[i] / w[i] - history_pressure(i)
+                                      + c[i] * r[i],
                                     c[i]);
         if (next != node_pieces[i])
           {
@@ -268,10 +310,11 @@ namespace ViscoContact
     const unsigned int k = tangential_directions[i];
     if (k == 0)
       return {{false, false}};
-    const double g = bound_of(i);
-    Tangential   q = {{0, 0}};
+    const double     g         = bound_of(i);
+    Tangential       q         = {{0, 0}};
+    const Tangential reference = stick_position(i);
     for (unsigned int j = 0; j < k; ++j)
-      q[j] = t[i][j] + c[i] * w[i] * (s[i][j] - slip_reference[i][j]);
+      q[j] = t[i][j] + c[i] * w[i] * (s[i][j] - reference[j]);
     // hypot: the squares of forces of a tiny bound (a Friction coefficient
     // of 1e-200, say) would underflow to zero.
     const double q_norm = std::hypot(q[0], q[1]);
@@ -326,12 +369,12 @@ namespace ViscoContact
   //
   // The node's equations as directions of its frame: the normal one fixed on
   // a vertical piece (u.nu = beta + gap) or free with the force
-  // w (o + s (u.nu - gap)); the tangential ones fixed at the last step's
-  // tangential displacement when the node sticks, free with no force when
-  // the bound is zero, and, when it slips, free along the slip direction d
-  // with the force g (Tresca) or mu z (Coulomb, coupled to the normal force
-  // z of the same solve) and (in 3D) free across it with the stiffness k_e
-  // against the slip increment.
+  // w (o + m + s (u.nu - gap)), m the memory pressure; the tangential ones
+  // fixed at the last step's tangential displacement when the node sticks, free
+  // with no force when the bound is zero, and, when it slips, free along the
+  // slip direction d with the force g (Tresca) or mu z (Coulomb, coupled to the
+  // normal force z of the same solve) and (in 3D) free across it with the
+  // stiffness k_e against the slip increment.
   NodeDirections
   ContactNodes::directions(const unsigned int i, const double gap) const
   {
@@ -346,13 +389,15 @@ namespace ViscoContact
       }
     else
       {
-        normal.value     = w[i] * (piece.intercept - piece.slope * gap);
+        normal.value
+          = w[i] * (piece.intercept + history_pressure(i) - piece.slope * gap);
         normal.stiffness = w[i] * piece.slope;
       }
     result.size          = 1 + tangential_directions[i];
     const unsigned int k = tangential_directions[i];
     if (k == 0)
       return result;
+    const Tangential reference = stick_position(i);
     if (friction_states[i] != slip)
       {
         for (unsigned int j = 0; j < k; ++j)
@@ -361,25 +406,27 @@ namespace ViscoContact
             tangential.frame[1 + j]   = 1;
             tangential.fixed          = (friction_states[i] == stick);
             tangential.value
-              = (friction_states[i] == stick ? slip_reference[i][j] : 0.);
+              = (friction_states[i] == stick ? reference[j] : 0.);
           }
         return result;
       }
     const Tangential &d     = slip_direction[i];
     NodeDirection    &along = result.direction[1];
     along.frame             = {{0, d[0], d[1]}};
-    const TangentialLaw::SlipForce force
-      = zone_friction[node_zones[i]]->slip_force(bounds[i]);
-    along.value    = force.value;
-    along.coupling = force.coupling;
+    // The bound of the last update is weakened already; Coulomb's coupling
+    // to the normal force weakens with it.
+    const TangentialLaw           &law   = *zone_friction[node_zones[i]];
+    const TangentialLaw::SlipForce force = law.slip_force(bounds[i]);
+    along.value                          = force.value;
+    along.coupling = force.coupling * law.weakening.factor(slip_path[i]);
     if (k == 2)
       {
         NodeDirection &across = result.direction[2];
         across.frame          = {{0, -d[1], d[0]}};
         across.stiffness      = transverse_stiffness[i];
-        across.value          = -transverse_stiffness[i]
-                       * (across.frame[1] * slip_reference[i][0]
-                          + across.frame[2] * slip_reference[i][1]);
+        across.value
+          = -transverse_stiffness[i]
+            * (across.frame[1] * reference[0] + across.frame[2] * reference[1]);
       }
     return result;
   }
@@ -432,7 +479,8 @@ namespace ViscoContact
   //
   // The slip of the next step starts from the final displacement of this
   // one (taken from u, not from the last solve's s, which the condensed
-  // back end computes otherwise, to rounding). A slipping node's bound and
+  // back end computes otherwise, to rounding); the slip of this one is
+  // measured relative to its obstacle. A slipping node's bound and
   // direction are set from its normal and tangential force (the values of
   // its last update, to rounding), so that a run resumed from a
   // checkpoint, which stores u and the forces, continues with the same
@@ -447,9 +495,14 @@ namespace ViscoContact
         const unsigned int k = tangential_directions[i];
         if (k == 0)
           continue;
-        s[i] = tangential_displacements[i];
+        s[i]                       = tangential_displacements[i];
+        const Tangential reference = stick_position(i);
         for (unsigned int j = 0; j < k; ++j)
-          last_slip[i][j] = s[i][j] - slip_reference[i][j];
+          last_slip[i][j] = s[i][j] - reference[j];
+        // A free node (out of contact under Coulomb's law) moves without
+        // sliding on anything.
+        if (friction_states[i] != free_tangential)
+          slip_path[i] += std::hypot(last_slip[i][0], last_slip[i][1]);
         slip_reference[i] = s[i];
         if (friction_states[i] != slip)
           continue;
@@ -457,6 +510,27 @@ namespace ViscoContact
         if (t[i][0] != 0 || t[i][1] != 0)
           set_slip_direction(i, t[i], bounds[i]);
       }
+    obstacle_slip.clear();
+  }
+
+
+
+  void
+  ContactNodes::set_obstacle_slip(const std::vector<Tangential> &obstacle_step)
+  {
+    AssertDimension(obstacle_step.size(), size());
+    obstacle_slip = obstacle_step;
+  }
+
+
+
+  ContactNodes::Tangential
+  ContactNodes::stick_position(const unsigned int i) const
+  {
+    if (obstacle_slip.empty())
+      return slip_reference[i];
+    return {{slip_reference[i][0] + obstacle_slip[i][0],
+             slip_reference[i][1] + obstacle_slip[i][1]}};
   }
 
 
@@ -464,13 +538,44 @@ namespace ViscoContact
   // @sect4{ContactNodes::bound_of and set_slip_direction}
   //
   // The bound g of node i now: Tresca's, or mu z with the last normal
-  // force. And the slip direction d = q / |q| of a slipping node with the
+  // force, times the weakening factor of its accumulated slip. And the slip
+  // direction d = q / |q| of a slipping node with the
   // transverse stiffness of the Newton linearisation (3D, update_friction()),
   // k_e = c w gamma / (1 - gamma), gamma = g / |q|, capped at 100 c w.
   double
   ContactNodes::bound_of(const unsigned int i) const
   {
-    return zone_friction[node_zones[i]]->bound(z[i], tresca_bound[i]);
+    const TangentialLaw &law = *zone_friction[node_zones[i]];
+    return law.bound(z[i], tresca_bound[i])
+           * law.weakening.factor(slip_path[i]);
+  }
+
+
+
+  double
+  ContactNodes::accumulated_slip(const unsigned int i) const
+  {
+    return slip_path[i];
+  }
+
+
+
+  void
+  ContactNodes::set_accumulated_slip(const unsigned int i, const double slip)
+  {
+    slip_path[i] = slip;
+  }
+
+
+
+  bool
+  ContactNodes::has_slip_weakening() const
+  {
+    return std::any_of(zone_friction.begin(),
+                       zone_friction.end(),
+                       [](const FrictionLaw &law) {
+                         return !law->weakening.slips.empty();
+                       });
   }
 
 
@@ -502,6 +607,7 @@ namespace ViscoContact
     AssertDimension(tangential_forces.size(), size());
     t              = tangential_forces;
     slip_reference = tangential_displacements;
+    obstacle_slip.clear();
     accept_slip(tangential_displacements);
   }
 
@@ -884,7 +990,8 @@ namespace ViscoContact
   ContactNodes::compliance_pressure(const unsigned int i) const
   {
     const ContactLawPiece &current = current_piece(i);
-    return current.rigid ? current.p_lower : contact_pressure(i);
+    return current.rigid ? current.p_lower + history_pressure(i)
+                         : contact_pressure(i);
   }
 
 

@@ -800,6 +800,8 @@ namespace ViscoContact
             for (unsigned int d = 0; d < dim; ++d)
               out << ',' << slip[d];
           }
+        if (has_memory())
+          out << ',' << history_pressure(i);
         out << '\n';
       }
     return out.str();
@@ -829,6 +831,10 @@ namespace ViscoContact
           for (unsigned int d = 0; d < dim; ++d)
             out << ',' << field << coordinates[d];
       }
+    // With a memory term: the memory pressure of the last step (part of
+    // compliance_pressure).
+    if (has_memory())
+      out << ",memory_pressure";
     out << '\n';
     return out.str();
   }
@@ -877,6 +883,34 @@ namespace ViscoContact
     hanging_constraints.distribute(pressure);
     pressure.update_ghost_values();
     return pressure;
+  }
+
+
+
+  template <int dim>
+  VectorType
+  ContactSet<dim>::slip_path_field(
+    const VectorType                &layout,
+    const AffineConstraints<double> &hanging_constraints) const
+  {
+    VectorType field(layout);
+    field = 0;
+    for (unsigned int i = 0; i < size(); ++i)
+      field.local_element(node(i).local_dofs[0]) = accumulated_slip(i);
+    field.zero_out_ghost_values();
+    hanging_constraints.distribute(field);
+    field.update_ghost_values();
+    return field;
+  }
+
+
+
+  template <int dim>
+  void
+  ContactSet<dim>::set_slip_path_from(const VectorType &field)
+  {
+    for (unsigned int i = 0; i < size(); ++i)
+      set_accumulated_slip(i, field.local_element(node(i).local_dofs[0]));
   }
 
 
@@ -949,6 +983,20 @@ namespace ViscoContact
           compliance_pressure(i),
           status(i),
           r[i]);
+  }
+
+
+
+  template <int dim>
+  void
+  ContactSet<dim>::fill_memory_field(VectorType &memory_pressure) const
+  {
+    memory_pressure = 0;
+    if (pairs)
+      for (const auto &vertex : opposite.states(*this))
+        memory_pressure(vertex.scalar_dof) = vertex.memory_pressure;
+    for (unsigned int i = 0; i < size(); ++i)
+      memory_pressure(geometry[i].scalar_dof) = history_pressure(i);
   }
 
 
@@ -1060,6 +1108,20 @@ namespace ViscoContact
       for (unsigned int j = 0; j < geometry[i].n_tangents; ++j)
         result[i][j] = row_component(u, i, 1 + j);
     return result;
+  }
+
+
+
+  template <int dim>
+  void
+  ContactSet<dim>::set_obstacle_steps(
+    const std::vector<Tensor<1, dim>> &zone_steps)
+  {
+    std::vector<Tangential> steps(size(), Tangential{{0, 0}});
+    for (unsigned int i = 0; i < size(); ++i)
+      for (unsigned int j = 0; j < geometry[i].n_tangents; ++j)
+        steps[i][j] = geometry[i].tangents[j] * zone_steps[zone(i)];
+    set_obstacle_slip(steps);
   }
 
 

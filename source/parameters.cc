@@ -963,6 +963,46 @@ namespace ViscoContact
     }
 
 
+    namespace
+    {
+      // Whether an expression is the number zero (an expression that only
+      // evaluates to zero counts as a value), and whether every component
+      // of a list separated by ';' is.
+      bool
+      is_zero_number(const std::string &expression)
+      {
+        try
+          {
+            return Utilities::string_to_double(expression) == 0;
+          }
+        catch (...)
+          {
+            return false;
+          }
+      }
+
+      // Whether an expression mentions one of the variables (a regular
+      // expression for the name: "t", "[xyz]"), not as part of a longer
+      // name ("tan" does not mention t).
+      bool
+      mentions(const std::string &expression, const std::string &variables)
+      {
+        const std::regex variable("(^|[^A-Za-z0-9_])" + variables
+                                  + "($|[^A-Za-z0-9_])");
+        return std::regex_search(expression, variable);
+      }
+
+      bool
+      is_zero_vector(const std::string &expression)
+      {
+        for (const std::string &part :
+             Utilities::split_string_list(expression, ';'))
+          if (!is_zero_number(part))
+            return false;
+        return true;
+      }
+    } // namespace
+
     void
     Contact::add_parameters(ParameterHandler  &prm,
                             const std::string &subsection)
@@ -1083,6 +1123,17 @@ namespace ViscoContact
           "Gap direction 0, -1; an indenter that moves into the body by "
           "0.01 t: \"... - 0.01 * t\".");
         prm.add_parameter(
+          "Obstacle motion",
+          obstacle_motion,
+          "o(t): the rigid translation of the obstacle since t = 0, dim "
+          "muparser expressions in t separated by ';' (0: the obstacle does "
+          "not move). Initial gap describes the obstacle where it is at t = "
+          "0: the gap at x is s(x - o(t), t); friction acts on the slip "
+          "relative to the obstacle. A rigid support moving sideways under "
+          "a body: \"-0.01 * t; 0\"; a punch dragged along x: \"0.1 * t; 0\". "
+          "Not on a contact pair (Opposite boundary ids).",
+          Patterns::Anything());
+        prm.add_parameter(
           "Gap direction",
           gap_direction,
           "d: normal (each node's outward normal, the paper's model) or a "
@@ -1111,6 +1162,37 @@ namespace ViscoContact
                           friction_coefficient,
                           "Coulomb's coefficient mu >= 0.",
                           non_negative);
+        prm.add_parameter(
+          "Weakening slips",
+          weakening_slips,
+          "Slip weakening of the tangential law (doc/model.md, section 7): "
+          "the bound (Slip bound, or Friction coefficient times the "
+          "pressure) times f(S), S the node's accumulated slip up to the "
+          "last step, f piecewise linear through the points (S_k, f_k) and "
+          "constant beyond them. These are S_1 < ... < S_K >= 0 [m] (empty: "
+          "no weakening).",
+          Patterns::List(Patterns::Double()));
+        prm.add_parameter("Weakening factors",
+                          weakening_factors,
+                          "The factors f_k >= 0 at the Weakening slips, one "
+                          "per slip (e.g. 1, 0.6: a coefficient that falls to "
+                          "60% of its value).",
+                          Patterns::List(Patterns::Double()));
+        prm.add_parameter(
+          "Memory weights",
+          memory_weights,
+          "The memory term of the normal law (doc/model.md, section 9): the "
+          "pressure gets int_0^t b(t - s) r+(s) ds with the kernel b(t) = "
+          "sum_k a_k exp(-lambda_k t); these are the a_k [N/m^3/s in 2D "
+          "and 3D], one per term (empty: no memory). Needs Normal "
+          "compliance = true.",
+          Patterns::List(Patterns::Double()));
+        prm.add_parameter(
+          "Memory rates",
+          memory_rates,
+          "The lambda_k >= 0 of the memory kernel [1/s], one per Memory "
+          "weight (0: a constant term, the kernel's integral grows as a_k t).",
+          Patterns::List(Patterns::Double()));
       }
       prm.leave_subsection();
     }
@@ -1140,9 +1222,7 @@ namespace ViscoContact
                   "constraint = false and Normal compliance = false)");
         if (tangential_law == TangentialLawType::tresca)
           {
-            static const std::regex t_variable(
-              "(^|[^A-Za-z0-9_])t($|[^A-Za-z0-9_])");
-            require(!std::regex_search(slip_bound, t_variable),
+            require(!mentions(slip_bound, "t"),
                     subsection,
                     "Slip bound",
                     slip_bound,
@@ -1164,6 +1244,21 @@ namespace ViscoContact
                     slip_bound,
                     "a finite bound g >= 0");
           }
+        if (!is_zero_vector(obstacle_motion))
+          {
+            require(!mentions(obstacle_motion, "[xyz]"),
+                    subsection,
+                    "Obstacle motion",
+                    obstacle_motion,
+                    "expressions of the time t alone (a rigid translation), "
+                    "not of the position x, y (, z)");
+            require(opposite_ids.empty(),
+                    subsection,
+                    "Obstacle motion",
+                    obstacle_motion,
+                    "0 on a contact pair (Opposite boundary ids): the other "
+                    "body moves by its own boundary conditions");
+          }
         if (!opposite_ids.empty())
           require(gap_direction == "normal",
                   subsection,
@@ -1177,6 +1272,57 @@ namespace ViscoContact
                   "Layer thickness",
                   to_string(gap),
                   "g > 0 with Normal compliance = true");
+        require(weakening_factors.size() == weakening_slips.size(),
+                subsection,
+                "Weakening factors",
+                prm.get("Weakening factors"),
+                "one factor per Weakening slip ("
+                  + std::to_string(weakening_slips.size()) + " values)");
+        for (unsigned int k = 0; k < weakening_slips.size(); ++k)
+          require(std::isfinite(weakening_slips[k])
+                    && (k == 0 ? weakening_slips[k] >= 0
+                               : weakening_slips[k] > weakening_slips[k - 1]),
+                  subsection,
+                  "Weakening slips",
+                  prm.get("Weakening slips"),
+                  "finite slips 0 <= S_1 < ... < S_K");
+        for (const double factor : weakening_factors)
+          require(factor >= 0 && std::isfinite(factor),
+                  subsection,
+                  "Weakening factors",
+                  prm.get("Weakening factors"),
+                  "finite factors f_k >= 0");
+        if (!weakening_slips.empty())
+          require(tangential_law != TangentialLawType::frictionless,
+                  subsection,
+                  "Weakening slips",
+                  prm.get("Weakening slips"),
+                  "empty with Tangential law = frictionless");
+        require(memory_rates.size() == memory_weights.size(),
+                subsection,
+                "Memory rates",
+                prm.get("Memory rates"),
+                "one rate per Memory weight ("
+                  + std::to_string(memory_weights.size()) + " values)");
+        for (const double weight : memory_weights)
+          require(std::isfinite(weight),
+                  subsection,
+                  "Memory weights",
+                  prm.get("Memory weights"),
+                  "finite numbers");
+        for (const double rate : memory_rates)
+          require(rate >= 0 && std::isfinite(rate),
+                  subsection,
+                  "Memory rates",
+                  prm.get("Memory rates"),
+                  "finite rates lambda_k >= 0");
+        if (!memory_weights.empty())
+          require(normal_compliance,
+                  subsection,
+                  "Memory weights",
+                  prm.get("Memory weights"),
+                  "empty with Normal compliance = false (the memory term "
+                  "acts on the penetration of the layer)");
         // The ranges of the laws' entries hold only for the law that uses
         // them.
         if (normal_compliance && law_type == ContactLawType::nonmonotone)
@@ -2369,6 +2515,11 @@ namespace ViscoContact
                         + zone.subsection
                         + ">): the coarser meshes do not keep the slip of "
                           "the last step");
+      for (const ContactZone &zone : used_contact_zones())
+        refuse_unless(zone.contact->memory_weights.empty(),
+                      "0 with a memory term (Memory weights in subsection <"
+                        + zone.subsection
+                        + ">): the coarser meshes do not keep its history");
     }
 
     // Profile times within the run, and schedules of a size the run can
@@ -2458,24 +2609,6 @@ namespace ViscoContact
               "0 (never) or at most the number of steps, "
                 + std::to_string(n_steps));
     }
-
-    namespace
-    {
-      // Whether an expression is the number zero (an expression that only
-      // evaluates to zero counts as a value).
-      bool
-      is_zero_number(const std::string &expression)
-      {
-        try
-          {
-            return Utilities::string_to_double(expression) == 0;
-          }
-        catch (...)
-          {
-            return false;
-          }
-      }
-    } // namespace
 
     // Entries whose value the run would otherwise ignore without a word.
     void

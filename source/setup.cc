@@ -314,6 +314,25 @@ namespace ViscoContact
                       prescribed.hanging_node_constraints(),
                       solution);
     set_gaps(schedule.current_time());
+    // The memory starts empty, with the penetrations of the initial state
+    // for the first step.
+    {
+      std::vector<unsigned int> zones;
+      std::vector<double>       penetrations;
+      for (unsigned int i = 0; i < contact_set.size(); ++i)
+        {
+          zones.push_back(contact_set.zone(i));
+          penetrations.push_back(contact_set.normal_component(solution, i)
+                                 - contact_set.gap(i));
+        }
+      normal_memory.reinit(contact_zones.memory_kernels(), zones);
+      if (normal_memory.active())
+        {
+          normal_memory.accept_step(penetrations);
+          contact_set.set_history_pressure(
+            std::vector<double>(contact_set.size(), 0.));
+        }
+    }
     // Tresca's bounds at the nodes (collective: a negative or infinite
     // value stops all ranks, naming the entry).
     FileOutput::agree_on_problem(contact_set.set_slip_bounds(

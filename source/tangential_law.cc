@@ -11,16 +11,40 @@ namespace ViscoContact
   std::shared_ptr<const TangentialLaw>
   TangentialLaw::from_parameters(const Parameters::Contact &contact)
   {
+    std::shared_ptr<TangentialLaw> law;
     switch (contact.tangential_law)
       {
         case Parameters::TangentialLawType::tresca:
-          return std::make_shared<TrescaFriction>();
+          law = std::make_shared<TrescaFriction>();
+          break;
         case Parameters::TangentialLawType::coulomb:
-          return std::make_shared<CoulombFriction>(
-            contact.friction_coefficient);
+          law = std::make_shared<CoulombFriction>(contact.friction_coefficient);
+          break;
         default:
-          return std::make_shared<Frictionless>();
+          law = std::make_shared<Frictionless>();
       }
+    law->weakening = {contact.weakening_slips, contact.weakening_factors};
+    return law;
+  }
+
+
+
+  // f(S): the first factor up to the first slip, linear between the
+  // points, the last factor beyond the last.
+  double
+  SlipWeakening::factor(const double accumulated_slip) const
+  {
+    if (slips.empty())
+      return 1;
+    if (accumulated_slip <= slips.front())
+      return factors.front();
+    for (unsigned int k = 1; k < slips.size(); ++k)
+      if (accumulated_slip <= slips[k])
+        return factors[k - 1]
+               + (factors[k] - factors[k - 1])
+                   * (accumulated_slip - slips[k - 1])
+                   / (slips[k] - slips[k - 1]);
+    return factors.back();
   }
 
 

@@ -61,6 +61,9 @@ namespace ViscoContact
     if (parameters.predicted_start && n > 1)
       predicted_start.remember(std::move(start.solution),
                                std::move(start.contact.z));
+    // The memory keeps this step's history and penetrations.
+    if (contact_enabled && normal_memory.active())
+      normal_memory.accept_step(contact_set.r);
     // Friction: the next step's slip is measured from here.
     if (contact_enabled && contact_set.has_friction())
       contact_set.accept_slip(contact_set.tangential_displacements(solution));
@@ -98,6 +101,16 @@ namespace ViscoContact
         // The right-hand side depends on t_n, which a cut has changed.
         const double k = schedule.step_length();
         assemble_right_hand_side(schedule.next_time());
+        // The memory pressures of this step, from the history at its start
+        // (its length k too, which a cut has changed).
+        if (contact_enabled && normal_memory.active())
+          contact_set.set_history_pressure(normal_memory.start_step(k));
+        // A moving obstacle carries its sticking nodes over the step.
+        if (contact_enabled && contact_zones.has_obstacle_motion()
+            && contact_set.has_friction())
+          contact_set.set_obstacle_steps(
+            contact_zones.obstacle_steps(schedule.current_time(),
+                                         schedule.next_time()));
         // The start of the step: extrapolated from the two before it
         // (acceleration/predicted_start.h), then from the coarser meshes.
         if (parameters.predicted_start && schedule.step_number() >= 1)

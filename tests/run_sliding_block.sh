@@ -19,6 +19,14 @@
 #  - pushed obliquely (3D, hexahedra and tetrahedra): F turns toward the
 #    push by a factor of about 0.78 per step once every node slips, and
 #    |F| stays within 1.5 times the observed distance below mu N;
+#  - the support moving sideways under the block held at its top
+#    (Obstacle motion): the same forces, slips and states as the sliding
+#    block in every step, on all three back ends;
+#  - a rigid cylinder dragged along a block (parameters/dragged_punch.prm):
+#    every node in contact slips and F = -mu N in every step of the drag;
+#  - slip weakening (parameters/slip_weakening.prm): every node's traction
+#    against mu(S) p with its own accumulated slip S, in every step; the
+#    force peaks above 0.4 N and ends at 0.3 N (three back ends);
 # Coulomb and Tresca, quadrilaterals and triangles, hexahedra and
 # tetrahedra, condensed and full space, 1 and 2 ranks. With "quick" as
 # second argument (the Debug build): two variants.
@@ -98,6 +106,130 @@ for variant in "${variants[@]}"; do
       || exit 1
   fi
 done
+# The support moves instead (Obstacle motion = -a(t), the top held at x =
+# 0): the same relative motion, so the same problem up to the rigid
+# translation a(t), which the elastic block does not feel. Every step's
+# normal and tangential force, reaction, stick and slip counts, and every
+# node's pressure, traction, slip (relative to the support) and state
+# must be those of the sliding block.
+moving_variants=("2 hypercube condensed 1" "3 hypercube full_space 2" "3 hypercube matrix_free 1"
+                 "2 simplex full_space 1")
+[ -n "$quick" ] && moving_variants=("2 hypercube condensed 1")
+for variant in "${moving_variants[@]}"; do
+  set -- $variant
+  name="moving support ${1}D, $2, ${3/_/ }, $4 rank(s)"
+  prm=$here/../parameters/sliding_block.prm top="0; -0.01 * min(t, 1)" motion="-0.02 * max(t - 1, 0); 0"
+  if [ $1 = 3 ]; then
+    prm=$here/../parameters/sliding_block_3d.prm top="0; 0; -0.01 * min(t, 1)" motion="-0.02 * max(t - 1, 0); 0; 0"
+  fi
+  tolerance=1e-9
+  [ $3 != condensed ] && tolerance=1e-7
+  set_entry "Cell type" $2 < "$prm" | set_entry Method "${3/_/ }" \
+    | set_entry "Output directory" results > variant.prm
+  run_scene variant.prm $4 "$name (the sliding block)"
+  mv results sliding
+  set_entry "Cell type" $2 < "$prm" | set_entry Method "${3/_/ }" | set_entry Displacement "$top" \
+    | sed -e "s/^\(  set Friction coefficient.*\)$/\1\n  set Obstacle motion = $motion/" \
+    | set_entry "Output directory" results > variant.prm
+  run_scene variant.prm $4 "$name"
+  for file in time_series.csv contact_profile_0016.csv contact_profile_0011.csv; do
+    paste -d, "sliding/$file" "results/$file" | awk -F, -v name="$name" -v file="$file" -v tol="$tolerance" '
+      NR == 1 { n = NF / 2; for (i = 1; i <= n; ++i) col[$i] = i; next }
+      { for (f in col)
+          if (f ~ /^(total_contact_force|tangential_force_zone_1_|reaction_prescribed_1_|stick_nodes|slip_nodes|contact_pressure|tangential_traction_|slip_|friction_state|status)/) {
+            a = $col[f]; b = $(col[f] + n); d = a - b; if (d < 0) d = -d
+            scale = (f ~ /^slip_[xyz]/) ? 0.0025 : 1
+            if (d > tol * scale * 10) { print name ": " file ", " f " is " b ", the sliding block has " a; exit 1 } }
+        ++rows }
+      END { if (rows == 0) { print name ": " file " is empty"; exit 1 } }' || exit 1
+  done
+  rm -rf sliding
+done
+
+# A rigid cylinder pressed into a block and dragged along it
+# (parameters/dragged_punch.prm, Obstacle motion): in every step of the
+# drag every node in contact slips relative to the cylinder and the
+# tangential force the block exerts on it is -mu N (relative 1e-9
+# condensed, 1e-7 full space), with more than 10 nodes in contact.
+punch_variants=("condensed 1" "full_space 2")
+[ -n "$quick" ] && punch_variants=("condensed 1")
+for variant in "${punch_variants[@]}"; do
+  set -- $variant
+  name="dragged punch, ${1/_/ }, $2 rank(s)"
+  tolerance=1e-9
+  [ $1 != condensed ] && tolerance=1e-7
+  set_entry Method "${1/_/ }" < "$here/../parameters/dragged_punch.prm" \
+    | sed -e 's/^\(subsection Output\)$/subsection Linear solver\n  set Method = '"${1/_/ }"'\nend\n\1/' \
+    | set_entry "Output directory" results > variant.prm
+  run_scene variant.prm $2 "$name"
+  awk -F, -v name="$name" -v tol="$tolerance" '
+    function abs(a) { return a < 0 ? -a : a }
+    NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+    $col["time"] > 1 + 1e-9 {
+      N = $col["total_contact_force"]; F = $col["tangential_force_zone_1_x"]
+      if ($col["stick_nodes"] != 0 || $col["slip_nodes"] <= 10 || abs(F + 0.3 * N) > tol * N) {
+        print name ": at t = " $col["time"] " F = " F ", N = " N ", " $col["stick_nodes"] " sticking, " \
+              $col["slip_nodes"] " slipping nodes; expected F = -mu N, all slipping"; exit 1 }
+      ++dragged }
+    END { if (dragged != 16) { print name ": " dragged " steps of the drag, not 16"; exit 1 } }' \
+    results/time_series.csv || exit 1
+done
+
+# Slip weakening (parameters/slip_weakening.prm: mu = 0.5 f(S), f from 1
+# to 0.6 over S in [0, 0.005]): in every step of the drag and at every
+# node, with S the node's slip accumulated in the earlier profiles (one
+# per step), a slipping node's traction is 0.5 f(S) p (relative 1e-9
+# condensed, 1e-7 otherwise) and a sticking node's at most that; at
+# t = 2.5 every node slips and F = 0.3 N, after a peak above 0.4 N.
+weakening_variants=("2 hypercube condensed 1" "3 hypercube full_space 2" "3 hypercube matrix_free 1")
+[ -n "$quick" ] && weakening_variants=("2 hypercube condensed 1")
+for variant in "${weakening_variants[@]}"; do
+  set -- $variant
+  name="slip weakening ${1}D, $2, ${3/_/ }, $4 rank(s)"
+  tolerance=1e-9
+  [ $3 != condensed ] && tolerance=1e-7
+  if [ $1 = 3 ]; then
+    set_entry "Friction coefficient" 0.5 < "$here/../parameters/sliding_block_3d.prm" \
+      | sed -e 's/^\(  set Friction coefficient.*\)$/\1\n  set Weakening slips = 0, 0.005\n  set Weakening factors = 1, 0.6/' \
+      | set_entry "Profile times" "$(sed -n 's/^ *set Profile times *= *//p' "$here/../parameters/slip_weakening.prm")" \
+      | set_entry "End time" 2.5
+  else
+    cat "$here/../parameters/slip_weakening.prm"
+  fi | set_entry "Cell type" $2 | set_entry Method "${3/_/ }" \
+    | set_entry "Output directory" results > variant.prm
+  run_scene variant.prm $4 "$name"
+  awk -F, -v name="$name" -v tol="$tolerance" '
+    function abs(a) { return a < 0 ? -a : a }
+    function f(S) { return S >= 0.005 ? 0.6 : 1 - 0.4 * S / 0.005 }
+    FNR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; ++files; next }
+    { key = $col["x"] "," $col["y"] ("z" in col ? "," $col["z"] : "")
+      t2 = $col["tangential_traction_x"] ^ 2 + $col["tangential_traction_y"] ^ 2
+      s2 = $col["slip_x"] ^ 2 + $col["slip_y"] ^ 2
+      if ("z" in col) { t2 += $col["tangential_traction_z"] ^ 2; s2 += $col["slip_z"] ^ 2 }
+      traction = sqrt(t2); bound = 0.5 * f(S[key]) * $col["contact_pressure"]
+      state = $col["friction_state"]
+      if (state == 2 && abs(traction - bound) > tol * (bound > 1 ? bound : 1)) {
+        print name ": at t = " $col["time"] " the slipping node (" key ") has the traction " traction \
+              ", not mu(S) p = " bound " (S = " S[key] ")"; exit 1 }
+      if (state == 1 && traction > bound * (1 + tol)) {
+        print name ": at t = " $col["time"] " the sticking node (" key ") has the traction " traction \
+              " beyond mu(S) p = " bound; exit 1 }
+      slipping[files] += (state == 2); nodes[files]++
+      S[key] += sqrt(s2) }
+    END { if (files != 12 || slipping[12] != nodes[12]) {
+            print name ": " files " profiles, " slipping[12] " of " nodes[12] " nodes slipping at t = 2.5"; exit 1 }
+          weak = 0; for (k in S) if (S[k] > 0.005) ++weak
+          if (weak == 0) { print name ": no node slid beyond 0.005"; exit 1 } }' \
+    $(ls results/contact_profile_*.csv | sort) || exit 1
+  awk -F, -v name="$name" -v tol="$tolerance" '
+    NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+    { F = $col["tangential_force_zone_1_x"]; N = $col["total_contact_force"]; peak = F > peak ? F : peak }
+    END { d = F - 0.3 * N; if (d < 0) d = -d
+          if (d > tol * N || peak < 0.4 * N) {
+            print name ": at t = 2.5 F = " F " (0.3 N = " 0.3 * N "), peak " peak; exit 1 } }' \
+    results/time_series.csv || exit 1
+done
+
 # Pushed obliquely, along (0.8, 0.6) (3D, Coulomb, condensed, End time 3):
 # the stick phase leaves the nodes' slip directions spread around the
 # push's, and sliding turns them toward it. From the first step in which
@@ -133,4 +265,4 @@ if [ -z "$quick" ]; then
       results/time_series.csv || exit 1
   done
 fi
-echo "Sliding block: F balances the reaction, sticks below and equals the bound mu N or g W at full slip, slip 0.0025 per step (Coulomb, Tresca, 2D/3D, all cell types, both back ends, 1 and 2 ranks); pushed obliquely, F turns toward the push by a factor of about 0.78 per step."
+echo "Sliding block: F balances the reaction, sticks below and equals the bound mu N or g W at full slip, slip 0.0025 per step (Coulomb, Tresca, 2D/3D, all cell types, both back ends, 1 and 2 ranks); the same with the support moving instead (three back ends); a dragged cylinder at F = mu N; slip weakening node by node; pushed obliquely, F turns toward the push by a factor of about 0.78 per step."

@@ -56,6 +56,7 @@
 #include "contact_set.h"
 #include "material.h"
 #include "mesh/mesh.h"
+#include "normal_memory.h"
 #include "rigid_motions.h"
 #include "robustness/checkpoint_file.h"
 #include "robustness/mpi_tools.h"
@@ -619,7 +620,8 @@ namespace
         [&](double) {
           LinearSolveReport report;
           Vector<double>    r, z;
-          report.residual = system.solve(nodes.pieces(), d, r, z);
+          report.residual
+            = system.solve(nodes.pieces(), d, nodes.history_pressures(), r, z);
           std::copy(r.begin(), r.end(), nodes.r.begin());
           std::copy(z.begin(), z.end(), nodes.z.begin());
           return report;
@@ -705,6 +707,77 @@ TEST(Friction, StickSlipRuleOfOneNode)
 
 
 
+// A moving obstacle: a node stuck to an obstacle that moves by (0.3, -0.1)
+// over the step is held at its last position plus that motion, its slip
+// is measured relative to the obstacle (q = t + c w (s - s_n-1 - o)), and
+// the accepted step's slip is the motion relative to it.
+TEST(Friction, StickToAMovingObstacle)
+{
+  const ContactLaws signorini(ContactLaw({}, {0.}, {}, true, 0.));
+  ContactNodes      nodes;
+  nodes.reinit(signorini, {0}, {0.5});
+  nodes.set_friction({std::make_shared<TrescaFriction>()}, {2}, {1.});
+  nodes.set_parameters({100.});
+  nodes.reset_slip({{{1., 2.}}}, {{{0., 0.}}});
+  nodes.set_obstacle_slip({{{0.3, -0.1}}});
+  ASSERT_EQ(nodes.friction_state(0), ContactNodes::stick);
+  const NodeDirections stuck = nodes.directions(0, 0.);
+  EXPECT_TRUE(stuck.direction[1].fixed);
+  EXPECT_EQ(stuck.direction[1].value, 1.3);
+  EXPECT_EQ(stuck.direction[2].value, 1.9);
+  // At the obstacle's position with a small force: still stuck.
+  nodes.z[0] = 10;
+  nodes.s[0] = {{1.3, 1.9}};
+  nodes.t[0] = {{0.5, 0.}};
+  nodes.update_pieces();
+  EXPECT_EQ(nodes.friction_state(0), ContactNodes::stick);
+  // Left behind by 0.1 along x, relative to the obstacle: q = t + c w ds
+  // = (0.5 - 5, 0), beyond the bound: slips along -x.
+  nodes.s[0] = {{1.2, 1.9}};
+  nodes.update_pieces();
+  ASSERT_EQ(nodes.friction_state(0), ContactNodes::slip);
+  EXPECT_NEAR(nodes.directions(0, 0.).direction[1].frame[1], -1., 1e-15);
+  // The step's slip relative to the obstacle, and none in the next step.
+  nodes.accept_slip({{{1.2, 1.9}}});
+  EXPECT_NEAR(nodes.step_slip(0)[0], -0.1, 1e-15);
+  EXPECT_NEAR(nodes.step_slip(0)[1], 0., 1e-15);
+  nodes.set_friction_state(0, ContactNodes::stick);
+  EXPECT_EQ(nodes.directions(0, 0.).direction[1].value, 1.2);
+}
+
+
+
+// Slip weakening at a node (Coulomb mu = 0.5, f from 1 to 0.6 over a slip
+// of 0.005): the bound follows the slip accumulated over the accepted
+// steps, and a slipping node's coupling to its normal force weakens with
+// it.
+TEST(Friction, BoundWeakensWithTheAccumulatedSlip)
+{
+  const ContactLaws signorini(ContactLaw({}, {0.}, {}, true, 0.));
+  auto              coulomb = std::make_shared<CoulombFriction>(0.5);
+  coulomb->weakening        = {{0., 0.005}, {1., 0.6}};
+  ContactNodes nodes;
+  nodes.reinit(signorini, {0}, {0.5});
+  nodes.set_friction({coulomb}, {1}, {0.});
+  nodes.set_parameters({100.});
+  nodes.z[0] = 10;
+  nodes.t[0] = {{-6., 0.}};
+  nodes.update_pieces();
+  ASSERT_EQ(nodes.friction_state(0), ContactNodes::slip);
+  EXPECT_EQ(nodes.slip_bound(0), 5.);
+  EXPECT_EQ(nodes.directions(0, 0.).direction[1].coupling, 0.5);
+  // Two accepted steps of slip 0.00125: S = 0.0025, f = 0.8.
+  for (const double s : {0.00125, 0.0025})
+    nodes.accept_slip({{{s, 0.}}});
+  EXPECT_NEAR(nodes.accumulated_slip(0), 0.0025, 1e-15);
+  nodes.update_pieces();
+  EXPECT_NEAR(nodes.slip_bound(0), 4., 1e-12);
+  EXPECT_NEAR(nodes.directions(0, 0.).direction[1].coupling, 0.4, 1e-15);
+  EXPECT_TRUE(nodes.has_slip_weakening());
+}
+
+
+
 // An iteration that returns to the same pieces stops with "cycles" in its
 // failure: a node on Signorini's law whose solve penetrates when it is free
 // and pulls when it is held (no solution of the linear problems is
@@ -785,6 +858,103 @@ TEST(ActiveSetSolver, DecoupledNodesMatchClosedForm)
   const unsigned int factorizations = solver.system.n_factorizations();
   EXPECT_EQ(solver.solve(d_vector, 50, 1e-12).iterations(), 1u);
   EXPECT_EQ(solver.system.n_factorizations(), factorizations);
+}
+
+
+
+// A memory pressure m_i per node moves node i's law up by m_i: the five
+// decoupled nodes, each with its own m_i, end on the graph p(r) + m_i with
+// r = d - S z (below the rigid limit), or at r = g with at least
+// p(g-) + m_i; the node out of contact (d < 0) is pressed by its memory
+// alone, z = w m, without penetrating. The same on the full space path:
+// ContactNodes::directions() gives the free normal force w (o + m + s r).
+TEST(ActiveSetSolver, MemoryPressureMovesTheLawUp)
+{
+  const DecoupledNodes       nodes;
+  const std::vector<double> &d = nodes.d, &w = nodes.w;
+  const FullMatrix<double>  &S      = nodes.S;
+  const std::vector<double>  memory = {0.5, 0.25, 1.0, 0.75, 0.1};
+
+  DenseActiveSet solver(benchmark_law, S, w);
+  solver.nodes.set_history_pressure(memory);
+  Vector<double> d_vector(d.begin(), d.end());
+  const auto     result = solver.solve(d_vector, 50, 1e-12);
+  ASSERT_TRUE(result.converged);
+  const ContactLaw &law = benchmark_law;
+  for (unsigned int i = 0; i < nodes.m; ++i)
+    {
+      const double z = solver.nodes.z[i], r = solver.nodes.r[i];
+      EXPECT_NEAR(r, d[i] - S(i, i) * z, 1e-14) << "node " << i;
+      if (solver.nodes.current_piece(i).rigid)
+        {
+          EXPECT_NEAR(r, law.gap(), 1e-14);
+          EXPECT_GE(z / w[i], law.compliance_pressure(law.gap()) + memory[i]);
+          EXPECT_NEAR(solver.nodes.compliance_pressure(i),
+                      law.compliance_pressure(law.gap()) + memory[i],
+                      1e-12);
+        }
+      else
+        EXPECT_NEAR(z / w[i], law.compliance_pressure(r) + memory[i], 1e-10)
+          << "node " << i;
+    }
+  // Out of contact: pressed by the memory, r = d - S w m < 0.
+  EXPECT_NEAR(solver.nodes.z[0], w[0] * memory[0], 1e-14);
+  EXPECT_LT(solver.nodes.r[0], 0.);
+  EXPECT_EQ(solver.nodes.status(0), 1u);
+  // The free normal direction of a node on a sloped piece carries the
+  // memory in its constant force.
+  const unsigned int node = 1; // on the c1 piece
+  ASSERT_FALSE(solver.nodes.current_piece(node).vertical);
+  const NodeDirections directions = solver.nodes.directions(node, 0.);
+  EXPECT_NEAR(directions.direction[0].value,
+              w[node]
+                * (solver.nodes.current_piece(node).intercept + memory[node]),
+              1e-15);
+}
+
+
+
+// The memory's history over a few steps (normal_memory.h) against the
+// formula written out here: two terms (a fading and a permanent one), a
+// repeated step with another length that does not count, the kernel's
+// integral, and the history as nodal variables.
+TEST(NormalMemory, ExplicitHistoryOfTwoTerms)
+{
+  NormalMemory::Kernel kernel{{500., 100.}, {2., 0.}};
+  EXPECT_NEAR(kernel.integral(0.5),
+              500. * (1 - std::exp(-1.)) / 2. + 100. * 0.5,
+              1e-12);
+  NormalMemory memory;
+  memory.reinit({NormalMemory::Kernel{}, kernel}, {1, 0, 1});
+  EXPECT_TRUE(memory.active());
+  EXPECT_EQ(memory.n_variables(), 3u);
+  EXPECT_EQ(memory.n_nodal_fields(2), 2u);
+  EXPECT_EQ(memory.n_nodal_fields(3), 1u);
+  memory.accept_step({0.002, 0.5, -0.001}); // r_0: penetrated, -, lifted off
+
+  double h1 = 0, h2 = 0, r = 0.002;
+  for (const double k : {0.1, 0.05, 0.2})
+    {
+      // A first attempt with twice the step, then the step taken.
+      memory.start_step(2 * k);
+      const std::vector<double> m = memory.start_step(k);
+      h1 = std::exp(-2 * k) * h1 + 500. * (1 - std::exp(-2 * k)) / 2. * r;
+      h2 = h2 + 100. * k * r;
+      EXPECT_NEAR(m[0], h1 + h2, 1e-13);
+      EXPECT_EQ(m[1], 0.); // a zone without memory
+      EXPECT_EQ(m[2], 0.); // never penetrated
+      r = 0.001 + k;
+      memory.accept_step({r, 0.5, -1.});
+    }
+  EXPECT_NEAR(memory.variable(0, 0), h1, 1e-13);
+  EXPECT_NEAR(memory.variable(0, 1), h2, 1e-13);
+  EXPECT_EQ(memory.variable(0, 2), r);
+  // Restored variables give the same next step.
+  NormalMemory restored;
+  restored.reinit({NormalMemory::Kernel{}, kernel}, {1, 0, 1});
+  for (unsigned int v = 0; v < 3; ++v)
+    restored.set_variable(0, v, memory.variable(0, v));
+  EXPECT_EQ(restored.start_step(0.1)[0], memory.start_step(0.1)[0]);
 }
 
 
@@ -878,7 +1048,7 @@ TEST(ActiveSetSolver, InexactEarlySolvesEndAtTheExactSolution)
       asked.push_back(accuracy);
       LinearSolveReport report;
       Vector<double>    r, z;
-      inexact.system.solve(inexact.nodes.pieces(), d_vector, r, z);
+      inexact.system.solve(inexact.nodes.pieces(), d_vector, {}, r, z);
       for (unsigned int i = 0; i < m; ++i)
         {
           inexact.nodes.r[i] = r[i] * (1 + accuracy);
@@ -995,8 +1165,8 @@ namespace
     CondensedContactSystem new_system;
     new_system.reinit(law, S, w);
     Vector<double> r, z, r_new, z_new;
-    const double   defect     = updated.solve(pieces, d, r, z);
-    const double   new_defect = new_system.solve(pieces, d, r_new, z_new);
+    const double   defect     = updated.solve(pieces, d, {}, r, z);
+    const double   new_defect = new_system.solve(pieces, d, {}, r_new, z_new);
     EXPECT_LE(new_defect, 1e-14);
     EXPECT_LE(defect, 1e-14);
     for (unsigned int i = 0; i < w.size(); ++i)
@@ -1094,7 +1264,7 @@ namespace
     CondensedContactSystem system;
     system.reinit(law, S, w);
     Vector<double> r, z;
-    system.solve(pieces, d, r, z);
+    system.solve(pieces, d, {}, r, z);
     pieces[0] = 3;
     expect_same_as_new_factorisation(system, pieces, S, w, d, law);
     return system.n_factorizations();
@@ -1141,7 +1311,7 @@ TEST(CondensedContactSystem, NearlyFlatPiecesSolveToRounding)
     CondensedContactSystem system;
     system.reinit(law, S, w);
     Vector<double> r;
-    return system.solve(std::vector<unsigned int>(m, 2), d, r, z);
+    return system.solve(std::vector<unsigned int>(m, 2), d, {}, r, z);
   };
   Vector<double> flat, z;
   EXPECT_LT(solve(0., flat), 1e-14);

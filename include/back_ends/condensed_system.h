@@ -45,13 +45,16 @@ namespace ViscoContact
            FullMatrix<double>         compliance,
            const std::vector<double> &weights);
 
-    // z and r = d - S z for the pieces of all nodes and the free normal
-    // displacements d = N K^{-1} b. Returns how far the nodes are from the
-    // linear equations of their pieces (rounding), relative to the size of
-    // the normal displacements involved.
+    // z and r = d - S z for the pieces of all nodes, the free normal
+    // displacements d = N K^{-1} b and the memory pressures of all nodes
+    // (empty: none; a sloped piece's intercept o becomes o + m_i). Returns
+    // how far the nodes are from the linear equations of their pieces
+    // (rounding), relative to the size of the normal displacements
+    // involved.
     double
     solve(const std::vector<unsigned int> &pieces,
           const Vector<double>            &free_normal_displacement,
+          const std::vector<double>       &memory_pressures,
           Vector<double>                  &r,
           Vector<double>                  &z);
 

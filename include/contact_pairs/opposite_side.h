@@ -78,6 +78,7 @@ namespace ViscoContact
       double         contact_pressure    = 0;
       double         compliance_pressure = 0;
       double         penetration         = 0;
+      double         memory_pressure     = 0;
       unsigned int   status              = 0;
       unsigned int   friction_state      = 0;
       unsigned int   zone                = 0;

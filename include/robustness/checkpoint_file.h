@@ -49,8 +49,10 @@ namespace ViscoContact
   // The version of the file layout, the first value of every header: a
   // resumed run refuses a checkpoint of another version rather than misread
   // it. Bumped whenever the layout of the files changes, or the meaning of a
-  // cell id (7: the coarse cells numbered in p4est's order, see mesh.cc).
-  constexpr std::uint32_t checkpoint_version = 7;
+  // cell id (7: the coarse cells numbered in p4est's order, see mesh.cc; 8:
+  // the memory's and the slip weakening's fields and their layout in the
+  // header).
+  constexpr std::uint32_t checkpoint_version = 8;
 
   // The header's bytes, built and read in memory. Only trivially copyable
   // values are written, byte for byte in the machine's representation (vectors

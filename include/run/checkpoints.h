@@ -64,13 +64,18 @@ namespace ViscoContact
     };
     // The values a checkpoint stores at the dofs of every cell besides u
     // (restored into the problem's solution): the contact state, the start
-    // of the step, the nodes' history and their friction state.
+    // of the step, the nodes' history and their friction state, with a
+    // memory term its history (NormalMemory::nodal_fields()), with slip
+    // weakening the accumulated slip.
     struct CellVectors
     {
-      VectorType contact_state;
-      VectorType start_displacement;
-      VectorType node_history;
-      VectorType friction_state;
+      VectorType              contact_state;
+      VectorType              start_displacement;
+      VectorType              node_history;
+      VectorType              friction_state;
+      std::vector<VectorType> memory;
+      // With slip weakening: the accumulated slip at a node's x-dof.
+      std::vector<VectorType> slip_path;
     };
 
     // The bytes of a cell's record: the cell id, the values of the vectors
@@ -83,14 +88,21 @@ namespace ViscoContact
     static ByteWriter
     make_header(const ViscoplasticContact<dim> &problem,
                 const double                    wall_time);
-    static std::array<VectorType, 4>
+    static CellVectors
     cell_vectors(const ViscoplasticContact<dim> &problem);
     static void
-    write_cell_records(const ViscoplasticContact<dim>  &problem,
-                       const std::array<VectorType, 4> &vectors,
-                       const std::size_t                first,
-                       const std::size_t                end,
-                       char                            *out);
+    write_cell_records(const ViscoplasticContact<dim> &problem,
+                       const CellVectors              &vectors,
+                       const std::size_t               first,
+                       const std::size_t               end,
+                       char                           *out);
+    // The vectors of a record: u, then those of CellVectors.
+    static unsigned int
+    n_record_vectors(const ViscoplasticContact<dim> &problem);
+    static unsigned int
+    n_slip_path_fields(const ViscoplasticContact<dim> &problem);
+    static unsigned int
+    memory_variables(const ViscoplasticContact<dim> &problem);
 
     // The mesh of the checkpoint (of an adaptive run, or of one with initial
     // cycles) rebuilt from the mesh of the parameter file, and the problem

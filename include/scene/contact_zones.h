@@ -5,6 +5,7 @@
 #include <deal.II/base/function_parser.h>
 
 #include "contact_set.h"
+#include "normal_memory.h"
 #include "parameters.h"
 
 #include <memory>
@@ -20,11 +21,13 @@ namespace ViscoContact
   // that name boundary parts), built from the parameters once: each with
   // its normal law (ContactLaw::from_parameters()), its direction (a unit
   // vector from the body into the obstacle, or the boundary's normals),
-  // its tangential law (TangentialLaw::from_parameters()), the obstacle's gap
-  // s(x, t) along the direction, and Tresca's slip bound as functions of x
-  // (and t) where they are given. A zone whose law does nothing (no layer,
-  // no rigid limit) has no contact nodes and is left out. A bad expression
-  // stops the run here, naming the zone's subsection and the entry.
+  // its tangential law (TangentialLaw::from_parameters()), its memory
+  // kernel (NormalMemory::Kernel::from_parameters()), the obstacle's gap
+  // s(x, t) along the direction and its rigid translation o(t), and
+  // Tresca's slip bound as functions of x (and t) where they are given. A zone
+  // whose law does nothing (no layer, no rigid limit) has no contact nodes and
+  // is left out. A bad expression stops the run here, naming the zone's
+  // subsection and the entry.
   template <int dim>
   class ContactZones
   {
@@ -45,6 +48,10 @@ namespace ViscoContact
     std::vector<unsigned int>
     pair_numbers() const;
 
+    // The memory kernel of each zone (normal_memory.h; no terms: none).
+    const std::vector<NormalMemory::Kernel> &
+    memory_kernels() const;
+
     // The gap function of each zone (nullptr where it is zero: the nodes
     // keep s = 0), and Tresca's slip bound of each zone (nullptr in the
     // others).
@@ -52,6 +59,14 @@ namespace ViscoContact
     gaps() const;
     std::vector<const Function<dim> *>
     slip_bounds() const;
+    // Whether some zone's obstacle moves (Obstacle motion), and each
+    // zone's translation from the time start to the time end (zero where
+    // it does not move). A moving zone's gap function is that of the
+    // moved obstacle, s(x - o(t), t).
+    bool
+    has_obstacle_motion() const;
+    std::vector<Tensor<1, dim>>
+    obstacle_steps(const double start, const double end) const;
     // Whether some zone has a gap, and whether a gap depends on t.
     bool
     has_gap() const;
@@ -60,10 +75,14 @@ namespace ViscoContact
 
   private:
     std::vector<ContactZoneDescription<dim>>          zones;
+    std::vector<NormalMemory::Kernel>                 kernels;
     std::vector<std::unique_ptr<FunctionParser<dim>>> gap_functions;
     std::vector<std::unique_ptr<FunctionParser<dim>>> slip_bound_functions;
-    bool                                              any_gap = false;
-    bool time_dependent_gap                                   = false;
+    std::vector<std::unique_ptr<FunctionParser<dim>>> motion_functions;
+    std::vector<std::unique_ptr<Function<dim>>>       moved_gap_functions;
+    bool                                              any_gap    = false;
+    bool                                              any_motion = false;
+    bool time_dependent_gap                                      = false;
   };
 } // namespace ViscoContact
 

@@ -207,6 +207,9 @@ namespace ViscoContact
     // without friction), and the normal displacements r and forces z of all
     // contact nodes (with friction: the forces along all rows).
     Vector<double> d, r_all, z_all;
+    // The memory pressures of all contact nodes for the step (empty
+    // without memory), gathered with d.
+    std::vector<double> memory_all;
     // With friction: S, kept for the dense problems.
     FullMatrix<double> frictional_compliance;
   };
@@ -493,6 +496,10 @@ namespace ViscoContact
     const ContactSet<dim> &contact)
   {
     ++this->counts.solves;
+    memory_all.clear();
+    if (contact.has_memory() && !friction)
+      memory_all
+        = gather_on_all_ranks(contact.history_pressures(), communicator);
     if (factorization.has_last_block())
       {
         factorization.forward_solve(b, forward_last);
@@ -548,7 +555,8 @@ namespace ViscoContact
     const std::vector<unsigned int> pieces
       = gather_on_all_ranks(contact.pieces(), communicator);
     LinearSolveReport report;
-    report.residual = condensed_system.solve(pieces, d, r_all, z_all);
+    report.residual
+      = condensed_system.solve(pieces, d, memory_all, r_all, z_all);
     // Of the global result, this rank keeps the entries of its own nodes,
     // which is what ContactNodes::update_pieces() reads.
     const types::global_dof_index first = contact.first_global_index();

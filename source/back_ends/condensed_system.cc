@@ -335,12 +335,20 @@ namespace ViscoContact
   double
   CondensedContactSystem::solve(const std::vector<unsigned int> &pieces,
                                 const Vector<double>            &d,
+                                const std::vector<double>       &memory,
                                 Vector<double>                  &r,
                                 Vector<double>                  &z)
   {
     const unsigned int m = w.size();
     AssertDimension(pieces.size(), m);
     AssertDimension(d.size(), m);
+    Assert(memory.empty() || memory.size() == m,
+           ExcDimensionMismatch(memory.size(), m));
+    // A node's sloped piece with its memory pressure: p = o + m_i + s r.
+    const auto intercept
+      = [&](const unsigned int i, const ContactLawPiece &piece) {
+          return piece.intercept + (memory.empty() ? 0. : memory[i]);
+        };
     if (factorized_rows.empty()
         || (pieces != updated_pieces && !update_changed_rows(pieces)))
       factorize(pieces);
@@ -355,9 +363,9 @@ namespace ViscoContact
         if (piece.vertical)
           z[i] = d[i] - piece.r_lower;
         else if (!is_flat(i, piece))
-          z[i] = d[i] + piece.intercept / piece.slope;
+          z[i] = d[i] + intercept(i, piece) / piece.slope;
         else
-          z[i] = row(i, pieces[i]).diagonal * w[i] * piece.intercept;
+          z[i] = row(i, pieces[i]).diagonal * w[i] * intercept(i, piece);
       }
     apply_inverse(z);
 
@@ -388,7 +396,7 @@ namespace ViscoContact
         {
           const ContactLawPiece &piece = contact_laws.piece(pieces[i]);
           if (is_flat(i, piece))
-            z[i] = w[i] * piece.intercept;
+            z[i] = w[i] * intercept(i, piece);
         }
       r.reinit(m);
       S.vmult(r, z);
@@ -398,10 +406,10 @@ namespace ViscoContact
         {
           const ContactLawPiece &piece = contact_laws.piece(pieces[i]);
           const bool             flat  = is_flat(i, piece);
-          residual[i]            = piece.vertical ? r[i] - piece.r_lower
-                                       : !flat
-                                         ? r[i] - (z[i] / w[i] - piece.intercept) / piece.slope
-                                         : 0.;
+          residual[i]
+            = piece.vertical ? r[i] - piece.r_lower
+                  : !flat ? r[i] - (z[i] / w[i] - intercept(i, piece)) / piece.slope
+                          : 0.;
           const double stiffness = S(i, i) > 0 ? 1. / (w[i] * S(i, i)) : 0.;
           const double weight
             = piece.vertical || flat
@@ -431,7 +439,7 @@ namespace ViscoContact
         if (!(defect <= largest_updated_defect))
           {
             factorize(pieces);
-            return solve(pieces, d, r, z);
+            return solve(pieces, d, memory, r, z);
           }
       }
     return defect;

@@ -121,7 +121,8 @@ namespace ViscoContact
       return result;
     VectorType force(partitioner), layer_force(partitioner),
       mortar_weight(partitioner), penetration(partitioner),
-      largest_weight(partitioner), dominant_state(partitioner);
+      memory_pressure(partitioner), largest_weight(partitioner),
+      dominant_state(partitioner);
     std::vector<VectorType> slip(dim, VectorType(partitioner));
     const bool              friction = contact.has_friction();
     for (unsigned int j = 0; j < contact.size(); ++j)
@@ -146,13 +147,16 @@ namespace ViscoContact
             const double       M_jk = contact.weight(j) * share.coefficient;
             mortar_weight.local_element(k) += M_jk;
             penetration.local_element(k) += M_jk * contact.r[j];
+            memory_pressure.local_element(k)
+              += M_jk * contact.history_pressure(j);
             for (unsigned int c = 0; c < dim; ++c)
               slip[c].local_element(k) += M_jk * node_slip[c];
             double &largest = largest_weight.local_element(k);
             largest         = std::max(largest, M_jk);
           }
       }
-    for (VectorType *sum : {&force, &layer_force, &mortar_weight, &penetration})
+    for (VectorType *sum :
+         {&force, &layer_force, &mortar_weight, &penetration, &memory_pressure})
       sum->compress(VectorOperation::add);
     for (VectorType &sum : slip)
       sum.compress(VectorOperation::add);
@@ -209,6 +213,8 @@ namespace ViscoContact
         state.compliance_pressure
           = 0. - vertex_layer_force * vertex.normal / vertex.weight;
         state.penetration = penetration.local_element(x_dof) / covered_weight;
+        state.memory_pressure
+          = memory_pressure.local_element(x_dof) / covered_weight;
         // The tangential traction as on the zone: the one this body exerts
         // on the other, per unit area.
         state.tangential_traction
@@ -260,6 +266,8 @@ namespace ViscoContact
               for (unsigned int d = 0; d < dim; ++d)
                 out << ',' << state.slip[d];
             }
+          if (contact.has_memory())
+            out << ',' << state.memory_pressure;
           out << '\n';
         }
     return out.str();

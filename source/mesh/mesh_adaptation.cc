@@ -479,9 +479,10 @@ namespace ViscoContact
   //
   // The marked mesh is refined and coarsened, everything is set up on it
   // (setup_on_mesh(), which leaves the initial state), and the state is
-  // carried over: u and the contact pressure always, the stress-point data if
-  // transfer_stress_points (the adaptation during the run; the initial cycles
-  // keep the initial history of the first step). The loads are left to the
+  // carried over: u and the contact pressure always, the stress-point data
+  // and the memory of the normal law if transfer_stress_points (the
+  // adaptation during the run; the initial cycles keep the initial history
+  // of the first step). The loads are left to the
   // caller.
   template <int dim>
   void
@@ -506,10 +507,32 @@ namespace ViscoContact
     const VectorType pressure = problem.contact_set.pressure_field(
       problem.solution,
       problem.prescribed.hanging_node_constraints());
+    // With a memory term during the run, its history as nodal fields too
+    // (the initial cycles keep the initial history, as for the stresses).
+    const bool transfer_memory = transfer_stress_points
+                                 && problem.contact_enabled
+                                 && problem.normal_memory.active();
+    std::vector<VectorType> memory;
+    if (transfer_memory)
+      memory = problem.normal_memory.nodal_fields(
+        problem.contact_set,
+        problem.solution,
+        problem.prescribed.hanging_node_constraints());
+    // With slip weakening, the accumulated slips likewise (friction starts
+    // again from stick on the new mesh, but its bound keeps its weakening).
+    std::vector<VectorType> slip_path;
+    if (transfer_stress_points && problem.contact_enabled
+        && problem.contact_set.has_slip_weakening())
+      slip_path.push_back(problem.contact_set.slip_path_field(
+        problem.solution,
+        problem.prescribed.hanging_node_constraints()));
+    std::vector<const VectorType *> old_fields{&problem.solution, &pressure};
+    for (const auto *fields : {&memory, &slip_path})
+      for (const VectorType &field : *fields)
+        old_fields.push_back(&field);
     parallel::distributed::SolutionTransfer<dim, VectorType> nodal_transfer(
       problem.dof_handler);
-    nodal_transfer.prepare_for_coarsening_and_refinement(
-      std::vector<const VectorType *>{&problem.solution, &pressure});
+    nodal_transfer.prepare_for_coarsening_and_refinement(old_fields);
 
     // The stress-point data, one record per active cell.
     std::optional<StressPointCellTransfer<dim>> stress_point_transfer;
@@ -530,8 +553,22 @@ namespace ViscoContact
     VectorType new_pressure(problem.solution);
     problem.solution.zero_out_ghost_values();
     new_pressure.zero_out_ghost_values();
+    std::vector<VectorType>   new_memory(memory.size(), new_pressure);
+    std::vector<VectorType>   new_slip_path(slip_path.size(), new_pressure);
     std::vector<VectorType *> nodal_fields{&problem.solution, &new_pressure};
+    for (auto *fields : {&new_memory, &new_slip_path})
+      for (VectorType &field : *fields)
+        nodal_fields.push_back(&field);
     nodal_transfer.interpolate(nodal_fields);
+    if (transfer_memory)
+      {
+        problem.normal_memory.set_from_nodal_fields(problem.contact_set,
+                                                    new_memory);
+        problem.contact_set.set_history_pressure(
+          problem.normal_memory.accepted_pressures());
+      }
+    for (const VectorType &field : new_slip_path)
+      problem.contact_set.set_slip_path_from(field);
     problem.set_dirichlet_values(problem.schedule.current_time());
     problem.prescribed.distribute(problem.solution, problem.constraints);
     problem.solution.update_ghost_values();

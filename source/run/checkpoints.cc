@@ -25,9 +25,9 @@ namespace ViscoContact
 {
   // @sect4{Checkpoints::record_size}
   //
-  // The five vectors of write() at the cell's dofs (u, the contact
-  // state, u_{n-1}, the nodes' history, their friction state), then the
-  // stress points;
+  // The vectors of write() at the cell's dofs (u, the contact state,
+  // u_{n-1}, the nodes' history, their friction state, with a memory term
+  // its history), then the stress points;
   // QuadraturePointHistory holds only doubles, so the payload after the key
   // is a whole number of doubles.
   template <int dim>
@@ -36,9 +36,41 @@ namespace ViscoContact
   {
     static_assert(sizeof(QuadraturePointHistory<dim>) % sizeof(double) == 0);
     return sizeof(CellId::binary_type)
-           + 5 * problem.discretisation.fe.max_dofs_per_cell() * sizeof(double)
+           + n_record_vectors(problem)
+               * problem.discretisation.fe.max_dofs_per_cell() * sizeof(double)
            + problem.discretisation.n_stress_points()
                * sizeof(QuadraturePointHistory<dim>);
+  }
+
+
+
+  // One field of accumulated slips where a zone's friction weakens; the
+  // memory's variables per node (0 without memory).
+  template <int dim>
+  unsigned int
+  Checkpoints<dim>::n_slip_path_fields(const ViscoplasticContact<dim> &problem)
+  {
+    return problem.contact_set.has_slip_weakening() ? 1 : 0;
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  Checkpoints<dim>::memory_variables(const ViscoplasticContact<dim> &problem)
+  {
+    return problem.normal_memory.active() ? problem.normal_memory.n_variables()
+                                          : 0;
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  Checkpoints<dim>::n_record_vectors(const ViscoplasticContact<dim> &problem)
+  {
+    return 5 + problem.normal_memory.n_nodal_fields(dim)
+           + n_slip_path_fields(problem);
   }
 
 
@@ -58,8 +90,11 @@ namespace ViscoContact
   // predicted start of the next step extrapolates from; zero if there is
   // none), the friction state of a contact node (its stick/slip state at
   // the x-dof, its tangential force t at the other dofs; zero without
-  // friction), and the state of every stress point (sigma_n, the history of
-  // the next step, the plastic multiplier).
+  // friction), with a memory term its history variables at the dofs of a
+  // contact node (NormalMemory::nodal_fields()), with slip weakening each
+  // node's accumulated slip at its x-dof, and the state of every
+  // stress point (sigma_n, the history of the next step, the plastic
+  // multiplier).
   //
   // Storing values per cell means that a dof shared by several cells is stored
   // several times. In exchange, everything a cell needs travels with the cell's
@@ -80,8 +115,8 @@ namespace ViscoContact
     problem.output.folder().record_files(
       {checkpoint_name(step), checkpoint_info});
 
-    const ByteWriter                header  = make_header(problem, wall_time);
-    const std::array<VectorType, 4> vectors = cell_vectors(problem);
+    const ByteWriter  header  = make_header(problem, wall_time);
+    const CellVectors vectors = cell_vectors(problem);
 
     // Collective: the file is complete (written and renamed, the rename on
     // the disk) before the record of the checkpoint is published, and only
@@ -144,6 +179,11 @@ namespace ViscoContact
     // The uniqueness check's eigenvalue, if the run computed one.
     header.write<std::uint32_t>(problem.uniqueness_eigenvalue.has_value());
     header.write(problem.uniqueness_eigenvalue.value_or(0.));
+    // The layout of the nodal fields after the four state vectors: the
+    // memory's variables per node and whether the slips are stored (a
+    // kernel of another number of terms may take as many fields).
+    header.write<std::uint32_t>(memory_variables(problem));
+    header.write<std::uint32_t>(n_slip_path_fields(problem));
     return header;
   }
 
@@ -151,7 +191,7 @@ namespace ViscoContact
 
   // @sect4{Checkpoints::cell_vectors}
   template <int dim>
-  std::array<VectorType, 4>
+  typename Checkpoints<dim>::CellVectors
   Checkpoints<dim>::cell_vectors(const ViscoplasticContact<dim> &problem)
   {
     // The contact state as a displacement-sized vector: each owned contact node
@@ -195,10 +235,23 @@ namespace ViscoContact
     start_displacement.update_ghost_values();
     node_history.update_ghost_values();
     friction_state.update_ghost_values();
-    return {{std::move(contact_state),
-             std::move(start_displacement),
-             std::move(node_history),
-             std::move(friction_state)}};
+    std::vector<VectorType> memory;
+    if (problem.contact_enabled && problem.normal_memory.active())
+      memory = problem.normal_memory.nodal_fields(
+        problem.contact_set,
+        problem.solution,
+        problem.prescribed.hanging_node_constraints());
+    std::vector<VectorType> slip_path;
+    if (problem.contact_enabled && n_slip_path_fields(problem) > 0)
+      slip_path.push_back(problem.contact_set.slip_path_field(
+        problem.solution,
+        problem.prescribed.hanging_node_constraints()));
+    return {std::move(contact_state),
+            std::move(start_displacement),
+            std::move(node_history),
+            std::move(friction_state),
+            std::move(memory),
+            std::move(slip_path)};
   }
 
 
@@ -206,24 +259,33 @@ namespace ViscoContact
   // @sect4{Checkpoints::write_cell_records}
   template <int dim>
   void
-  Checkpoints<dim>::write_cell_records(const ViscoplasticContact<dim>  &problem,
-                                       const std::array<VectorType, 4> &vectors,
-                                       const std::size_t                first,
-                                       const std::size_t                end,
-                                       char                            *out)
+  Checkpoints<dim>::write_cell_records(const ViscoplasticContact<dim> &problem,
+                                       const CellVectors              &vectors,
+                                       const std::size_t               first,
+                                       const std::size_t               end,
+                                       char                           *out)
   {
     // A record: the cell id in binary form, the dofs_per_cell values of u, of
-    // the contact state, of u_{n-1} and of the nodes' history, in the cell's
-    // dof order, and the n_q stress-point records of the cell, copied as
-    // raw bytes (QuadraturePointHistory is plain data: symmetric tensors and
-    // doubles, with the zz components in 2D).
-    // (dofs_per_cell the most of any cell: a cell with fewer, a triangle
-    // among quadrilaterals, fills its record with zeros.)
+    // the contact state, of u_{n-1}, of the nodes' history, of their
+    // friction state and of the memory's fields, in the cell's dof order, and
+    // the n_q stress-point records of the cell, copied as raw bytes
+    // (QuadraturePointHistory is plain data: symmetric tensors and doubles,
+    // with the zz components in 2D). (dofs_per_cell the most of any cell: a
+    // cell with fewer, a triangle among quadrilaterals, fills its record with
+    // zeros.)
     using Key = CellId::binary_type;
     const unsigned int dofs_per_cell
       = problem.discretisation.fe.max_dofs_per_cell();
     const unsigned int n_q = problem.discretisation.n_stress_points();
     std::vector<types::global_dof_index> dof_indices;
+    std::vector<const VectorType *>      record_vectors{&problem.solution,
+                                                   &vectors.contact_state,
+                                                   &vectors.start_displacement,
+                                                   &vectors.node_history,
+                                                   &vectors.friction_state};
+    for (const auto *fields : {&vectors.memory, &vectors.slip_path})
+      for (const VectorType &field : *fields)
+        record_vectors.push_back(&field);
     // The cells in the order of stress_points.cells(); (*vector)(dof) reads
     // owned and ghost entries alike, which is why the vectors must have their
     // ghost values here.
@@ -236,12 +298,7 @@ namespace ViscoContact
         const auto &cell = problem.stress_points.cells()[k];
         dof_indices.resize(cell->get_fe().n_dofs_per_cell());
         cell->get_dof_indices(dof_indices);
-        for (const VectorType *vector :
-             std::array<const VectorType *, 5>{{&problem.solution,
-                                                &vectors[0],
-                                                &vectors[1],
-                                                &vectors[2],
-                                                &vectors[3]}})
+        for (const VectorType *vector : record_vectors)
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
             {
               const double value
@@ -302,11 +359,15 @@ namespace ViscoContact
     ByteReader                header(header_bytes, file);
     Flags                     flags{false};
     std::pair<double, double> next_step_lengths;
-    CellVectors               vectors{problem.solution,
-                        problem.solution,
-                        problem.solution,
-                        problem.solution};
-    const bool                complete
+    CellVectors               vectors{
+      problem.solution,
+      problem.solution,
+      problem.solution,
+      problem.solution,
+      std::vector<VectorType>(problem.normal_memory.n_nodal_fields(dim),
+                              problem.solution),
+      std::vector<VectorType>(n_slip_path_fields(problem), problem.solution)};
+    const bool complete
       = restore_cell_records(problem, file, header_bytes, vectors, [&]() {
           flags             = read_header(problem, header, checkpoint.step);
           next_step_lengths = continue_schedule(problem);
@@ -474,6 +535,8 @@ namespace ViscoContact
     const double eigenvalue     = header.read<double>();
     if (has_eigenvalue)
       problem.uniqueness_eigenvalue = eigenvalue;
+    header.check(header.read<std::uint32_t>() == memory_variables(problem));
+    header.check(header.read<std::uint32_t>() == n_slip_path_fields(problem));
     return flags;
   }
 
@@ -566,11 +629,16 @@ namespace ViscoContact
     const MPITools::RecordRouter router(requests, problem.mpi_communicator);
     requests = std::vector<std::string>();
 
-    VectorType *const targets[5] = {&problem.solution,
-                                    &vectors.contact_state,
-                                    &vectors.start_displacement,
-                                    &vectors.node_history,
-                                    &vectors.friction_state};
+    std::vector<VectorType *> targets{&problem.solution,
+                                      &vectors.contact_state,
+                                      &vectors.start_displacement,
+                                      &vectors.node_history,
+                                      &vectors.friction_state};
+    for (auto *fields : {&vectors.memory, &vectors.slip_path})
+      for (VectorType &field : *fields)
+        targets.push_back(&field);
+    const unsigned int n_vectors = targets.size();
+    AssertDimension(n_vectors, n_record_vectors(problem));
     for (VectorType *target : targets)
       *target = 0;
     std::vector<unsigned int> times_found(problem.stress_points.cells().size(),
@@ -592,12 +660,12 @@ namespace ViscoContact
           cell->get_dof_indices(dof_indices);
           for (unsigned int i = 0; i < dof_indices.size(); ++i)
             if (problem.locally_owned_dofs.is_element(dof_indices[i]))
-              for (unsigned int v = 0; v < 5; ++v)
+              for (unsigned int v = 0; v < n_vectors; ++v)
                 (*targets[v])(dof_indices[i]) = values[v * dofs_per_cell + i];
           // The stress-point records go back to their place k * n_q + q, byte
           // for byte.
           std::memcpy(&problem.quadrature_point_history[std::size_t(k) * n_q],
-                      values.data() + 5 * dofs_per_cell,
+                      values.data() + n_vectors * dofs_per_cell,
                       n_q * sizeof(QuadraturePointHistory<dim>));
         };
     read_record_file(
@@ -679,12 +747,25 @@ namespace ViscoContact
           tangential_forces[i][j]
             = vectors.friction_state.local_element(dofs[1 + j]);
       }
+    // The accumulated slips first: the bounds that reset_slip() sets follow
+    // them.
+    for (const VectorType &field : vectors.slip_path)
+      problem.contact_set.set_slip_path_from(field);
     // The slip of the next step is measured from the restored displacement;
     // a slipping node's bound and direction follow from its forces, as in
     // the interrupted run (ContactNodes::accept_slip()).
     problem.contact_set.reset_slip(problem.contact_set.tangential_displacements(
                                      problem.solution),
                                    tangential_forces);
+    // The memory's history as the interrupted run left it, and the memory
+    // pressures of its last step.
+    if (problem.normal_memory.active())
+      {
+        problem.normal_memory.set_from_nodal_fields(problem.contact_set,
+                                                    vectors.memory);
+        problem.contact_set.set_history_pressure(
+          problem.normal_memory.accepted_pressures());
+      }
     header.check(
       Utilities::MPI::min(pieces_valid ? 1 : 0, problem.mpi_communicator) == 1);
   }

@@ -598,6 +598,10 @@ namespace ViscoContact
                                  friction_state,
                                  "friction_state");
       }
+    if (memory_pressure.size() > 0)
+      data_out.add_data_vector(scalar_dof_handler,
+                               memory_pressure,
+                               "memory_pressure");
   }
 
 
@@ -613,7 +617,8 @@ namespace ViscoContact
   // and in plane strain sigma_zz. The nodal contact fields live on the
   // scalar DoFHandler, the friction fields (with friction: the tangential
   // traction and the slip of the last step, and the stick/slip state) on
-  // the displacement's and the scalar one; the ghost import gives every
+  // the displacement's and the scalar one, with a memory term the memory
+  // pressure on the scalar one; the ghost import gives every
   // rank the values at all vertices of its cells, also those of contact
   // nodes owned by a neighbour.
   template <int dim>
@@ -695,6 +700,12 @@ namespace ViscoContact
                                   &fields.slip,
                                   &fields.friction_state})
           field->update_ghost_values();
+      }
+    if (problem.contact_enabled && problem.contact_set.has_memory())
+      {
+        fields.memory_pressure.reinit(problem.scalar_partitioner);
+        problem.contact_set.fill_memory_field(fields.memory_pressure);
+        fields.memory_pressure.update_ghost_values();
       }
     return fields;
   }

@@ -451,6 +451,12 @@ namespace ViscoContact
       step_reason = "the implicit update";
     else if (std::any_of(zones.begin(), zones.end(), frictional))
       step_reason = "friction";
+    else if (std::any_of(zones.begin(),
+                         zones.end(),
+                         [](const Parameters::ContactZone &zone) {
+                           return !zone.contact->memory_weights.empty();
+                         }))
+      step_reason = "the memory term of the normal law";
     if (!step_reason.empty())
       return;
     double    cells           = 0;

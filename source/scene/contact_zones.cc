@@ -8,6 +8,44 @@
 
 namespace ViscoContact
 {
+  namespace
+  {
+    // The gap of an obstacle translated by o(t): s(x - o(t), t).
+    template <int dim>
+    class MovedObstacleGap : public Function<dim>
+    {
+    public:
+      MovedObstacleGap(Function<dim> &gap, Function<dim> &motion)
+        : Function<dim>(1)
+        , gap(gap)
+        , motion(motion)
+      {}
+
+      void
+      set_time(const double time) override
+      {
+        Function<dim>::set_time(time);
+        gap.set_time(time);
+        motion.set_time(time);
+      }
+
+      double
+      value(const Point<dim> &p, const unsigned int = 0) const override
+      {
+        Point<dim> q = p;
+        for (unsigned int c = 0; c < dim; ++c)
+          q[c] -= motion.value(p, c);
+        return gap.value(q);
+      }
+
+    private:
+      Function<dim> &gap;
+      Function<dim> &motion;
+    };
+  } // namespace
+
+
+
   template <int dim>
   ContactZones<dim>::ContactZones(const Parameters::AllParameters &parameters)
   {
@@ -59,8 +97,29 @@ namespace ViscoContact
                             entries.slip_bound,
                             parameters.lengths);
           }
+        std::unique_ptr<FunctionParser<dim>> motion;
+        std::unique_ptr<Function<dim>>       moved_gap;
+        if (!is_zero_expression(entries.obstacle_motion))
+          {
+            motion = std::make_unique<FunctionParser<dim>>(dim);
+            initialize_load(*motion,
+                            zone.subsection,
+                            "Obstacle motion",
+                            entries.obstacle_motion,
+                            parameters.lengths);
+            any_motion = true;
+            if (gap)
+              {
+                moved_gap
+                  = std::make_unique<MovedObstacleGap<dim>>(*gap, *motion);
+                time_dependent_gap = true;
+              }
+          }
         zones.push_back(std::move(description));
+        kernels.push_back(NormalMemory::Kernel::from_parameters(entries));
         gap_functions.push_back(std::move(gap));
+        moved_gap_functions.push_back(std::move(moved_gap));
+        motion_functions.push_back(std::move(motion));
         slip_bound_functions.push_back(std::move(slip_bound));
       }
   }
@@ -124,13 +183,52 @@ namespace ViscoContact
 
 
   template <int dim>
+  const std::vector<NormalMemory::Kernel> &
+  ContactZones<dim>::memory_kernels() const
+  {
+    return kernels;
+  }
+
+
+
+  template <int dim>
   std::vector<Function<dim> *>
   ContactZones<dim>::gaps() const
   {
     std::vector<Function<dim> *> result;
-    for (const auto &gap : gap_functions)
-      result.push_back(gap.get());
+    for (unsigned int zone = 0; zone < gap_functions.size(); ++zone)
+      if (moved_gap_functions[zone])
+        result.push_back(moved_gap_functions[zone].get());
+      else
+        result.push_back(gap_functions[zone].get());
     return result;
+  }
+
+
+
+  template <int dim>
+  bool
+  ContactZones<dim>::has_obstacle_motion() const
+  {
+    return any_motion;
+  }
+
+
+
+  template <int dim>
+  std::vector<Tensor<1, dim>>
+  ContactZones<dim>::obstacle_steps(const double start, const double end) const
+  {
+    std::vector<Tensor<1, dim>> steps(zones.size());
+    for (unsigned int zone = 0; zone < zones.size(); ++zone)
+      if (FunctionParser<dim> *motion = motion_functions[zone].get())
+        for (const auto &[time, sign] : {std::pair{end, 1.}, {start, -1.}})
+          {
+            motion->set_time(time);
+            for (unsigned int c = 0; c < dim; ++c)
+              steps[zone][c] += sign * motion->value(Point<dim>(), c);
+          }
+    return steps;
   }
 
 

@@ -52,3 +52,28 @@ TEST(TangentialLaws, FromParameters)
   contact.tangential_law = Parameters::TangentialLawType::frictionless;
   EXPECT_FALSE(TangentialLaw::from_parameters(contact)->has_friction());
 }
+
+// Slip weakening: f through the points (0, 1), (0.005, 0.6), (0.01, 0.5),
+// constant beyond them; a law without points does not weaken; the law of
+// the parameters carries the points.
+TEST(TangentialLaws, SlipWeakeningFactor)
+{
+  const SlipWeakening none;
+  EXPECT_EQ(none.factor(1.), 1.);
+  const SlipWeakening weakening{{0., 0.005, 0.01}, {1., 0.6, 0.5}};
+  EXPECT_EQ(weakening.factor(0.), 1.);
+  EXPECT_NEAR(weakening.factor(0.0025), 0.8, 1e-15);
+  EXPECT_NEAR(weakening.factor(0.0075), 0.55, 1e-15);
+  EXPECT_EQ(weakening.factor(0.02), 0.5);
+  const SlipWeakening late{{0.001}, {0.7}};
+  EXPECT_EQ(late.factor(0.), 0.7);
+
+  Parameters::Contact contact;
+  contact.tangential_law       = Parameters::TangentialLawType::coulomb;
+  contact.friction_coefficient = 0.5;
+  contact.weakening_slips      = {0., 0.005};
+  contact.weakening_factors    = {1., 0.6};
+  const auto law               = TangentialLaw::from_parameters(contact);
+  EXPECT_NEAR(law->weakening.factor(0.005), 0.6, 1e-15);
+  EXPECT_EQ(law->bound(2., 0.), 1.); // unweakened: ContactNodes applies f
+}

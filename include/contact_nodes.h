@@ -183,8 +183,11 @@ namespace ViscoContact
     // them, and a slipping node's bound and direction are those of its
     // forces. After a new mesh or a restored checkpoint: the tangential
     // displacements s of u are the reference, the forces t as given.
+    // The step's length (0: no step, as after a new mesh or a restored
+    // checkpoint) gives the slip rates of a rate-weakening law.
     void
-    accept_slip(const std::vector<Tangential> &tangential_displacements);
+    accept_slip(const std::vector<Tangential> &tangential_displacements,
+                const double                   step_length = 0);
     // The tangential displacement of each node's obstacle over the step
     // being solved (a moving obstacle): a sticking node moves with it, and
     // the slip is measured relative to it. Zero after accept_slip() and
@@ -261,14 +264,14 @@ namespace ViscoContact
     // The slip increment of the last accepted step, s_n - s_{n-1}.
     Tangential
     step_slip(const unsigned int i) const;
-    // The slip accumulated since the start (the sum of the steps' |slip|),
-    // which a weakening law's bound follows; settable for a restored
-    // checkpoint or a new mesh.
+    // The variable a weakening law follows: the slip accumulated since the
+    // start (the sum of the steps' |slip| while not free), or the slip rate
+    // of the last step; settable for a restored checkpoint or a new mesh.
     double
-    accumulated_slip(const unsigned int i) const;
+    weakening_variable(const unsigned int i) const;
     void
-    set_accumulated_slip(const unsigned int i, const double slip);
-    // Whether a zone's law weakens with the slip.
+    set_weakening_variable(const unsigned int i, const double value);
+    // Whether a zone's law weakens with the slip or its rate.
     bool
     has_slip_weakening() const;
     double
@@ -326,8 +329,8 @@ namespace ViscoContact
     std::vector<Tangential>   slip_reference, slip_direction, last_slip;
     // The obstacle's tangential displacement over the step (empty: none).
     std::vector<Tangential> obstacle_slip;
-    // The slip accumulated up to the last accepted step.
-    std::vector<double> slip_path;
+    // The weakening variable of every node at the last accepted step.
+    std::vector<double> weakening_state;
     // Where node i sticks in the step: its tangential displacement at the
     // last step moved with its obstacle.
     Tangential

@@ -275,15 +275,16 @@ namespace ViscoContact
     // where the zone is frictionless).
     std::vector<Tangential>
     tangential_displacements(const VectorType &u) const;
-    // The accumulated slip of every node (ContactNodes::accumulated_slip())
-    // as a nodal field at its x-dof, with the hanging-node constraints
-    // applied and the ghosts imported (for checkpoints and transfers), and
-    // back from such a field at the nodes of this rank.
+    // The weakening variable of every node
+    // (ContactNodes::weakening_variable()) as a nodal field at its x-dof, with
+    // the hanging-node constraints applied and the ghosts imported (for
+    // checkpoints and transfers), and back from such a field at the nodes of
+    // this rank.
     VectorType
-    slip_path_field(const VectorType                &layout,
+    weakening_field(const VectorType                &layout,
                     const AffineConstraints<double> &hanging_constraints) const;
     void
-    set_slip_path_from(const VectorType &field);
+    set_weakening_from(const VectorType &field);
     // A moving obstacle: each zone's translation over the step, whose
     // tangential components at every frictional node become the node's
     // obstacle slip (ContactNodes::set_obstacle_slip()).

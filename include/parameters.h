@@ -332,9 +332,10 @@ namespace ViscoContact
       TangentialLawType tangential_law       = TangentialLawType::frictionless;
       std::string       slip_bound           = "0";
       double            friction_coefficient = 0;
-      // Slip weakening: the bound times f(S), piecewise linear through
-      // (S_k, f_k) (empty: f = 1).
+      // Slip weakening: the bound times f(x), piecewise linear through
+      // (x_k, f_k), x the accumulated slip or the slip rate (empty: f = 1).
       std::vector<double> weakening_slips;
+      std::vector<double> weakening_rates; // or of the slip rate
       std::vector<double> weakening_factors;
       // The memory term of the normal law (doc/model.md, section 9): the
       // kernel b(t) = sum_k a_k exp(-lambda_k t), weights a_k and rates

@@ -31,17 +31,19 @@ namespace ViscoContact
   // new law is a class implementing this interface (one file) and a value
   // of the Tangential law entry (TangentialLaw::from_parameters()).
   //
-  // Any of them may weaken with the slip (doc/model.md, section 7): the
-  // bound and the coupling times f(S), S the node's accumulated slip up to
-  // the last accepted step (explicit, as the paper's history), f piecewise
-  // linear through the points (S_k, f_k) and constant beyond them.
+  // Any of them may weaken with the slip or with the slip rate
+  // (doc/model.md, section 7): the bound and the coupling times f(x), x the
+  // node's accumulated slip up to the last accepted step, or the rate of
+  // its slip in that step (explicit, as the paper's history), f piecewise
+  // linear through the points (x_k, f_k) and constant beyond them.
   struct SlipWeakening
   {
-    std::vector<double> slips;   // S_1 < ... < S_K (empty: f = 1)
-    std::vector<double> factors; // f_k >= 0
+    std::vector<double> points;          // x_1 < ... < x_K (empty: f = 1)
+    std::vector<double> factors;         // f_k >= 0
+    bool                of_rate = false; // x the slip rate, not the slip
 
     double
-    factor(const double accumulated_slip) const;
+    factor(const double variable) const;
   };
 
   class TangentialLaw

@@ -169,7 +169,7 @@ namespace ViscoContact
     slip_direction.assign(size(), zero);
     last_slip.assign(size(), zero);
     friction_states.assign(size(), free_tangential);
-    slip_path.assign(size(), 0.);
+    weakening_state.assign(size(), 0.);
     obstacle_slip.clear();
     bounds.assign(size(), 0.);
     transverse_stiffness.assign(size(), 0.);
@@ -418,7 +418,7 @@ namespace ViscoContact
     const TangentialLaw           &law   = *zone_friction[node_zones[i]];
     const TangentialLaw::SlipForce force = law.slip_force(bounds[i]);
     along.value                          = force.value;
-    along.coupling = force.coupling * law.weakening.factor(slip_path[i]);
+    along.coupling = force.coupling * law.weakening.factor(weakening_state[i]);
     if (k == 2)
       {
         NodeDirection &across = result.direction[2];
@@ -487,7 +487,8 @@ namespace ViscoContact
   // numbers.
   void
   ContactNodes::accept_slip(
-    const std::vector<Tangential> &tangential_displacements)
+    const std::vector<Tangential> &tangential_displacements,
+    const double                   step_length)
   {
     AssertDimension(tangential_displacements.size(), size());
     for (unsigned int i = 0; i < size(); ++i)
@@ -499,10 +500,17 @@ namespace ViscoContact
         const Tangential reference = stick_position(i);
         for (unsigned int j = 0; j < k; ++j)
           last_slip[i][j] = s[i][j] - reference[j];
-        // A free node (out of contact under Coulomb's law) moves without
-        // sliding on anything.
-        if (friction_states[i] != free_tangential)
-          slip_path[i] += std::hypot(last_slip[i][0], last_slip[i][1]);
+        // The weakening variable: the rate of this step's slip, or the
+        // slip added to the path (a free node, out of contact under
+        // Coulomb's law, moves without sliding on anything).
+        const double slip_length = std::hypot(last_slip[i][0], last_slip[i][1]);
+        if (step_length > 0)
+          {
+            if (zone_friction[node_zones[i]]->weakening.of_rate)
+              weakening_state[i] = slip_length / step_length;
+            else if (friction_states[i] != free_tangential)
+              weakening_state[i] += slip_length;
+          }
         slip_reference[i] = s[i];
         if (friction_states[i] != slip)
           continue;
@@ -547,23 +555,23 @@ namespace ViscoContact
   {
     const TangentialLaw &law = *zone_friction[node_zones[i]];
     return law.bound(z[i], tresca_bound[i])
-           * law.weakening.factor(slip_path[i]);
+           * law.weakening.factor(weakening_state[i]);
   }
 
 
 
   double
-  ContactNodes::accumulated_slip(const unsigned int i) const
+  ContactNodes::weakening_variable(const unsigned int i) const
   {
-    return slip_path[i];
+    return weakening_state[i];
   }
 
 
 
   void
-  ContactNodes::set_accumulated_slip(const unsigned int i, const double slip)
+  ContactNodes::set_weakening_variable(const unsigned int i, const double slip)
   {
-    slip_path[i] = slip;
+    weakening_state[i] = slip;
   }
 
 
@@ -574,7 +582,7 @@ namespace ViscoContact
     return std::any_of(zone_friction.begin(),
                        zone_friction.end(),
                        [](const FrictionLaw &law) {
-                         return !law->weakening.slips.empty();
+                         return !law->weakening.points.empty();
                        });
   }
 
@@ -608,7 +616,7 @@ namespace ViscoContact
     t              = tangential_forces;
     slip_reference = tangential_displacements;
     obstacle_slip.clear();
-    accept_slip(tangential_displacements);
+    accept_slip(tangential_displacements, /*step_length=*/0);
   }
 
 

@@ -889,14 +889,14 @@ namespace ViscoContact
 
   template <int dim>
   VectorType
-  ContactSet<dim>::slip_path_field(
+  ContactSet<dim>::weakening_field(
     const VectorType                &layout,
     const AffineConstraints<double> &hanging_constraints) const
   {
     VectorType field(layout);
     field = 0;
     for (unsigned int i = 0; i < size(); ++i)
-      field.local_element(node(i).local_dofs[0]) = accumulated_slip(i);
+      field.local_element(node(i).local_dofs[0]) = weakening_variable(i);
     field.zero_out_ghost_values();
     hanging_constraints.distribute(field);
     field.update_ghost_values();
@@ -907,10 +907,10 @@ namespace ViscoContact
 
   template <int dim>
   void
-  ContactSet<dim>::set_slip_path_from(const VectorType &field)
+  ContactSet<dim>::set_weakening_from(const VectorType &field)
   {
     for (unsigned int i = 0; i < size(); ++i)
-      set_accumulated_slip(i, field.local_element(node(i).local_dofs[0]));
+      set_weakening_variable(i, field.local_element(node(i).local_dofs[0]));
   }
 
 

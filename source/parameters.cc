@@ -1172,11 +1172,19 @@ namespace ViscoContact
           "constant beyond them. These are S_1 < ... < S_K >= 0 [m] (empty: "
           "no weakening).",
           Patterns::List(Patterns::Double()));
+        prm.add_parameter(
+          "Weakening slip rates",
+          weakening_rates,
+          "Instead of Weakening slips: the bound times f(v), v the node's "
+          "slip rate in the last step (|slip| / time step), f piecewise "
+          "linear through the points (v_k, f_k): v_1 < ... < v_K >= 0 "
+          "[m/s] (empty: none).",
+          Patterns::List(Patterns::Double()));
         prm.add_parameter("Weakening factors",
                           weakening_factors,
-                          "The factors f_k >= 0 at the Weakening slips, one "
-                          "per slip (e.g. 1, 0.6: a coefficient that falls to "
-                          "60% of its value).",
+                          "The factors f_k >= 0 at the Weakening slips (or "
+                          "slip rates), one per point (e.g. 1, 0.6: a "
+                          "coefficient that falls to 60% of its value).",
                           Patterns::List(Patterns::Double()));
         prm.add_parameter(
           "Memory weights",
@@ -1272,31 +1280,41 @@ namespace ViscoContact
                   "Layer thickness",
                   to_string(gap),
                   "g > 0 with Normal compliance = true");
-        require(weakening_factors.size() == weakening_slips.size(),
+        require(weakening_slips.empty() || weakening_rates.empty(),
+                subsection,
+                "Weakening slip rates",
+                prm.get("Weakening slip rates"),
+                "empty when Weakening slips are given (a law weakens with "
+                "the slip or with its rate)");
+        const bool                 of_rate = !weakening_rates.empty();
+        const std::vector<double> &points
+          = of_rate ? weakening_rates : weakening_slips;
+        const std::string points_entry
+          = of_rate ? "Weakening slip rates" : "Weakening slips";
+        require(weakening_factors.size() == points.size(),
                 subsection,
                 "Weakening factors",
                 prm.get("Weakening factors"),
-                "one factor per Weakening slip ("
-                  + std::to_string(weakening_slips.size()) + " values)");
-        for (unsigned int k = 0; k < weakening_slips.size(); ++k)
-          require(std::isfinite(weakening_slips[k])
-                    && (k == 0 ? weakening_slips[k] >= 0
-                               : weakening_slips[k] > weakening_slips[k - 1]),
+                "one factor per point of " + points_entry + " ("
+                  + std::to_string(points.size()) + " values)");
+        for (unsigned int k = 0; k < points.size(); ++k)
+          require(std::isfinite(points[k])
+                    && (k == 0 ? points[k] >= 0 : points[k] > points[k - 1]),
                   subsection,
-                  "Weakening slips",
-                  prm.get("Weakening slips"),
-                  "finite slips 0 <= S_1 < ... < S_K");
+                  points_entry,
+                  prm.get(points_entry),
+                  "finite values 0 <= x_1 < ... < x_K");
         for (const double factor : weakening_factors)
           require(factor >= 0 && std::isfinite(factor),
                   subsection,
                   "Weakening factors",
                   prm.get("Weakening factors"),
                   "finite factors f_k >= 0");
-        if (!weakening_slips.empty())
+        if (!points.empty())
           require(tangential_law != TangentialLawType::frictionless,
                   subsection,
-                  "Weakening slips",
-                  prm.get("Weakening slips"),
+                  points_entry,
+                  prm.get(points_entry),
                   "empty with Tangential law = frictionless");
         require(memory_rates.size() == memory_weights.size(),
                 subsection,

@@ -23,27 +23,30 @@ namespace ViscoContact
         default:
           law = std::make_shared<Frictionless>();
       }
-    law->weakening = {contact.weakening_slips, contact.weakening_factors};
+    const bool of_rate = !contact.weakening_rates.empty();
+    law->weakening
+      = {of_rate ? contact.weakening_rates : contact.weakening_slips,
+         contact.weakening_factors,
+         of_rate};
     return law;
   }
 
 
 
-  // f(S): the first factor up to the first slip, linear between the
+  // f(x): the first factor up to the first point, linear between the
   // points, the last factor beyond the last.
   double
-  SlipWeakening::factor(const double accumulated_slip) const
+  SlipWeakening::factor(const double variable) const
   {
-    if (slips.empty())
+    if (points.empty())
       return 1;
-    if (accumulated_slip <= slips.front())
+    if (variable <= points.front())
       return factors.front();
-    for (unsigned int k = 1; k < slips.size(); ++k)
-      if (accumulated_slip <= slips[k])
+    for (unsigned int k = 1; k < points.size(); ++k)
+      if (variable <= points[k])
         return factors[k - 1]
-               + (factors[k] - factors[k - 1])
-                   * (accumulated_slip - slips[k - 1])
-                   / (slips[k] - slips[k - 1]);
+               + (factors[k] - factors[k - 1]) * (variable - points[k - 1])
+                   / (points[k] - points[k - 1]);
     return factors.back();
   }
 

@@ -66,7 +66,8 @@ namespace ViscoContact
       normal_memory.accept_step(contact_set.r);
     // Friction: the next step's slip is measured from here.
     if (contact_enabled && contact_set.has_friction())
-      contact_set.accept_slip(contact_set.tangential_displacements(solution));
+      contact_set.accept_slip(contact_set.tangential_displacements(solution),
+                              schedule.step_length());
     schedule.advance_time(proposed_step);
     if (schedule.is_adaptive() && parameters.explicit_history_update()
         && !schedule.is_at_end())

@@ -768,12 +768,41 @@ TEST(Friction, BoundWeakensWithTheAccumulatedSlip)
   EXPECT_EQ(nodes.directions(0, 0.).direction[1].coupling, 0.5);
   // Two accepted steps of slip 0.00125: S = 0.0025, f = 0.8.
   for (const double s : {0.00125, 0.0025})
-    nodes.accept_slip({{{s, 0.}}});
-  EXPECT_NEAR(nodes.accumulated_slip(0), 0.0025, 1e-15);
+    nodes.accept_slip({{{s, 0.}}}, 0.125);
+  EXPECT_NEAR(nodes.weakening_variable(0), 0.0025, 1e-15);
   nodes.update_pieces();
   EXPECT_NEAR(nodes.slip_bound(0), 4., 1e-12);
   EXPECT_NEAR(nodes.directions(0, 0.).direction[1].coupling, 0.4, 1e-15);
   EXPECT_TRUE(nodes.has_slip_weakening());
+}
+
+
+
+// Rate weakening at a node (Tresca g = 1, f from 1 to 0.5 over a slip rate
+// of 0.04): the bound follows the rate of the last accepted step's slip,
+// not the path; a step without a length (a new mesh, a checkpoint) keeps
+// the rate.
+TEST(Friction, BoundWeakensWithTheSlipRate)
+{
+  const ContactLaws signorini(ContactLaw({}, {0.}, {}, true, 0.));
+  auto              tresca = std::make_shared<TrescaFriction>();
+  tresca->weakening        = {{0., 0.04}, {1., 0.5}, /*of_rate=*/true};
+  ContactNodes nodes;
+  nodes.reinit(signorini, {0}, {0.5});
+  nodes.set_friction({tresca}, {1}, {1.});
+  nodes.set_parameters({100.});
+  nodes.z[0] = 10;
+  nodes.accept_slip({{{0.0025, 0.}}}, 0.125); // v = 0.02: f = 0.75
+  EXPECT_NEAR(nodes.weakening_variable(0), 0.02, 1e-15);
+  nodes.accept_slip({{{0.0075, 0.}}}, 0.125); // v = 0.04: f = 0.5
+  EXPECT_NEAR(nodes.weakening_variable(0), 0.04, 1e-15);
+  nodes.reset_slip({{{0.0075, 0.}}}, {{{0., 0.}}});
+  EXPECT_NEAR(nodes.weakening_variable(0), 0.04, 1e-15);
+  nodes.t[0] = {{2., 0.}};
+  nodes.update_pieces();
+  ASSERT_EQ(nodes.friction_state(0), ContactNodes::slip);
+  EXPECT_NEAR(nodes.slip_bound(0), 0.5, 1e-15);
+  EXPECT_NEAR(nodes.directions(0, 0.).direction[1].value, 0.5, 1e-15);
 }
 
 

@@ -66,7 +66,7 @@ namespace ViscoContact
     // (restored into the problem's solution): the contact state, the start
     // of the step, the nodes' history and their friction state, with a
     // memory term its history (NormalMemory::nodal_fields()), with slip
-    // weakening the accumulated slip.
+    // weakening the weakening variable.
     struct CellVectors
     {
       VectorType              contact_state;
@@ -74,8 +74,8 @@ namespace ViscoContact
       VectorType              node_history;
       VectorType              friction_state;
       std::vector<VectorType> memory;
-      // With slip weakening: the accumulated slip at a node's x-dof.
-      std::vector<VectorType> slip_path;
+      // With slip weakening: the weakening variable at a node's x-dof.
+      std::vector<VectorType> weakening_state;
     };
 
     // The bytes of a cell's record: the cell id, the values of the vectors
@@ -100,7 +100,7 @@ namespace ViscoContact
     static unsigned int
     n_record_vectors(const ViscoplasticContact<dim> &problem);
     static unsigned int
-    n_slip_path_fields(const ViscoplasticContact<dim> &problem);
+    n_weakening_fields(const ViscoplasticContact<dim> &problem);
     static unsigned int
     memory_variables(const ViscoplasticContact<dim> &problem);
 

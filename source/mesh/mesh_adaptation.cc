@@ -518,16 +518,16 @@ namespace ViscoContact
         problem.contact_set,
         problem.solution,
         problem.prescribed.hanging_node_constraints());
-    // With slip weakening, the accumulated slips likewise (friction starts
+    // With slip weakening, the weakening variables likewise (friction starts
     // again from stick on the new mesh, but its bound keeps its weakening).
-    std::vector<VectorType> slip_path;
+    std::vector<VectorType> weakening_state;
     if (transfer_stress_points && problem.contact_enabled
         && problem.contact_set.has_slip_weakening())
-      slip_path.push_back(problem.contact_set.slip_path_field(
+      weakening_state.push_back(problem.contact_set.weakening_field(
         problem.solution,
         problem.prescribed.hanging_node_constraints()));
     std::vector<const VectorType *> old_fields{&problem.solution, &pressure};
-    for (const auto *fields : {&memory, &slip_path})
+    for (const auto *fields : {&memory, &weakening_state})
       for (const VectorType &field : *fields)
         old_fields.push_back(&field);
     parallel::distributed::SolutionTransfer<dim, VectorType> nodal_transfer(
@@ -554,9 +554,10 @@ namespace ViscoContact
     problem.solution.zero_out_ghost_values();
     new_pressure.zero_out_ghost_values();
     std::vector<VectorType>   new_memory(memory.size(), new_pressure);
-    std::vector<VectorType>   new_slip_path(slip_path.size(), new_pressure);
+    std::vector<VectorType>   new_weakening_state(weakening_state.size(),
+                                                new_pressure);
     std::vector<VectorType *> nodal_fields{&problem.solution, &new_pressure};
-    for (auto *fields : {&new_memory, &new_slip_path})
+    for (auto *fields : {&new_memory, &new_weakening_state})
       for (VectorType &field : *fields)
         nodal_fields.push_back(&field);
     nodal_transfer.interpolate(nodal_fields);
@@ -567,8 +568,8 @@ namespace ViscoContact
         problem.contact_set.set_history_pressure(
           problem.normal_memory.accepted_pressures());
       }
-    for (const VectorType &field : new_slip_path)
-      problem.contact_set.set_slip_path_from(field);
+    for (const VectorType &field : new_weakening_state)
+      problem.contact_set.set_weakening_from(field);
     problem.set_dirichlet_values(problem.schedule.current_time());
     problem.prescribed.distribute(problem.solution, problem.constraints);
     problem.solution.update_ghost_values();

@@ -44,11 +44,12 @@ namespace ViscoContact
 
 
 
-  // One field of accumulated slips where a zone's friction weakens; the
-  // memory's variables per node (0 without memory).
+  // One field of weakening variables (accumulated slips or slip rates)
+  // where a zone's friction weakens; the memory's variables per node (0
+  // without memory).
   template <int dim>
   unsigned int
-  Checkpoints<dim>::n_slip_path_fields(const ViscoplasticContact<dim> &problem)
+  Checkpoints<dim>::n_weakening_fields(const ViscoplasticContact<dim> &problem)
   {
     return problem.contact_set.has_slip_weakening() ? 1 : 0;
   }
@@ -70,7 +71,7 @@ namespace ViscoContact
   Checkpoints<dim>::n_record_vectors(const ViscoplasticContact<dim> &problem)
   {
     return 5 + problem.normal_memory.n_nodal_fields(dim)
-           + n_slip_path_fields(problem);
+           + n_weakening_fields(problem);
   }
 
 
@@ -92,7 +93,7 @@ namespace ViscoContact
   // the x-dof, its tangential force t at the other dofs; zero without
   // friction), with a memory term its history variables at the dofs of a
   // contact node (NormalMemory::nodal_fields()), with slip weakening each
-  // node's accumulated slip at its x-dof, and the state of every
+  // node's weakening variable at its x-dof, and the state of every
   // stress point (sigma_n, the history of the next step, the plastic
   // multiplier).
   //
@@ -183,7 +184,7 @@ namespace ViscoContact
     // memory's variables per node and whether the slips are stored (a
     // kernel of another number of terms may take as many fields).
     header.write<std::uint32_t>(memory_variables(problem));
-    header.write<std::uint32_t>(n_slip_path_fields(problem));
+    header.write<std::uint32_t>(n_weakening_fields(problem));
     return header;
   }
 
@@ -241,9 +242,9 @@ namespace ViscoContact
         problem.contact_set,
         problem.solution,
         problem.prescribed.hanging_node_constraints());
-    std::vector<VectorType> slip_path;
-    if (problem.contact_enabled && n_slip_path_fields(problem) > 0)
-      slip_path.push_back(problem.contact_set.slip_path_field(
+    std::vector<VectorType> weakening_state;
+    if (problem.contact_enabled && n_weakening_fields(problem) > 0)
+      weakening_state.push_back(problem.contact_set.weakening_field(
         problem.solution,
         problem.prescribed.hanging_node_constraints()));
     return {std::move(contact_state),
@@ -251,7 +252,7 @@ namespace ViscoContact
             std::move(node_history),
             std::move(friction_state),
             std::move(memory),
-            std::move(slip_path)};
+            std::move(weakening_state)};
   }
 
 
@@ -283,7 +284,7 @@ namespace ViscoContact
                                                    &vectors.start_displacement,
                                                    &vectors.node_history,
                                                    &vectors.friction_state};
-    for (const auto *fields : {&vectors.memory, &vectors.slip_path})
+    for (const auto *fields : {&vectors.memory, &vectors.weakening_state})
       for (const VectorType &field : *fields)
         record_vectors.push_back(&field);
     // The cells in the order of stress_points.cells(); (*vector)(dof) reads
@@ -366,7 +367,7 @@ namespace ViscoContact
       problem.solution,
       std::vector<VectorType>(problem.normal_memory.n_nodal_fields(dim),
                               problem.solution),
-      std::vector<VectorType>(n_slip_path_fields(problem), problem.solution)};
+      std::vector<VectorType>(n_weakening_fields(problem), problem.solution)};
     const bool complete
       = restore_cell_records(problem, file, header_bytes, vectors, [&]() {
           flags             = read_header(problem, header, checkpoint.step);
@@ -536,7 +537,7 @@ namespace ViscoContact
     if (has_eigenvalue)
       problem.uniqueness_eigenvalue = eigenvalue;
     header.check(header.read<std::uint32_t>() == memory_variables(problem));
-    header.check(header.read<std::uint32_t>() == n_slip_path_fields(problem));
+    header.check(header.read<std::uint32_t>() == n_weakening_fields(problem));
     return flags;
   }
 
@@ -634,7 +635,7 @@ namespace ViscoContact
                                       &vectors.start_displacement,
                                       &vectors.node_history,
                                       &vectors.friction_state};
-    for (auto *fields : {&vectors.memory, &vectors.slip_path})
+    for (auto *fields : {&vectors.memory, &vectors.weakening_state})
       for (VectorType &field : *fields)
         targets.push_back(&field);
     const unsigned int n_vectors = targets.size();
@@ -747,10 +748,10 @@ namespace ViscoContact
           tangential_forces[i][j]
             = vectors.friction_state.local_element(dofs[1 + j]);
       }
-    // The accumulated slips first: the bounds that reset_slip() sets follow
+    // The weakening variables first: the bounds that reset_slip() sets follow
     // them.
-    for (const VectorType &field : vectors.slip_path)
-      problem.contact_set.set_slip_path_from(field);
+    for (const VectorType &field : vectors.weakening_state)
+      problem.contact_set.set_weakening_from(field);
     // The slip of the next step is measured from the restored displacement;
     // a slipping node's bound and direction follow from its forces, as in
     // the interrupted run (ContactNodes::accept_slip()).

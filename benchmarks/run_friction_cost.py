@@ -10,10 +10,14 @@ iterations and the Krylov iterations per step of both, and the median
 over the pairs of the ratio frictional / frictionless. The frictionless
 block slides on the support without resistance; its top, held in all
 components, keeps it in place, so both scenes have the same operator, the
-same mesh and the same steps.
+same mesh and the same steps. --compare picks other pairs of scenes: a
+static coefficient 0.5 against the same one weakening to 0.3 with the
+slip (static,weakening), or the sliding block against the block held on
+a support that moves under it (Coulomb,moving).
 
     benchmarks/run_friction_cost.py [--executable build/viscoplastic_contact]
         [--meshes 8,16,24] [--pairs 3] [--methods "full space,condensed"]
+        [--compare frictionless,Coulomb | static,weakening | Coulomb,moving]
 """
 
 import argparse
@@ -39,17 +43,37 @@ def set_entry(text, entry, value):
                   r"\g<1> %s " % value, text)
 
 
-def run(executable, n, method, law, folder):
+# The scenes compared: the block frictionless, with Coulomb friction
+# (mu = 0.3), with a static coefficient 0.5 and with 0.5 weakening to 0.3
+# over a slip of 0.005 (the same scene without and with slip weakening),
+# and with mu = 0.3 on a support that moves under the block held at its top
+# (the Coulomb scene seen from the block: the same relative motion).
+SCENES = {"frictionless": ("frictionless", 0, ""),
+          "Coulomb": ("Coulomb", 0.3, ""),
+          "static": ("Coulomb", 0.5, ""),
+          "weakening": ("Coulomb", 0.5,
+                        "\n  set Weakening slips = 0, 0.005"
+                        "\n  set Weakening factors = 1, 0.6"),
+          "moving": ("Coulomb", 0.3,
+                     "\n  set Obstacle motion = -0.02 * max(t - 1, 0); 0; 0")}
+
+
+def run(executable, n, method, scene, folder):
+    law, coefficient, extra = SCENES[scene]
     with open(os.path.join(TOP, "parameters", "sliding_block_3d.prm")) as f:
         text = f.read()
     for entry, value in (("Subdivisions", n), ("Method", method),
                          ("Tangential law", law),
-                         ("Friction coefficient",
-                          0.3 if law == "Coulomb" else 0),
+                         ("Friction coefficient", coefficient),
                          ("Output directory", os.path.join(
-                             folder, "%s_%d" % (law, len(os.listdir(folder))))),
+                             folder, "%s_%d" % (scene, len(os.listdir(folder))))),
                          ("Write vtu", "false"), ("Profile times", "")):
         text = set_entry(text, entry, value)
+    text = re.sub(r"(?m)^(\s*set Friction coefficient\s*=[^\n]*)",
+                  lambda m: m.group(1) + extra, text)
+    if scene == "moving":
+        text = set_entry(text, "Displacement", "0; 0; -0.01 * min(t, 1)")
+    law = scene
     prm = os.path.join(folder, "%s.prm" % law)
     with open(prm, "w") as f:
         f.write(text)
@@ -78,20 +102,23 @@ def main():
     parser.add_argument("--meshes", default="8,16,24")
     parser.add_argument("--pairs", type=int, default=3)
     parser.add_argument("--methods", default="full space,condensed")
+    parser.add_argument("--compare", default="frictionless,Coulomb",
+                        help="baseline,candidate among " + ", ".join(SCENES))
     arguments = parser.parse_args()
-    print("| back end | N | dofs | time per step: frictionless, Coulomb | "
+    baseline, candidate = arguments.compare.split(",")
+    print("| back end | N | dofs | time per step: %s, %s | "
           "active-set iterations per step | Krylov iterations per step | "
-          "ratio Coulomb / frictionless (median of %d pairs) |"
-          % arguments.pairs)
+          "ratio %s / %s (median of %d pairs) |"
+          % (baseline, candidate, candidate, baseline, arguments.pairs))
     print("| --- | --- | --- | --- | --- | --- | --- |")
     for method in arguments.methods.split(","):
         for n in (int(v) for v in arguments.meshes.split(",")):
             ratios, pairs = [], []
             with tempfile.TemporaryDirectory() as folder:
                 for _ in range(arguments.pairs):
-                    plain = run(arguments.executable, n, method,
-                                "frictionless", folder)
-                    coulomb = run(arguments.executable, n, method, "Coulomb",
+                    plain = run(arguments.executable, n, method, baseline,
+                                folder)
+                    coulomb = run(arguments.executable, n, method, candidate,
                                   folder)
                     ratios.append(coulomb["time per step"]
                                   / plain["time per step"])

@@ -399,6 +399,14 @@ namespace ViscoContact
     fill_memory_field(VectorType &memory_pressure) const;
 
   private:
+    // A nodal field with value_of_node(i) at the x-dof of every node i
+    // (pressure_field(), weakening_field()).
+    template <typename NodeValue>
+    VectorType
+    x_dof_field(const VectorType                &layout,
+                const AffineConstraints<double> &hanging_constraints,
+                const NodeValue                 &value_of_node) const;
+
     // The contact nodes of this rank into geometry, in the order the zones
     // and the cells come (setup() sorts them): the locally owned vertices of
     // the faces on the boundary parts of each zone, each with its location,

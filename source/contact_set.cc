@@ -868,21 +868,40 @@ namespace ViscoContact
 
 
 
-  // @sect4{ContactSet::pressure_field}
+  // @sect4{ContactSet::pressure_field and weakening_field}
+  //
+  // A value per node at its x-dof, zero elsewhere, as a finite element
+  // function of the mesh (the hanging-node constraints applied), with its
+  // ghosts: what SolutionTransfer and the checkpoints read.
+  template <int dim>
+  template <typename NodeValue>
+  VectorType
+  ContactSet<dim>::x_dof_field(
+    const VectorType                &layout,
+    const AffineConstraints<double> &hanging_constraints,
+    const NodeValue                 &value_of_node) const
+  {
+    VectorType field(layout);
+    field = 0;
+    for (unsigned int i = 0; i < size(); ++i)
+      field.local_element(node(i).local_dofs[0]) = value_of_node(i);
+    field.zero_out_ghost_values();
+    hanging_constraints.distribute(field);
+    field.update_ghost_values();
+    return field;
+  }
+
+
+
   template <int dim>
   VectorType
   ContactSet<dim>::pressure_field(
     const VectorType                &layout,
     const AffineConstraints<double> &hanging_constraints) const
   {
-    VectorType pressure(layout);
-    pressure = 0;
-    for (unsigned int i = 0; i < size(); ++i)
-      pressure.local_element(node(i).local_dofs[0]) = contact_pressure(i);
-    pressure.zero_out_ghost_values();
-    hanging_constraints.distribute(pressure);
-    pressure.update_ghost_values();
-    return pressure;
+    return x_dof_field(layout, hanging_constraints, [this](unsigned int i) {
+      return contact_pressure(i);
+    });
   }
 
 
@@ -893,14 +912,9 @@ namespace ViscoContact
     const VectorType                &layout,
     const AffineConstraints<double> &hanging_constraints) const
   {
-    VectorType field(layout);
-    field = 0;
-    for (unsigned int i = 0; i < size(); ++i)
-      field.local_element(node(i).local_dofs[0]) = weakening_variable(i);
-    field.zero_out_ghost_values();
-    hanging_constraints.distribute(field);
-    field.update_ghost_values();
-    return field;
+    return x_dof_field(layout, hanging_constraints, [this](unsigned int i) {
+      return weakening_variable(i);
+    });
   }
 
 

@@ -19,28 +19,31 @@ namespace ViscoContact
         : Function<dim>(1)
         , gap(gap)
         , motion(motion)
-      {}
+      {
+        set_time(motion.get_time());
+      }
 
+      // The translation is evaluated once per time, not per node.
       void
       set_time(const double time) override
       {
         Function<dim>::set_time(time);
         gap.set_time(time);
         motion.set_time(time);
+        for (unsigned int c = 0; c < dim; ++c)
+          translation[c] = motion.value(Point<dim>(), c);
       }
 
       double
       value(const Point<dim> &p, const unsigned int = 0) const override
       {
-        Point<dim> q = p;
-        for (unsigned int c = 0; c < dim; ++c)
-          q[c] -= motion.value(p, c);
-        return gap.value(q);
+        return gap.value(p - translation);
       }
 
     private:
       Function<dim> &gap;
       Function<dim> &motion;
+      Tensor<1, dim> translation;
     };
   } // namespace
 

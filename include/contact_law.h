@@ -42,6 +42,26 @@ namespace ViscoContact
     double p_upper   = 0;
     double slope     = 0; // sloped pieces only
     double intercept = 0;
+    // A piece of the adhesive branch (r < 0): its pressures scale with the
+    // node's bonding, beta^2 (scaled()).
+    bool adhesive = false;
+
+    // The piece at a node whose adhesive pressures are scaled by a (its
+    // bonding beta^2; pieces that are not adhesive are returned as they are).
+    ContactLawPiece
+    scaled(const double a) const;
+    bool
+    operator==(const ContactLawPiece &other) const;
+  };
+
+  // The adhesive branch of a normal law (doc/model.md, section 10): for
+  // r < 0 (the body separated from the obstacle) the tension
+  // p = stiffness beta^2 R(r), R(r) = max(-length, r), with the node's
+  // bonding beta in [0, 1]. Stiffness 0: no adhesion.
+  struct AdhesiveBranch
+  {
+    double stiffness = 0;
+    double length    = 0;
   };
 
   class ContactLaw
@@ -49,12 +69,15 @@ namespace ViscoContact
   public:
     // A law defined by breakpoints b_1 < ... < b_K, the K+1 slopes on the
     // intervals between them, the K jumps p(b_k+) - p(b_k-) >= 0 and
-    // p(b_1-) = 0, optionally cut off by the rigid foundation at r = g.
+    // p(b_1-) = 0, optionally cut off by the rigid foundation at r = g;
+    // with an adhesive branch, the law for r < 0 is that branch (the law
+    // given must then be zero there).
     ContactLaw(const std::vector<double> &breakpoints,
                const std::vector<double> &slopes,
                const std::vector<double> &jumps,
                const bool                 unilateral_constraint,
-               const double               gap);
+               const double               gap,
+               const AdhesiveBranch      &adhesion = {});
 
     // The law the parameter file describes (subsection Contact).
     static ContactLaw
@@ -65,9 +88,10 @@ namespace ViscoContact
     const ContactLawPiece &
     piece(const unsigned int i) const;
 
-    // The piece that contains the graph point with p + c r = q.
+    // The piece that contains the graph point with p + c r = q, at a node
+    // whose adhesive pieces are scaled by a (ContactLawPiece::scaled()).
     unsigned int
-    find_piece(const double q, const double c) const;
+    find_piece(const double q, const double c, const double a = 1) const;
 
     // The active-set update of one node: the piece that q = p + c r names,
     // except that a node whose q lies within rounding of the ends of its
@@ -76,12 +100,17 @@ namespace ViscoContact
     unsigned int
     next_piece(const unsigned int current,
                const double       q,
-               const double       c) const;
+               const double       c,
+               const double       a = 1) const;
 
     // The single-valued part of the compliance law: p(r) for r below the
     // rigid limit (the left limit at breakpoints).
     double
     compliance_pressure(const double r) const;
+
+    // Whether the law has an adhesive branch.
+    bool
+    has_adhesion() const;
 
     // max(0, -smallest slope): the softening the uniqueness condition and
     // the active-set parameter c have to dominate.
@@ -140,12 +169,16 @@ namespace ViscoContact
     // ContactLaw::find_piece and next_piece of the zone's law, in the
     // indices of the table.
     unsigned int
-    find_piece(const unsigned int zone, const double q, const double c) const;
+    find_piece(const unsigned int zone,
+               const double       q,
+               const double       c,
+               const double       a = 1) const;
     unsigned int
     next_piece(const unsigned int zone,
                const unsigned int current,
                const double       q,
-               const double       c) const;
+               const double       c,
+               const double       a = 1) const;
 
     // Over all zones: the steepest softening and the largest gap.
     double

@@ -146,6 +146,21 @@ namespace ViscoContact
     const std::vector<double> &
     history_pressures() const;
 
+    // The bonding beta_i in [0, 1] of every node for the step being solved
+    // (bonding_field.h): node i's adhesive pieces are the law's scaled by
+    // its adhesive scale beta_i^2 (ContactLawPiece::scaled()). Without a
+    // call every beta_i is 1 (has_adhesion() is false on every rank).
+    void
+    set_bonding(const std::vector<double> &bonding);
+    bool
+    has_adhesion() const;
+    double
+    bonding(const unsigned int i) const;
+    const std::vector<double> &
+    bondings() const;
+    double
+    adhesion_scale(const unsigned int i) const;
+
     // The parameter c_i of the update rule, one per node: it must exceed
     // the steepest softening of the law, so that q = p + c r increases
     // strictly along the graph. If the nodes have not been placed yet, each
@@ -235,7 +250,8 @@ namespace ViscoContact
     weight(const unsigned int i) const;
     unsigned int
     piece(const unsigned int i) const;
-    const ContactLawPiece &
+    // Node i's piece, its adhesive pressures scaled by its bonding.
+    ContactLawPiece
     current_piece(const unsigned int i) const;
     void
     set_piece(const unsigned int i, const unsigned int piece);
@@ -281,7 +297,8 @@ namespace ViscoContact
     count_friction_states(const MPI_Comm communicator) const;
 
     // 2 at the rigid limit (u.nu = g), 1 in normal-compliance contact
-    // (penetrating the layer, or pressed by it), 0 out of contact.
+    // (penetrating the layer, pressed by it or held by adhesion), 0 out of
+    // contact.
     unsigned int
     status(const unsigned int i) const;
     // The pressure of the layer, p(u_nu) with its memory pressure (p(g-) and
@@ -321,6 +338,10 @@ namespace ViscoContact
     // The memory pressures of the step, if the zones have memory.
     std::vector<double> memory_pressures;
     bool                with_memory = false;
+    // The bonding of the step, if the zones have adhesion (on every rank,
+    // also one without contact nodes).
+    std::vector<double> node_bonding;
+    bool                with_adhesion = false;
 
     // Friction, per zone and per node (see set_friction(), update_friction()).
     std::vector<FrictionLaw>  zone_friction;

@@ -397,6 +397,8 @@ namespace ViscoContact
     // layout); on the opposite sides the mortar average of the zone's.
     void
     fill_memory_field(VectorType &memory_pressure) const;
+    void
+    fill_bonding_field(VectorType &bonding) const;
 
   private:
     // A nodal field with value_of_node(i) at the x-dof of every node i

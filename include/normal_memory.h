@@ -1,9 +1,7 @@
 #ifndef viscoplastic_contact_normal_memory_h
 #define viscoplastic_contact_normal_memory_h
 
-#include <deal.II/lac/affine_constraints.h>
-
-#include "back_ends/linear_algebra.h"
+#include "contact_history.h"
 
 #include <vector>
 
@@ -15,9 +13,6 @@ namespace ViscoContact
   {
     struct Contact;
   }
-  template <int dim>
-  class ContactSet;
-
   // @sect3{The memory term of the normal law}
   //
   // Normal compliance with memory (doc/model.md, section 9): the pressure on
@@ -36,7 +31,7 @@ namespace ViscoContact
   // up by m_i (ContactNodes::set_history_pressure()), so that the step
   // problem keeps the structure, the uniqueness condition and the active set
   // of the law without memory.
-  class NormalMemory
+  class NormalMemory : public ContactHistory
   {
   public:
     struct Kernel
@@ -61,55 +56,40 @@ namespace ViscoContact
 
     // Whether any zone has a memory term.
     bool
-    active() const;
+    active() const override;
     // The history variables per node: the terms h_k (the most terms of any
     // zone; a node of a zone with fewer has zeros in the others), then r+
     // of the last accepted step.
     unsigned int
-    n_variables() const;
+    n_variables() const override;
+    unsigned int
+    n_nodes() const override;
+    double
+    variable(const unsigned int i, const unsigned int k) const override;
+    void
+    set_variable(const unsigned int i,
+                 const unsigned int k,
+                 const double       h) override;
 
     // The memory pressures m_i of a step of length k from the history at the
-    // start of the step. A repeated attempt of the step (a cut, a rejected
-    // adaptive step) calls it again with its own length; accept_step() keeps
-    // the history of the step that was accepted, with its penetrations r
-    // (after set-up: those of the initial state, for the first step).
+    // start of the step, and the nodes' laws moved up by them.
     const std::vector<double> &
     start_step(const double k);
     void
-    accept_step(const std::vector<double> &r);
+    start_step(const double k, ContactNodes &nodes) override;
+    void
+    accept_step(const std::vector<double> &r) override;
+    // The memory pressures of the last accepted step from its history
+    // (sum_k h_k(t_n)), on the nodes.
+    void
+    apply_accepted(ContactNodes &nodes) const override;
 
     // The memory pressure of node i in the current step, and those of the
-    // last accepted step from its history (sum_k h_k(t_n): after a restored
-    // checkpoint or a transfer, before the next step).
+    // last accepted step.
     double
     pressure(const unsigned int i) const;
     std::vector<double>
     accepted_pressures() const;
-    // The history variables of node i at the last accepted step (h_k(t_n),
-    // then r+(t_n)), for checkpoints and transfers to a new mesh.
-    double
-    variable(const unsigned int i, const unsigned int k) const;
-    void
-    set_variable(const unsigned int i, const unsigned int k, const double h);
-
-    // The history variables as nodal fields in the displacement layout
-    // (variable v of a node at its dof v % dim of field v / dim, zero
-    // elsewhere, with the hanging-node constraints applied and the ghosts
-    // imported), for checkpoints and transfers that carry nodal fields
-    // from cell to cell; and back from such fields at the nodes of this
-    // rank.
-    template <int dim>
-    std::vector<VectorType>
-    nodal_fields(const ContactSet<dim>           &contact,
-                 const VectorType                &layout,
-                 const AffineConstraints<double> &hanging_constraints) const;
-    template <int dim>
-    void
-    set_from_nodal_fields(const ContactSet<dim>         &contact,
-                          const std::vector<VectorType> &fields);
-    // How many fields nodal_fields() makes (0 without memory).
-    unsigned int
-    n_nodal_fields(const unsigned int dim) const;
 
   private:
     std::vector<Kernel>       kernels;

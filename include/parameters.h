@@ -342,6 +342,15 @@ namespace ViscoContact
       // lambda_k (empty: no memory).
       std::vector<double> memory_weights;
       std::vector<double> memory_rates;
+      // Adhesion (doc/model.md, section 10): the tension gamma beta^2 R(r)
+      // for r < 0, R(r) = max(-L, r), and the bonding beta's evolution
+      // beta' = -kappa (beta gamma R(r)^2 - epsilon)+ from beta_0(x)
+      // (gamma = 0: no adhesion).
+      double      adhesion_stiffness = 0; // gamma
+      double      adhesion_length    = 0; // L
+      double      adhesion_energy    = 0; // epsilon
+      double      debonding_rate     = 1; // kappa
+      std::string initial_bonding    = "1";
 
       void
       add_parameters(ParameterHandler  &prm,

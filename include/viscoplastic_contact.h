@@ -40,6 +40,7 @@
 #include "material.h"
 #include "materials.h"
 #include "mesh/mesh_adaptation.h"
+#include "bonding_field.h"
 #include "normal_memory.h"
 #include "parameters.h"
 #include "scene/prescribed_displacements.h"
@@ -380,6 +381,15 @@ namespace ViscoContact
     // nodes (normal_memory.h): each step's memory pressures come from it,
     // each accepted step adds to it.
     NormalMemory normal_memory;
+    // The bonding of adhesion at the contact nodes (bonding_field.h): each
+    // step's adhesive scales come from it.
+    BondingField bonding_field;
+    // The laws with a history (contact_history.h), for what every one gets:
+    // a start and an end of each step, checkpoints, transfers.
+    std::array<ContactHistory *, 2>
+    contact_histories();
+    std::array<const ContactHistory *, 2>
+    contact_histories() const;
     // The gaps of the contact nodes at the given time (collective: a value
     // that is not finite stops all ranks, naming the entry).
     void

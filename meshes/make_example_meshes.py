@@ -37,6 +37,13 @@ to a coordinate plane; the same tags (without 5). The tilted patch tests
 (parameters/tilted_patch_test*.prm) put their planes of symmetry and the
 support on these oblique faces.
 
+peeling_strip.msh, peeling_strip_3d.msh: a strip of cells as square as
+the strip allows, 8 long (x) and 0.5 thick (y), in 3D 1 wide (z, half of
+the strip: z = 0 is a plane of symmetry): 64 x 4 quadrilaterals, 32 x 2 x 4
+hexahedra. Boundary tags: 1 the end x = 0, 2 the end x = 8, 3 the bottom
+y = 0 (glued), 4 the top, 6 z = 0 and 7 z = 1 (3D);
+parameters/peeling_strip*.prm (adhesion).
+
 Run from anywhere: python3 meshes/make_example_meshes.py
 """
 import math
@@ -149,6 +156,44 @@ def columns(n, dim, simplex=False, count=2, rotate=None):
     return gmsh_elements_text(nodes, boundary, cells, names, [(10, "columns")])
 
 
+def strip(lengths, counts):
+    """A box of lengths[a] cut into counts[a] cells along each axis a (2 or
+    3 axes), tagged as described at the top of the file."""
+    dim = len(lengths)
+    n = list(counts) + [0] * (3 - dim)
+    index = lambda i, j, k: (k * (n[1] + 1) + j) * (n[0] + 1) + i + 1
+    nodes = [(index(i, j, k), lengths[0] * i / n[0], lengths[1] * j / n[1],
+              lengths[2] * k / n[2] if dim == 3 else 0.0)
+             for k in range(n[2] + 1) for j in range(n[1] + 1) for i in range(n[0] + 1)]
+    boundary, cells = [], []
+    if dim == 2:
+        v = lambda i, j: index(i, j, 0)
+        for j in range(n[1]):
+            boundary += [(1, 1, v(0, j), v(0, j + 1)), (1, 2, v(n[0], j), v(n[0], j + 1))]
+        for i in range(n[0]):
+            boundary += [(1, 3, v(i, 0), v(i + 1, 0)), (1, 4, v(i, n[1]), v(i + 1, n[1]))]
+        cells = [(3, 10, v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1))
+                 for j in range(n[1]) for i in range(n[0])]
+        names = [(1, "lifted_end"), (2, "far_end"), (3, "glued_bottom"), (4, "top")]
+    else:
+        for tag, axis, fixed in ((1, 0, 0), (2, 0, n[0]), (3, 1, 0), (4, 1, n[1]),
+                                 (6, 2, 0), (7, 2, n[2])):
+            others = [a for a in range(3) if a != axis]
+            for p in range(n[others[0]]):
+                for q in range(n[others[1]]):
+                    corners = []
+                    for dp, dq in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                        ijk = [0, 0, 0]
+                        ijk[axis], ijk[others[0]], ijk[others[1]] = fixed, p + dp, q + dq
+                        corners.append(index(*ijk))
+                    boundary += box_face_elements(tag, corners, False)
+        cells = [cell for k in range(n[2]) for j in range(n[1]) for i in range(n[0])
+                 for cell in box_cell_elements(index, i, j, k, False, 10)]
+        names = [(1, "lifted_end"), (2, "far_end"), (3, "glued_bottom"), (4, "top"),
+                 (6, "symmetry_plane"), (7, "side")]
+    return gmsh_elements_text(nodes, boundary, cells, names, [(10, "strip")])
+
+
 if __name__ == "__main__":
     folder = os.path.dirname(os.path.abspath(__file__))
     for n in (8, 16):
@@ -162,3 +207,7 @@ if __name__ == "__main__":
             f.write(columns(n, dim, simplex))
         with open(os.path.join(folder, "tilted_block_%s_%d.msh" % (name, n)), "w") as f:
             f.write(columns(n, dim, simplex, count=1, rotate=rotation(dim)))
+    with open(os.path.join(folder, "peeling_strip.msh"), "w") as f:
+        f.write(strip((8.0, 0.5), (64, 4)))
+    with open(os.path.join(folder, "peeling_strip_3d.msh"), "w") as f:
+        f.write(strip((8.0, 0.5, 1.0), (32, 2, 4)))

@@ -15,6 +15,37 @@ namespace ViscoContact
 {
   using namespace dealii;
 
+  // @sect4{ContactLawPiece}
+  //
+  // An adhesive piece at a node of bonding beta: its pressures times
+  // a = beta^2, the interval in r unchanged.
+  ContactLawPiece
+  ContactLawPiece::scaled(const double a) const
+  {
+    if (!adhesive || a == 1)
+      return *this;
+    ContactLawPiece result = *this;
+    result.slope *= a;
+    result.intercept *= a;
+    result.p_lower *= a;
+    result.p_upper *= a;
+    return result;
+  }
+
+
+
+  bool
+  ContactLawPiece::operator==(const ContactLawPiece &other) const
+  {
+    return vertical == other.vertical && rigid == other.rigid
+           && r_lower == other.r_lower && r_upper == other.r_upper
+           && p_lower == other.p_lower && p_upper == other.p_upper
+           && slope == other.slope && intercept == other.intercept
+           && adhesive == other.adhesive;
+  }
+
+
+
   // @sect4{ContactLaw::ContactLaw}
   //
   // Walk along r from -infinity: a sloped piece up to each breakpoint, then
@@ -25,7 +56,8 @@ namespace ViscoContact
                          const std::vector<double> &slopes,
                          const std::vector<double> &jumps_in,
                          const bool                 unilateral_constraint,
-                         const double               gap)
+                         const double               gap,
+                         const AdhesiveBranch      &adhesion)
     : gap_value(gap)
   {
     // The data must describe a law: one slope per interval, one jump per
@@ -91,6 +123,32 @@ namespace ViscoContact
           }
       }
 
+    // The adhesive branch replaces the law's zero pressure below r = 0:
+    // the constant tension -stiffness length below -length, the slope
+    // stiffness up to 0 (continuous, nondecreasing: it adds no softening).
+    // The law's first piece then starts at r = 0, or is gone if it ended
+    // there.
+    if (adhesion.stiffness > 0)
+      {
+        ContactLawPiece &first = pieces.front();
+        AssertThrow(!first.vertical && first.slope == 0 && first.intercept == 0
+                      && first.r_upper >= 0 && gap >= 0,
+                    ExcMessage("An adhesive branch needs a law that is zero "
+                               "for r < 0 and a gap >= 0."));
+        AssertThrow(adhesion.length > 0,
+                    ExcMessage("An adhesive branch needs a length > 0."));
+        first.r_lower = 0;
+        if (first.r_upper == 0)
+          pieces.erase(pieces.begin());
+        ContactLawPiece tension, bond;
+        tension.adhesive = bond.adhesive = true;
+        tension.r_upper = bond.r_lower = -adhesion.length;
+        tension.intercept              = -adhesion.stiffness * adhesion.length;
+        bond.r_upper                   = 0;
+        bond.slope                     = adhesion.stiffness;
+        pieces.insert(pieces.begin(), {tension, bond});
+      }
+
     // The rigid foundation: the vertical piece at r = g from p(g-), the
     // layer's pressure when it is crushed, to +infinity.
     if (unilateral_constraint)
@@ -98,6 +156,8 @@ namespace ViscoContact
         const ContactLawPiece &last = pieces.back();
         ContactLawPiece        rigid;
         rigid.vertical = rigid.rigid = true;
+        // At g = 0 behind an adhesive branch the layer's pressure is
+        // p(0-) = 0 at every bonding.
         rigid.r_lower = rigid.r_upper = gap;
         rigid.p_lower                 = last.intercept + last.slope * gap;
         rigid.p_upper                 = infinity;
@@ -117,30 +177,26 @@ namespace ViscoContact
   ContactLaw
   ContactLaw::from_parameters(const Parameters::Contact &contact)
   {
-    if (!contact.normal_compliance)
-      return ContactLaw({},
-                        {0.},
-                        {},
+    const AdhesiveBranch adhesion{contact.adhesion_stiffness,
+                                  contact.adhesion_length};
+    const auto           law = [&](const std::vector<double> &breakpoints,
+                         const std::vector<double> &slopes,
+                         const std::vector<double> &jumps) {
+      return ContactLaw(breakpoints,
+                        slopes,
+                        jumps,
                         contact.unilateral_constraint,
-                        contact.gap);
+                        contact.gap,
+                        adhesion);
+    };
+    if (!contact.normal_compliance)
+      return law({}, {0.}, {});
     if (contact.law_type == Parameters::ContactLawType::nonmonotone
         && contact.u1 == 0)
-      return ContactLaw({0.},
-                        {0., contact.c2},
-                        {0.},
-                        contact.unilateral_constraint,
-                        contact.gap);
+      return law({0.}, {0., contact.c2}, {0.});
     if (contact.law_type == Parameters::ContactLawType::nonmonotone)
-      return ContactLaw({0., contact.u1},
-                        {0., contact.c1, contact.c2},
-                        {0., 0.},
-                        contact.unilateral_constraint,
-                        contact.gap);
-    return ContactLaw(contact.breakpoints,
-                      contact.slopes,
-                      contact.jumps,
-                      contact.unilateral_constraint,
-                      contact.gap);
+      return law({0., contact.u1}, {0., contact.c1, contact.c2}, {0., 0.});
+    return law(contact.breakpoints, contact.slopes, contact.jumps);
   }
 
 
@@ -171,15 +227,15 @@ namespace ViscoContact
   // it came from when it moves right. The last piece extends to
   // q = +infinity, so every q names a piece.
   unsigned int
-  ContactLaw::find_piece(const double q, const double c) const
+  ContactLaw::find_piece(const double q, const double c, const double a) const
   {
     Assert(c > steepest_softening(),
            ExcMessage("The active-set parameter c must exceed the steepest "
                       "softening of the contact law."));
     for (unsigned int i = 0; i + 1 < pieces.size(); ++i)
       {
-        const ContactLawPiece &piece = pieces[i];
-        const double           q_upper
+        const ContactLawPiece piece = pieces[i].scaled(a);
+        const double          q_upper
           = (piece.vertical
                ? piece.p_upper + c * piece.r_upper
                : piece.intercept + (piece.slope + c) * piece.r_upper);
@@ -202,10 +258,11 @@ namespace ViscoContact
   unsigned int
   ContactLaw::next_piece(const unsigned int current,
                          const double       q,
-                         const double       c) const
+                         const double       c,
+                         const double       a) const
   {
-    const ContactLawPiece &piece = pieces[current];
-    const double           q_lower
+    const ContactLawPiece piece = pieces[current].scaled(a);
+    const double          q_lower
       = (piece.vertical ? piece.p_lower + c * piece.r_lower
                         : piece.intercept + (piece.slope + c) * piece.r_lower);
     const double q_upper
@@ -213,7 +270,7 @@ namespace ViscoContact
                         : piece.intercept + (piece.slope + c) * piece.r_upper);
     const double slack = 1e-12 * (std::abs(q) + c * gap_value) + 1e-300;
     if (q < q_lower - slack || q > q_upper + slack)
-      return find_piece(q, c);
+      return find_piece(q, c, a);
     return current;
   }
 
@@ -262,6 +319,14 @@ namespace ViscoContact
   {
     return pieces.size() == 1 && pieces[0].slope == 0
            && pieces[0].intercept == 0;
+  }
+
+
+
+  bool
+  ContactLaw::has_adhesion() const
+  {
+    return pieces.front().adhesive;
   }
 
 
@@ -348,9 +413,10 @@ namespace ViscoContact
   unsigned int
   ContactLaws::find_piece(const unsigned int zone,
                           const double       q,
-                          const double       c) const
+                          const double       c,
+                          const double       a) const
   {
-    return first_piece[zone] + zone_law(zone).find_piece(q, c);
+    return first_piece[zone] + zone_law(zone).find_piece(q, c, a);
   }
 
 
@@ -359,11 +425,12 @@ namespace ViscoContact
   ContactLaws::next_piece(const unsigned int zone,
                           const unsigned int current,
                           const double       q,
-                          const double       c) const
+                          const double       c,
+                          const double       a) const
   {
     Assert(zone_of_piece(current) == zone, ExcInternalError());
     return first_piece[zone]
-           + zone_law(zone).next_piece(current - first_piece[zone], q, c);
+           + zone_law(zone).next_piece(current - first_piece[zone], q, c, a);
   }
 
 

@@ -137,6 +137,8 @@ namespace ViscoContact
     placed = false;
     memory_pressures.clear();
     with_memory = false;
+    node_bonding.clear();
+    with_adhesion = false;
     set_friction(std::vector<FrictionLaw>(laws.n_zones(),
                                           std::make_shared<Frictionless>()),
                  std::vector<unsigned int>(w.size(), 0),
@@ -215,6 +217,49 @@ namespace ViscoContact
 
 
 
+  // @sect4{ContactNodes::set_bonding}
+  void
+  ContactNodes::set_bonding(const std::vector<double> &bonding)
+  {
+    AssertDimension(bonding.size(), size());
+    node_bonding  = bonding;
+    with_adhesion = true;
+  }
+
+
+
+  bool
+  ContactNodes::has_adhesion() const
+  {
+    return with_adhesion;
+  }
+
+
+
+  double
+  ContactNodes::bonding(const unsigned int i) const
+  {
+    return with_adhesion ? node_bonding[i] : 1.;
+  }
+
+
+
+  const std::vector<double> &
+  ContactNodes::bondings() const
+  {
+    return node_bonding;
+  }
+
+
+
+  double
+  ContactNodes::adhesion_scale(const unsigned int i) const
+  {
+    return bonding(i) * bonding(i);
+  }
+
+
+
   // @sect4{ContactNodes::set_parameters}
   //
   // The parameter c_i scales the normal displacement into a pressure; it
@@ -238,7 +283,8 @@ namespace ViscoContact
     // (q = 0), the state before the first load. Later calls keep the pieces.
     if (!placed)
       for (unsigned int i = 0; i < size(); ++i)
-        node_pieces[i] = contact_laws.find_piece(node_zones[i], 0., c[i]);
+        node_pieces[i]
+          = contact_laws.find_piece(node_zones[i], 0., c[i], adhesion_scale(i));
     placed = true;
   }
 
@@ -261,7 +307,8 @@ namespace ViscoContact
                                     node_pieces[i],
                                     z[i] / w[i] - history_pressure(i)
                                       + c[i] * r[i],
-                                    c[i]);
+                                    c[i],
+                                    adhesion_scale(i));
         if (next != node_pieces[i])
           {
             node_pieces[i] = next;
@@ -378,10 +425,10 @@ namespace ViscoContact
   NodeDirections
   ContactNodes::directions(const unsigned int i, const double gap) const
   {
-    NodeDirections         result;
-    const ContactLawPiece &piece  = current_piece(i);
-    NodeDirection         &normal = result.direction[0];
-    normal.frame                  = {{1, 0, 0}};
+    NodeDirections        result;
+    const ContactLawPiece piece  = current_piece(i);
+    NodeDirection        &normal = result.direction[0];
+    normal.frame                 = {{1, 0, 0}};
     if (piece.vertical)
       {
         normal.fixed = true;
@@ -877,10 +924,10 @@ namespace ViscoContact
 
 
 
-  const ContactLawPiece &
+  ContactLawPiece
   ContactNodes::current_piece(const unsigned int i) const
   {
-    return contact_laws.piece(node_pieces[i]);
+    return contact_laws.piece(node_pieces[i]).scaled(adhesion_scale(i));
   }
 
 
@@ -968,13 +1015,16 @@ namespace ViscoContact
   //
   // The contact state of a node as the output reports it: 2 at the rigid
   // limit (on the rigid piece), 1 in normal-compliance contact (penetrating
-  // the layer, r > 0, or pressed by it, z > 0), 0 out of contact.
+  // the layer, r > 0, pressed by it, z > 0, or held by adhesion: on an
+  // adhesive piece with a bonding beta > 0, whatever the rounding of its
+  // force at r = 0), 0 out of contact.
   unsigned int
   ContactNodes::status(const unsigned int i) const
   {
-    if (current_piece(i).rigid)
+    const ContactLawPiece piece = current_piece(i);
+    if (piece.rigid)
       return 2;
-    if (r[i] > 0 || z[i] > 0)
+    if (r[i] > 0 || z[i] > 0 || (piece.adhesive && bonding(i) > 0))
       return 1;
     return 0;
   }
@@ -997,7 +1047,7 @@ namespace ViscoContact
   double
   ContactNodes::compliance_pressure(const unsigned int i) const
   {
-    const ContactLawPiece &current = current_piece(i);
+    const ContactLawPiece current = current_piece(i);
     return current.rigid ? current.p_lower + history_pressure(i)
                          : contact_pressure(i);
   }

@@ -802,6 +802,8 @@ namespace ViscoContact
           }
         if (has_memory())
           out << ',' << history_pressure(i);
+        if (has_adhesion())
+          out << ',' << bonding(i);
         out << '\n';
       }
     return out.str();
@@ -835,6 +837,9 @@ namespace ViscoContact
     // compliance_pressure).
     if (has_memory())
       out << ",memory_pressure";
+    // With adhesion: the bonding beta of the last step.
+    if (has_adhesion())
+      out << ",bonding";
     out << '\n';
     return out.str();
   }
@@ -1011,6 +1016,19 @@ namespace ViscoContact
         memory_pressure(vertex.scalar_dof) = vertex.memory_pressure;
     for (unsigned int i = 0; i < size(); ++i)
       memory_pressure(geometry[i].scalar_dof) = history_pressure(i);
+  }
+
+
+
+  // The bonding of the contact nodes (the contact side of a pair only: the
+  // opposite side has no bond variables of its own).
+  template <int dim>
+  void
+  ContactSet<dim>::fill_bonding_field(VectorType &bonding_field) const
+  {
+    bonding_field = 0;
+    for (unsigned int i = 0; i < size(); ++i)
+      bonding_field(geometry[i].scalar_dof) = bonding(i);
   }
 
 

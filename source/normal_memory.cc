@@ -2,7 +2,7 @@
 
 #include <deal.II/base/exceptions.h>
 
-#include "contact_set.h"
+#include "contact_nodes.h"
 #include "normal_memory.h"
 #include "parameters.h"
 
@@ -157,66 +157,24 @@ namespace ViscoContact
 
 
   unsigned int
-  NormalMemory::n_nodal_fields(const unsigned int dim) const
+  NormalMemory::n_nodes() const
   {
-    return active() ? (n_variables() + dim - 1) / dim : 0;
+    return zones.size();
   }
 
 
 
-  template <int dim>
-  std::vector<VectorType>
-  NormalMemory::nodal_fields(
-    const ContactSet<dim>           &contact,
-    const VectorType                &layout,
-    const AffineConstraints<double> &hanging_constraints) const
-  {
-    std::vector<VectorType> fields(n_nodal_fields(dim), VectorType(layout));
-    for (VectorType &field : fields)
-      field = 0;
-    for (unsigned int i = 0; i < zones.size(); ++i)
-      for (unsigned int v = 0; v < n_variables(); ++v)
-        fields[v / dim].local_element(contact.node(i).local_dofs[v % dim])
-          = variable(i, v);
-    for (VectorType &field : fields)
-      {
-        field.zero_out_ghost_values();
-        hanging_constraints.distribute(field);
-        field.update_ghost_values();
-      }
-    return fields;
-  }
-
-
-
-  template <int dim>
   void
-  NormalMemory::set_from_nodal_fields(const ContactSet<dim>         &contact,
-                                      const std::vector<VectorType> &fields)
+  NormalMemory::start_step(const double k, ContactNodes &nodes)
   {
-    AssertDimension(fields.size(), n_nodal_fields(dim));
-    for (unsigned int i = 0; i < zones.size(); ++i)
-      for (unsigned int v = 0; v < n_variables(); ++v)
-        set_variable(i,
-                     v,
-                     fields[v / dim].local_element(
-                       contact.node(i).local_dofs[v % dim]));
+    nodes.set_history_pressure(start_step(k));
   }
 
 
 
-  template std::vector<VectorType>
-  NormalMemory::nodal_fields(const ContactSet<2> &,
-                             const VectorType &,
-                             const AffineConstraints<double> &) const;
-  template std::vector<VectorType>
-  NormalMemory::nodal_fields(const ContactSet<3> &,
-                             const VectorType &,
-                             const AffineConstraints<double> &) const;
-  template void
-  NormalMemory::set_from_nodal_fields(const ContactSet<2> &,
-                                      const std::vector<VectorType> &);
-  template void
-  NormalMemory::set_from_nodal_fields(const ContactSet<3> &,
-                                      const std::vector<VectorType> &);
+  void
+  NormalMemory::apply_accepted(ContactNodes &nodes) const
+  {
+    nodes.set_history_pressure(accepted_pressures());
+  }
 } // namespace ViscoContact

@@ -1201,6 +1201,39 @@ namespace ViscoContact
           "The lambda_k >= 0 of the memory kernel [1/s], one per Memory "
           "weight (0: a constant term, the kernel's integral grows as a_k t).",
           Patterns::List(Patterns::Double()));
+        prm.add_parameter(
+          "Adhesion stiffness",
+          adhesion_stiffness,
+          "Adhesion with a bonding field (doc/model.md, section 10): where the "
+          "body separates from the obstacle (r < 0) it is pulled back by the "
+          "tension gamma beta^2 R(r), R(r) = max(-L, r), beta in [0, 1] the "
+          "node's bonding. This is gamma >= 0 [Pa/m] (0: no adhesion).",
+          Patterns::Double());
+        prm.add_parameter("Adhesion length",
+                          adhesion_length,
+                          "L > 0 [m]: the separation beyond which the "
+                          "tension stays at gamma beta^2 L (needed with "
+                          "Adhesion stiffness > 0).",
+                          Patterns::Double());
+        prm.add_parameter(
+          "Adhesion energy",
+          adhesion_energy,
+          "epsilon >= 0 [J/m^2] in the bonding's evolution beta' = -kappa "
+          "(beta gamma R(r)^2 - epsilon)+: below this energy the bond holds; "
+          "beta only decreases (debonding is irreversible).",
+          Patterns::Double());
+        prm.add_parameter("Debonding rate",
+                          debonding_rate,
+                          "kappa >= 0 [m^2/(J s)] in the bonding's evolution "
+                          "(1: the form of the literature, beta' = -(beta "
+                          "gamma R^2 - epsilon)+).",
+                          Patterns::Double());
+        prm.add_parameter("Initial bonding",
+                          initial_bonding,
+                          "beta_0(x, y, z) in [0, 1]: the bonding at t = 0 "
+                          "(1: fully bonded; 0 where the surfaces are not "
+                          "glued).",
+                          Patterns::Anything());
       }
       prm.leave_subsection();
     }
@@ -1341,6 +1374,48 @@ namespace ViscoContact
                   prm.get("Memory weights"),
                   "empty with Normal compliance = false (the memory term "
                   "acts on the penetration of the layer)");
+        require(adhesion_stiffness >= 0 && std::isfinite(adhesion_stiffness),
+                subsection,
+                "Adhesion stiffness",
+                to_string(adhesion_stiffness),
+                "a finite gamma >= 0");
+        if (adhesion_stiffness > 0)
+          {
+            require(adhesion_length > 0 && std::isfinite(adhesion_length),
+                    subsection,
+                    "Adhesion length",
+                    to_string(adhesion_length),
+                    "a finite L > 0 with Adhesion stiffness > 0");
+            require(adhesion_energy >= 0 && std::isfinite(adhesion_energy),
+                    subsection,
+                    "Adhesion energy",
+                    to_string(adhesion_energy),
+                    "a finite epsilon >= 0");
+            require(debonding_rate >= 0 && std::isfinite(debonding_rate),
+                    subsection,
+                    "Debonding rate",
+                    to_string(debonding_rate),
+                    "a finite kappa >= 0");
+            require(gap >= 0,
+                    subsection,
+                    "Layer thickness",
+                    to_string(gap),
+                    "g >= 0 with adhesion (the adhesive branch is r < 0, "
+                    "below the rigid limit)");
+            const bool tension_in_law
+              = normal_compliance
+                && law_type == ContactLawType::piecewise_linear
+                && !slopes.empty()
+                && (slopes[0] != 0
+                    || (!breakpoints.empty() && breakpoints[0] < 0));
+            require(!tension_in_law,
+                    subsection,
+                    "Breakpoints",
+                    prm.get("Breakpoints"),
+                    "a law that is zero for r < 0 with adhesion (first "
+                    "breakpoint >= 0 and first slope 0: the adhesive "
+                    "branch is the law there)");
+          }
         // The ranges of the laws' entries hold only for the law that uses
         // them.
         if (normal_compliance && law_type == ContactLawType::nonmonotone)
@@ -2538,6 +2613,11 @@ namespace ViscoContact
                       "0 with a memory term (Memory weights in subsection <"
                         + zone.subsection
                         + ">): the coarser meshes do not keep its history");
+      for (const ContactZone &zone : used_contact_zones())
+        refuse_unless(zone.contact->adhesion_stiffness == 0,
+                      "0 with adhesion (Adhesion stiffness in subsection <"
+                        + zone.subsection
+                        + ">): the coarser meshes do not keep the bonding");
     }
 
     // Profile times within the run, and schedules of a size the run can

@@ -314,8 +314,9 @@ namespace ViscoContact
                       prescribed.hanging_node_constraints(),
                       solution);
     set_gaps(schedule.current_time());
-    // The memory starts empty, with the penetrations of the initial state
-    // for the first step.
+    // The laws with a history start from the initial state: the memory
+    // empty, the bonding at its initial values, each with the penetrations
+    // of the initial state for the first step.
     {
       std::vector<unsigned int> zones;
       std::vector<double>       penetrations;
@@ -326,12 +327,16 @@ namespace ViscoContact
                                  - contact_set.gap(i));
         }
       normal_memory.reinit(contact_zones.memory_kernels(), zones);
-      if (normal_memory.active())
-        {
-          normal_memory.accept_step(penetrations);
-          contact_set.set_history_pressure(
-            std::vector<double>(contact_set.size(), 0.));
-        }
+      bonding_field.reinit(contact_zones.bonding_laws(),
+                           zones,
+                           contact_zones.initial_bonding(contact_set,
+                                                         mpi_communicator));
+      for (ContactHistory *history : contact_histories())
+        if (history->active())
+          {
+            history->accept_step(penetrations);
+            history->apply_accepted(contact_set);
+          }
     }
     // Tresca's bounds at the nodes (collective: a negative or infinite
     // value stops all ranks, naming the entry).
@@ -352,6 +357,24 @@ namespace ViscoContact
                                    materials.cell_elasticity(),
                                    node_dofs));
       }
+  }
+
+
+
+  template <int dim>
+  std::array<ContactHistory *, 2>
+  ViscoplasticContact<dim>::contact_histories()
+  {
+    return {{&normal_memory, &bonding_field}};
+  }
+
+
+
+  template <int dim>
+  std::array<const ContactHistory *, 2>
+  ViscoplasticContact<dim>::contact_histories() const
+  {
+    return {{&normal_memory, &bonding_field}};
   }
 
 

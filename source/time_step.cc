@@ -61,9 +61,11 @@ namespace ViscoContact
     if (parameters.predicted_start && n > 1)
       predicted_start.remember(std::move(start.solution),
                                std::move(start.contact.z));
-    // The memory keeps this step's history and penetrations.
-    if (contact_enabled && normal_memory.active())
-      normal_memory.accept_step(contact_set.r);
+    // The memory and the bonding keep this step's history and
+    // penetrations.
+    for (ContactHistory *history : contact_histories())
+      if (contact_enabled && history->active())
+        history->accept_step(contact_set.r);
     // Friction: the next step's slip is measured from here.
     if (contact_enabled && contact_set.has_friction())
       contact_set.accept_slip(contact_set.tangential_displacements(solution),
@@ -102,10 +104,11 @@ namespace ViscoContact
         // The right-hand side depends on t_n, which a cut has changed.
         const double k = schedule.step_length();
         assemble_right_hand_side(schedule.next_time());
-        // The memory pressures of this step, from the history at its start
-        // (its length k too, which a cut has changed).
-        if (contact_enabled && normal_memory.active())
-          contact_set.set_history_pressure(normal_memory.start_step(k));
+        // The memory pressures and the bonding of this step, from the
+        // history at its start (its length k too, which a cut has changed).
+        for (ContactHistory *history : contact_histories())
+          if (contact_enabled && history->active())
+            history->start_step(k, contact_set);
         // A moving obstacle carries its sticking nodes over the step.
         if (contact_enabled && contact_zones.has_obstacle_motion()
             && contact_set.has_friction())

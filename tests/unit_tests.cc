@@ -56,6 +56,7 @@
 #include "contact_set.h"
 #include "material.h"
 #include "mesh/mesh.h"
+#include "bonding_field.h"
 #include "normal_memory.h"
 #include "rigid_motions.h"
 #include "robustness/checkpoint_file.h"
@@ -84,6 +85,33 @@ using namespace ViscoContact;
 
 namespace
 {
+  // The pieces of the given indices as they act at the nodes of the
+  // condensed system (no bonding, no memory), and the pieces of the nodes
+  // as they act with their memory pressures.
+  std::vector<ContactLawPiece>
+  acting_pieces(const ContactLaws               &laws,
+                const std::vector<unsigned int> &pieces)
+  {
+    std::vector<ContactLawPiece> result;
+    for (const unsigned int piece : pieces)
+      result.push_back(laws.piece(piece));
+    return result;
+  }
+
+  std::vector<ContactLawPiece>
+  acting_pieces(const ContactNodes &nodes)
+  {
+    std::vector<ContactLawPiece> result;
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      {
+        result.push_back(nodes.current_piece(i));
+        if (!result.back().vertical)
+          result.back().intercept += nodes.history_pressure(i);
+      }
+    return result;
+  }
+
+
   // The benchmark material: E = 1000, k = 0.4, lambda = 50, sigma_Y = 2.
   template <int dim>
   PerzynaMaterial<dim>
@@ -620,8 +648,7 @@ namespace
         [&](double) {
           LinearSolveReport report;
           Vector<double>    r, z;
-          report.residual
-            = system.solve(nodes.pieces(), d, nodes.history_pressures(), r, z);
+          report.residual = system.solve(acting_pieces(nodes), d, r, z);
           std::copy(r.begin(), r.end(), nodes.r.begin());
           std::copy(z.begin(), z.end(), nodes.z.begin());
           return report;
@@ -988,6 +1015,143 @@ TEST(NormalMemory, ExplicitHistoryOfTwoTerms)
 
 
 
+// The adhesive branch of a law (contact_law.h): for Signorini's condition
+// with gap 0 it is the whole law below r = 0 (the constant tension
+// -gamma L below -L, the slope gamma up to 0); on the benchmark law it
+// replaces the zero pressure below r = 0 and the rest stays. Scaled by a
+// node's beta^2, the pieces keep their intervals and find_piece() finds
+// the point of the scaled graph.
+TEST(ContactLaw, AdhesiveBranchBelowZero)
+{
+  const AdhesiveBranch glue{1000., 0.01};
+  const ContactLaw     glued({}, {0.}, {}, true, 0., glue);
+  ASSERT_EQ(glued.n_pieces(), 3u);
+  EXPECT_TRUE(glued.has_adhesion());
+  EXPECT_TRUE(glued.piece(0).adhesive && glued.piece(1).adhesive);
+  EXPECT_EQ(glued.piece(0).r_upper, -0.01);
+  EXPECT_EQ(glued.piece(0).intercept, -10.);
+  EXPECT_EQ(glued.piece(1).slope, 1000.);
+  EXPECT_TRUE(glued.piece(2).rigid);
+  EXPECT_EQ(glued.piece(2).p_lower, 0.);
+  EXPECT_EQ(glued.steepest_softening(), 0.);
+
+  const ContactLaw benchmark({0., 0.006},
+                             {0., 300., -100.},
+                             {0., 0.},
+                             true,
+                             0.01,
+                             glue);
+  ASSERT_EQ(benchmark.n_pieces(), benchmark_law.n_pieces() + 1);
+  for (unsigned int i = 2; i < benchmark.n_pieces(); ++i)
+    EXPECT_TRUE(benchmark.piece(i) == benchmark_law.piece(i - 1)) << i;
+  EXPECT_EQ(benchmark.compliance_pressure(-0.004), -4.);
+  EXPECT_EQ(benchmark.compliance_pressure(-1.), -10.);
+
+  // At beta^2 = 1/4 the graph point r = -0.004, p = -1 (bond piece) and
+  // r = -0.02, p = -2.5 (tension piece), with c = 500.
+  const double a = 0.25, c = 500.;
+  EXPECT_EQ(glued.piece(1).scaled(a).slope, 250.);
+  EXPECT_EQ(glued.piece(0).scaled(a).intercept, -2.5);
+  EXPECT_TRUE(glued.piece(2).scaled(a) == glued.piece(2));
+  EXPECT_EQ(glued.find_piece(-1. + c * -0.004, c, a), 1u);
+  EXPECT_EQ(glued.find_piece(-2.5 + c * -0.02, c, a), 0u);
+  // Unscaled, the second point's q lies on the bond piece's stretch.
+  EXPECT_EQ(glued.find_piece(-2.5 + c * -0.02, c), 1u);
+}
+
+
+
+// The bonding's explicit step (bonding_field.h) against the formula written
+// out here: it holds below the adhesion energy, falls with the separation,
+// never grows (a node pressed or back in contact keeps its bonding), stops
+// at 0, and is restored from its variables; zones without adhesion keep
+// beta = 1.
+TEST(BondingField, ExplicitDebonding)
+{
+  const BondingField::Law glue{1000., 0.01, 0.001, 10.};
+  // beta gamma R^2 = 0.9 * 1000 * 0.005^2 = 0.0225 > epsilon.
+  EXPECT_NEAR(glue.evolve(0.9, -0.005, 0.1),
+              0.9 - 0.1 * 10. * (0.0225 - 0.001),
+              1e-15);
+  EXPECT_EQ(glue.evolve(0.9, -0.0005, 0.1), 0.9); // below the energy
+  EXPECT_EQ(glue.evolve(0.9, 0.003, 0.1), 0.9);   // pressed
+  // Beyond L the separation counts as L; a long step ends the bond.
+  EXPECT_EQ(glue.evolve(0.5, -1., 0.1), glue.evolve(0.5, -0.01, 0.1));
+  EXPECT_EQ(glue.evolve(0.5, -1., 10.), 0.);
+
+  BondingField field;
+  field.reinit({BondingField::Law{}, glue}, {1, 0, 1}, {0.8, 0.3, 1.});
+  EXPECT_TRUE(field.active());
+  EXPECT_EQ(field.n_nodal_fields(2), 1u);
+  EXPECT_EQ(field.variable(1, 0), 1.); // no adhesion in zone 0
+  ContactNodes nodes;
+  nodes.reinit(ContactLaw({}, {0.}, {}, true, 0.), {0, 0, 0}, {1., 1., 1.});
+  field.accept_step({-0.005, -0.005, 0.});
+  double beta = 0.8;
+  for (const double k : {0.1, 0.05})
+    {
+      field.start_step(2 * k, nodes); // an attempt that is not accepted
+      field.start_step(k, nodes);
+      beta = glue.evolve(beta, -0.005, k);
+      EXPECT_EQ(field.bonding(0), beta);
+      EXPECT_EQ(nodes.bonding(0), beta);
+      EXPECT_EQ(nodes.adhesion_scale(0), beta * beta);
+      EXPECT_EQ(nodes.bonding(1), 1.);
+      EXPECT_EQ(nodes.bonding(2), 1.); // never separated
+      field.accept_step({-0.005, -0.005, 0.});
+    }
+  BondingField restored;
+  restored.reinit({BondingField::Law{}, glue}, {1, 0, 1}, {1., 1., 1.});
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int v = 0; v < 2; ++v)
+      restored.set_variable(i, v, field.variable(i, v));
+  ContactNodes other;
+  other.reinit(ContactLaw({}, {0.}, {}, true, 0.), {0, 0, 0}, {1., 1., 1.});
+  restored.start_step(0.1, other);
+  field.start_step(0.1, nodes);
+  EXPECT_EQ(other.bonding(0), nodes.bonding(0));
+}
+
+
+
+// Decoupled nodes pulled off a glued support (d < 0) by the condensed active
+// set: each on the bond piece with its own beta, z = w a (d - S z), so
+// z = w a d / (1 + w a S) with a = gamma beta^2, or on the tension piece
+// (z = -w a L) where that would take r below -L; a node pressed (d > 0)
+// at the rigid limit.
+TEST(ActiveSetSolver, GluedNodesPulledWithTheirOwnBonding)
+{
+  const DecoupledNodes      nodes;
+  const std::vector<double> w     = nodes.w;
+  const FullMatrix<double> &S     = nodes.S;
+  const std::vector<double> d     = {-0.001, -0.004, -0.03, 0.002, -0.002};
+  const std::vector<double> beta  = {1., 0.5, 0.9, 0.7, 0.};
+  const double              gamma = 1000., L = 0.01;
+  const ContactLaw          glued({}, {0.}, {}, true, 0., {gamma, L});
+
+  DenseActiveSet solver(glued, S, w);
+  solver.nodes.set_bonding(beta);
+  Vector<double> d_vector(d.begin(), d.end());
+  ASSERT_TRUE(solver.solve(d_vector, 50, 1e-12).converged);
+  for (const unsigned int i : {0u, 1u, 4u})
+    {
+      const double a = gamma * beta[i] * beta[i];
+      EXPECT_NEAR(solver.nodes.z[i],
+                  w[i] * a * d[i] / (1 + w[i] * a * S(i, i)),
+                  1e-15)
+        << "node " << i;
+    }
+  EXPECT_NEAR(solver.nodes.z[2], -w[2] * gamma * 0.81 * L, 1e-15);
+  EXPECT_LT(solver.nodes.r[2], -L);
+  EXPECT_TRUE(solver.nodes.current_piece(3).rigid);
+  EXPECT_NEAR(solver.nodes.z[3], d[3] / S(3, 3), 1e-12);
+  // Held by the glue while bonded; node 4 has none left.
+  EXPECT_EQ(solver.nodes.status(1), 1u);
+  EXPECT_EQ(solver.nodes.status(4), 0u);
+}
+
+
+
 // Contact zones: the decoupled nodes alternately on the benchmark law and
 // on Signorini's condition with gap 0.004 (r <= g: z = 0 below it,
 // z = (d - g) / S_ii at it) each reach the closed form of their own law,
@@ -1077,7 +1241,7 @@ TEST(ActiveSetSolver, InexactEarlySolvesEndAtTheExactSolution)
       asked.push_back(accuracy);
       LinearSolveReport report;
       Vector<double>    r, z;
-      inexact.system.solve(inexact.nodes.pieces(), d_vector, {}, r, z);
+      inexact.system.solve(acting_pieces(inexact.nodes), d_vector, r, z);
       for (unsigned int i = 0; i < m; ++i)
         {
           inexact.nodes.r[i] = r[i] * (1 + accuracy);
@@ -1194,8 +1358,9 @@ namespace
     CondensedContactSystem new_system;
     new_system.reinit(law, S, w);
     Vector<double> r, z, r_new, z_new;
-    const double   defect     = updated.solve(pieces, d, {}, r, z);
-    const double   new_defect = new_system.solve(pieces, d, {}, r_new, z_new);
+    const double   defect = updated.solve(acting_pieces(law, pieces), d, r, z);
+    const double   new_defect
+      = new_system.solve(acting_pieces(law, pieces), d, r_new, z_new);
     EXPECT_LE(new_defect, 1e-14);
     EXPECT_LE(defect, 1e-14);
     for (unsigned int i = 0; i < w.size(); ++i)
@@ -1293,7 +1458,7 @@ namespace
     CondensedContactSystem system;
     system.reinit(law, S, w);
     Vector<double> r, z;
-    system.solve(pieces, d, {}, r, z);
+    system.solve(acting_pieces(law, pieces), d, r, z);
     pieces[0] = 3;
     expect_same_as_new_factorisation(system, pieces, S, w, d, law);
     return system.n_factorizations();
@@ -1340,7 +1505,10 @@ TEST(CondensedContactSystem, NearlyFlatPiecesSolveToRounding)
     CondensedContactSystem system;
     system.reinit(law, S, w);
     Vector<double> r;
-    return system.solve(std::vector<unsigned int>(m, 2), d, {}, r, z);
+    return system.solve(acting_pieces(law, std::vector<unsigned int>(m, 2)),
+                        d,
+                        r,
+                        z);
   };
   Vector<double> flat, z;
   EXPECT_LT(solve(0., flat), 1e-14);

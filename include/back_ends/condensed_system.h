@@ -45,18 +45,18 @@ namespace ViscoContact
            FullMatrix<double>         compliance,
            const std::vector<double> &weights);
 
-    // z and r = d - S z for the pieces of all nodes, the free normal
-    // displacements d = N K^{-1} b and the memory pressures of all nodes
-    // (empty: none; a sloped piece's intercept o becomes o + m_i). Returns
+    // z and r = d - S z for the pieces of all nodes, as they act at each
+    // node (a piece of the law, scaled by the node's bonding and moved up
+    // by its memory pressure: the laws of two nodes on the same piece may
+    // differ), and the free normal displacements d = N K^{-1} b. Returns
     // how far the nodes are from the linear equations of their pieces
     // (rounding), relative to the size of the normal displacements
     // involved.
     double
-    solve(const std::vector<unsigned int> &pieces,
-          const Vector<double>            &free_normal_displacement,
-          const std::vector<double>       &memory_pressures,
-          Vector<double>                  &r,
-          Vector<double>                  &z);
+    solve(const std::vector<ContactLawPiece> &node_pieces,
+          const Vector<double>               &free_normal_displacement,
+          Vector<double>                     &r,
+          Vector<double>                     &z);
 
     const FullMatrix<double> &
     compliance() const;
@@ -88,12 +88,12 @@ namespace ViscoContact
       }
     };
     Row
-    row(const unsigned int node, const unsigned int piece) const;
+    row(const unsigned int node, const ContactLawPiece &piece) const;
     bool
     is_flat(const unsigned int node, const ContactLawPiece &piece) const;
 
     void
-    factorize(const std::vector<unsigned int> &pieces);
+    factorize(const std::vector<ContactLawPiece> &pieces);
     void
     solve_with_factorization(Vector<double> &x) const;
     void
@@ -101,7 +101,7 @@ namespace ViscoContact
     double
     changed_row_times(const unsigned int a, const Vector<double> &x) const;
     bool
-    update_changed_rows(const std::vector<unsigned int> &pieces);
+    update_changed_rows(const std::vector<ContactLawPiece> &pieces);
     void
     apply_inverse(Vector<double> &x) const;
 
@@ -123,12 +123,12 @@ namespace ViscoContact
     // now, their new rows, and the LU factorisation of the small matrix
     // I + V Y of the Woodbury formula (V: the changes of those rows, Y: the
     // responses) for the pieces it was built for.
-    std::vector<Vector<double>> responses;
-    std::vector<int>            response_of_node;
-    std::vector<unsigned int>   changed_nodes;
-    std::vector<Row>            changed_rows;
-    LAPACKFullMatrix<double>    capacitance;
-    std::vector<unsigned int>   updated_pieces;
+    std::vector<Vector<double>>  responses;
+    std::vector<int>             response_of_node;
+    std::vector<unsigned int>    changed_nodes;
+    std::vector<Row>             changed_rows;
+    LAPACKFullMatrix<double>     capacitance;
+    std::vector<ContactLawPiece> updated_pieces;
 
     unsigned int factorization_count = 0;
     unsigned int updated_solve_count = 0;

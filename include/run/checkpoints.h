@@ -64,8 +64,9 @@ namespace ViscoContact
     };
     // The values a checkpoint stores at the dofs of every cell besides u
     // (restored into the problem's solution): the contact state, the start
-    // of the step, the nodes' history and their friction state, with a
-    // memory term its history (NormalMemory::nodal_fields()), with slip
+    // of the step, the nodes' history and their friction state, the
+    // variables of the laws with a history (a memory term, adhesion:
+    // ContactHistory::nodal_fields(), one after the other), with slip
     // weakening the weakening variable.
     struct CellVectors
     {
@@ -73,7 +74,7 @@ namespace ViscoContact
       VectorType              start_displacement;
       VectorType              node_history;
       VectorType              friction_state;
-      std::vector<VectorType> memory;
+      std::vector<VectorType> histories;
       // With slip weakening: the weakening variable at a node's x-dof.
       std::vector<VectorType> weakening_state;
     };
@@ -101,8 +102,9 @@ namespace ViscoContact
     n_record_vectors(const ViscoplasticContact<dim> &problem);
     static unsigned int
     n_weakening_fields(const ViscoplasticContact<dim> &problem);
+    // The nodal fields of the laws with a history.
     static unsigned int
-    memory_variables(const ViscoplasticContact<dim> &problem);
+    n_history_fields(const ViscoplasticContact<dim> &problem);
 
     // The mesh of the checkpoint (of an adaptive run, or of one with initial
     // cycles) rebuilt from the mesh of the parameter file, and the problem

@@ -4,6 +4,7 @@
 #include <deal.II/base/function.h>
 #include <deal.II/base/function_parser.h>
 
+#include "bonding_field.h"
 #include "contact_set.h"
 #include "normal_memory.h"
 #include "parameters.h"
@@ -51,6 +52,15 @@ namespace ViscoContact
     // The memory kernel of each zone (normal_memory.h; no terms: none).
     const std::vector<NormalMemory::Kernel> &
     memory_kernels() const;
+    // The adhesion of each zone (bonding_field.h; stiffness 0: none), and
+    // the bonding at t = 0 of the contact nodes (Initial bonding; 1 in the
+    // zones without adhesion; collective: a value outside [0, 1] stops all
+    // ranks, naming the entry).
+    const std::vector<BondingField::Law> &
+    bonding_laws() const;
+    std::vector<double>
+    initial_bonding(const ContactSet<dim> &contact_set,
+                    const MPI_Comm         communicator) const;
 
     // The gap function of each zone (nullptr where it is zero: the nodes
     // keep s = 0), and Tresca's slip bound of each zone (nullptr in the
@@ -76,6 +86,8 @@ namespace ViscoContact
   private:
     std::vector<ContactZoneDescription<dim>>          zones;
     std::vector<NormalMemory::Kernel>                 kernels;
+    std::vector<BondingField::Law>                    adhesion;
+    std::vector<std::unique_ptr<FunctionParser<dim>>> initial_bonding_functions;
     std::vector<std::unique_ptr<FunctionParser<dim>>> gap_functions;
     std::vector<std::unique_ptr<FunctionParser<dim>>> slip_bound_functions;
     std::vector<std::unique_ptr<FunctionParser<dim>>> motion_functions;

@@ -207,9 +207,9 @@ namespace ViscoContact
     // without friction), and the normal displacements r and forces z of all
     // contact nodes (with friction: the forces along all rows).
     Vector<double> d, r_all, z_all;
-    // The memory pressures of all contact nodes for the step (empty
-    // without memory), gathered with d.
-    std::vector<double> memory_all;
+    // The memory pressures and the bonding of all contact nodes for the
+    // step (empty without memory, without adhesion), gathered with d.
+    std::vector<double> memory_all, adhesion_all;
     // With friction: S, kept for the dense problems.
     FullMatrix<double> frictional_compliance;
   };
@@ -497,9 +497,12 @@ namespace ViscoContact
   {
     ++this->counts.solves;
     memory_all.clear();
+    adhesion_all.clear();
     if (contact.has_memory() && !friction)
       memory_all
         = gather_on_all_ranks(contact.history_pressures(), communicator);
+    if (contact.has_adhesion() && !friction)
+      adhesion_all = gather_on_all_ranks(contact.bondings(), communicator);
     if (factorization.has_last_block())
       {
         factorization.forward_solve(b, forward_last);
@@ -552,11 +555,20 @@ namespace ViscoContact
     // all of them. Every rank then solves the same problem and finds the
     // same r and z: this replicated arithmetic is what keeps the ranks'
     // decisions in step without further messages.
+    // Each node's piece as it acts there: scaled by its bonding, moved up
+    // by its memory pressure.
     const std::vector<unsigned int> pieces
       = gather_on_all_ranks(contact.pieces(), communicator);
+    std::vector<ContactLawPiece> node_pieces(pieces.size());
+    for (unsigned int i = 0; i < pieces.size(); ++i)
+      {
+        const double beta = adhesion_all.empty() ? 1. : adhesion_all[i];
+        node_pieces[i]    = contact.laws().piece(pieces[i]).scaled(beta * beta);
+        if (!memory_all.empty() && !node_pieces[i].vertical)
+          node_pieces[i].intercept += memory_all[i];
+      }
     LinearSolveReport report;
-    report.residual
-      = condensed_system.solve(pieces, d, memory_all, r_all, z_all);
+    report.residual = condensed_system.solve(node_pieces, d, r_all, z_all);
     // Of the global result, this rank keeps the entries of its own nodes,
     // which is what ContactNodes::update_pieces() reads.
     const types::global_dof_index first = contact.first_global_index();

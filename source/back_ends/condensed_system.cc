@@ -63,10 +63,9 @@ namespace ViscoContact
   // symmetric for symmetric S, need not be definite; for a tangent S is not
   // even symmetric. Hence a general LU factorisation with pivoting.
   CondensedContactSystem::Row
-  CondensedContactSystem::row(const unsigned int node,
-                              const unsigned int piece_index) const
+  CondensedContactSystem::row(const unsigned int     node,
+                              const ContactLawPiece &piece) const
   {
-    const ContactLawPiece &piece = contact_laws.piece(piece_index);
     if (piece.vertical)
       return {true, 0.};
     if (!is_flat(node, piece))
@@ -106,7 +105,7 @@ namespace ViscoContact
   // contact nodes, within the noise of a 175 ms step, and made the step
   // slower at 272).
   void
-  CondensedContactSystem::factorize(const std::vector<unsigned int> &pieces)
+  CondensedContactSystem::factorize(const std::vector<ContactLawPiece> &pieces)
   {
     const unsigned int m = w.size();
     factorized_rows.resize(m);
@@ -250,7 +249,7 @@ namespace ViscoContact
   // grow beyond twice that many).
   bool
   CondensedContactSystem::update_changed_rows(
-    const std::vector<unsigned int> &pieces)
+    const std::vector<ContactLawPiece> &pieces)
   {
     const unsigned int m = w.size();
     changed_nodes.clear();
@@ -333,22 +332,14 @@ namespace ViscoContact
   // pieces of some nodes change, the Woodbury correction above takes them
   // into account without a new factorisation while they are few.
   double
-  CondensedContactSystem::solve(const std::vector<unsigned int> &pieces,
-                                const Vector<double>            &d,
-                                const std::vector<double>       &memory,
-                                Vector<double>                  &r,
-                                Vector<double>                  &z)
+  CondensedContactSystem::solve(const std::vector<ContactLawPiece> &pieces,
+                                const Vector<double>               &d,
+                                Vector<double>                     &r,
+                                Vector<double>                     &z)
   {
     const unsigned int m = w.size();
     AssertDimension(pieces.size(), m);
     AssertDimension(d.size(), m);
-    Assert(memory.empty() || memory.size() == m,
-           ExcDimensionMismatch(memory.size(), m));
-    // A node's sloped piece with its memory pressure: p = o + m_i + s r.
-    const auto intercept
-      = [&](const unsigned int i, const ContactLawPiece &piece) {
-          return piece.intercept + (memory.empty() ? 0. : memory[i]);
-        };
     if (factorized_rows.empty()
         || (pieces != updated_pieces && !update_changed_rows(pieces)))
       factorize(pieces);
@@ -359,13 +350,13 @@ namespace ViscoContact
     z.reinit(m);
     for (unsigned int i = 0; i < m; ++i)
       {
-        const ContactLawPiece &piece = contact_laws.piece(pieces[i]);
+        const ContactLawPiece &piece = pieces[i];
         if (piece.vertical)
           z[i] = d[i] - piece.r_lower;
         else if (!is_flat(i, piece))
-          z[i] = d[i] + intercept(i, piece) / piece.slope;
+          z[i] = d[i] + piece.intercept / piece.slope;
         else
-          z[i] = row(i, pieces[i]).diagonal * w[i] * intercept(i, piece);
+          z[i] = row(i, piece).diagonal * w[i] * piece.intercept;
       }
     apply_inverse(z);
 
@@ -394,9 +385,9 @@ namespace ViscoContact
     const auto     defect_of_forces = [&]() {
       for (unsigned int i = 0; i < m; ++i)
         {
-          const ContactLawPiece &piece = contact_laws.piece(pieces[i]);
+          const ContactLawPiece &piece = pieces[i];
           if (is_flat(i, piece))
-            z[i] = w[i] * intercept(i, piece);
+            z[i] = w[i] * piece.intercept;
         }
       r.reinit(m);
       S.vmult(r, z);
@@ -404,12 +395,12 @@ namespace ViscoContact
       double largest = 0;
       for (unsigned int i = 0; i < m; ++i)
         {
-          const ContactLawPiece &piece = contact_laws.piece(pieces[i]);
+          const ContactLawPiece &piece = pieces[i];
           const bool             flat  = is_flat(i, piece);
-          residual[i]
-            = piece.vertical ? r[i] - piece.r_lower
-                  : !flat ? r[i] - (z[i] / w[i] - intercept(i, piece)) / piece.slope
-                          : 0.;
+          residual[i]            = piece.vertical ? r[i] - piece.r_lower
+                                       : !flat
+                                         ? r[i] - (z[i] / w[i] - piece.intercept) / piece.slope
+                                         : 0.;
           const double stiffness = S(i, i) > 0 ? 1. / (w[i] * S(i, i)) : 0.;
           const double weight
             = piece.vertical || flat
@@ -439,7 +430,7 @@ namespace ViscoContact
         if (!(defect <= largest_updated_defect))
           {
             factorize(pieces);
-            return solve(pieces, d, memory, r, z);
+            return solve(pieces, d, r, z);
           }
       }
     return defect;

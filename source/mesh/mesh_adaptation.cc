@@ -480,10 +480,10 @@ namespace ViscoContact
   // The marked mesh is refined and coarsened, everything is set up on it
   // (setup_on_mesh(), which leaves the initial state), and the state is
   // carried over: u and the contact pressure always, the stress-point data
-  // and the memory of the normal law if transfer_stress_points (the
-  // adaptation during the run; the initial cycles keep the initial history
-  // of the first step). The loads are left to the
-  // caller.
+  // and the histories of the contact laws (memory, bonding) if
+  // transfer_stress_points (the adaptation during the run; the initial
+  // cycles keep the initial history of the first step). The loads are left
+  // to the caller.
   template <int dim>
   void
   MeshAdaptation<dim>::refine_and_transfer(ViscoplasticContact<dim> &problem,
@@ -507,17 +507,18 @@ namespace ViscoContact
     const VectorType pressure = problem.contact_set.pressure_field(
       problem.solution,
       problem.prescribed.hanging_node_constraints());
-    // With a memory term during the run, its history as nodal fields too
-    // (the initial cycles keep the initial history, as for the stresses).
-    const bool transfer_memory = transfer_stress_points
-                                 && problem.contact_enabled
-                                 && problem.normal_memory.active();
-    std::vector<VectorType> memory;
-    if (transfer_memory)
-      memory = problem.normal_memory.nodal_fields(
-        problem.contact_set,
-        problem.solution,
-        problem.prescribed.hanging_node_constraints());
+    // With a law that has a history (a memory term, adhesion) during the
+    // run, its variables as nodal fields too (the initial cycles keep the
+    // initial history, as for the stresses).
+    const bool transfer_histories
+      = transfer_stress_points && problem.contact_enabled;
+    std::vector<VectorType> histories;
+    if (transfer_histories)
+      histories
+        = nodal_fields_of(problem.contact_histories(),
+                          problem.contact_set,
+                          problem.solution,
+                          problem.prescribed.hanging_node_constraints());
     // With slip weakening, the weakening variables likewise (friction starts
     // again from stick on the new mesh, but its bound keeps its weakening).
     std::vector<VectorType> weakening_state;
@@ -527,7 +528,7 @@ namespace ViscoContact
         problem.solution,
         problem.prescribed.hanging_node_constraints()));
     std::vector<const VectorType *> old_fields{&problem.solution, &pressure};
-    for (const auto *fields : {&memory, &weakening_state})
+    for (const auto *fields : {&histories, &weakening_state})
       for (const VectorType &field : *fields)
         old_fields.push_back(&field);
     parallel::distributed::SolutionTransfer<dim, VectorType> nodal_transfer(
@@ -553,21 +554,18 @@ namespace ViscoContact
     VectorType new_pressure(problem.solution);
     problem.solution.zero_out_ghost_values();
     new_pressure.zero_out_ghost_values();
-    std::vector<VectorType>   new_memory(memory.size(), new_pressure);
+    std::vector<VectorType>   new_histories(histories.size(), new_pressure);
     std::vector<VectorType>   new_weakening_state(weakening_state.size(),
                                                 new_pressure);
     std::vector<VectorType *> nodal_fields{&problem.solution, &new_pressure};
-    for (auto *fields : {&new_memory, &new_weakening_state})
+    for (auto *fields : {&new_histories, &new_weakening_state})
       for (VectorType &field : *fields)
         nodal_fields.push_back(&field);
     nodal_transfer.interpolate(nodal_fields);
-    if (transfer_memory)
-      {
-        problem.normal_memory.set_from_nodal_fields(problem.contact_set,
-                                                    new_memory);
-        problem.contact_set.set_history_pressure(
-          problem.normal_memory.accepted_pressures());
-      }
+    if (transfer_histories)
+      restore_from_nodal_fields(problem.contact_histories(),
+                                problem.contact_set,
+                                new_histories);
     for (const VectorType &field : new_weakening_state)
       problem.contact_set.set_weakening_from(field);
     problem.set_dirichlet_values(problem.schedule.current_time());

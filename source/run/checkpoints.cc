@@ -58,10 +58,12 @@ namespace ViscoContact
 
   template <int dim>
   unsigned int
-  Checkpoints<dim>::memory_variables(const ViscoplasticContact<dim> &problem)
+  Checkpoints<dim>::n_history_fields(const ViscoplasticContact<dim> &problem)
   {
-    return problem.normal_memory.active() ? problem.normal_memory.n_variables()
-                                          : 0;
+    unsigned int n = 0;
+    for (const ContactHistory *history : problem.contact_histories())
+      n += history->n_nodal_fields(dim);
+    return n;
   }
 
 
@@ -70,8 +72,7 @@ namespace ViscoContact
   unsigned int
   Checkpoints<dim>::n_record_vectors(const ViscoplasticContact<dim> &problem)
   {
-    return 5 + problem.normal_memory.n_nodal_fields(dim)
-           + n_weakening_fields(problem);
+    return 5 + n_history_fields(problem) + n_weakening_fields(problem);
   }
 
 
@@ -91,8 +92,9 @@ namespace ViscoContact
   // predicted start of the next step extrapolates from; zero if there is
   // none), the friction state of a contact node (its stick/slip state at
   // the x-dof, its tangential force t at the other dofs; zero without
-  // friction), with a memory term its history variables at the dofs of a
-  // contact node (NormalMemory::nodal_fields()), with slip weakening each
+  // friction), with a memory term or adhesion the history variables at the
+  // dofs of a contact node (ContactHistory::nodal_fields()), with slip
+  // weakening each
   // node's weakening variable at its x-dof, and the state of every
   // stress point (sigma_n, the history of the next step, the plastic
   // multiplier).
@@ -181,9 +183,12 @@ namespace ViscoContact
     header.write<std::uint32_t>(problem.uniqueness_eigenvalue.has_value());
     header.write(problem.uniqueness_eigenvalue.value_or(0.));
     // The layout of the nodal fields after the four state vectors: the
-    // memory's variables per node and whether the slips are stored (a
-    // kernel of another number of terms may take as many fields).
-    header.write<std::uint32_t>(memory_variables(problem));
+    // variables per node of each law with a history (0 if a zone has none)
+    // and whether the slips are stored (a kernel of another number of terms
+    // may take as many fields).
+    for (const ContactHistory *history : problem.contact_histories())
+      header.write<std::uint32_t>(history->active() ? history->n_variables()
+                                                    : 0);
     header.write<std::uint32_t>(n_weakening_fields(problem));
     return header;
   }
@@ -236,12 +241,13 @@ namespace ViscoContact
     start_displacement.update_ghost_values();
     node_history.update_ghost_values();
     friction_state.update_ghost_values();
-    std::vector<VectorType> memory;
-    if (problem.contact_enabled && problem.normal_memory.active())
-      memory = problem.normal_memory.nodal_fields(
-        problem.contact_set,
-        problem.solution,
-        problem.prescribed.hanging_node_constraints());
+    std::vector<VectorType> histories;
+    if (problem.contact_enabled)
+      histories
+        = nodal_fields_of(problem.contact_histories(),
+                          problem.contact_set,
+                          problem.solution,
+                          problem.prescribed.hanging_node_constraints());
     std::vector<VectorType> weakening_state;
     if (problem.contact_enabled && n_weakening_fields(problem) > 0)
       weakening_state.push_back(problem.contact_set.weakening_field(
@@ -251,7 +257,7 @@ namespace ViscoContact
             std::move(start_displacement),
             std::move(node_history),
             std::move(friction_state),
-            std::move(memory),
+            std::move(histories),
             std::move(weakening_state)};
   }
 
@@ -284,7 +290,7 @@ namespace ViscoContact
                                                    &vectors.start_displacement,
                                                    &vectors.node_history,
                                                    &vectors.friction_state};
-    for (const auto *fields : {&vectors.memory, &vectors.weakening_state})
+    for (const auto *fields : {&vectors.histories, &vectors.weakening_state})
       for (const VectorType &field : *fields)
         record_vectors.push_back(&field);
     // The cells in the order of stress_points.cells(); (*vector)(dof) reads
@@ -365,8 +371,7 @@ namespace ViscoContact
       problem.solution,
       problem.solution,
       problem.solution,
-      std::vector<VectorType>(problem.normal_memory.n_nodal_fields(dim),
-                              problem.solution),
+      std::vector<VectorType>(n_history_fields(problem), problem.solution),
       std::vector<VectorType>(n_weakening_fields(problem), problem.solution)};
     const bool complete
       = restore_cell_records(problem, file, header_bytes, vectors, [&]() {
@@ -536,7 +541,9 @@ namespace ViscoContact
     const double eigenvalue     = header.read<double>();
     if (has_eigenvalue)
       problem.uniqueness_eigenvalue = eigenvalue;
-    header.check(header.read<std::uint32_t>() == memory_variables(problem));
+    for (const ContactHistory *history : problem.contact_histories())
+      header.check(header.read<std::uint32_t>()
+                   == (history->active() ? history->n_variables() : 0));
     header.check(header.read<std::uint32_t>() == n_weakening_fields(problem));
     return flags;
   }
@@ -635,7 +642,7 @@ namespace ViscoContact
                                       &vectors.start_displacement,
                                       &vectors.node_history,
                                       &vectors.friction_state};
-    for (auto *fields : {&vectors.memory, &vectors.weakening_state})
+    for (auto *fields : {&vectors.histories, &vectors.weakening_state})
       for (VectorType &field : *fields)
         targets.push_back(&field);
     const unsigned int n_vectors = targets.size();
@@ -758,15 +765,11 @@ namespace ViscoContact
     problem.contact_set.reset_slip(problem.contact_set.tangential_displacements(
                                      problem.solution),
                                    tangential_forces);
-    // The memory's history as the interrupted run left it, and the memory
-    // pressures of its last step.
-    if (problem.normal_memory.active())
-      {
-        problem.normal_memory.set_from_nodal_fields(problem.contact_set,
-                                                    vectors.memory);
-        problem.contact_set.set_history_pressure(
-          problem.normal_memory.accepted_pressures());
-      }
+    // The laws' histories as the interrupted run left them, and their laws
+    // of its last step (memory pressures, adhesive scales).
+    restore_from_nodal_fields(problem.contact_histories(),
+                              problem.contact_set,
+                              vectors.histories);
     header.check(
       Utilities::MPI::min(pieces_valid ? 1 : 0, problem.mpi_communicator) == 1);
   }

@@ -602,6 +602,8 @@ namespace ViscoContact
       data_out.add_data_vector(scalar_dof_handler,
                                memory_pressure,
                                "memory_pressure");
+    if (bonding.size() > 0)
+      data_out.add_data_vector(scalar_dof_handler, bonding, "bonding");
   }
 
 
@@ -706,6 +708,12 @@ namespace ViscoContact
         fields.memory_pressure.reinit(problem.scalar_partitioner);
         problem.contact_set.fill_memory_field(fields.memory_pressure);
         fields.memory_pressure.update_ghost_values();
+      }
+    if (problem.contact_enabled && problem.contact_set.has_adhesion())
+      {
+        fields.bonding.reinit(problem.scalar_partitioner);
+        problem.contact_set.fill_bonding_field(fields.bonding);
+        fields.bonding.update_ghost_values();
       }
     return fields;
   }

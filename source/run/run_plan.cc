@@ -457,6 +457,12 @@ namespace ViscoContact
                            return !zone.contact->memory_weights.empty();
                          }))
       step_reason = "the memory term of the normal law";
+    else if (std::any_of(zones.begin(),
+                         zones.end(),
+                         [](const Parameters::ContactZone &zone) {
+                           return zone.contact->adhesion_stiffness > 0;
+                         }))
+      step_reason = "adhesion";
     if (!step_reason.empty())
       return;
     double    cells           = 0;

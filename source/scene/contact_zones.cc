@@ -5,6 +5,9 @@
 
 #include "scene/contact_zones.h"
 #include "scene/loads.h"
+#include "robustness/file_output.h"
+
+#include <sstream>
 
 namespace ViscoContact
 {
@@ -118,8 +121,20 @@ namespace ViscoContact
                 time_dependent_gap = true;
               }
           }
+        std::unique_ptr<FunctionParser<dim>> bonding;
+        if (entries.adhesion_stiffness > 0)
+          {
+            bonding = std::make_unique<FunctionParser<dim>>(1);
+            initialize_load(*bonding,
+                            zone.subsection,
+                            "Initial bonding",
+                            entries.initial_bonding,
+                            parameters.lengths);
+          }
         zones.push_back(std::move(description));
         kernels.push_back(NormalMemory::Kernel::from_parameters(entries));
+        adhesion.push_back(BondingField::Law::from_parameters(entries));
+        initial_bonding_functions.push_back(std::move(bonding));
         gap_functions.push_back(std::move(gap));
         moved_gap_functions.push_back(std::move(moved_gap));
         motion_functions.push_back(std::move(motion));
@@ -190,6 +205,48 @@ namespace ViscoContact
   ContactZones<dim>::memory_kernels() const
   {
     return kernels;
+  }
+
+
+
+  template <int dim>
+  const std::vector<BondingField::Law> &
+  ContactZones<dim>::bonding_laws() const
+  {
+    return adhesion;
+  }
+
+
+
+  // The bonding at t = 0 of every contact node (1 outside the zones with
+  // adhesion), collective: a value outside [0, 1] stops all ranks, naming
+  // the zone's entry and the node.
+  template <int dim>
+  std::vector<double>
+  ContactZones<dim>::initial_bonding(const ContactSet<dim> &contact_set,
+                                     const MPI_Comm         communicator) const
+  {
+    std::vector<double> bonding(contact_set.size(), 1.);
+    std::string         problem;
+    for (unsigned int i = 0; i < contact_set.size(); ++i)
+      if (const auto &beta_0 = initial_bonding_functions[contact_set.zone(i)])
+        {
+          bonding[i] = beta_0->value(contact_set.node(i).location);
+          if (!(bonding[i] >= 0 && bonding[i] <= 1) && problem.empty())
+            {
+              std::ostringstream message;
+              message << "Invalid parameter <Initial bonding> in subsection <"
+                      << zones[contact_set.zone(i)].subsection
+                      << ">: the bonding is " << bonding[i] << " at (";
+              for (unsigned int d = 0; d < dim; ++d)
+                message << (d > 0 ? ", " : "")
+                        << contact_set.node(i).location[d];
+              message << "); accepted are values in [0, 1].";
+              problem = message.str();
+            }
+        }
+    FileOutput::agree_on_problem(problem, communicator);
+    return bonding;
   }
 
 

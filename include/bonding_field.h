@@ -21,10 +21,12 @@ namespace ViscoContact
   // irreversibly as
   //   beta' = -kappa (beta gamma R(r)^2 - epsilon)+,
   // epsilon the adhesion energy below which it holds. The step from
-  // t_{n-1} to t_n takes beta and r of the last accepted step (explicit,
-  // first order in k, as the paper takes the viscoplastic history):
-  //   beta_n = max(0, beta_{n-1} - k kappa (beta_{n-1} gamma R(r_{n-1})^2
-  //                                          - epsilon)+),
+  // t_{n-1} to t_n takes r of the last accepted step (explicit in the
+  // state, first order in k, as the paper takes the viscoplastic history)
+  // and beta at its end where the bond weakens (stable for every k):
+  //   beta_n = (beta_{n-1} + k kappa epsilon) / (1 + k kappa gamma
+  //   R(r_{n-1})^2) if beta_{n-1} gamma R(r_{n-1})^2 > epsilon, else
+  //   beta_{n-1},
   // and within the step the node's adhesive pieces are scaled by beta_n^2
   // (ContactNodes::set_bonding()): the step problem is the
   // piecewise-linear one of a fixed law, monotone on the adhesive branch,
@@ -73,7 +75,9 @@ namespace ViscoContact
     void
     start_step(const double k, ContactNodes &nodes) override;
     void
-    accept_step(const std::vector<double> &r) override;
+    accept_step(const std::vector<double> &r);
+    void
+    accept_step(const ContactNodes &nodes) override;
     void
     apply_accepted(ContactNodes &nodes) const override;
 

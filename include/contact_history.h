@@ -54,13 +54,14 @@ namespace ViscoContact
       = 0;
 
     // The nodes' law for a step of length k from the history at its start,
-    // and the history of the accepted step with its penetrations r (after
-    // set-up: those of the initial state, for the first step).
+    // and the history of the accepted step from the nodes' state (their
+    // penetrations r, their forces and slips; after set-up: the initial
+    // state, for the first step).
     virtual void
     start_step(const double k, ContactNodes &nodes)
       = 0;
     virtual void
-    accept_step(const std::vector<double> &r)
+    accept_step(const ContactNodes &nodes)
       = 0;
     // The nodes' law of the last accepted step (after a restored
     // checkpoint or a transfer, before the next step).

@@ -161,6 +161,16 @@ namespace ViscoContact
     double
     adhesion_scale(const unsigned int i) const;
 
+    // The worn depth w_i of every node (archard_wear.h): its obstacle is w_i
+    // further away (ContactSet::gap() adds it). Without a call every w_i is
+    // 0 (has_wear() is false on every rank).
+    void
+    set_wear(const std::vector<double> &depths);
+    bool
+    has_wear() const;
+    double
+    wear(const unsigned int i) const;
+
     // The parameter c_i of the update rule, one per node: it must exceed
     // the steepest softening of the law, so that q = p + c r increases
     // strictly along the graph. If the nodes have not been placed yet, each
@@ -335,13 +345,35 @@ namespace ViscoContact
     std::vector<double>       w, c;
     std::vector<unsigned int> node_pieces;
     bool                      placed = false;
-    // The memory pressures of the step, if the zones have memory.
-    std::vector<double> memory_pressures;
-    bool                with_memory = false;
-    // The bonding of the step, if the zones have adhesion (on every rank,
-    // also one without contact nodes).
-    std::vector<double> node_bonding;
-    bool                with_adhesion = false;
+    // Values per node that a law with a history gives for each step (the
+    // memory pressures, the bonding, the worn depths): none until given,
+    // then the fallback at every node. Whether they were given is the same
+    // on every rank, also on one without contact nodes.
+    struct StepValues
+    {
+      explicit StepValues(const double fallback)
+        : fallback(fallback)
+      {}
+
+      double              fallback;
+      std::vector<double> values;
+      bool                given = false;
+
+      void
+      set(const std::vector<double>          &new_values,
+          [[maybe_unused]] const unsigned int n)
+      {
+        AssertDimension(new_values.size(), n);
+        values = new_values;
+        given  = true;
+      }
+      double
+      operator()(const unsigned int i) const
+      {
+        return given ? values[i] : fallback;
+      }
+    };
+    StepValues memory_pressures{0.}, node_bonding{1.}, worn_depths{0.};
 
     // Friction, per zone and per node (see set_friction(), update_friction()).
     std::vector<FrictionLaw>  zone_friction;

@@ -345,9 +345,11 @@ namespace ViscoContact
     // zones).
     std::string
     profile_text(const double time) const;
-    // The header of the profiles on rank 0 (empty on the others).
+    // The header of the profiles on rank 0 (empty on the others); the
+    // opposite side of a pair has no columns of the contact side's own
+    // variables (bonding, wear).
     std::string
-    profile_header() const;
+    profile_header(const bool opposite_side = false) const;
     // With contact pairs: this rank's block of the profile of the opposite
     // sides, the same columns for the vertices the zones cover
     // (OppositeSide). Collective.
@@ -397,8 +399,10 @@ namespace ViscoContact
     // layout); on the opposite sides the mortar average of the zone's.
     void
     fill_memory_field(VectorType &memory_pressure) const;
+    // With adhesion, with wear: the bonding and the worn depth of the last
+    // step (scalar layout; a field of size 0 is left out).
     void
-    fill_bonding_field(VectorType &bonding) const;
+    fill_history_fields(VectorType &bonding, VectorType &wear) const;
 
   private:
     // A nodal field with value_of_node(i) at the x-dof of every node i

@@ -78,7 +78,9 @@ namespace ViscoContact
     void
     start_step(const double k, ContactNodes &nodes) override;
     void
-    accept_step(const std::vector<double> &r) override;
+    accept_step(const std::vector<double> &r);
+    void
+    accept_step(const ContactNodes &nodes) override;
     // The memory pressures of the last accepted step from its history
     // (sum_k h_k(t_n)), on the nodes.
     void

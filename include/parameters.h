@@ -351,6 +351,9 @@ namespace ViscoContact
       double      adhesion_energy    = 0; // epsilon
       double      debonding_rate     = 1; // kappa
       std::string initial_bonding    = "1";
+      // Archard's wear (doc/model.md, section 11): w' = k_w p |slip'|
+      // (0: no wear).
+      double wear_coefficient = 0;
 
       void
       add_parameters(ParameterHandler  &prm,

@@ -40,6 +40,7 @@
 #include "material.h"
 #include "materials.h"
 #include "mesh/mesh_adaptation.h"
+#include "archard_wear.h"
 #include "bonding_field.h"
 #include "normal_memory.h"
 #include "parameters.h"
@@ -384,11 +385,14 @@ namespace ViscoContact
     // The bonding of adhesion at the contact nodes (bonding_field.h): each
     // step's adhesive scales come from it.
     BondingField bonding_field;
+    // The worn depths of Archard's wear (archard_wear.h): each step's gaps
+    // move by them.
+    ArchardWear wear;
     // The laws with a history (contact_history.h), for what every one gets:
     // a start and an end of each step, checkpoints, transfers.
-    std::array<ContactHistory *, 2>
+    std::array<ContactHistory *, 3>
     contact_histories();
-    std::array<const ContactHistory *, 2>
+    std::array<const ContactHistory *, 3>
     contact_histories() const;
     // The gaps of the contact nodes at the given time (collective: a value
     // that is not finite stops all ranks, naming the entry).

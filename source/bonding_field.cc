@@ -23,19 +23,23 @@ namespace ViscoContact
 
 
 
-  // The explicit Euler step of beta' = -kappa (beta gamma R(r)^2 - eps)+. The
-  // bracket is never negative, so beta never grows; a step that would take
-  // it below 0 ends the bond (a step longer than 1 / (kappa gamma R^2)).
+  // One step of beta' = -kappa (beta gamma R^2 - eps)+ with R from the last
+  // step and beta taken at the end of the step where the bond weakens:
+  // beta_n = (beta + k kappa eps) / (1 + k kappa gamma R^2) when
+  // beta gamma R^2 > eps, else beta. The explicit Euler step would overshoot
+  // for k kappa gamma R^2 > 1 (and end the bond at 0, where the ODE levels
+  // off at eps / (gamma R^2)); this one lies between beta and that level for
+  // every k, and is first order like it.
   double
   BondingField::Law::evolve(const double beta,
                             const double r,
                             const double k) const
   {
     const double R = std::max(-length, std::min(r, 0.));
-    return std::max(0.,
-                    beta
-                      - k * rate
-                          * std::max(0., beta * stiffness * R * R - energy));
+    const double a = stiffness * R * R;
+    if (!(beta * a > energy))
+      return beta;
+    return (beta + k * rate * energy) / (1 + k * rate * a);
   }
 
 
@@ -141,5 +145,13 @@ namespace ViscoContact
   BondingField::bonding(const unsigned int i) const
   {
     return step_bonding[i];
+  }
+
+
+
+  void
+  BondingField::accept_step(const ContactNodes &nodes)
+  {
+    accept_step(nodes.r);
   }
 } // namespace ViscoContact

@@ -134,11 +134,10 @@ namespace ViscoContact
     r.assign(w.size(), 0.);
     z.assign(w.size(), 0.);
     node_pieces.assign(w.size(), 0);
-    placed = false;
-    memory_pressures.clear();
-    with_memory = false;
-    node_bonding.clear();
-    with_adhesion = false;
+    placed           = false;
+    memory_pressures = StepValues(0.);
+    node_bonding     = StepValues(1.);
+    worn_depths      = StepValues(0.);
     set_friction(std::vector<FrictionLaw>(laws.n_zones(),
                                           std::make_shared<Frictionless>()),
                  std::vector<unsigned int>(w.size(), 0),
@@ -182,13 +181,11 @@ namespace ViscoContact
 
 
 
-  // @sect4{ContactNodes::set_history_pressure}
+  // @sect4{The values of the laws with a history}
   void
   ContactNodes::set_history_pressure(const std::vector<double> &pressures)
   {
-    AssertDimension(pressures.size(), size());
-    memory_pressures = pressures;
-    with_memory      = true;
+    memory_pressures.set(pressures, size());
   }
 
 
@@ -196,7 +193,7 @@ namespace ViscoContact
   bool
   ContactNodes::has_memory() const
   {
-    return with_memory;
+    return memory_pressures.given;
   }
 
 
@@ -204,7 +201,7 @@ namespace ViscoContact
   double
   ContactNodes::history_pressure(const unsigned int i) const
   {
-    return with_memory ? memory_pressures[i] : 0.;
+    return memory_pressures(i);
   }
 
 
@@ -212,18 +209,15 @@ namespace ViscoContact
   const std::vector<double> &
   ContactNodes::history_pressures() const
   {
-    return memory_pressures;
+    return memory_pressures.values;
   }
 
 
 
-  // @sect4{ContactNodes::set_bonding}
   void
   ContactNodes::set_bonding(const std::vector<double> &bonding)
   {
-    AssertDimension(bonding.size(), size());
-    node_bonding  = bonding;
-    with_adhesion = true;
+    node_bonding.set(bonding, size());
   }
 
 
@@ -231,7 +225,7 @@ namespace ViscoContact
   bool
   ContactNodes::has_adhesion() const
   {
-    return with_adhesion;
+    return node_bonding.given;
   }
 
 
@@ -239,7 +233,7 @@ namespace ViscoContact
   double
   ContactNodes::bonding(const unsigned int i) const
   {
-    return with_adhesion ? node_bonding[i] : 1.;
+    return node_bonding(i);
   }
 
 
@@ -247,7 +241,7 @@ namespace ViscoContact
   const std::vector<double> &
   ContactNodes::bondings() const
   {
-    return node_bonding;
+    return node_bonding.values;
   }
 
 
@@ -256,6 +250,30 @@ namespace ViscoContact
   ContactNodes::adhesion_scale(const unsigned int i) const
   {
     return bonding(i) * bonding(i);
+  }
+
+
+
+  void
+  ContactNodes::set_wear(const std::vector<double> &depths)
+  {
+    worn_depths.set(depths, size());
+  }
+
+
+
+  bool
+  ContactNodes::has_wear() const
+  {
+    return worn_depths.given;
+  }
+
+
+
+  double
+  ContactNodes::wear(const unsigned int i) const
+  {
+    return worn_depths(i);
   }
 
 
@@ -1015,16 +1033,17 @@ namespace ViscoContact
   //
   // The contact state of a node as the output reports it: 2 at the rigid
   // limit (on the rigid piece), 1 in normal-compliance contact (penetrating
-  // the layer, r > 0, pressed by it, z > 0, or held by adhesion: on an
-  // adhesive piece with a bonding beta > 0, whatever the rounding of its
-  // force at r = 0), 0 out of contact.
+  // the layer, r > 0, pressed by it, z > 0, or held by adhesion: on the
+  // glue's sloped piece, -L < r <= 0, with a bonding beta > 0, whatever the
+  // rounding of its force at r = 0; a node separated beyond L counts as
+  // out of contact), 0 out of contact.
   unsigned int
   ContactNodes::status(const unsigned int i) const
   {
     const ContactLawPiece piece = current_piece(i);
     if (piece.rigid)
       return 2;
-    if (r[i] > 0 || z[i] > 0 || (piece.adhesive && bonding(i) > 0))
+    if (r[i] > 0 || z[i] > 0 || (piece.adhesive && piece.slope > 0))
       return 1;
     return 0;
   }

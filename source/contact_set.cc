@@ -804,6 +804,8 @@ namespace ViscoContact
           out << ',' << history_pressure(i);
         if (has_adhesion())
           out << ',' << bonding(i);
+        if (has_wear())
+          out << ',' << this->wear(i);
         out << '\n';
       }
     return out.str();
@@ -813,7 +815,7 @@ namespace ViscoContact
 
   template <int dim>
   std::string
-  ContactSet<dim>::profile_header() const
+  ContactSet<dim>::profile_header(const bool opposite_side) const
   {
     if (Utilities::MPI::this_mpi_process(communicator) != 0)
       return "";
@@ -837,9 +839,12 @@ namespace ViscoContact
     // compliance_pressure).
     if (has_memory())
       out << ",memory_pressure";
-    // With adhesion: the bonding beta of the last step.
-    if (has_adhesion())
+    // With adhesion: the bonding beta of the last step; with wear: the worn
+    // depth after it (the contact side's nodes only).
+    if (has_adhesion() && !opposite_side)
       out << ",bonding";
+    if (has_wear() && !opposite_side)
+      out << ",wear";
     out << '\n';
     return out.str();
   }
@@ -1020,15 +1025,23 @@ namespace ViscoContact
 
 
 
-  // The bonding of the contact nodes (the contact side of a pair only: the
-  // opposite side has no bond variables of its own).
+  // The bonding and the worn depth of the contact nodes (the contact side
+  // of a pair only: the opposite side has no variables of its own).
   template <int dim>
   void
-  ContactSet<dim>::fill_bonding_field(VectorType &bonding_field) const
+  ContactSet<dim>::fill_history_fields(VectorType &bonding_field,
+                                       VectorType &wear_field) const
   {
-    bonding_field = 0;
+    for (VectorType *field : {&bonding_field, &wear_field})
+      if (field->size() > 0)
+        *field = 0;
     for (unsigned int i = 0; i < size(); ++i)
-      bonding_field(geometry[i].scalar_dof) = bonding(i);
+      {
+        if (bonding_field.size() > 0)
+          bonding_field(geometry[i].scalar_dof) = bonding(i);
+        if (wear_field.size() > 0)
+          wear_field(geometry[i].scalar_dof) = this->wear(i);
+      }
   }
 
 
@@ -1281,7 +1294,8 @@ namespace ViscoContact
   double
   ContactSet<dim>::gap(const unsigned int i) const
   {
-    return (gaps.empty() ? 0. : gaps[i]) + geometry[i].opposite_gap;
+    return (gaps.empty() ? 0. : gaps[i]) + geometry[i].opposite_gap
+           + this->wear(i);
   }
 
 

@@ -177,4 +177,12 @@ namespace ViscoContact
   {
     nodes.set_history_pressure(accepted_pressures());
   }
+
+
+
+  void
+  NormalMemory::accept_step(const ContactNodes &nodes)
+  {
+    accept_step(nodes.r);
+  }
 } // namespace ViscoContact

@@ -1228,6 +1228,14 @@ namespace ViscoContact
                           "(1: the form of the literature, beta' = -(beta "
                           "gamma R^2 - epsilon)+).",
                           Patterns::Double());
+        prm.add_parameter(
+          "Wear coefficient",
+          wear_coefficient,
+          "Archard's wear (doc/model.md, section 11): where a node slips under "
+          "the pressure p its surface wears away at the rate w' = k_w p "
+          "|slip rate|, and the obstacle of the next step is w further away. "
+          "This is k_w >= 0 [1/Pa] (0: no wear). Needs friction.",
+          Patterns::Double());
         prm.add_parameter("Initial bonding",
                           initial_bonding,
                           "beta_0(x, y, z) in [0, 1]: the bonding at t = 0 "
@@ -1416,6 +1424,18 @@ namespace ViscoContact
                     "breakpoint >= 0 and first slope 0: the adhesive "
                     "branch is the law there)");
           }
+        require(wear_coefficient >= 0 && std::isfinite(wear_coefficient),
+                subsection,
+                "Wear coefficient",
+                to_string(wear_coefficient),
+                "a finite k_w >= 0");
+        if (wear_coefficient > 0)
+          require(tangential_law != TangentialLawType::frictionless,
+                  subsection,
+                  "Wear coefficient",
+                  to_string(wear_coefficient),
+                  "0 with Tangential law = frictionless (the wear grows with "
+                  "the slip, which a frictionless zone does not measure)");
         // The ranges of the laws' entries hold only for the law that uses
         // them.
         if (normal_compliance && law_type == ContactLawType::nonmonotone)

@@ -331,10 +331,12 @@ namespace ViscoContact
                            zones,
                            contact_zones.initial_bonding(contact_set,
                                                          mpi_communicator));
+      wear.reinit(contact_zones.wear_coefficients(), zones);
+      contact_set.r = penetrations;
       for (ContactHistory *history : contact_histories())
         if (history->active())
           {
-            history->accept_step(penetrations);
+            history->accept_step(contact_set);
             history->apply_accepted(contact_set);
           }
     }
@@ -362,19 +364,19 @@ namespace ViscoContact
 
 
   template <int dim>
-  std::array<ContactHistory *, 2>
+  std::array<ContactHistory *, 3>
   ViscoplasticContact<dim>::contact_histories()
   {
-    return {{&normal_memory, &bonding_field}};
+    return {{&normal_memory, &bonding_field, &wear}};
   }
 
 
 
   template <int dim>
-  std::array<const ContactHistory *, 2>
+  std::array<const ContactHistory *, 3>
   ViscoplasticContact<dim>::contact_histories() const
   {
-    return {{&normal_memory, &bonding_field}};
+    return {{&normal_memory, &bonding_field, &wear}};
   }
 
 

@@ -61,15 +61,20 @@ namespace ViscoContact
     if (parameters.predicted_start && n > 1)
       predicted_start.remember(std::move(start.solution),
                                std::move(start.contact.z));
-    // The memory and the bonding keep this step's history and
-    // penetrations.
-    for (ContactHistory *history : contact_histories())
-      if (contact_enabled && history->active())
-        history->accept_step(contact_set.r);
     // Friction: the next step's slip is measured from here.
     if (contact_enabled && contact_set.has_friction())
       contact_set.accept_slip(contact_set.tangential_displacements(solution),
                               schedule.step_length());
+    // The laws with a history keep this step's: the memory and the bonding
+    // its penetrations, the wear its pressures and slips (those of
+    // accept_slip()); the nodes then show the accepted state (the worn
+    // depth after the step; the next step's gaps).
+    for (ContactHistory *history : contact_histories())
+      if (contact_enabled && history->active())
+        {
+          history->accept_step(contact_set);
+          history->apply_accepted(contact_set);
+        }
     schedule.advance_time(proposed_step);
     if (schedule.is_adaptive() && parameters.explicit_history_update()
         && !schedule.is_at_end())

@@ -56,6 +56,7 @@
 #include "contact_set.h"
 #include "material.h"
 #include "mesh/mesh.h"
+#include "archard_wear.h"
 #include "bonding_field.h"
 #include "normal_memory.h"
 #include "rigid_motions.h"
@@ -1069,15 +1070,19 @@ TEST(ContactLaw, AdhesiveBranchBelowZero)
 TEST(BondingField, ExplicitDebonding)
 {
   const BondingField::Law glue{1000., 0.01, 0.001, 10.};
-  // beta gamma R^2 = 0.9 * 1000 * 0.005^2 = 0.0225 > epsilon.
+  // beta gamma R^2 = 0.9 * 1000 * 0.005^2 = 0.0225 > epsilon: beta at the
+  // end of the step, (beta + k kappa eps) / (1 + k kappa gamma R^2).
   EXPECT_NEAR(glue.evolve(0.9, -0.005, 0.1),
-              0.9 - 0.1 * 10. * (0.0225 - 0.001),
+              (0.9 + 0.1 * 10. * 0.001) / (1 + 0.1 * 10. * 0.025),
               1e-15);
   EXPECT_EQ(glue.evolve(0.9, -0.0005, 0.1), 0.9); // below the energy
   EXPECT_EQ(glue.evolve(0.9, 0.003, 0.1), 0.9);   // pressed
-  // Beyond L the separation counts as L; a long step ends the bond.
+  // Beyond L the separation counts as L; however long the step, beta stays
+  // above the level eps / (gamma L^2) = 0.01 where the ODE levels off.
   EXPECT_EQ(glue.evolve(0.5, -1., 0.1), glue.evolve(0.5, -0.01, 0.1));
-  EXPECT_EQ(glue.evolve(0.5, -1., 10.), 0.);
+  EXPECT_NEAR(glue.evolve(0.5, -1., 10.), 0.6 / 11., 1e-15);
+  EXPECT_GT(glue.evolve(0.5, -1., 1e6), 0.01);
+  EXPECT_LT(glue.evolve(0.5, -1., 1e6), 0.0101);
 
   BondingField field;
   field.reinit({BondingField::Law{}, glue}, {1, 0, 1}, {0.8, 0.3, 1.});
@@ -1114,6 +1119,45 @@ TEST(BondingField, ExplicitDebonding)
 
 
 
+// Archard's wear (archard_wear.h): w += k_w max(p, 0) |slip| per accepted
+// step, with the node's own pressure and slip; a frictionless node, a node
+// of a zone without wear, a lifted node and a sticking one do not wear;
+// the depths reach the gaps through ContactNodes::wear().
+TEST(ArchardWear, DepthGrowsWithPressureTimesSlip)
+{
+  const ContactLaw signorini({}, {0.}, {}, true, 0.);
+  ContactNodes     nodes;
+  nodes.reinit(ContactLaws({signorini, signorini}),
+               {0, 0, 0, 1},
+               {0.5, 0.5, 0.5, 0.5});
+  const FrictionLaw coulomb = std::make_shared<CoulombFriction>(0.3);
+  nodes.set_friction({coulomb, coulomb}, {1, 1, 0, 1}, {0., 0., 0., 0.});
+  ArchardWear wear;
+  wear.reinit({0.01, 0.}, {0, 0, 0, 1});
+  ASSERT_TRUE(wear.active());
+  EXPECT_EQ(wear.n_nodal_fields(2), 1u);
+  // Node 0 pressed (z / w = 4) and slipping by 0.03, node 1 lifted
+  // (z = -1), node 2 frictionless, node 3 in a zone without wear.
+  nodes.z = {2., -0.5, 2., 2.};
+  nodes.accept_slip({{{0.03, 0.}}, {{0.03, 0.}}, {{0., 0.}}, {{0.03, 0.}}});
+  wear.accept_step(nodes);
+  wear.apply_accepted(nodes);
+  EXPECT_NEAR(nodes.wear(0), 0.01 * 4. * 0.03, 1e-17);
+  EXPECT_EQ(nodes.wear(1), 0.);
+  EXPECT_EQ(nodes.wear(2), 0.);
+  EXPECT_EQ(nodes.wear(3), 0.);
+  // A second step: 0.04 more in the other direction, at z / w = 2.
+  nodes.z = {1., 1., 1., 1.};
+  nodes.accept_slip({{{-0.01, 0.}}, {{0.03, 0.}}, {{0., 0.}}, {{0.03, 0.}}});
+  wear.accept_step(nodes);
+  wear.start_step(0.1, nodes);
+  EXPECT_NEAR(nodes.wear(0), 0.0012 + 0.01 * 2. * 0.04, 1e-17);
+  EXPECT_EQ(nodes.wear(1), 0.); // no slip in this step
+  EXPECT_EQ(wear.variable(0, 0), nodes.wear(0));
+}
+
+
+
 // Decoupled nodes pulled off a glued support (d < 0) by the condensed active
 // set: each on the bond piece with its own beta, z = w a (d - S z), so
 // z = w a d / (1 + w a S) with a = gamma beta^2, or on the tension piece
@@ -1135,18 +1179,19 @@ TEST(ActiveSetSolver, GluedNodesPulledWithTheirOwnBonding)
   ASSERT_TRUE(solver.solve(d_vector, 50, 1e-12).converged);
   for (const unsigned int i : {0u, 1u, 4u})
     {
-      const double a = gamma * beta[i] * beta[i];
-      EXPECT_NEAR(solver.nodes.z[i],
-                  w[i] * a * d[i] / (1 + w[i] * a * S(i, i)),
-                  1e-15)
+      const double a        = gamma * beta[i] * beta[i];
+      const double expected = w[i] * a * d[i] / (1 + w[i] * a * S(i, i));
+      EXPECT_NEAR(solver.nodes.z[i], expected, 1e-13 * std::abs(expected))
         << "node " << i;
     }
   EXPECT_NEAR(solver.nodes.z[2], -w[2] * gamma * 0.81 * L, 1e-15);
   EXPECT_LT(solver.nodes.r[2], -L);
   EXPECT_TRUE(solver.nodes.current_piece(3).rigid);
   EXPECT_NEAR(solver.nodes.z[3], d[3] / S(3, 3), 1e-12);
-  // Held by the glue while bonded; node 4 has none left.
+  // Held by the glue while bonded and closer than L; node 2 is beyond L,
+  // node 4 has no bond left.
   EXPECT_EQ(solver.nodes.status(1), 1u);
+  EXPECT_EQ(solver.nodes.status(2), 0u);
   EXPECT_EQ(solver.nodes.status(4), 0u);
 }
 

@@ -51,7 +51,8 @@ namespace ViscoContact
   // it. Bumped whenever the layout of the files changes, or the meaning of a
   // cell id (7: the coarse cells numbered in p4est's order, see mesh.cc; 8:
   // the memory's and the slip weakening's fields and their layout in the
-  // header; 9: the bonding of adhesion, each history's layout).
+  // header; 9: the bonding of adhesion and the worn depths, each
+  // history's layout).
   constexpr std::uint32_t checkpoint_version = 9;
 
   // The header's bytes, built and read in memory. Only trivially copyable

@@ -61,6 +61,9 @@ namespace ViscoContact
     std::vector<double>
     initial_bonding(const ContactSet<dim> &contact_set,
                     const MPI_Comm         communicator) const;
+    // The wear coefficient of each zone (archard_wear.h; 0: none).
+    const std::vector<double> &
+    wear_coefficients() const;
 
     // The gap function of each zone (nullptr where it is zero: the nodes
     // keep s = 0), and Tresca's slip bound of each zone (nullptr in the
@@ -87,6 +90,7 @@ namespace ViscoContact
     std::vector<ContactZoneDescription<dim>>          zones;
     std::vector<NormalMemory::Kernel>                 kernels;
     std::vector<BondingField::Law>                    adhesion;
+    std::vector<double>                               wear;
     std::vector<std::unique_ptr<FunctionParser<dim>>> initial_bonding_functions;
     std::vector<std::unique_ptr<FunctionParser<dim>>> gap_functions;
     std::vector<std::unique_ptr<FunctionParser<dim>>> slip_bound_functions;

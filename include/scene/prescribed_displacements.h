@@ -178,6 +178,9 @@ namespace ViscoContact
     // values of the current step, which give the constrained entries of u.
     AffineConstraints<double> open_constraints;
     AffineConstraints<double> current_constraints;
+    // Whether set_time() has set the values on this mesh (the same on every
+    // rank).
+    bool                      values_set = false;
     AffineConstraints<double> hanging_nodes;
 
     // The locally relevant dofs of the parts (a dof belongs to the first part

@@ -245,7 +245,7 @@ namespace ViscoContact
     const bool         zones    = contact.laws().n_zones() > 1;
     std::ostringstream out;
     out << std::setprecision(10);
-    out << contact.profile_header();
+    out << contact.profile_header(/*opposite_side=*/true);
     for (const VertexState &state : states)
       if (state.covered)
         {

@@ -718,6 +718,12 @@ namespace ViscoContact
                                           const CellVectors        &vectors,
                                           const ByteReader         &header)
   {
+    // The laws' histories as the interrupted run left them, and their laws
+    // of its last step (memory pressures, bonding, worn depths: the gaps
+    // below include them).
+    restore_from_nodal_fields(problem.contact_histories(),
+                              problem.contact_set,
+                              vectors.histories);
     bool                                  pieces_valid = true;
     std::vector<ContactNodes::Tangential> tangential_forces(
       problem.contact_set.size(),
@@ -765,11 +771,6 @@ namespace ViscoContact
     problem.contact_set.reset_slip(problem.contact_set.tangential_displacements(
                                      problem.solution),
                                    tangential_forces);
-    // The laws' histories as the interrupted run left them, and their laws
-    // of its last step (memory pressures, adhesive scales).
-    restore_from_nodal_fields(problem.contact_histories(),
-                              problem.contact_set,
-                              vectors.histories);
     header.check(
       Utilities::MPI::min(pieces_valid ? 1 : 0, problem.mpi_communicator) == 1);
   }

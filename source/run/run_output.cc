@@ -604,6 +604,8 @@ namespace ViscoContact
                                "memory_pressure");
     if (bonding.size() > 0)
       data_out.add_data_vector(scalar_dof_handler, bonding, "bonding");
+    if (wear.size() > 0)
+      data_out.add_data_vector(scalar_dof_handler, wear, "wear");
   }
 
 
@@ -709,11 +711,18 @@ namespace ViscoContact
         problem.contact_set.fill_memory_field(fields.memory_pressure);
         fields.memory_pressure.update_ghost_values();
       }
-    if (problem.contact_enabled && problem.contact_set.has_adhesion())
+    if (problem.contact_enabled
+        && (problem.contact_set.has_adhesion()
+            || problem.contact_set.has_wear()))
       {
-        fields.bonding.reinit(problem.scalar_partitioner);
-        problem.contact_set.fill_bonding_field(fields.bonding);
-        fields.bonding.update_ghost_values();
+        if (problem.contact_set.has_adhesion())
+          fields.bonding.reinit(problem.scalar_partitioner);
+        if (problem.contact_set.has_wear())
+          fields.wear.reinit(problem.scalar_partitioner);
+        problem.contact_set.fill_history_fields(fields.bonding, fields.wear);
+        for (VectorType *field : {&fields.bonding, &fields.wear})
+          if (field->size() > 0)
+            field->update_ghost_values();
       }
     return fields;
   }

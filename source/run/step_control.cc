@@ -42,6 +42,11 @@ namespace ViscoContact
     problem.solution = start.solution;
     problem.solution.update_ghost_values();
     problem.contact_set.set_state(start.contact);
+    // The laws of the last accepted step (memory pressures, bonding, worn
+    // depths), not the attempt's: what a failed step writes and reports.
+    for (ContactHistory *history : problem.contact_histories())
+      if (problem.contact_enabled && history->active())
+        history->apply_accepted(problem.contact_set);
   }
 
 

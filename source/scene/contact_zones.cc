@@ -134,6 +134,7 @@ namespace ViscoContact
         zones.push_back(std::move(description));
         kernels.push_back(NormalMemory::Kernel::from_parameters(entries));
         adhesion.push_back(BondingField::Law::from_parameters(entries));
+        wear.push_back(entries.wear_coefficient);
         initial_bonding_functions.push_back(std::move(bonding));
         gap_functions.push_back(std::move(gap));
         moved_gap_functions.push_back(std::move(moved_gap));
@@ -247,6 +248,15 @@ namespace ViscoContact
         }
     FileOutput::agree_on_problem(problem, communicator);
     return bonding;
+  }
+
+
+
+  template <int dim>
+  const std::vector<double> &
+  ContactZones<dim>::wear_coefficients() const
+  {
+    return wear;
   }
 
 

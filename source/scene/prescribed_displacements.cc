@@ -129,6 +129,7 @@ namespace ViscoContact
     reaction_cells_.clear();
     // The values of the old mesh (set_time() sets them anew).
     current_constraints.clear();
+    values_set = false;
     dirichlet_values.reinit(layout);
     if (dirichlet.has_values())
       lifting.reinit(layout);
@@ -339,10 +340,13 @@ namespace ViscoContact
     const std::function<const SymmetricTensor<4, dim> &(const unsigned int k)>
       &elasticity)
   {
-    if (!dirichlet.has_values()
-        || (!dirichlet.depend_on_time()
-            && current_constraints.n_constraints() > 0))
+    // Values that do not depend on time are set once per mesh. The flag is
+    // the same on every rank (a rank without prescribed dofs has no
+    // constraints to count, and would otherwise enter the collective
+    // operations below alone).
+    if (!dirichlet.has_values() || (!dirichlet.depend_on_time() && values_set))
       return;
+    values_set = true;
     current_constraints.copy_from(open_constraints);
     std::string problem;
     for (const DirichletDof &dof : dirichlet_dofs)

@@ -122,13 +122,13 @@ namespace ViscoContact
     // some solve (response_of_node[j], or -1), the nodes whose rows differ
     // now, their new rows, and the LU factorisation of the small matrix
     // I + V Y of the Woodbury formula (V: the changes of those rows, Y: the
-    // responses) for the pieces it was built for.
-    std::vector<Vector<double>>  responses;
-    std::vector<int>             response_of_node;
-    std::vector<unsigned int>    changed_nodes;
-    std::vector<Row>             changed_rows;
-    LAPACKFullMatrix<double>     capacitance;
-    std::vector<ContactLawPiece> updated_pieces;
+    // responses) for the rows it was built for.
+    std::vector<Vector<double>> responses;
+    std::vector<int>            response_of_node;
+    std::vector<unsigned int>   changed_nodes;
+    std::vector<Row>            changed_rows;
+    LAPACKFullMatrix<double>    capacitance;
+    std::vector<Row>            updated_rows;
 
     unsigned int factorization_count = 0;
     unsigned int updated_solve_count = 0;

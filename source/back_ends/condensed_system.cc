@@ -47,7 +47,7 @@ namespace ViscoContact
     S            = std::move(compliance);
     w            = weights;
     factorized_rows.clear();
-    updated_pieces.clear();
+    updated_rows.clear();
   }
 
 
@@ -135,7 +135,7 @@ namespace ViscoContact
     response_of_node.assign(m, -1);
     changed_nodes.clear();
     changed_rows.clear();
-    updated_pieces = pieces;
+    updated_rows = factorized_rows;
   }
 
 
@@ -254,10 +254,11 @@ namespace ViscoContact
     const unsigned int m = w.size();
     changed_nodes.clear();
     changed_rows.clear();
-    unsigned int n_unknown = 0;
+    unsigned int     n_unknown = 0;
+    std::vector<Row> rows(m);
     for (unsigned int i = 0; i < m; ++i)
       {
-        const Row now = row(i, pieces[i]);
+        const Row now = rows[i] = row(i, pieces[i]);
         n_unknown += now.unknown_force;
         if (!(now == factorized_rows[i]))
           {
@@ -297,7 +298,7 @@ namespace ViscoContact
         {
           return false;
         }
-    updated_pieces = pieces;
+    updated_rows = std::move(rows);
     return true;
   }
 
@@ -324,13 +325,13 @@ namespace ViscoContact
 
   // @sect4{CondensedContactSystem::solve}
   //
-  // The matrix depends on the pieces and on S only, not on d, so a solve on
-  // the same pieces as the last one reuses everything: O(m^2). Each time
-  // step starts from the pieces of the previous one, so a step that needs a
-  // single active-set iteration (most steps once the contact zone has
-  // formed, doc/model.md, section 2) factorises nothing at all; when the
-  // pieces of some nodes change, the Woodbury correction above takes them
-  // into account without a new factorisation while they are few.
+  // The matrix depends on the rows of the pieces and on S only, not on d, so
+  // a solve with the same rows as the last one reuses everything: O(m^2). Each
+  // time step starts from the pieces of the previous one, so a step that needs
+  // a single active-set iteration (most steps once the contact zone has formed,
+  // doc/model.md, section 2) factorises nothing at all; when the pieces of some
+  // nodes change, the Woodbury correction above takes them into account without
+  // a new factorisation while they are few.
   double
   CondensedContactSystem::solve(const std::vector<ContactLawPiece> &pieces,
                                 const Vector<double>               &d,
@@ -340,8 +341,13 @@ namespace ViscoContact
     const unsigned int m = w.size();
     AssertDimension(pieces.size(), m);
     AssertDimension(d.size(), m);
-    if (factorized_rows.empty()
-        || (pieces != updated_pieces && !update_changed_rows(pieces)))
+    // Only the rows enter the matrix: a piece that moved up by a memory
+    // pressure, or whose slope changed by less than a flat one, keeps its
+    // row and the kept factorisation as it is.
+    bool same_rows = !factorized_rows.empty();
+    for (unsigned int i = 0; i < m && same_rows; ++i)
+      same_rows = row(i, pieces[i]) == updated_rows[i];
+    if (factorized_rows.empty() || (!same_rows && !update_changed_rows(pieces)))
       factorize(pieces);
 
     // The right-hand side of each row: d_i plus the piece's constant,
@@ -442,7 +448,7 @@ namespace ViscoContact
   CondensedContactSystem::forget_factorization()
   {
     factorized_rows.clear();
-    updated_pieces.clear();
+    updated_rows.clear();
   }
 
 

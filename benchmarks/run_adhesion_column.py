@@ -48,6 +48,10 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__))), "scripts"))
+from vc_scripts import time_per_step  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.join(HERE, "..")
 E, NU, V = 1000.0, 0.3, 0.02
@@ -253,14 +257,6 @@ def figure(executable):
     fig.tight_layout()
     fig.savefig(os.path.join(figures, "peeling_strip.png"), dpi=100)
     print("wrote doc/figures/adhesion_column.png and peeling_strip.png")
-
-
-def time_per_step(stdout):
-    """The program's own time loop (without output) over its steps."""
-    loop = float(re.search(r"time loop \(without output\): ([0-9.e+-]+) s",
-                           stdout).group(1))
-    steps = [line for line in stdout.splitlines() if line.startswith("Step ")]
-    return loop / int(steps[-1].split()[1])
 
 
 def cost(executable, pairs):

@@ -45,6 +45,10 @@ namespace ViscoContact
     // A piece of the adhesive branch (r < 0): its pressures scale with the
     // node's bonding, beta^2 (scaled()).
     bool adhesive = false;
+    // A piece of a cohesive interface's envelope (r < 0): below the opening
+    // a node has reached, its law is the secant instead
+    // (ContactLaw::piece()).
+    bool cohesive = false;
 
     // The piece at a node whose adhesive pressures are scaled by a (its
     // bonding beta^2; pieces that are not adhesive are returned as they are).
@@ -64,20 +68,52 @@ namespace ViscoContact
     double length    = 0;
   };
 
+  // A cohesive interface (doc/model.md, section 12): for r < 0 the
+  // tension T(delta) of the opening delta = -r rises with the stiffness K
+  // to the strength T_c at delta_0 = T_c / K and softens linearly to 0 at
+  // delta_f = 2 G_c / T_c, so that the work of separation is the fracture
+  // energy G_c. Below the largest opening m a node has reached, the tension
+  // is on the secant T(m) delta / m: the damage 1 - T(m) / (K m) never
+  // heals. Strength 0: no cohesive interface.
+  //
+  // Within a time step the opening beyond m follows either the envelope
+  // itself (implicit: exact, a softening law whose step problem is unique
+  // only where the body dominates the softening) or, with explicit_damage,
+  // a plateau at the tension T(max(m, delta_0)) the node has reached (a
+  // monotone law, unique like the law without it; the tension lags the
+  // envelope by one step, first order in k).
+  struct CohesiveBranch
+  {
+    double stiffness       = 0;
+    double strength        = 0;
+    double fracture_energy = 0;
+    bool   explicit_damage = false;
+  };
+
+  // What the history of a node changes in its law (contact_history.h): the
+  // scale of its adhesive pieces (its bonding beta^2) and the largest
+  // opening its cohesive interface has reached.
+  struct NodeLawState
+  {
+    double adhesion_scale  = 1;
+    double reached_opening = 0;
+  };
+
   class ContactLaw
   {
   public:
     // A law defined by breakpoints b_1 < ... < b_K, the K+1 slopes on the
     // intervals between them, the K jumps p(b_k+) - p(b_k-) >= 0 and
     // p(b_1-) = 0, optionally cut off by the rigid foundation at r = g;
-    // with an adhesive branch, the law for r < 0 is that branch (the law
-    // given must then be zero there).
+    // with an adhesive or a cohesive branch, the law for r < 0 is that
+    // branch (the law given must then be zero there; not both).
     ContactLaw(const std::vector<double> &breakpoints,
                const std::vector<double> &slopes,
                const std::vector<double> &jumps,
                const bool                 unilateral_constraint,
                const double               gap,
-               const AdhesiveBranch      &adhesion = {});
+               const AdhesiveBranch      &adhesion = {},
+               const CohesiveBranch      &cohesion = {});
 
     // The law the parameter file describes (subsection Contact).
     static ContactLaw
@@ -87,30 +123,47 @@ namespace ViscoContact
     n_pieces() const;
     const ContactLawPiece &
     piece(const unsigned int i) const;
+    // Piece i as it acts at a node of the given history: adhesive pieces
+    // scaled by its bonding; a cohesive envelope below the reached opening m
+    // replaced by the secant through (-m, -T(m)), the pieces there shrunk to
+    // the point r = -m on it.
+    ContactLawPiece
+    piece(const unsigned int i, const NodeLawState &node) const;
 
     // The piece that contains the graph point with p + c r = q, at a node
-    // whose adhesive pieces are scaled by a (ContactLawPiece::scaled()).
+    // of the given history.
     unsigned int
-    find_piece(const double q, const double c, const double a = 1) const;
+    find_piece(const double        q,
+               const double        c,
+               const NodeLawState &node = {}) const;
 
     // The active-set update of one node: the piece that q = p + c r names,
     // except that a node whose q lies within rounding of the ends of its
     // current piece stays there, so that roundoff cannot make a node at a
     // breakpoint flip back and forth.
+    // The displacement scale (the largest |r| of the solve) sets the
+    // rounding of q along with the law's own length.
     unsigned int
-    next_piece(const unsigned int current,
-               const double       q,
-               const double       c,
-               const double       a = 1) const;
+    next_piece(const unsigned int  current,
+               const double        q,
+               const double        c,
+               const NodeLawState &node               = {},
+               const double        displacement_scale = 0) const;
 
     // The single-valued part of the compliance law: p(r) for r below the
     // rigid limit (the left limit at breakpoints).
     double
     compliance_pressure(const double r) const;
 
-    // Whether the law has an adhesive branch.
+    // Whether the law has an adhesive branch, a cohesive one.
     bool
     has_adhesion() const;
+    bool
+    has_cohesion() const;
+    // The damage 1 - T(m) / (K m) of a cohesive interface that has reached
+    // the opening m (0 without one).
+    double
+    damage(const double reached_opening) const;
 
     // max(0, -smallest slope): the softening the uniqueness condition and
     // the active-set parameter c have to dominate.
@@ -130,6 +183,16 @@ namespace ViscoContact
   private:
     std::vector<ContactLawPiece> pieces;
     double                       gap_value;
+    // A cohesive branch whose damage is taken from the last step
+    // (CohesiveBranch::explicit_damage).
+    bool explicit_damage = false;
+    // The length over which the law acts: the gap, or the length of an
+    // adhesive or a cohesive branch (the scale of next_piece()'s slack).
+    double length_scale = 0;
+
+    // The tension of the cohesive envelope at the opening m.
+    double
+    envelope_tension(const double opening) const;
   };
 
   // The tangential law of a contact zone (tangential_law.h), shared by the
@@ -166,19 +229,25 @@ namespace ViscoContact
     unsigned int
     zone_of_piece(const unsigned int index) const;
 
+    // A piece as it acts at a node of the given history
+    // (ContactLaw::piece()).
+    ContactLawPiece
+    piece(const unsigned int index, const NodeLawState &node) const;
+
     // ContactLaw::find_piece and next_piece of the zone's law, in the
     // indices of the table.
     unsigned int
-    find_piece(const unsigned int zone,
-               const double       q,
-               const double       c,
-               const double       a = 1) const;
+    find_piece(const unsigned int  zone,
+               const double        q,
+               const double        c,
+               const NodeLawState &node = {}) const;
     unsigned int
-    next_piece(const unsigned int zone,
-               const unsigned int current,
-               const double       q,
-               const double       c,
-               const double       a = 1) const;
+    next_piece(const unsigned int  zone,
+               const unsigned int  current,
+               const double        q,
+               const double        c,
+               const NodeLawState &node               = {},
+               const double        displacement_scale = 0) const;
 
     // Over all zones: the steepest softening and the largest gap.
     double

@@ -158,8 +158,28 @@ namespace ViscoContact
     bonding(const unsigned int i) const;
     const std::vector<double> &
     bondings() const;
+
+    // The largest opening m_i every node of a cohesive interface has reached
+    // before the step being solved (cohesive_damage.h): below it, the node's
+    // tension is on the secant (ContactLaw::piece()). Without a call every
+    // m_i is 0 (has_cohesion() is false on every rank).
+    void
+    set_reached_openings(const std::vector<double> &openings);
+    bool
+    has_cohesion() const;
     double
-    adhesion_scale(const unsigned int i) const;
+    reached_opening(const unsigned int i) const;
+    const std::vector<double> &
+    reached_openings() const;
+
+    // What node i's history changes in its law: its adhesive scale
+    // beta_i^2 and its reached opening.
+    NodeLawState
+    law_state(const unsigned int i) const;
+    // The damage of node i's cohesive interface at its reached opening
+    // (ContactLaw::damage(); 0 elsewhere).
+    double
+    damage(const unsigned int i) const;
 
     // The worn depth w_i of every node (archard_wear.h): its obstacle is w_i
     // further away (ContactSet::gap() adds it). Without a call every w_i is
@@ -188,6 +208,11 @@ namespace ViscoContact
     // not predicted) the friction states stay as they are.
     std::array<unsigned int, 3>
     update_pieces(const bool with_friction = true);
+    // update_pieces() on every rank of the communicator, the counts summed,
+    // with the rounding of q measured against the largest normal
+    // displacement of all ranks (collective).
+    std::array<unsigned int, 3>
+    update_all_pieces(const MPI_Comm communicator);
 
     // The equations of node i for its piece and friction state (gap: the
     // node's obstacle gap s_i), and the solution of the back end stored
@@ -260,7 +285,7 @@ namespace ViscoContact
     weight(const unsigned int i) const;
     unsigned int
     piece(const unsigned int i) const;
-    // Node i's piece, its adhesive pressures scaled by its bonding.
+    // Node i's piece as its history makes it (ContactLaw::piece()).
     ContactLawPiece
     current_piece(const unsigned int i) const;
     void
@@ -345,6 +370,10 @@ namespace ViscoContact
     std::vector<double>       w, c;
     std::vector<unsigned int> node_pieces;
     bool                      placed = false;
+    // The largest |r| over all ranks after the last solve of the
+    // iteration: the scale of the rounding in q = p + c r, which
+    // next_piece()'s slack absorbs.
+    double displacement_scale = 0;
     // Values per node that a law with a history gives for each step (the
     // memory pressures, the bonding, the worn depths): none until given,
     // then the fallback at every node. Whether they were given is the same
@@ -373,7 +402,8 @@ namespace ViscoContact
         return given ? values[i] : fallback;
       }
     };
-    StepValues memory_pressures{0.}, node_bonding{1.}, worn_depths{0.};
+    StepValues memory_pressures{0.}, node_bonding{1.}, worn_depths{0.},
+      node_openings{0.};
 
     // Friction, per zone and per node (see set_friction(), update_friction()).
     std::vector<FrictionLaw>  zone_friction;

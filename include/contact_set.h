@@ -399,10 +399,13 @@ namespace ViscoContact
     // layout); on the opposite sides the mortar average of the zone's.
     void
     fill_memory_field(VectorType &memory_pressure) const;
-    // With adhesion, with wear: the bonding and the worn depth of the last
-    // step (scalar layout; a field of size 0 is left out).
+    // With adhesion, wear, a cohesive interface: the bonding, the worn
+    // depth and the damage of the last step (scalar layout; a field of
+    // size 0 is left out).
     void
-    fill_history_fields(VectorType &bonding, VectorType &wear) const;
+    fill_history_fields(VectorType &bonding,
+                        VectorType &wear,
+                        VectorType &damage) const;
 
   private:
     // A nodal field with value_of_node(i) at the x-dof of every node i

@@ -351,6 +351,16 @@ namespace ViscoContact
       double      adhesion_energy    = 0; // epsilon
       double      debonding_rate     = 1; // kappa
       std::string initial_bonding    = "1";
+      // A cohesive interface (doc/model.md, section 12): the tension
+      // rises with K to T_c, softens linearly to 0 with the work G_c, and
+      // unloads on the secant (strength 0: none).
+      double cohesive_strength  = 0; // T_c
+      double cohesive_stiffness = 0; // K
+      double fracture_energy    = 0; // G_c
+      // implicit: the step's opening beyond the reached one follows the
+      // envelope; explicit: a plateau at the reached tension (the damage
+      // from the last step).
+      std::string cohesive_damage = "implicit";
       // Archard's wear (doc/model.md, section 11): w' = k_w p |slip'|
       // (0: no wear).
       double wear_coefficient = 0;

@@ -40,9 +40,7 @@
 #include "material.h"
 #include "materials.h"
 #include "mesh/mesh_adaptation.h"
-#include "archard_wear.h"
-#include "bonding_field.h"
-#include "normal_memory.h"
+#include "contact_histories.h"
 #include "parameters.h"
 #include "scene/prescribed_displacements.h"
 #include "robustness/checkpoint_file.h"
@@ -378,22 +376,10 @@ namespace ViscoContact
     // The contact zones of the scene, with their laws and obstacles
     // (scene/contact_zones.h).
     ContactZones<dim> contact_zones;
-    // The history of the memory term of the normal laws at the contact
-    // nodes (normal_memory.h): each step's memory pressures come from it,
-    // each accepted step adds to it.
-    NormalMemory normal_memory;
-    // The bonding of adhesion at the contact nodes (bonding_field.h): each
-    // step's adhesive scales come from it.
-    BondingField bonding_field;
-    // The worn depths of Archard's wear (archard_wear.h): each step's gaps
-    // move by them.
-    ArchardWear wear;
-    // The laws with a history (contact_history.h), for what every one gets:
-    // a start and an end of each step, checkpoints, transfers.
-    std::array<ContactHistory *, 3>
-    contact_histories();
-    std::array<const ContactHistory *, 3>
-    contact_histories() const;
+    // The laws with a history at the contact nodes (contact_histories.h):
+    // each step's memory pressures, adhesive scales, worn gaps and reached
+    // cohesive openings come from them, each accepted step adds to them.
+    ContactHistories contact_histories;
     // The gaps of the contact nodes at the given time (collective: a value
     // that is not finite stops all ranks, naming the entry).
     void

@@ -44,6 +44,10 @@ hexahedra. Boundary tags: 1 the end x = 0, 2 the end x = 8, 3 the bottom
 y = 0 (glued), 4 the top, 6 z = 0 and 7 z = 1 (3D);
 parameters/peeling_strip*.prm (adhesion).
 
+precracked_strip.msh, precracked_strip_3d.msh: the same strips, the
+bottom cut in two: 5 the pre-crack x < 2 (free), 3 the rest (bonded);
+parameters/cohesive_peel*.prm (a cohesive interface).
+
 Run from anywhere: python3 meshes/make_example_meshes.py
 """
 import math
@@ -156,9 +160,10 @@ def columns(n, dim, simplex=False, count=2, rotate=None):
     return gmsh_elements_text(nodes, boundary, cells, names, [(10, "columns")])
 
 
-def strip(lengths, counts):
+def strip(lengths, counts, precrack=0.0):
     """A box of lengths[a] cut into counts[a] cells along each axis a (2 or
-    3 axes), tagged as described at the top of the file."""
+    3 axes), tagged as described at the top of the file; the bottom's faces
+    with x < precrack tagged 5 instead of 3."""
     dim = len(lengths)
     n = list(counts) + [0] * (3 - dim)
     index = lambda i, j, k: (k * (n[1] + 1) + j) * (n[0] + 1) + i + 1
@@ -171,10 +176,12 @@ def strip(lengths, counts):
         for j in range(n[1]):
             boundary += [(1, 1, v(0, j), v(0, j + 1)), (1, 2, v(n[0], j), v(n[0], j + 1))]
         for i in range(n[0]):
-            boundary += [(1, 3, v(i, 0), v(i + 1, 0)), (1, 4, v(i, n[1]), v(i + 1, n[1]))]
+            bottom = 5 if lengths[0] * (i + 1) / n[0] <= precrack else 3
+            boundary += [(1, bottom, v(i, 0), v(i + 1, 0)), (1, 4, v(i, n[1]), v(i + 1, n[1]))]
         cells = [(3, 10, v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1))
                  for j in range(n[1]) for i in range(n[0])]
         names = [(1, "lifted_end"), (2, "far_end"), (3, "glued_bottom"), (4, "top")]
+        names += [(5, "precrack")] if precrack > 0 else []
     else:
         for tag, axis, fixed in ((1, 0, 0), (2, 0, n[0]), (3, 1, 0), (4, 1, n[1]),
                                  (6, 2, 0), (7, 2, n[2])):
@@ -186,11 +193,13 @@ def strip(lengths, counts):
                         ijk = [0, 0, 0]
                         ijk[axis], ijk[others[0]], ijk[others[1]] = fixed, p + dp, q + dq
                         corners.append(index(*ijk))
-                    boundary += box_face_elements(tag, corners, False)
+                    cracked = tag == 3 and lengths[0] * (p + 1) / n[0] <= precrack
+                    boundary += box_face_elements(5 if cracked else tag, corners, False)
         cells = [cell for k in range(n[2]) for j in range(n[1]) for i in range(n[0])
                  for cell in box_cell_elements(index, i, j, k, False, 10)]
         names = [(1, "lifted_end"), (2, "far_end"), (3, "glued_bottom"), (4, "top"),
                  (6, "symmetry_plane"), (7, "side")]
+        names += [(5, "precrack")] if precrack > 0 else []
     return gmsh_elements_text(nodes, boundary, cells, names, [(10, "strip")])
 
 
@@ -211,3 +220,7 @@ if __name__ == "__main__":
         f.write(strip((8.0, 0.5), (64, 4)))
     with open(os.path.join(folder, "peeling_strip_3d.msh"), "w") as f:
         f.write(strip((8.0, 0.5, 1.0), (32, 2, 4)))
+    with open(os.path.join(folder, "precracked_strip.msh"), "w") as f:
+        f.write(strip((8.0, 0.5), (64, 4), precrack=2.0))
+    with open(os.path.join(folder, "precracked_strip_3d.msh"), "w") as f:
+        f.write(strip((8.0, 0.5, 1.0), (32, 2, 4), precrack=2.0))

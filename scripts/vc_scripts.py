@@ -81,6 +81,15 @@ def add_executable_argument(parser):
                              "build/viscoplastic_contact in the repo root)")
 
 
+def time_per_step(stdout):
+    """The program's own time loop (without output) over its steps, from a
+    run's standard output."""
+    loop = float(re.search(r"time loop \(without output\): ([0-9.e+-]+) s",
+                           stdout).group(1))
+    steps = [line for line in stdout.splitlines() if line.startswith("Step ")]
+    return loop / int(steps[-1].split()[1])
+
+
 @contextlib.contextmanager
 def run_in_temporary_directory(executable, prm_text):
     """Runs the program on a parameter file in a fresh temporary directory

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace ViscoContact
 {
@@ -41,7 +42,7 @@ namespace ViscoContact
            && r_lower == other.r_lower && r_upper == other.r_upper
            && p_lower == other.p_lower && p_upper == other.p_upper
            && slope == other.slope && intercept == other.intercept
-           && adhesive == other.adhesive;
+           && adhesive == other.adhesive && cohesive == other.cohesive;
   }
 
 
@@ -57,8 +58,10 @@ namespace ViscoContact
                          const std::vector<double> &jumps_in,
                          const bool                 unilateral_constraint,
                          const double               gap,
-                         const AdhesiveBranch      &adhesion)
+                         const AdhesiveBranch      &adhesion,
+                         const CohesiveBranch      &cohesion)
     : gap_value(gap)
+    , length_scale(std::abs(gap))
   {
     // The data must describe a law: one slope per interval, one jump per
     // breakpoint (no jumps given means none).
@@ -123,23 +126,31 @@ namespace ViscoContact
           }
       }
 
-    // The adhesive branch replaces the law's zero pressure below r = 0:
-    // the constant tension -stiffness length below -length, the slope
-    // stiffness up to 0 (continuous, nondecreasing: it adds no softening).
-    // The law's first piece then starts at r = 0, or is gone if it ended
-    // there.
+    // An adhesive or a cohesive branch replaces the law's zero pressure
+    // below r = 0. The law's first piece then starts at r = 0, or is gone
+    // if it ended there.
+    AssertThrow(adhesion.stiffness == 0 || cohesion.strength == 0,
+                ExcMessage("A contact law has an adhesive or a cohesive "
+                           "branch, not both."));
+    const auto tension_below_zero = [&](const char *branch) {
+      ContactLawPiece &first = pieces.front();
+      AssertThrow(!first.vertical && first.slope == 0 && first.intercept == 0
+                    && first.r_upper >= 0 && gap >= 0,
+                  ExcMessage(std::string("A ") + branch
+                             + " branch needs a law that is zero for r < 0 "
+                               "and a gap >= 0."));
+      first.r_lower = 0;
+      if (first.r_upper == 0)
+        pieces.erase(pieces.begin());
+    };
+    // Adhesion: the constant tension -stiffness length below -length, the
+    // slope stiffness up to 0 (continuous, nondecreasing: it adds no
+    // softening).
     if (adhesion.stiffness > 0)
       {
-        ContactLawPiece &first = pieces.front();
-        AssertThrow(!first.vertical && first.slope == 0 && first.intercept == 0
-                      && first.r_upper >= 0 && gap >= 0,
-                    ExcMessage("An adhesive branch needs a law that is zero "
-                               "for r < 0 and a gap >= 0."));
+        tension_below_zero("adhesive");
         AssertThrow(adhesion.length > 0,
                     ExcMessage("An adhesive branch needs a length > 0."));
-        first.r_lower = 0;
-        if (first.r_upper == 0)
-          pieces.erase(pieces.begin());
         ContactLawPiece tension, bond;
         tension.adhesive = bond.adhesive = true;
         tension.r_upper = bond.r_lower = -adhesion.length;
@@ -147,6 +158,36 @@ namespace ViscoContact
         bond.r_upper                   = 0;
         bond.slope                     = adhesion.stiffness;
         pieces.insert(pieces.begin(), {tension, bond});
+        length_scale = std::max(length_scale, adhesion.length);
+      }
+    // A cohesive interface: no tension beyond delta_f, the softening from
+    // -T_c at delta_0 to 0 at delta_f (slope -T_c / (delta_f - delta_0):
+    // the softening the uniqueness condition must dominate), the stiffness
+    // K up to 0.
+    if (cohesion.strength > 0)
+      {
+        tension_below_zero("cohesive");
+        const double opening_at_strength
+          = cohesion.strength / cohesion.stiffness;
+        const double final_opening
+          = 2 * cohesion.fracture_energy / cohesion.strength;
+        AssertThrow(cohesion.stiffness > 0 && std::isfinite(final_opening)
+                      && final_opening > opening_at_strength,
+                    ExcMessage("A cohesive branch needs a stiffness > 0 and a "
+                               "fracture energy > strength^2 / (2 "
+                               "stiffness)."));
+        ContactLawPiece broken, softening, elastic;
+        broken.cohesive = softening.cohesive = elastic.cohesive = true;
+        broken.r_upper = softening.r_lower = -final_opening;
+        softening.r_upper = elastic.r_lower = -opening_at_strength;
+        softening.slope
+          = -cohesion.strength / (final_opening - opening_at_strength);
+        softening.intercept = softening.slope * final_opening;
+        elastic.r_upper     = 0;
+        elastic.slope       = cohesion.stiffness;
+        pieces.insert(pieces.begin(), {broken, softening, elastic});
+        explicit_damage = cohesion.explicit_damage;
+        length_scale    = std::max(length_scale, final_opening);
       }
 
     // The rigid foundation: the vertical piece at r = g from p(g-), the
@@ -179,6 +220,10 @@ namespace ViscoContact
   {
     const AdhesiveBranch adhesion{contact.adhesion_stiffness,
                                   contact.adhesion_length};
+    const CohesiveBranch cohesion{contact.cohesive_stiffness,
+                                  contact.cohesive_strength,
+                                  contact.fracture_energy,
+                                  contact.cohesive_damage == "explicit"};
     const auto           law = [&](const std::vector<double> &breakpoints,
                          const std::vector<double> &slopes,
                          const std::vector<double> &jumps) {
@@ -187,7 +232,8 @@ namespace ViscoContact
                         jumps,
                         contact.unilateral_constraint,
                         contact.gap,
-                        adhesion);
+                        adhesion,
+                        cohesion);
     };
     if (!contact.normal_compliance)
       return law({}, {0.}, {});
@@ -219,6 +265,63 @@ namespace ViscoContact
 
 
 
+  // @sect4{ContactLaw::piece at a node}
+  //
+  // Adhesive pieces scaled by the node's bonding. A cohesive piece that
+  // reaches into the opened range (-m, 0] is cut at r = -m; the one that
+  // ends at r = 0 becomes the secant p = (T(m) / m) r on [-m, 0] once m
+  // passes its own range (before that it is the secant), and pieces within
+  // the range shrink to the point r = -m of the secant, so that the graph
+  // stays one monotone chain in q = p + c r.
+  //
+  // With the damage from the last step, the node's law is the secant up to
+  // m* = max(m, delta_0) and the plateau at its tension T(m*) beyond: the
+  // broken piece becomes the plateau, the softening piece the point r = -m*
+  // between the two.
+  ContactLawPiece
+  ContactLaw::piece(const unsigned int i, const NodeLawState &node) const
+  {
+    ContactLawPiece result = piece(i).scaled(node.adhesion_scale);
+    if (result.cohesive && explicit_damage)
+      {
+        const double m = std::max(node.reached_opening, -pieces[1].r_upper);
+        const double tension = envelope_tension(m);
+        result.r_lower       = (i == 0 ? result.r_lower : -m);
+        result.r_upper       = (i == 2 ? 0. : -m);
+        result.slope         = (i == 0 ? 0. : tension / m);
+        result.intercept     = (i == 0 ? -tension : 0.);
+        return result;
+      }
+    const double m = node.reached_opening;
+    if (!result.cohesive || !(result.r_upper > -m))
+      return result;
+    if (result.r_lower < -m)
+      {
+        if (result.r_upper < 0)
+          result.r_upper = -m;
+        return result;
+      }
+    result.r_lower   = -m;
+    result.r_upper   = (result.r_upper == 0 ? 0. : -m);
+    result.slope     = envelope_tension(m) / m;
+    result.intercept = 0;
+    return result;
+  }
+
+
+
+  // The tension -p of the original cohesive piece that contains r = -m.
+  double
+  ContactLaw::envelope_tension(const double opening) const
+  {
+    for (const ContactLawPiece &piece : pieces)
+      if (piece.cohesive && -opening <= piece.r_upper)
+        return -(piece.intercept - piece.slope * opening);
+    return 0;
+  }
+
+
+
   // @sect4{ContactLaw::find_piece}
   //
   // The upper end of each piece in the monotone parameter q = p + c r; the
@@ -227,14 +330,16 @@ namespace ViscoContact
   // it came from when it moves right. The last piece extends to
   // q = +infinity, so every q names a piece.
   unsigned int
-  ContactLaw::find_piece(const double q, const double c, const double a) const
+  ContactLaw::find_piece(const double        q,
+                         const double        c,
+                         const NodeLawState &node) const
   {
     Assert(c > steepest_softening(),
            ExcMessage("The active-set parameter c must exceed the steepest "
                       "softening of the contact law."));
     for (unsigned int i = 0; i + 1 < pieces.size(); ++i)
       {
-        const ContactLawPiece piece = pieces[i].scaled(a);
+        const ContactLawPiece piece = this->piece(i, node);
         const double          q_upper
           = (piece.vertical
                ? piece.p_upper + c * piece.r_upper
@@ -251,26 +356,35 @@ namespace ViscoContact
   //
   // The update rule of one node: stay on the current piece if q lies in its
   // range [q_lower, q_upper] up to a small slack, else find the piece q
-  // names. The slack is relative to q and to c g, the size of q at the rigid
-  // limit, and only absorbs rounding: without it a node that sits exactly at
-  // a breakpoint could jump between the two pieces that meet there from one
-  // iteration to the next, and the active set would never settle.
+  // names. The slack is relative to q and to c times a length: the law's
+  // own (the gap g, the size of q at the rigid limit, or the length of an
+  // adhesive or cohesive branch) or the displacements of the solve, whose
+  // rounding enters q as c r. It only absorbs rounding: without it a node
+  // that sits exactly at a breakpoint could jump between the two pieces
+  // that meet there from one iteration to the next, and the active set
+  // would never settle. (A bonded node far from the load sits at r = 0
+  // with a displacement of round-off, 1e-15 where the lift is 0.1; with
+  // g = 0 a slack relative to q alone let it flip between the bond and the
+  // base forever.)
   unsigned int
-  ContactLaw::next_piece(const unsigned int current,
-                         const double       q,
-                         const double       c,
-                         const double       a) const
+  ContactLaw::next_piece(const unsigned int  current,
+                         const double        q,
+                         const double        c,
+                         const NodeLawState &node,
+                         const double        displacement_scale) const
   {
-    const ContactLawPiece piece = pieces[current].scaled(a);
+    const ContactLawPiece piece = this->piece(current, node);
     const double          q_lower
       = (piece.vertical ? piece.p_lower + c * piece.r_lower
                         : piece.intercept + (piece.slope + c) * piece.r_lower);
     const double q_upper
       = (piece.vertical ? piece.p_upper + c * piece.r_upper
                         : piece.intercept + (piece.slope + c) * piece.r_upper);
-    const double slack = 1e-12 * (std::abs(q) + c * gap_value) + 1e-300;
+    const double slack
+      = 1e-12 * (std::abs(q) + c * std::max(length_scale, displacement_scale))
+        + 1e-300;
     if (q < q_lower - slack || q > q_upper + slack)
-      return find_piece(q, c, a);
+      return find_piece(q, c, node);
     return current;
   }
 
@@ -302,12 +416,15 @@ namespace ViscoContact
   // and the uniqueness margin must exceed; whether the law does nothing at
   // all (one flat piece p = 0 and no rigid limit, so contact is skipped);
   // whether it has the rigid limit; and the gap g.
+  //
+  // A cohesive envelope whose damage is taken from the last step does not
+  // soften within the step: its nodes' laws are monotone.
   double
   ContactLaw::steepest_softening() const
   {
     double softening = 0;
     for (const ContactLawPiece &piece : pieces)
-      if (!piece.vertical)
+      if (!piece.vertical && !(piece.cohesive && explicit_damage))
         softening = std::max(softening, -piece.slope);
     return softening;
   }
@@ -327,6 +444,30 @@ namespace ViscoContact
   ContactLaw::has_adhesion() const
   {
     return pieces.front().adhesive;
+  }
+
+
+
+  bool
+  ContactLaw::has_cohesion() const
+  {
+    return pieces.front().cohesive;
+  }
+
+
+
+  // 1 - T(m) / (K m), K the slope of the envelope's first piece from r = 0.
+  double
+  ContactLaw::damage(const double reached_opening) const
+  {
+    if (!has_cohesion() || !(reached_opening > 0))
+      return 0;
+    const double stiffness = pieces[2].slope;
+    return std::clamp(1
+                        - envelope_tension(reached_opening)
+                            / (stiffness * reached_opening),
+                      0.,
+                      1.);
   }
 
 
@@ -410,27 +551,41 @@ namespace ViscoContact
 
 
 
-  unsigned int
-  ContactLaws::find_piece(const unsigned int zone,
-                          const double       q,
-                          const double       c,
-                          const double       a) const
+  ContactLawPiece
+  ContactLaws::piece(const unsigned int index, const NodeLawState &node) const
   {
-    return first_piece[zone] + zone_law(zone).find_piece(q, c, a);
+    const unsigned int zone = zone_of_piece(index);
+    return laws[zone].piece(index - first_piece[zone], node);
   }
 
 
 
   unsigned int
-  ContactLaws::next_piece(const unsigned int zone,
-                          const unsigned int current,
-                          const double       q,
-                          const double       c,
-                          const double       a) const
+  ContactLaws::find_piece(const unsigned int  zone,
+                          const double        q,
+                          const double        c,
+                          const NodeLawState &node) const
+  {
+    return first_piece[zone] + zone_law(zone).find_piece(q, c, node);
+  }
+
+
+
+  unsigned int
+  ContactLaws::next_piece(const unsigned int  zone,
+                          const unsigned int  current,
+                          const double        q,
+                          const double        c,
+                          const NodeLawState &node,
+                          const double        displacement_scale) const
   {
     Assert(zone_of_piece(current) == zone, ExcInternalError());
     return first_piece[zone]
-           + zone_law(zone).next_piece(current - first_piece[zone], q, c, a);
+           + zone_law(zone).next_piece(current - first_piece[zone],
+                                       q,
+                                       c,
+                                       node,
+                                       displacement_scale);
   }
 
 

@@ -138,6 +138,7 @@ namespace ViscoContact
     memory_pressures = StepValues(0.);
     node_bonding     = StepValues(1.);
     worn_depths      = StepValues(0.);
+    node_openings    = StepValues(0.);
     set_friction(std::vector<FrictionLaw>(laws.n_zones(),
                                           std::make_shared<Frictionless>()),
                  std::vector<unsigned int>(w.size(), 0),
@@ -246,10 +247,50 @@ namespace ViscoContact
 
 
 
-  double
-  ContactNodes::adhesion_scale(const unsigned int i) const
+  void
+  ContactNodes::set_reached_openings(const std::vector<double> &openings)
   {
-    return bonding(i) * bonding(i);
+    node_openings.set(openings, size());
+  }
+
+
+
+  bool
+  ContactNodes::has_cohesion() const
+  {
+    return node_openings.given;
+  }
+
+
+
+  double
+  ContactNodes::reached_opening(const unsigned int i) const
+  {
+    return node_openings(i);
+  }
+
+
+
+  const std::vector<double> &
+  ContactNodes::reached_openings() const
+  {
+    return node_openings.values;
+  }
+
+
+
+  NodeLawState
+  ContactNodes::law_state(const unsigned int i) const
+  {
+    return {bonding(i) * bonding(i), reached_opening(i)};
+  }
+
+
+
+  double
+  ContactNodes::damage(const unsigned int i) const
+  {
+    return contact_laws.zone_law(node_zones[i]).damage(reached_opening(i));
   }
 
 
@@ -302,8 +343,27 @@ namespace ViscoContact
     if (!placed)
       for (unsigned int i = 0; i < size(); ++i)
         node_pieces[i]
-          = contact_laws.find_piece(node_zones[i], 0., c[i], adhesion_scale(i));
+          = contact_laws.find_piece(node_zones[i], 0., c[i], law_state(i));
     placed = true;
+  }
+
+
+
+  // @sect4{ContactNodes::update_all_pieces}
+  //
+  // The update rule on every rank, after the largest normal displacement
+  // of the solve is known on all of them: the rounding of q = p + c r is
+  // relative to it (ContactLaw::next_piece()), and a node far from the
+  // load, at r = 0 with a force of round-off, must not flip between two
+  // pieces that meet there. The counts are summed over the ranks.
+  std::array<unsigned int, 3>
+  ContactNodes::update_all_pieces(const MPI_Comm communicator)
+  {
+    double largest = 0;
+    for (const double r_i : r)
+      largest = std::max(largest, std::abs(r_i));
+    displacement_scale = Utilities::MPI::max(largest, communicator);
+    return sum_over_ranks(update_pieces(), communicator);
   }
 
 
@@ -326,7 +386,8 @@ namespace ViscoContact
                                     z[i] / w[i] - history_pressure(i)
                                       + c[i] * r[i],
                                     c[i],
-                                    adhesion_scale(i));
+                                    law_state(i),
+                                    displacement_scale);
         if (next != node_pieces[i])
           {
             node_pieces[i] = next;
@@ -739,8 +800,7 @@ namespace ViscoContact
           }
         // Every node moves (or stays), and all ranks learn how many moved
         // and how many are at the rigid limit.
-        std::array<unsigned int, 3> moved
-          = sum_over_ranks(update_pieces(), communicator);
+        std::array<unsigned int, 3> moved = update_all_pieces(communicator);
         // An early solve that moved no node: the pieces have settled, so the
         // same linear problem is solved on to the full tolerance (from the
         // early solution), and the nodes are checked once more. This is
@@ -757,7 +817,7 @@ namespace ViscoContact
               }
             report.residual = refined.residual;
             report.inner_iterations += refined.inner_iterations;
-            moved = sum_over_ranks(update_pieces(), communicator);
+            moved = update_all_pieces(communicator);
           }
         result.history.push_back({moved[0],
                                   moved[1],
@@ -945,7 +1005,7 @@ namespace ViscoContact
   ContactLawPiece
   ContactNodes::current_piece(const unsigned int i) const
   {
-    return contact_laws.piece(node_pieces[i]).scaled(adhesion_scale(i));
+    return contact_laws.piece(node_pieces[i], law_state(i));
   }
 
 
@@ -1036,14 +1096,16 @@ namespace ViscoContact
   // the layer, r > 0, pressed by it, z > 0, or held by adhesion: on the
   // glue's sloped piece, -L < r <= 0, with a bonding beta > 0, whatever the
   // rounding of its force at r = 0; a node separated beyond L counts as
-  // out of contact), 0 out of contact.
+  // out of contact; or by a cohesive interface: on a piece of its envelope
+  // or its secant that carries a tension), 0 out of contact.
   unsigned int
   ContactNodes::status(const unsigned int i) const
   {
     const ContactLawPiece piece = current_piece(i);
     if (piece.rigid)
       return 2;
-    if (r[i] > 0 || z[i] > 0 || (piece.adhesive && piece.slope > 0))
+    if (r[i] > 0 || z[i] > 0 || (piece.adhesive && piece.slope > 0)
+        || (piece.cohesive && (piece.slope != 0 || piece.intercept != 0)))
       return 1;
     return 0;
   }

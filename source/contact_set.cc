@@ -806,6 +806,8 @@ namespace ViscoContact
           out << ',' << bonding(i);
         if (has_wear())
           out << ',' << this->wear(i);
+        if (has_cohesion())
+          out << ',' << damage(i);
         out << '\n';
       }
     return out.str();
@@ -840,11 +842,14 @@ namespace ViscoContact
     if (has_memory())
       out << ",memory_pressure";
     // With adhesion: the bonding beta of the last step; with wear: the worn
-    // depth after it (the contact side's nodes only).
+    // depth after it; with a cohesive interface: the damage after it (the
+    // contact side's nodes only).
     if (has_adhesion() && !opposite_side)
       out << ",bonding";
     if (has_wear() && !opposite_side)
       out << ",wear";
+    if (has_cohesion() && !opposite_side)
+      out << ",damage";
     out << '\n';
     return out.str();
   }
@@ -1025,14 +1030,16 @@ namespace ViscoContact
 
 
 
-  // The bonding and the worn depth of the contact nodes (the contact side
-  // of a pair only: the opposite side has no variables of its own).
+  // The bonding, the worn depth and the damage of the contact nodes (the
+  // contact side of a pair only: the opposite side has no variables of its
+  // own).
   template <int dim>
   void
   ContactSet<dim>::fill_history_fields(VectorType &bonding_field,
-                                       VectorType &wear_field) const
+                                       VectorType &wear_field,
+                                       VectorType &damage_field) const
   {
-    for (VectorType *field : {&bonding_field, &wear_field})
+    for (VectorType *field : {&bonding_field, &wear_field, &damage_field})
       if (field->size() > 0)
         *field = 0;
     for (unsigned int i = 0; i < size(); ++i)
@@ -1041,6 +1048,8 @@ namespace ViscoContact
           bonding_field(geometry[i].scalar_dof) = bonding(i);
         if (wear_field.size() > 0)
           wear_field(geometry[i].scalar_dof) = this->wear(i);
+        if (damage_field.size() > 0)
+          damage_field(geometry[i].scalar_dof) = damage(i);
       }
   }
 

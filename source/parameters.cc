@@ -1242,6 +1242,42 @@ namespace ViscoContact
                           "(1: fully bonded; 0 where the surfaces are not "
                           "glued).",
                           Patterns::Anything());
+        prm.add_parameter(
+          "Cohesive strength",
+          cohesive_strength,
+          "A cohesive interface with damage (doc/model.md, section 12): "
+          "where the body opens from the obstacle by delta = -r > 0 the "
+          "interface pulls it back with a tension that rises with the "
+          "Cohesive stiffness K to this strength T_c at delta_0 = T_c / K and "
+          "falls linearly to 0 at delta_f = 2 G_c / T_c; below the largest "
+          "opening a node has reached it unloads and reloads on the secant "
+          "(the damage never heals). This is T_c >= 0 [Pa] (0: none).",
+          Patterns::Double());
+        prm.add_parameter("Cohesive stiffness",
+                          cohesive_stiffness,
+                          "K > 0 [Pa/m]: the interface's stiffness before it "
+                          "is damaged (needed with Cohesive strength > 0).",
+                          Patterns::Double());
+        prm.add_parameter("Fracture energy",
+                          fracture_energy,
+                          "G_c > T_c^2 / (2 K) [J/m^2]: the work to open the "
+                          "interface completely (needed with Cohesive "
+                          "strength > 0).",
+                          Patterns::Double());
+        prm.add_parameter(
+          "Cohesive damage",
+          cohesive_damage,
+          "How a time step treats an opening beyond the largest one reached "
+          "before it (doc/model.md, section 12). implicit: on the envelope, "
+          "which softens within the step; exact for every time step, but the "
+          "step problem is unique only where the body is stiffer than the "
+          "softening (the start-up check), and the active set may cycle "
+          "where it is not (a slender strip peeled off). explicit: on a "
+          "plateau at the tension reached before the step, the damage "
+          "taken from the last step as the other histories are; a monotone "
+          "law, so always one solution, with a tension that lags the "
+          "envelope by one step (first order in the time step).",
+          Patterns::Selection("implicit|explicit"));
       }
       prm.leave_subsection();
     }
@@ -1404,12 +1440,50 @@ namespace ViscoContact
                     "Debonding rate",
                     to_string(debonding_rate),
                     "a finite kappa >= 0");
+          }
+        require(cohesive_strength >= 0 && std::isfinite(cohesive_strength),
+                subsection,
+                "Cohesive strength",
+                to_string(cohesive_strength),
+                "a finite T_c >= 0");
+        if (cohesive_strength > 0)
+          {
+            require(adhesion_stiffness == 0,
+                    subsection,
+                    "Cohesive strength",
+                    to_string(cohesive_strength),
+                    "0 with Adhesion stiffness > 0 (a zone is glued by "
+                    "adhesion or by a cohesive interface, not both)");
+            require(cohesive_stiffness > 0 && std::isfinite(cohesive_stiffness),
+                    subsection,
+                    "Cohesive stiffness",
+                    to_string(cohesive_stiffness),
+                    "a finite K > 0 with Cohesive strength > 0");
+            require(std::isfinite(fracture_energy)
+                      && std::isfinite(2 * fracture_energy / cohesive_strength)
+                      && fracture_energy > cohesive_strength * cohesive_strength
+                                             / (2 * cohesive_stiffness),
+                    subsection,
+                    "Fracture energy",
+                    to_string(fracture_energy),
+                    "a finite G_c > T_c^2 / (2 K) = "
+                      + to_string(cohesive_strength * cohesive_strength
+                                  / (2 * cohesive_stiffness))
+                      + " (the energy of the elastic part alone: the "
+                        "tension must soften after its peak)");
+          }
+        if (adhesion_stiffness > 0 || cohesive_strength > 0)
+          {
+            const std::string entry = adhesion_stiffness > 0
+                                        ? "Adhesion stiffness"
+                                        : "Cohesive strength";
             require(gap >= 0,
                     subsection,
                     "Layer thickness",
                     to_string(gap),
-                    "g >= 0 with adhesion (the adhesive branch is r < 0, "
-                    "below the rigid limit)");
+                    "g >= 0 with " + entry
+                      + " > 0 (the tension acts for r < 0, below the rigid "
+                        "limit)");
             const bool tension_in_law
               = normal_compliance
                 && law_type == ContactLawType::piecewise_linear
@@ -1420,15 +1494,22 @@ namespace ViscoContact
                     subsection,
                     "Breakpoints",
                     prm.get("Breakpoints"),
-                    "a law that is zero for r < 0 with adhesion (first "
-                    "breakpoint >= 0 and first slope 0: the adhesive "
-                    "branch is the law there)");
+                    "a law that is zero for r < 0 with " + entry
+                      + " > 0 (first breakpoint >= 0 and first slope 0: the "
+                        "tension of the glue is the law there)");
           }
         require(wear_coefficient >= 0 && std::isfinite(wear_coefficient),
                 subsection,
                 "Wear coefficient",
                 to_string(wear_coefficient),
                 "a finite k_w >= 0");
+        if (wear_coefficient > 0)
+          require(cohesive_strength == 0,
+                  subsection,
+                  "Wear coefficient",
+                  to_string(wear_coefficient),
+                  "0 with Cohesive strength > 0 (the worn depth would count "
+                  "as an opening of the interface)");
         if (wear_coefficient > 0)
           require(tangential_law != TangentialLawType::frictionless,
                   subsection,
@@ -2638,6 +2719,12 @@ namespace ViscoContact
                       "0 with adhesion (Adhesion stiffness in subsection <"
                         + zone.subsection
                         + ">): the coarser meshes do not keep the bonding");
+      for (const ContactZone &zone : used_contact_zones())
+        refuse_unless(zone.contact->cohesive_strength == 0,
+                      "0 with a cohesive interface (Cohesive strength in "
+                      "subsection <"
+                        + zone.subsection
+                        + ">): the coarser meshes do not keep its damage");
     }
 
     // Profile times within the run, and schedules of a size the run can

@@ -315,8 +315,8 @@ namespace ViscoContact
                       solution);
     set_gaps(schedule.current_time());
     // The laws with a history start from the initial state: the memory
-    // empty, the bonding at its initial values, each with the penetrations
-    // of the initial state for the first step.
+    // empty, the bonding at its initial values, no opening reached, each
+    // with the penetrations of the initial state for the first step.
     {
       std::vector<unsigned int> zones;
       std::vector<double>       penetrations;
@@ -326,14 +326,15 @@ namespace ViscoContact
           penetrations.push_back(contact_set.normal_component(solution, i)
                                  - contact_set.gap(i));
         }
-      normal_memory.reinit(contact_zones.memory_kernels(), zones);
-      bonding_field.reinit(contact_zones.bonding_laws(),
-                           zones,
-                           contact_zones.initial_bonding(contact_set,
-                                                         mpi_communicator));
-      wear.reinit(contact_zones.wear_coefficients(), zones);
+      contact_histories.memory.reinit(contact_zones.memory_kernels(), zones);
+      contact_histories.bonding.reinit(
+        contact_zones.bonding_laws(),
+        zones,
+        contact_zones.initial_bonding(contact_set, mpi_communicator));
+      contact_histories.wear.reinit(contact_zones.wear_coefficients(), zones);
+      contact_histories.damage.reinit(contact_zones.cohesive_zones(), zones);
       contact_set.r = penetrations;
-      for (ContactHistory *history : contact_histories())
+      for (ContactHistory *history : contact_histories.all())
         if (history->active())
           {
             history->accept_step(contact_set);
@@ -359,24 +360,6 @@ namespace ViscoContact
                                    materials.cell_elasticity(),
                                    node_dofs));
       }
-  }
-
-
-
-  template <int dim>
-  std::array<ContactHistory *, 3>
-  ViscoplasticContact<dim>::contact_histories()
-  {
-    return {{&normal_memory, &bonding_field, &wear}};
-  }
-
-
-
-  template <int dim>
-  std::array<const ContactHistory *, 3>
-  ViscoplasticContact<dim>::contact_histories() const
-  {
-    return {{&normal_memory, &bonding_field, &wear}};
   }
 
 
@@ -473,6 +456,31 @@ namespace ViscoContact
     TimerOutput::Scope t(report.timer(), "Setup: back end for K");
     contact_solver->set_operator(stiffness_matrix, true, contact_set);
   }
+
+
+
+  namespace
+  {
+    // A cohesive envelope that softens more than the body carries (its
+    // smallest eigenvalue) need not soften within a step: the entry that
+    // takes its damage from the last step.
+    template <int dim>
+    std::string
+    cohesive_remedy(const ContactZones<dim> &contact_zones,
+                    const double             eigenvalue)
+    {
+      std::string remedy;
+      for (const ContactZoneDescription<dim> &zone :
+           contact_zones.descriptions())
+        if (zone.law.has_cohesion()
+            && zone.law.steepest_softening() >= eigenvalue)
+          remedy += " <Cohesive damage> = explicit in subsection <"
+                    + zone.subsection
+                    + "> takes the damage from the last step: no softening "
+                      "within a step.";
+      return remedy;
+    }
+  } // namespace
 
 
 
@@ -581,7 +589,8 @@ namespace ViscoContact
           pcout << "WARNING: the contact law softens more than the body can "
                    "carry (doc/model.md, section 4): the step problem may "
                    "have several solutions and the active-set iteration may "
-                   "cycle.\n";
+                   "cycle."
+                << cohesive_remedy(contact_zones, eigenvalue) << '\n';
       }
   }
 

@@ -69,7 +69,7 @@ namespace ViscoContact
     // its penetrations, the wear its pressures and slips (those of
     // accept_slip()); the nodes then show the accepted state (the worn
     // depth after the step; the next step's gaps).
-    for (ContactHistory *history : contact_histories())
+    for (ContactHistory *history : contact_histories.all())
       if (contact_enabled && history->active())
         {
           history->accept_step(contact_set);
@@ -111,7 +111,7 @@ namespace ViscoContact
         assemble_right_hand_side(schedule.next_time());
         // The memory pressures and the bonding of this step, from the
         // history at its start (its length k too, which a cut has changed).
-        for (ContactHistory *history : contact_histories())
+        for (ContactHistory *history : contact_histories.all())
           if (contact_enabled && history->active())
             history->start_step(k, contact_set);
         // A moving obstacle carries its sticking nodes over the step.

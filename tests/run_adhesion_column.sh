@@ -65,16 +65,7 @@ check_recurrence() {
     END { if (rows == 0) { print name ": no profile rows"; exit 1 } }
     ' results/time_series.csv results/contact_profile_*.csv || exit 1
 }
-variant() { # CELL_TYPE METHOD > variant.prm
-  set_entry "Cell type" "$1" < "$prm" | set_entry Method "$2" \
-    | set_entry "Output directory" results
-}
-three_d() {
-  sed -e "/^set Plane model/d" | set_entry Dimension 3 | set_entry Lengths "1, 1, 1" | set_entry Subdivisions 2 \
-    | set_entry "Symmetry boundary ids" "0, 1, 4, 5" \
-    | set_entry "Body force" "0; 0; 0" | set_entry "Surface traction" "0; 0; 0"
-}
-plane_stress() { sed -e '/^set Plane model/d'; }
+source "$here/column_variants.sh"
 
 variant hypercube condensed > variant.prm
 run_scene variant.prm 1 "2D quadrilaterals, condensed"

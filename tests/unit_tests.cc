@@ -58,6 +58,7 @@
 #include "mesh/mesh.h"
 #include "archard_wear.h"
 #include "bonding_field.h"
+#include "cohesive_damage.h"
 #include "normal_memory.h"
 #include "rigid_motions.h"
 #include "robustness/checkpoint_file.h"
@@ -1054,10 +1055,116 @@ TEST(ContactLaw, AdhesiveBranchBelowZero)
   EXPECT_EQ(glued.piece(1).scaled(a).slope, 250.);
   EXPECT_EQ(glued.piece(0).scaled(a).intercept, -2.5);
   EXPECT_TRUE(glued.piece(2).scaled(a) == glued.piece(2));
-  EXPECT_EQ(glued.find_piece(-1. + c * -0.004, c, a), 1u);
-  EXPECT_EQ(glued.find_piece(-2.5 + c * -0.02, c, a), 0u);
+  EXPECT_EQ(glued.find_piece(-1. + c * -0.004, c, {a}), 1u);
+  EXPECT_EQ(glued.find_piece(-2.5 + c * -0.02, c, {a}), 0u);
   // Unscaled, the second point's q lies on the bond piece's stretch.
   EXPECT_EQ(glued.find_piece(-2.5 + c * -0.02, c), 1u);
+}
+
+
+
+// A cohesive interface (contact_law.h, cohesive_damage.h) with K = 1000,
+// T_c = 10, G_c = 0.2: delta_0 = 0.01, delta_f = 0.04, the softening slope
+// -T_c / (delta_f - delta_0) = -1000/3 below r = -0.01. A node that has
+// opened to m = 0.02 has T(m) = 20/3 and the secant slope T(m) / m = 1000/3
+// (damage 2/3) on [-m, 0], the envelope beyond; one opened beyond delta_f
+// has no tension left (damage 1). find_piece() finds the points of the
+// node's own graph. With the damage from the last step the law is the
+// secant and a plateau at the reached tension instead. The history keeps
+// the largest opening of its zone's nodes only.
+TEST(ContactLaw, CohesiveBranchRemembersItsOpening)
+{
+  const ContactLaw law({}, {0.}, {}, true, 0., {}, {1000., 10., 0.2});
+  ASSERT_EQ(law.n_pieces(), 4u);
+  EXPECT_TRUE(law.has_cohesion());
+  EXPECT_FALSE(law.has_adhesion());
+  EXPECT_EQ(law.piece(0).r_upper, -0.04);
+  EXPECT_NEAR(law.piece(1).slope, -1000. / 3, 1e-12);
+  EXPECT_NEAR(law.piece(1).intercept + law.piece(1).slope * -0.01, -10., 1e-12);
+  EXPECT_EQ(law.piece(2).slope, 1000.);
+  EXPECT_TRUE(law.piece(3).rigid);
+  EXPECT_NEAR(law.steepest_softening(), 1000. / 3, 1e-12);
+  EXPECT_EQ(law.damage(0.005), 0.);
+  EXPECT_NEAR(law.damage(0.02), 2. / 3, 1e-12);
+  EXPECT_EQ(law.damage(0.05), 1.);
+
+  const NodeLawState    opened{1., 0.02};
+  const ContactLawPiece secant = law.piece(2, opened);
+  EXPECT_EQ(secant.r_lower, -0.02);
+  EXPECT_EQ(secant.r_upper, 0.);
+  EXPECT_NEAR(secant.slope, 1000. / 3, 1e-12);
+  EXPECT_EQ(secant.intercept, 0.);
+  EXPECT_EQ(law.piece(1, opened).r_upper, -0.02);
+  EXPECT_EQ(law.piece(1, opened).slope, law.piece(1).slope);
+  EXPECT_TRUE(law.piece(0, opened) == law.piece(0));
+  // Before the reached opening passes delta_0 the elastic piece is its own
+  // secant.
+  EXPECT_TRUE(law.piece(2, {1., 0.005}) == law.piece(2));
+
+  // r = -0.018: on the secant p = -6 (q = -24 with c = 1000); the intact
+  // law has q = -24 on its softening piece. r = -0.03: on the envelope.
+  const double c = 1000.;
+  EXPECT_EQ(law.find_piece(-6. + c * -0.018, c, opened), 2u);
+  EXPECT_EQ(law.find_piece(-6. + c * -0.018, c), 1u);
+  EXPECT_EQ(law.find_piece(-10. / 3 + c * -0.03, c, opened), 1u);
+  EXPECT_EQ(law.find_piece(c * -0.05, c, opened), 0u);
+
+  // Opened beyond delta_f: the pieces within the opening shrink to the
+  // point r = -m, and no piece carries a tension.
+  const NodeLawState broken{1., 0.05};
+  EXPECT_EQ(law.piece(0, broken).r_upper, -0.05);
+  EXPECT_EQ(law.piece(1, broken).r_lower, -0.05);
+  EXPECT_EQ(law.piece(1, broken).r_upper, -0.05);
+  EXPECT_EQ(law.piece(2, broken).slope, 0.);
+  EXPECT_EQ(law.find_piece(c * -0.03, c, broken), 2u);
+
+  // With the damage from the last step: the plateau at T(m*) beyond
+  // m* = max(m, delta_0), the point r = -m*, the secant; no softening.
+  const ContactLaw lagged({}, {0.}, {}, true, 0., {}, {1000., 10., 0.2, true});
+  EXPECT_EQ(lagged.steepest_softening(), 0.);
+  for (const double m : {0., 0.005, 0.02, 0.05})
+    {
+      const double reached = std::max(m, 0.01);
+      const double tension = m < 0.04 ? 10. * (0.04 - reached) / 0.03 : 0.;
+      const NodeLawState    node{1., m};
+      const ContactLawPiece plateau = lagged.piece(0, node);
+      const ContactLawPiece point   = lagged.piece(1, node);
+      const ContactLawPiece chord   = lagged.piece(2, node);
+      EXPECT_EQ(plateau.slope, 0.) << m;
+      EXPECT_NEAR(plateau.intercept, -tension, 1e-12) << m;
+      EXPECT_EQ(plateau.r_upper, -reached) << m;
+      EXPECT_EQ(point.r_lower, -reached) << m;
+      EXPECT_EQ(point.r_upper, -reached) << m;
+      EXPECT_EQ(chord.r_lower, -reached) << m;
+      EXPECT_EQ(chord.r_upper, 0.) << m;
+      EXPECT_NEAR(chord.slope * reached, tension, 1e-12) << m;
+      // Beyond m* the node holds the plateau's tension.
+      EXPECT_EQ(lagged.find_piece(-tension + c * -(reached + 0.01), c, node),
+                0u)
+        << m;
+    }
+
+  CohesiveDamage damage;
+  damage.reinit({false, true}, {1, 0, 1});
+  EXPECT_TRUE(damage.active());
+  ContactNodes nodes;
+  nodes.reinit(ContactLaws({ContactLaw({}, {0.}, {}, true, 0.), law}),
+               {1, 0, 1},
+               {1., 1., 1.});
+  for (const std::array<double, 3> &r :
+       {std::array<double, 3>{{-0.02, -0.02, 0.001}},
+        std::array<double, 3>{{-0.01, -0.03, -0.005}}})
+    {
+      nodes.r.assign(r.begin(), r.end());
+      damage.accept_step(nodes);
+    }
+  damage.start_step(0.1, nodes);
+  EXPECT_TRUE(nodes.has_cohesion());
+  EXPECT_EQ(nodes.reached_opening(0), 0.02); // the largest, not the last
+  EXPECT_EQ(nodes.reached_opening(1), 0.);   // no cohesive interface
+  EXPECT_EQ(nodes.reached_opening(2), 0.005);
+  EXPECT_NEAR(nodes.damage(0), 2. / 3, 1e-12);
+  EXPECT_EQ(nodes.damage(1), 0.);
 }
 
 
@@ -1100,7 +1207,7 @@ TEST(BondingField, ExplicitDebonding)
       beta = glue.evolve(beta, -0.005, k);
       EXPECT_EQ(field.bonding(0), beta);
       EXPECT_EQ(nodes.bonding(0), beta);
-      EXPECT_EQ(nodes.adhesion_scale(0), beta * beta);
+      EXPECT_EQ(nodes.law_state(0).adhesion_scale, beta * beta);
       EXPECT_EQ(nodes.bonding(1), 1.);
       EXPECT_EQ(nodes.bonding(2), 1.); // never separated
       field.accept_step({-0.005, -0.005, 0.});

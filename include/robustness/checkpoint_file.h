@@ -52,8 +52,8 @@ namespace ViscoContact
   // cell id (7: the coarse cells numbered in p4est's order, see mesh.cc; 8:
   // the memory's and the slip weakening's fields and their layout in the
   // header; 9: the bonding of adhesion and the worn depths, each
-  // history's layout).
-  constexpr std::uint32_t checkpoint_version = 9;
+  // history's layout; 10: the openings a cohesive interface has reached).
+  constexpr std::uint32_t checkpoint_version = 10;
 
   // The header's bytes, built and read in memory. Only trivially copyable
   // values are written, byte for byte in the machine's representation (vectors

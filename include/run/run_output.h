@@ -119,7 +119,7 @@ namespace ViscoContact
       Vector<float>              von_mises, subdomain, material_id, stress_zz;
       std::vector<VectorType>    contact;
       VectorType                 tangential_traction, slip, friction_state;
-      VectorType                 memory_pressure, bonding, wear;
+      VectorType                 memory_pressure, bonding, wear, damage;
 
       void
       add_to(DataOut<dim>          &data_out,

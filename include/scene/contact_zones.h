@@ -64,6 +64,9 @@ namespace ViscoContact
     // The wear coefficient of each zone (archard_wear.h; 0: none).
     const std::vector<double> &
     wear_coefficients() const;
+    // Whether each zone's law has a cohesive interface (cohesive_damage.h).
+    std::vector<bool>
+    cohesive_zones() const;
 
     // The gap function of each zone (nullptr where it is zero: the nodes
     // keep s = 0), and Tresca's slip bound of each zone (nullptr in the

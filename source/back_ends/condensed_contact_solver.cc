@@ -207,9 +207,10 @@ namespace ViscoContact
     // without friction), and the normal displacements r and forces z of all
     // contact nodes (with friction: the forces along all rows).
     Vector<double> d, r_all, z_all;
-    // The memory pressures and the bonding of all contact nodes for the
-    // step (empty without memory, without adhesion), gathered with d.
-    std::vector<double> memory_all, adhesion_all;
+    // The memory pressures, the bonding and the reached cohesive openings
+    // of all contact nodes for the step (empty without memory, adhesion, a
+    // cohesive interface), gathered with d.
+    std::vector<double> memory_all, adhesion_all, openings_all;
     // With friction: S, kept for the dense problems.
     FullMatrix<double> frictional_compliance;
   };
@@ -498,11 +499,15 @@ namespace ViscoContact
     ++this->counts.solves;
     memory_all.clear();
     adhesion_all.clear();
+    openings_all.clear();
     if (contact.has_memory() && !friction)
       memory_all
         = gather_on_all_ranks(contact.history_pressures(), communicator);
     if (contact.has_adhesion() && !friction)
       adhesion_all = gather_on_all_ranks(contact.bondings(), communicator);
+    if (contact.has_cohesion() && !friction)
+      openings_all
+        = gather_on_all_ranks(contact.reached_openings(), communicator);
     if (factorization.has_last_block())
       {
         factorization.forward_solve(b, forward_last);
@@ -555,15 +560,18 @@ namespace ViscoContact
     // all of them. Every rank then solves the same problem and finds the
     // same r and z: this replicated arithmetic is what keeps the ranks'
     // decisions in step without further messages.
-    // Each node's piece as it acts there: scaled by its bonding, moved up
-    // by its memory pressure.
+    // Each node's piece as it acts there: scaled by its bonding, cut at its
+    // reached opening, moved up by its memory pressure.
     const std::vector<unsigned int> pieces
       = gather_on_all_ranks(contact.pieces(), communicator);
     std::vector<ContactLawPiece> node_pieces(pieces.size());
     for (unsigned int i = 0; i < pieces.size(); ++i)
       {
         const double beta = adhesion_all.empty() ? 1. : adhesion_all[i];
-        node_pieces[i]    = contact.laws().piece(pieces[i]).scaled(beta * beta);
+        node_pieces[i]
+          = contact.laws().piece(pieces[i],
+                                 {beta * beta,
+                                  openings_all.empty() ? 0. : openings_all[i]});
         if (!memory_all.empty() && !node_pieces[i].vertical)
           node_pieces[i].intercept += memory_all[i];
       }

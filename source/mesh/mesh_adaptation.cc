@@ -515,7 +515,7 @@ namespace ViscoContact
     std::vector<VectorType> histories;
     if (transfer_histories)
       histories
-        = nodal_fields_of(problem.contact_histories(),
+        = nodal_fields_of(problem.contact_histories.all(),
                           problem.contact_set,
                           problem.solution,
                           problem.prescribed.hanging_node_constraints());
@@ -563,7 +563,7 @@ namespace ViscoContact
         nodal_fields.push_back(&field);
     nodal_transfer.interpolate(nodal_fields);
     if (transfer_histories)
-      restore_from_nodal_fields(problem.contact_histories(),
+      restore_from_nodal_fields(problem.contact_histories.all(),
                                 problem.contact_set,
                                 new_histories);
     for (const VectorType &field : new_weakening_state)

@@ -61,7 +61,7 @@ namespace ViscoContact
   Checkpoints<dim>::n_history_fields(const ViscoplasticContact<dim> &problem)
   {
     unsigned int n = 0;
-    for (const ContactHistory *history : problem.contact_histories())
+    for (const ContactHistory *history : problem.contact_histories.all())
       n += history->n_nodal_fields(dim);
     return n;
   }
@@ -186,7 +186,7 @@ namespace ViscoContact
     // variables per node of each law with a history (0 if a zone has none)
     // and whether the slips are stored (a kernel of another number of terms
     // may take as many fields).
-    for (const ContactHistory *history : problem.contact_histories())
+    for (const ContactHistory *history : problem.contact_histories.all())
       header.write<std::uint32_t>(history->active() ? history->n_variables()
                                                     : 0);
     header.write<std::uint32_t>(n_weakening_fields(problem));
@@ -244,7 +244,7 @@ namespace ViscoContact
     std::vector<VectorType> histories;
     if (problem.contact_enabled)
       histories
-        = nodal_fields_of(problem.contact_histories(),
+        = nodal_fields_of(problem.contact_histories.all(),
                           problem.contact_set,
                           problem.solution,
                           problem.prescribed.hanging_node_constraints());
@@ -541,7 +541,7 @@ namespace ViscoContact
     const double eigenvalue     = header.read<double>();
     if (has_eigenvalue)
       problem.uniqueness_eigenvalue = eigenvalue;
-    for (const ContactHistory *history : problem.contact_histories())
+    for (const ContactHistory *history : problem.contact_histories.all())
       header.check(header.read<std::uint32_t>()
                    == (history->active() ? history->n_variables() : 0));
     header.check(header.read<std::uint32_t>() == n_weakening_fields(problem));
@@ -721,7 +721,7 @@ namespace ViscoContact
     // The laws' histories as the interrupted run left them, and their laws
     // of its last step (memory pressures, bonding, worn depths: the gaps
     // below include them).
-    restore_from_nodal_fields(problem.contact_histories(),
+    restore_from_nodal_fields(problem.contact_histories.all(),
                               problem.contact_set,
                               vectors.histories);
     bool                                  pieces_valid = true;

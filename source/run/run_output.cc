@@ -606,6 +606,8 @@ namespace ViscoContact
       data_out.add_data_vector(scalar_dof_handler, bonding, "bonding");
     if (wear.size() > 0)
       data_out.add_data_vector(scalar_dof_handler, wear, "wear");
+    if (damage.size() > 0)
+      data_out.add_data_vector(scalar_dof_handler, damage, "damage");
   }
 
 
@@ -712,15 +714,20 @@ namespace ViscoContact
         fields.memory_pressure.update_ghost_values();
       }
     if (problem.contact_enabled
-        && (problem.contact_set.has_adhesion()
-            || problem.contact_set.has_wear()))
+        && (problem.contact_set.has_adhesion() || problem.contact_set.has_wear()
+            || problem.contact_set.has_cohesion()))
       {
         if (problem.contact_set.has_adhesion())
           fields.bonding.reinit(problem.scalar_partitioner);
         if (problem.contact_set.has_wear())
           fields.wear.reinit(problem.scalar_partitioner);
-        problem.contact_set.fill_history_fields(fields.bonding, fields.wear);
-        for (VectorType *field : {&fields.bonding, &fields.wear})
+        if (problem.contact_set.has_cohesion())
+          fields.damage.reinit(problem.scalar_partitioner);
+        problem.contact_set.fill_history_fields(fields.bonding,
+                                                fields.wear,
+                                                fields.damage);
+        for (VectorType *field :
+             {&fields.bonding, &fields.wear, &fields.damage})
           if (field->size() > 0)
             field->update_ghost_values();
       }

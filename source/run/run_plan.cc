@@ -463,6 +463,12 @@ namespace ViscoContact
                            return zone.contact->adhesion_stiffness > 0;
                          }))
       step_reason = "adhesion";
+    else if (std::any_of(zones.begin(),
+                         zones.end(),
+                         [](const Parameters::ContactZone &zone) {
+                           return zone.contact->cohesive_strength > 0;
+                         }))
+      step_reason = "a cohesive interface";
     if (!step_reason.empty())
       return;
     double    cells           = 0;

@@ -44,7 +44,7 @@ namespace ViscoContact
     problem.contact_set.set_state(start.contact);
     // The laws of the last accepted step (memory pressures, bonding, worn
     // depths), not the attempt's: what a failed step writes and reports.
-    for (ContactHistory *history : problem.contact_histories())
+    for (ContactHistory *history : problem.contact_histories.all())
       if (problem.contact_enabled && history->active())
         history->apply_accepted(problem.contact_set);
   }

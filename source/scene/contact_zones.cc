@@ -262,6 +262,18 @@ namespace ViscoContact
 
 
   template <int dim>
+  std::vector<bool>
+  ContactZones<dim>::cohesive_zones() const
+  {
+    std::vector<bool> cohesive;
+    for (const ContactZoneDescription<dim> &zone : zones)
+      cohesive.push_back(zone.law.has_cohesion());
+    return cohesive;
+  }
+
+
+
+  template <int dim>
   std::vector<Function<dim> *>
   ContactZones<dim>::gaps() const
   {

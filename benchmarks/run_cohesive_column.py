@@ -11,13 +11,17 @@ the opening delta and the tension P = K (U - delta) satisfy
     K (U - delta) = T(m) delta / m   for delta <= m   (the secant),
                   = T(delta)         beyond,
 
-one solution for every U since T softens by less than K. The damage is
+one solution for every U since T softens by less than K; with
+exponential softening the same holds with the polygon of the envelope
+(written out here from its definition). The damage is
 rate-independent, so this holds at every time: with Cohesive damage =
 implicit (the envelope in the step) the program's steps are exact
 (tests/run_cohesive_column.sh). With Cohesive damage = explicit a step's
 opening beyond max(m, delta_0) follows a plateau at the tension reached
 before it: a monotone law, with a tension that lags the envelope by one
-step. --order runs the explicit update with k = 1/16 ... 1/256 and prints
+step. --order runs the implicit update with both softenings (and checks
+the area under the exponential polygon, G_c) and the explicit update with
+k = 1/16 ... 1/256, and prints
 the largest error of P over the steps relative to T_c, with its observed
 order; --check (also run by ctest) requires the last order within
 [0.9, 1.1] (observed 1.00) and the last error within 1.5 times the
@@ -81,31 +85,58 @@ def top(t):
     return 0.03 * max(min(t, 3 - 2 * t), 0) + 0.06 * max(t - 1.5, 0)
 
 
-def envelope(x):
-    if x <= D0:
-        return STIFFNESS * x
-    return STRENGTH * (DF - x) / (DF - D0) if x < DF else 0.0
+def envelope_points(softening="linear"):
+    """The envelope's points (delta_k, T_k), written out here from the
+    definition (doc/model.md, section 12): linear, or the exponential tail
+    T_c exp(-x / lambda), lambda = (G_c - T_c delta_0 / 2) / T_c, at 15
+    equal steps down to T_c / 1000, then 0 one step on, its openings
+    stretched so that the area under the polygon is G_c."""
+    if softening == "linear":
+        return [(0.0, 0.0), (D0, STRENGTH), (DF, 0.0)]
+    tail_energy = ENERGY - STRENGTH * D0 / 2
+    length = tail_energy / STRENGTH
+    step = length * math.log(1000.0) / 15
+    tail = [(j * step, STRENGTH * math.exp(-j * step / length)) for j in range(16)]
+    tail.append((16 * step, 0.0))
+    area = sum((b[0] - a[0]) * (a[1] + b[1]) / 2 for a, b in zip(tail, tail[1:]))
+    return [(0.0, 0.0)] + [(D0 + x * tail_energy / area, T) for x, T in tail]
 
 
-def exact(t, m):
-    """(delta, P) at time t after the largest opening m."""
+def envelope(x, points):
+    for (a, Ta), (b, Tb) in zip(points, points[1:]):
+        if x <= b:
+            return Ta + (Tb - Ta) * (x - a) / (b - a)
+    return 0.0
+
+
+def exact(t, m, points):
+    """(delta, P) at time t after the largest opening m: on the secant up to
+    max(m, delta_0), else on the envelope's segment beyond m that holds the
+    solution of K (U - delta) = T(delta) (one: every segment softens by less
+    than K), else broken."""
     U = top(t)
-    s = envelope(m) / m if m > D0 else STIFFNESS
-    delta = K * U / (K + s)
-    if delta > max(m, D0):
-        delta = (K * U - STRENGTH * DF / (DF - D0)) / (K - STRENGTH / (DF - D0))
-        if delta > DF:
-            delta = U
-    return delta, K * (U - delta)
+    reached = max(m, D0)
+    delta = K * U / (K + envelope(reached, points) / reached)
+    if delta <= reached:
+        return delta, K * (U - delta)
+    for (a, Ta), (b, Tb) in zip(points, points[1:]):
+        if b <= reached:
+            continue
+        slope = (Tb - Ta) / (b - a)
+        delta = (K * U - Ta + slope * a) / (K + slope)
+        if delta <= b:
+            return delta, K * (U - delta)
+    return U, 0.0
 
 
-def reference(times):
+def reference(times, softening="linear"):
     """The exact tensions at the given times (m from a grid fine enough to
     hold every kink of the load, t = 1 and 1.5, and the given times)."""
+    points = envelope_points(softening)
     grid = sorted(set([n / 4096 for n in range(4096 * 5 // 2 + 1)] + list(times)))
     m, tension = 0.0, {}
     for t in grid:
-        delta, P = exact(t, m)
+        delta, P = exact(t, m, points)
         m = max(m, delta)
         tension[t] = P
     return [tension[t] for t in times]
@@ -131,11 +162,13 @@ def time_series(folder):
         return list(csv.DictReader(f))
 
 
-def column(executable, k, damage):
+def column(executable, k, damage, softening="linear", method="condensed"):
     """(times, tensions) of the column's steps."""
     text = scene_text("cohesive_column.prm",
                       {(("Time",), "Time step"): k, (("Output",), "Profile times"): "",
-                       (("Contact",), "Cohesive damage"): damage})
+                       (("Contact",), "Cohesive damage"): damage,
+                       (("Contact",), "Cohesive softening"): softening,
+                       (("Linear solver",), "Method"): method})
     with run_in_temporary_directory(executable, text) as (folder, _, _):
         rows = time_series(folder)
     return ([float(r["time"]) for r in rows],
@@ -143,9 +176,19 @@ def column(executable, k, damage):
 
 
 def order(executable, check):
-    t, P = column(executable, 1 / 16, "implicit")
-    implicit_error = max(abs(p - q) for p, q in zip(P, reference(t))) / STRENGTH
-    print("Implicit damage, k = 1/16: largest error of P / T_c %.2e." % implicit_error)
+    implicit_error = 0
+    for softening, method in (("linear", "condensed"), ("exponential", "condensed"),
+                              ("exponential", "full space"),
+                              ("exponential", "matrix free")):
+        t, P = column(executable, 1 / 16, "implicit", softening, method)
+        error = max(abs(p - q) for p, q in zip(P, reference(t, softening))) / STRENGTH
+        print("Implicit damage, %s softening, %s, k = 1/16: largest error of P / "
+              "T_c %.2e." % (softening, method, error))
+        implicit_error = max(implicit_error, error)
+    points = envelope_points("exponential")
+    area = sum((b[0] - a[0]) * (a[1] + b[1]) / 2 for a, b in zip(points, points[1:]))
+    print("Exponential envelope: work of separation %.12f (G_c = %g), delta_f = %.5f."
+          % (area, ENERGY, points[-1][0]))
     print("| k | largest error of P / T_c, explicit damage | order |")
     print("| --- | --- | --- |")
     errors = []
@@ -156,6 +199,8 @@ def order(executable, check):
                 if len(errors) > 1 else "-")
         print("| 1/%d | %.3e | %s |" % (round(1 / k), errors[-1], rate))
     if check:
+        if abs(area - ENERGY) > 1e-12:
+            sys.exit("exponential envelope: work %.15f, expected G_c" % area)
         if implicit_error > 1e-9:
             sys.exit("implicit damage: error %.2e, expected below 1e-9" % implicit_error)
         last_order = math.log(errors[-2] / errors[-1]) / math.log(2)
@@ -226,16 +271,21 @@ def figure(executable):
     figures = os.path.join(REPO_ROOT, "doc", "figures")
     fig, axis = plt.subplots(figsize=(6, 4))
     t = [n / 1024 for n in range(1, 1024 * 5 // 2 + 1)]
-    P = reference(t)
-    axis.plot([top(s) - p / K for s, p in zip(t, P)], P, "k-", label="closed form")
-    for k, damage, marker in ((1 / 16, "implicit", "o"), (1 / 16, "explicit", "s"),
-                              (1 / 64, "explicit", "^")):
-        times, forces = column(executable, k, damage)
+    for softening, style in (("linear", "k-"), ("exponential", "k--")):
+        P = reference(t, softening)
+        axis.plot([top(s) - p / K for s, p in zip(t, P)], P, style,
+                  label="closed form, %s softening" % softening)
+    for k, damage, softening, marker in ((1 / 16, "implicit", "linear", "o"),
+                                         (1 / 16, "explicit", "linear", "s"),
+                                         (1 / 64, "explicit", "linear", "^"),
+                                         (1 / 16, "implicit", "exponential", "x")):
+        times, forces = column(executable, k, damage, softening)
         axis.plot([top(s) - p / K for s, p in zip(times, forces)], forces, marker,
-                  markersize=3, label="%s damage, k = 1/%d" % (damage, round(1 / k)))
+                  markersize=3, label="%s damage, %s, k = 1/%d"
+                  % (damage, softening, round(1 / k)))
     axis.set_xlabel("opening delta")
     axis.set_ylabel("tension P")
-    axis.legend()
+    axis.legend(fontsize=7)
     axis.grid(True, alpha=0.3)
     axis.set_title("Cohesive column: pulled, pushed back, pulled off", fontsize=10)
     fig.tight_layout()

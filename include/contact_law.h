@@ -3,6 +3,7 @@
 
 #include "tangential_law.h"
 
+#include <array>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -76,6 +77,13 @@ namespace ViscoContact
   // is on the secant T(m) delta / m: the damage 1 - T(m) / (K m) never
   // heals. Strength 0: no cohesive interface.
   //
+  // With exponential softening the tension falls as
+  // T_c exp(-(delta - delta_0) / lambda) instead, lambda = (G_c - T_c
+  // delta_0 / 2) / T_c, interpolated linearly between exponential_pieces
+  // points down to T_c / 1000 and then to 0, the openings of the tail
+  // stretched so that the work of separation is G_c exactly
+  // (cohesive_envelope()).
+  //
   // Within a time step the opening beyond m follows either the envelope
   // itself (implicit: exact, a softening law whose step problem is unique
   // only where the body dominates the softening) or, with explicit_damage,
@@ -88,7 +96,15 @@ namespace ViscoContact
     double strength        = 0;
     double fracture_energy = 0;
     bool   explicit_damage = false;
+    bool   exponential     = false;
+
+    static constexpr unsigned int exponential_pieces = 16;
   };
+
+  // The envelope of a cohesive branch as the points (delta_k, T_k) it
+  // interpolates linearly: (0, 0), (delta_0, T_c), ..., (delta_f, 0).
+  std::vector<std::array<double, 2>>
+  cohesive_envelope(const CohesiveBranch &cohesion);
 
   // What the history of a node changes in its law (contact_history.h): the
   // scale of its adhesive pieces (its bonding beta^2) and the largest
@@ -183,9 +199,11 @@ namespace ViscoContact
   private:
     std::vector<ContactLawPiece> pieces;
     double                       gap_value;
-    // A cohesive branch whose damage is taken from the last step
-    // (CohesiveBranch::explicit_damage).
-    bool explicit_damage = false;
+    // The pieces of a cohesive branch (the first ones; the last of them the
+    // elastic piece up to r = 0), and whether its damage is taken from the
+    // last step (CohesiveBranch::explicit_damage).
+    unsigned int n_cohesive_pieces = 0;
+    bool         explicit_damage   = false;
     // The length over which the law acts: the gap, or the length of an
     // adhesive or a cohesive branch (the scale of next_piece()'s slack).
     double length_scale = 0;

@@ -361,6 +361,9 @@ namespace ViscoContact
       // envelope; explicit: a plateau at the reached tension (the damage
       // from the last step).
       std::string cohesive_damage = "implicit";
+      // linear: the tension falls linearly from T_c to 0; exponential: as
+      // T_c exp(-(delta - delta_0) / lambda), in pieces.
+      std::string cohesive_softening = "linear";
       // Archard's wear (doc/model.md, section 11): w' = k_w p |slip'|
       // (0: no wear).
       double wear_coefficient = 0;

@@ -47,6 +47,46 @@ namespace ViscoContact
 
 
 
+  // @sect4{The envelope of a cohesive interface}
+  //
+  // Linear softening: three points. Exponential softening: the tail
+  // T_c exp(-x / lambda), x = delta - delta_0, at exponential_pieces - 1
+  // equal steps down to T_c / 1000, then 0 one more step on; its openings
+  // are then stretched by the factor that makes the area under the
+  // polygon G_c (the polygon lies above the convex exponential, and the
+  // truncation takes a little off: the factor is close to 1).
+  std::vector<std::array<double, 2>>
+  cohesive_envelope(const CohesiveBranch &cohesion)
+  {
+    const double tension     = cohesion.strength;
+    const double delta_0     = tension / cohesion.stiffness;
+    const double tail_energy = cohesion.fracture_energy - tension * delta_0 / 2;
+    AssertThrow(cohesion.stiffness > 0 && tail_energy > 0
+                  && std::isfinite(tail_energy / tension),
+                ExcMessage("A cohesive branch needs a stiffness > 0 and a "
+                           "fracture energy > strength^2 / (2 stiffness)."));
+    if (!cohesion.exponential)
+      return {{{0., 0.}},
+              {{delta_0, tension}},
+              {{2 * cohesion.fracture_energy / tension, 0.}}};
+    const unsigned int n      = CohesiveBranch::exponential_pieces;
+    const double       length = tail_energy / tension; // lambda
+    const double       step   = length * std::log(1000.) / (n - 1);
+    std::vector<std::array<double, 2>> tail;
+    for (unsigned int j = 0; j < n; ++j)
+      tail.push_back({{j * step, tension * std::exp(-(j * step) / length)}});
+    tail.push_back({{n * step, 0.}});
+    double area = 0;
+    for (unsigned int j = 0; j + 1 < tail.size(); ++j)
+      area += (tail[j + 1][0] - tail[j][0]) * (tail[j][1] + tail[j + 1][1]) / 2;
+    std::vector<std::array<double, 2>> envelope{{{0., 0.}}};
+    for (const auto &[x, T] : tail)
+      envelope.push_back({{delta_0 + x * tail_energy / area, T}});
+    return envelope;
+  }
+
+
+
   // @sect4{ContactLaw::ContactLaw}
   //
   // Walk along r from -infinity: a sloped piece up to each breakpoint, then
@@ -160,34 +200,39 @@ namespace ViscoContact
         pieces.insert(pieces.begin(), {tension, bond});
         length_scale = std::max(length_scale, adhesion.length);
       }
-    // A cohesive interface: no tension beyond delta_f, the softening from
-    // -T_c at delta_0 to 0 at delta_f (slope -T_c / (delta_f - delta_0):
-    // the softening the uniqueness condition must dominate), the stiffness
-    // K up to 0.
+    // A cohesive interface: no tension beyond delta_f, then the pieces of
+    // the envelope from delta_f in to 0 (p = -T, r = -delta: a segment from
+    // (delta_k, T_k) to (delta_k+1, T_k+1) has the slope dT / d delta; the
+    // softening ones are what the uniqueness condition must dominate), the
+    // last one the stiffness K up to r = 0.
     if (cohesion.strength > 0)
       {
         tension_below_zero("cohesive");
-        const double opening_at_strength
-          = cohesion.strength / cohesion.stiffness;
-        const double final_opening
-          = 2 * cohesion.fracture_energy / cohesion.strength;
-        AssertThrow(cohesion.stiffness > 0 && std::isfinite(final_opening)
-                      && final_opening > opening_at_strength,
-                    ExcMessage("A cohesive branch needs a stiffness > 0 and a "
-                               "fracture energy > strength^2 / (2 "
-                               "stiffness)."));
-        ContactLawPiece broken, softening, elastic;
-        broken.cohesive = softening.cohesive = elastic.cohesive = true;
-        broken.r_upper = softening.r_lower = -final_opening;
-        softening.r_upper = elastic.r_lower = -opening_at_strength;
-        softening.slope
-          = -cohesion.strength / (final_opening - opening_at_strength);
-        softening.intercept = softening.slope * final_opening;
-        elastic.r_upper     = 0;
-        elastic.slope       = cohesion.stiffness;
-        pieces.insert(pieces.begin(), {broken, softening, elastic});
-        explicit_damage = cohesion.explicit_damage;
-        length_scale    = std::max(length_scale, final_opening);
+        const std::vector<std::array<double, 2>> envelope
+          = cohesive_envelope(cohesion);
+        std::vector<ContactLawPiece> branch(1);
+        branch[0].r_upper = -envelope.back()[0];
+        for (unsigned int k = envelope.size() - 1; k > 0; --k)
+          {
+            const auto &[outer_opening, outer_tension] = envelope[k];
+            const auto &[inner_opening, inner_tension] = envelope[k - 1];
+            ContactLawPiece segment;
+            segment.r_lower = -outer_opening;
+            segment.r_upper = -inner_opening;
+            segment.slope   = k == 1 ? cohesion.stiffness
+                                     : (outer_tension - inner_tension)
+                                       / (outer_opening - inner_opening);
+            // The elastic piece through the origin exactly.
+            segment.intercept
+              = k == 1 ? 0. : -outer_tension + segment.slope * outer_opening;
+            branch.push_back(segment);
+          }
+        for (ContactLawPiece &piece : branch)
+          piece.cohesive = true;
+        pieces.insert(pieces.begin(), branch.begin(), branch.end());
+        n_cohesive_pieces = branch.size();
+        explicit_damage   = cohesion.explicit_damage;
+        length_scale      = std::max(length_scale, envelope.back()[0]);
       }
 
     // The rigid foundation: the vertical piece at r = g from p(g-), the
@@ -223,7 +268,8 @@ namespace ViscoContact
     const CohesiveBranch cohesion{contact.cohesive_stiffness,
                                   contact.cohesive_strength,
                                   contact.fracture_energy,
-                                  contact.cohesive_damage == "explicit"};
+                                  contact.cohesive_damage == "explicit",
+                                  contact.cohesive_softening == "exponential"};
     const auto           law = [&](const std::vector<double> &breakpoints,
                          const std::vector<double> &slopes,
                          const std::vector<double> &jumps) {
@@ -276,18 +322,19 @@ namespace ViscoContact
   //
   // With the damage from the last step, the node's law is the secant up to
   // m* = max(m, delta_0) and the plateau at its tension T(m*) beyond: the
-  // broken piece becomes the plateau, the softening piece the point r = -m*
-  // between the two.
+  // broken piece becomes the plateau, the elastic one the secant, and the
+  // softening pieces the point r = -m* between the two.
   ContactLawPiece
   ContactLaw::piece(const unsigned int i, const NodeLawState &node) const
   {
     ContactLawPiece result = piece(i).scaled(node.adhesion_scale);
     if (result.cohesive && explicit_damage)
       {
-        const double m = std::max(node.reached_opening, -pieces[1].r_upper);
+        const unsigned int last = n_cohesive_pieces - 1; // the elastic one
+        const double m = std::max(node.reached_opening, -pieces[last].r_lower);
         const double tension = envelope_tension(m);
         result.r_lower       = (i == 0 ? result.r_lower : -m);
-        result.r_upper       = (i == 2 ? 0. : -m);
+        result.r_upper       = (i == last ? 0. : -m);
         result.slope         = (i == 0 ? 0. : tension / m);
         result.intercept     = (i == 0 ? -tension : 0.);
         return result;
@@ -462,7 +509,7 @@ namespace ViscoContact
   {
     if (!has_cohesion() || !(reached_opening > 0))
       return 0;
-    const double stiffness = pieces[2].slope;
+    const double stiffness = pieces[n_cohesive_pieces - 1].slope;
     return std::clamp(1
                         - envelope_tension(reached_opening)
                             / (stiffness * reached_opening),

@@ -1278,6 +1278,17 @@ namespace ViscoContact
           "law, so always one solution, with a tension that lags the "
           "envelope by one step (first order in the time step).",
           Patterns::Selection("implicit|explicit"));
+        prm.add_parameter(
+          "Cohesive softening",
+          cohesive_softening,
+          "How the tension falls after its peak T_c at delta_0 = T_c / K "
+          "(doc/model.md, section 12). linear: to 0 at delta_f = 2 G_c / "
+          "T_c (Code_Aster's CZM_LIN_REG). exponential: as T_c exp(-(delta - "
+          "delta_0) / lambda), lambda = (G_c - T_c delta_0 / 2) / T_c "
+          "(Code_Aster's CZM_EXP_REG), in 16 linear pieces down to T_c / "
+          "1000 and then to 0, stretched so that the work of separation is "
+          "G_c exactly.",
+          Patterns::Selection("linear|exponential"));
       }
       prm.leave_subsection();
     }

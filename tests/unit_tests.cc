@@ -1070,8 +1070,9 @@ TEST(ContactLaw, AdhesiveBranchBelowZero)
 // (damage 2/3) on [-m, 0], the envelope beyond; one opened beyond delta_f
 // has no tension left (damage 1). find_piece() finds the points of the
 // node's own graph. With the damage from the last step the law is the
-// secant and a plateau at the reached tension instead. The history keeps
-// the largest opening of its zone's nodes only.
+// secant and a plateau at the reached tension instead. Exponential
+// softening is a polygon that encloses G_c. The history keeps the largest
+// opening of its zone's nodes only.
 TEST(ContactLaw, CohesiveBranchRemembersItsOpening)
 {
   const ContactLaw law({}, {0.}, {}, true, 0., {}, {1000., 10., 0.2});
@@ -1143,6 +1144,45 @@ TEST(ContactLaw, CohesiveBranchRemembersItsOpening)
                 0u)
         << m;
     }
+
+  // Exponential softening: the polygon from (delta_0, T_c) down through
+  // T_c exp(-x / lambda) encloses G_c exactly; its pieces follow it, and
+  // the damage at a reached opening is that of the polygon.
+  CohesiveBranch exponential{1000., 10., 0.2};
+  exponential.exponential = true;
+  const auto points       = cohesive_envelope(exponential);
+  ASSERT_EQ(points.size(), CohesiveBranch::exponential_pieces + 2);
+  EXPECT_EQ(points[1][0], 0.01);
+  EXPECT_EQ(points[1][1], 10.);
+  double area = 0;
+  for (unsigned int k = 0; k + 1 < points.size(); ++k)
+    {
+      area += (points[k + 1][0] - points[k][0])
+              * (points[k][1] + points[k + 1][1]) / 2;
+      EXPECT_GT(points[k + 1][0], points[k][0]);
+      if (k > 0)
+        {
+          EXPECT_LT(points[k + 1][1], points[k][1]);
+        }
+    }
+  EXPECT_NEAR(area, 0.2, 1e-14);
+  // lambda = (G_c - T_c delta_0 / 2) / T_c = 0.015: the second point lies
+  // on T_c exp(-x / lambda') with the tail stretched by a factor near 1.
+  const double stretch = (points[2][0] - 0.01) / (0.015 * std::log(1000.) / 15);
+  EXPECT_NEAR(points[2][1], 10. * std::exp(-std::log(1000.) / 15), 1e-12);
+  EXPECT_NEAR(stretch, 1., 0.05);
+  const ContactLaw curved({}, {0.}, {}, true, 0., {}, exponential);
+  ASSERT_EQ(curved.n_pieces(), points.size() + 1);
+  const double middle        = (points[5][0] + points[6][0]) / 2;
+  const double tension_there = (points[5][1] + points[6][1]) / 2;
+  EXPECT_NEAR(curved.damage(middle),
+              1 - tension_there / (1000. * middle),
+              1e-12);
+  // The elastic piece last, the steepest softening right after the peak.
+  EXPECT_NEAR(curved.piece(points.size() - 1).slope, 1000., 1e-12);
+  EXPECT_NEAR(curved.steepest_softening(),
+              -curved.piece(points.size() - 2).slope,
+              1e-12);
 
   CohesiveDamage damage;
   damage.reinit({false, true}, {1, 0, 1});

@@ -106,6 +106,22 @@ namespace ViscoContact
   template <int dim>
   class ContactPairs;
 
+  // The displacement of an obstacle's points over a time step: an affine
+  // map of the place x, linear x + shift (a rigid motion less the
+  // identity; linear = 0 for a translation).
+  template <int dim>
+  struct ObstacleStep
+  {
+    Tensor<2, dim> linear;
+    Tensor<1, dim> shift;
+
+    Tensor<1, dim>
+    at(const Point<dim> &x) const
+    {
+      return linear * x + shift;
+    }
+  };
+
   // @sect3{The contact set}
   //
   // The contact nodes this MPI rank owns: the locally owned vertices of
@@ -289,7 +305,7 @@ namespace ViscoContact
     // tangential components at every frictional node become the node's
     // obstacle slip (ContactNodes::set_obstacle_slip()).
     void
-    set_obstacle_steps(const std::vector<Tensor<1, dim>> &zone_steps);
+    set_obstacle_steps(const std::vector<ObstacleStep<dim>> &zone_steps);
     // A vector of space from the tangential components of node i in its
     // frame, sum_j x_j tau_ij.
     Tensor<1, dim>

@@ -327,6 +327,12 @@ namespace ViscoContact
       // The obstacle's rigid translation o(t) since t = 0 (dim expressions
       // in t; "0": it does not move).
       std::string obstacle_motion = "0";
+      // Its rigid rotation since t = 0 about the point that is at
+      // Rotation center at t = 0 and moves with the translation: the angle
+      // (counterclockwise, 2D) or the rotation vector (3D) as expressions
+      // in t ("0": it does not turn).
+      std::string obstacle_rotation = "0";
+      std::string rotation_center   = "0";
       // Friction (doc/model.md, section 7): the law, Tresca's bound g(x),
       // Coulomb's coefficient mu.
       TangentialLawType tangential_law       = TangentialLawType::frictionless;

@@ -1169,12 +1169,16 @@ namespace ViscoContact
   template <int dim>
   void
   ContactSet<dim>::set_obstacle_steps(
-    const std::vector<Tensor<1, dim>> &zone_steps)
+    const std::vector<ObstacleStep<dim>> &zone_steps)
   {
     std::vector<Tangential> steps(size(), Tangential{{0, 0}});
     for (unsigned int i = 0; i < size(); ++i)
-      for (unsigned int j = 0; j < geometry[i].n_tangents; ++j)
-        steps[i][j] = geometry[i].tangents[j] * zone_steps[zone(i)];
+      {
+        const Tensor<1, dim> step
+          = zone_steps[zone(i)].at(geometry[i].location);
+        for (unsigned int j = 0; j < geometry[i].n_tangents; ++j)
+          steps[i][j] = geometry[i].tangents[j] * step;
+      }
     set_obstacle_slip(steps);
   }
 

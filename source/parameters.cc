@@ -1134,6 +1134,28 @@ namespace ViscoContact
           "Not on a contact pair (Opposite boundary ids).",
           Patterns::Anything());
         prm.add_parameter(
+          "Obstacle rotation",
+          obstacle_rotation,
+          "theta(t): the rigid rotation of the obstacle since t = 0 about the "
+          "point that is at Rotation center at t = 0 and moves with Obstacle "
+          "motion: the angle in radians, counterclockwise (2D, one "
+          "expression), or the rotation vector, its direction the axis and "
+          "its length the angle (3D, three expressions separated by ';'), in "
+          "t (0: the obstacle does not turn). A point X of the obstacle at "
+          "t = 0 is at c + o(t) + R(t) (X - c); the gap at x is s(c + R(t)^T "
+          "(x - c - o(t)), t), so Initial gap must describe the obstacle in "
+          "x and y (and z): a cylinder of radius 2 over x = 1, its axis at "
+          "y = 3: \"3 - sqrt(4 - (x - 1)^2) - y\". A wheel rolling along x "
+          "at speed V: Obstacle motion = \"V * t; 0\", Obstacle rotation = "
+          "\"-V * t / 2\". Not on a contact pair.",
+          Patterns::Anything());
+        prm.add_parameter(
+          "Rotation center",
+          rotation_center,
+          "c: the point the obstacle turns about at t = 0 (dim numbers "
+          "separated by ';'), needed with Obstacle rotation.",
+          Patterns::Anything());
+        prm.add_parameter(
           "Gap direction",
           gap_direction,
           "d: normal (each node's outward normal, the paper's model) or a "
@@ -1355,6 +1377,27 @@ namespace ViscoContact
                     "0 on a contact pair (Opposite boundary ids): the other "
                     "body moves by its own boundary conditions");
           }
+        if (!is_zero_vector(obstacle_rotation))
+          {
+            require(!mentions(obstacle_rotation, "[xyz]"),
+                    subsection,
+                    "Obstacle rotation",
+                    obstacle_rotation,
+                    "expressions of the time t alone (a rigid rotation), "
+                    "not of the position x, y (, z)");
+            require(opposite_ids.empty(),
+                    subsection,
+                    "Obstacle rotation",
+                    obstacle_rotation,
+                    "0 on a contact pair (Opposite boundary ids): the other "
+                    "body moves by its own boundary conditions");
+          }
+        require(!mentions(rotation_center, "[xyzt]"),
+                subsection,
+                "Rotation center",
+                rotation_center,
+                "numbers (a fixed point at t = 0; it moves with Obstacle "
+                "motion)");
         if (!opposite_ids.empty())
           require(gap_direction == "normal",
                   subsection,

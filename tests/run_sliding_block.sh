@@ -278,4 +278,66 @@ if [ -z "$quick" ]; then
       results/time_series.csv || exit 1
   done
 fi
-echo "Sliding block: F balances the reaction, sticks below and equals the bound mu N or g W at full slip, slip 0.0025 per step (Coulomb, Tresca, 2D/3D, all cell types, both back ends, 1 and 2 ranks); the same with the support moving instead (three back ends); a dragged cylinder at F = mu N; slip and rate weakening node by node; pushed obliquely, F turns toward the push by a factor of about 0.78 per step."
+# A rotating obstacle (parameters/rolling_cylinder.prm, Obstacle rotation):
+# the cylinder pressed in and then turned in place about its axis,
+# theta = 0.05 (t - 1): its surface moves along +x over the contact, so
+# every node slips and F = -mu N (relative 1e-9), with N constant; the
+# same motion described about another center, the contact point (1, 1):
+# o(t) = (0, -d) + (I - R(theta)) (0, 2), gives the same steps (1e-9); in
+# 3D a sphere (Rodrigues' formula, rotation vector along z) turned in
+# place likewise slips at every node with F = -mu N.
+turning() { # CENTER MOTION ROTATION > variant.prm
+  set_entry "Rotation center" "$1" < "$here/../parameters/rolling_cylinder.prm" \
+    | set_entry "Obstacle motion" "$2" | set_entry "Obstacle rotation" "$3" \
+    | set_entry "Output directory" results
+}
+check_turning() { # NAME
+  awk -F, -v name="$1" '
+    function abs(a) { return a < 0 ? -a : a }
+    NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+    $col["time"] > 1 + 1e-9 {
+      N = $col["total_contact_force"]; F = $col["tangential_force_zone_1_x"]
+      if (N0 == "") N0 = N
+      if ($col["stick_nodes"] != 0 || $col["slip_nodes"] <= 10 || abs(F + 0.3 * N) > 1e-9 * N \
+          || abs(N - N0) > 1e-9 * N) {
+        print name ": at t = " $col["time"] " F = " F ", N = " N " (first " N0 "), " $col["stick_nodes"] \
+              " sticking, " $col["slip_nodes"] " slipping nodes; expected F = -mu N, all slipping"; exit 1 }
+      ++turned }
+    END { if (turned != 16) { print name ": " turned " steps of the turn, not 16"; exit 1 } }' \
+    results/time_series.csv || exit 1
+}
+turning "1; 3" "0; -0.01 * min(t, 1)" "0.05 * max(t - 1, 0)" > variant.prm
+run_scene variant.prm 1 "cylinder turned in place"
+check_turning "cylinder turned in place"
+without_wall_time() { awk -F, -v OFS=, '{ $9 = ""; print }' "$1"; }
+without_wall_time results/time_series.csv > turned_in_place.csv
+turning "1; 1" "2 * sin(0.05 * max(t - 1, 0)); 2 - 2 * cos(0.05 * max(t - 1, 0)) - 0.01 * min(t, 1)" \
+  "0.05 * max(t - 1, 0)" > variant.prm
+run_scene variant.prm 2 "cylinder turned about the contact point, 2 ranks"
+without_wall_time results/time_series.csv > turned_about_contact.csv
+numdiff -q -a 1e-12 -r 1e-9 turned_in_place.csv turned_about_contact.csv \
+  || fail "the same turn about another center: other steps"
+if [ -z "$quick" ]; then
+  sed -e "s|^\( *set Initial gap *=\).*|\1 sqrt((x - 1)^2 + (y - 3)^2 + z^2) - 2|" \
+      -e "s|^\( *set Obstacle motion *=\).*|\1 0; -0.01 * min(t, 1); 0\n  set Obstacle rotation = 0; 0; 0.05 * max(t - 1, 0)\n  set Rotation center = 1; 3; 0|" \
+      -e "s|^\( *set Wear coefficient *=\).*|\1 0|" -e "s|^\( *set Output directory *=\).*|\1 results|" \
+      "$here/../parameters/worn_track_3d.prm" > variant.prm
+  run_scene variant.prm 2 "3D sphere turned in place, 2 ranks"
+  # Every node slips from the first step of the turn; its slip starts with
+  # a part along z (the block relaxes from sticking), which falls by a
+  # factor of about 30 per step: F = -mu N within 1% (observed 0.5%) at
+  # first, within 1e-9 from t = 1.5 on.
+  awk -F, '
+    function abs(a) { return a < 0 ? -a : a }
+    NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+    $col["time"] > 1 + 1e-9 {
+      t = $col["time"]; ratio = -$col["tangential_force_zone_1_x"] / (0.3 * $col["total_contact_force"])
+      if ($col["stick_nodes"] != 0 || $col["slip_nodes"] <= 10 || ratio < 0.99 || ratio > 1 + 1e-9 \
+          || (t >= 1.5 && abs(ratio - 1) > 1e-9)) {
+        print "3D sphere turned in place: at t = " t " F / (-mu N) = " ratio ", " $col["stick_nodes"] \
+              " sticking nodes"; exit 1 }
+      ++turned }
+    END { if (turned != 16) { print "3D sphere turned in place: " turned " steps of the turn"; exit 1 } }' \
+    results/time_series.csv || exit 1
+fi
+echo "Sliding block: F balances the reaction, sticks below and equals the bound mu N or g W at full slip, slip 0.0025 per step (Coulomb, Tresca, 2D/3D, all cell types, both back ends, 1 and 2 ranks); the same with the support moving instead (three back ends); a dragged cylinder at F = mu N, and one turned in place (2D, 3D, about two centers); slip and rate weakening node by node; pushed obliquely, F turns toward the push by a factor of about 0.78 per step."

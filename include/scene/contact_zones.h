@@ -78,10 +78,11 @@ namespace ViscoContact
     // Whether some zone's obstacle moves (Obstacle motion), and each
     // zone's translation from the time start to the time end (zero where
     // it does not move). A moving zone's gap function is that of the
-    // moved obstacle, s(x - o(t), t).
+    // moved obstacle, s(x - o(t), t), or with a rotation R(t) about the
+    // point c, s(c + R(t)^T (x - c - o(t)), t).
     bool
     has_obstacle_motion() const;
-    std::vector<Tensor<1, dim>>
+    std::vector<ObstacleStep<dim>>
     obstacle_steps(const double start, const double end) const;
     // Whether some zone has a gap, and whether a gap depends on t.
     bool
@@ -98,6 +99,8 @@ namespace ViscoContact
     std::vector<std::unique_ptr<FunctionParser<dim>>> gap_functions;
     std::vector<std::unique_ptr<FunctionParser<dim>>> slip_bound_functions;
     std::vector<std::unique_ptr<FunctionParser<dim>>> motion_functions;
+    std::vector<std::unique_ptr<FunctionParser<dim>>> rotation_functions;
+    std::vector<Point<dim>>                           rotation_centers;
     std::vector<std::unique_ptr<Function<dim>>>       moved_gap_functions;
     bool                                              any_gap    = false;
     bool                                              any_motion = false;

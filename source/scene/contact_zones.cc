@@ -1,6 +1,7 @@
 // The contact zones of a scene (contact_zones.h), built from the
 // parameters.
 
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
 #include "scene/contact_zones.h"
@@ -13,40 +14,125 @@ namespace ViscoContact
 {
   namespace
   {
-    // The gap of an obstacle translated by o(t): s(x - o(t), t).
+    // The rotation R(t) of an obstacle: the angle theta (2D) or the
+    // rotation vector theta n (3D, Rodrigues' formula) at the function's
+    // time; the identity without a rotation.
+    template <int dim>
+    Tensor<2, dim>
+    rotation_matrix(const Function<dim> *rotation)
+    {
+      Tensor<2, dim> R = unit_symmetric_tensor<dim>();
+      if (rotation == nullptr)
+        return R;
+      if constexpr (dim == 2)
+        {
+          const double theta = rotation->value(Point<dim>(), 0);
+          R[0][0] = R[1][1] = std::cos(theta);
+          R[1][0]           = std::sin(theta);
+          R[0][1]           = -std::sin(theta);
+        }
+      else
+        {
+          Tensor<1, dim> axis;
+          for (unsigned int c = 0; c < dim; ++c)
+            axis[c] = rotation->value(Point<dim>(), c);
+          const double theta = axis.norm();
+          if (theta > 0)
+            {
+              axis /= theta;
+              Tensor<2, dim> K; // the cross product with the axis
+              K[0][1] = -axis[2];
+              K[0][2] = axis[1];
+              K[1][0] = axis[2];
+              K[1][2] = -axis[0];
+              K[2][0] = -axis[1];
+              K[2][1] = axis[0];
+              R += std::sin(theta) * K + (1 - std::cos(theta)) * (K * K);
+            }
+        }
+      return R;
+    }
+
+
+
+    // Where the obstacle is at a time: a point X of it at t = 0 is at
+    // c + o + R (X - c).
+    template <int dim>
+    struct Placement
+    {
+      Tensor<2, dim> rotation;
+      Tensor<1, dim> translation;
+      Point<dim>     center;
+
+      Placement(Function<dim>    *motion,
+                Function<dim>    *rotation_function,
+                const Point<dim> &center,
+                const double      time)
+        : center(center)
+      {
+        for (Function<dim> *f : {motion, rotation_function})
+          if (f)
+            f->set_time(time);
+        rotation = rotation_matrix<dim>(rotation_function);
+        if (motion)
+          for (unsigned int c = 0; c < dim; ++c)
+            translation[c] = motion->value(Point<dim>(), c);
+      }
+
+      Point<dim>
+      place(const Point<dim> &X) const
+      {
+        return center + translation + rotation * (X - center);
+      }
+      // The point X of the obstacle at t = 0 that is at x now.
+      Point<dim>
+      origin_of(const Point<dim> &x) const
+      {
+        return center + transpose(rotation) * (x - center - translation);
+      }
+    };
+
+
+
+    // The gap of an obstacle that moves rigidly: s(X(x, t), t) with X the
+    // obstacle's point at t = 0 that is at x at t.
     template <int dim>
     class MovedObstacleGap : public Function<dim>
     {
     public:
-      MovedObstacleGap(Function<dim> &gap, Function<dim> &motion)
+      MovedObstacleGap(Function<dim>    &gap,
+                       Function<dim>    *motion,
+                       Function<dim>    *rotation,
+                       const Point<dim> &center)
         : Function<dim>(1)
         , gap(gap)
         , motion(motion)
+        , rotation(rotation)
+        , placement(motion, rotation, center, 0.)
       {
-        set_time(motion.get_time());
+        set_time(0.);
       }
 
-      // The translation is evaluated once per time, not per node.
+      // The placement is evaluated once per time, not per node.
       void
       set_time(const double time) override
       {
         Function<dim>::set_time(time);
         gap.set_time(time);
-        motion.set_time(time);
-        for (unsigned int c = 0; c < dim; ++c)
-          translation[c] = motion.value(Point<dim>(), c);
+        placement = Placement<dim>(motion, rotation, placement.center, time);
       }
 
       double
       value(const Point<dim> &p, const unsigned int = 0) const override
       {
-        return gap.value(p - translation);
+        return gap.value(placement.origin_of(p));
       }
 
     private:
       Function<dim> &gap;
-      Function<dim> &motion;
-      Tensor<1, dim> translation;
+      Function<dim> *motion;
+      Function<dim> *rotation;
+      Placement<dim> placement;
     };
   } // namespace
 
@@ -103,8 +189,11 @@ namespace ViscoContact
                             entries.slip_bound,
                             parameters.lengths);
           }
-        std::unique_ptr<FunctionParser<dim>> motion;
+        // A rigid motion of the obstacle: a translation o(t), a rotation
+        // about c + o(t).
+        std::unique_ptr<FunctionParser<dim>> motion, rotation;
         std::unique_ptr<Function<dim>>       moved_gap;
+        Point<dim>                           center;
         if (!is_zero_expression(entries.obstacle_motion))
           {
             motion = std::make_unique<FunctionParser<dim>>(dim);
@@ -113,11 +202,34 @@ namespace ViscoContact
                             "Obstacle motion",
                             entries.obstacle_motion,
                             parameters.lengths);
+          }
+        if (!is_zero_expression(entries.obstacle_rotation))
+          {
+            rotation = std::make_unique<FunctionParser<dim>>(dim == 2 ? 1 : 3);
+            initialize_load(*rotation,
+                            zone.subsection,
+                            "Obstacle rotation",
+                            entries.obstacle_rotation,
+                            parameters.lengths);
+            FunctionParser<dim> center_function(dim);
+            initialize_load(center_function,
+                            zone.subsection,
+                            "Rotation center",
+                            entries.rotation_center,
+                            parameters.lengths);
+            for (unsigned int c = 0; c < dim; ++c)
+              center[c] = center_function.value(Point<dim>(), c);
+          }
+        if (motion || rotation)
+          {
             any_motion = true;
             if (gap)
               {
                 moved_gap
-                  = std::make_unique<MovedObstacleGap<dim>>(*gap, *motion);
+                  = std::make_unique<MovedObstacleGap<dim>>(*gap,
+                                                            motion.get(),
+                                                            rotation.get(),
+                                                            center);
                 time_dependent_gap = true;
               }
           }
@@ -139,6 +251,8 @@ namespace ViscoContact
         gap_functions.push_back(std::move(gap));
         moved_gap_functions.push_back(std::move(moved_gap));
         motion_functions.push_back(std::move(motion));
+        rotation_functions.push_back(std::move(rotation));
+        rotation_centers.push_back(center);
         slip_bound_functions.push_back(std::move(slip_bound));
       }
   }
@@ -297,19 +411,26 @@ namespace ViscoContact
 
 
 
+  // The point at x at the start goes to place_end(origin_start(x)): the
+  // step is that less x, affine in x.
   template <int dim>
-  std::vector<Tensor<1, dim>>
+  std::vector<ObstacleStep<dim>>
   ContactZones<dim>::obstacle_steps(const double start, const double end) const
   {
-    std::vector<Tensor<1, dim>> steps(zones.size());
+    std::vector<ObstacleStep<dim>> steps(zones.size());
     for (unsigned int zone = 0; zone < zones.size(); ++zone)
-      if (FunctionParser<dim> *motion = motion_functions[zone].get())
-        for (const auto &[time, sign] : {std::pair{end, 1.}, {start, -1.}})
-          {
-            motion->set_time(time);
-            for (unsigned int c = 0; c < dim; ++c)
-              steps[zone][c] += sign * motion->value(Point<dim>(), c);
-          }
+      {
+        Function<dim> *motion   = motion_functions[zone].get();
+        Function<dim> *rotation = rotation_functions[zone].get();
+        if (!motion && !rotation)
+          continue;
+        const Point<dim>    &center = rotation_centers[zone];
+        const Placement<dim> before(motion, rotation, center, start);
+        const Placement<dim> after(motion, rotation, center, end);
+        const Tensor<2, dim> turn = after.rotation * transpose(before.rotation);
+        steps[zone].linear        = turn - unit_symmetric_tensor<dim>();
+        steps[zone].shift         = after.place(before.origin_of(Point<dim>()));
+      }
     return steps;
   }
 

@@ -301,7 +301,8 @@ namespace ViscoContact
                     const AffineConstraints<double> &hanging_constraints) const;
     void
     set_weakening_from(const VectorType &field);
-    // A moving obstacle: each zone's translation over the step, whose
+    // A moving obstacle: each zone's displacement over the step at the
+    // nodes' places, whose
     // tangential components at every frictional node become the node's
     // obstacle slip (ContactNodes::set_obstacle_slip()).
     void

@@ -1143,11 +1143,13 @@ namespace ViscoContact
           "its length the angle (3D, three expressions separated by ';'), in "
           "t (0: the obstacle does not turn). A point X of the obstacle at "
           "t = 0 is at c + o(t) + R(t) (X - c); the gap at x is s(c + R(t)^T "
-          "(x - c - o(t)), t), so Initial gap must describe the obstacle in "
-          "x and y (and z): a cylinder of radius 2 over x = 1, its axis at "
-          "y = 3: \"3 - sqrt(4 - (x - 1)^2) - y\". A wheel rolling along x "
-          "at speed V: Obstacle motion = \"V * t; 0\", Obstacle rotation = "
-          "\"-V * t / 2\". Not on a contact pair.",
+          "(x - c - o(t)), t), so Initial gap must be a distance the rotation "
+          "leaves as it is: for a cylinder of radius 2, its axis at x = 1, "
+          "y = 3, the distance \"sqrt((x - 1)^2 + (y - 3)^2) - 2\" (a gap "
+          "measured along a fixed direction would turn with the obstacle). A "
+          "wheel of radius 2 rolling along x at speed V: Obstacle motion = "
+          "\"V * t; 0\", Obstacle rotation = \"-V * t / 2\", Rotation center "
+          "= \"1; 3\". Not on a contact pair.",
           Patterns::Anything());
         prm.add_parameter(
           "Rotation center",

@@ -309,6 +309,19 @@ check_turning() { # NAME
 turning "1; 3" "0; -0.01 * min(t, 1)" "0.05 * max(t - 1, 0)" > variant.prm
 run_scene variant.prm 1 "cylinder turned in place"
 check_turning "cylinder turned in place"
+# Node by node: once the turn is steady the block no longer moves, so a
+# node's slip in the step is minus the obstacle's displacement at its
+# place, tau . (R(dtheta) - I) (x - c), c = (1, 2.99) the moved axis,
+# dtheta = 0.05 / 16: at (x, 1) it is (cos dtheta - 1) (x - 1) + 1.99 sin
+# dtheta along x (relative 1e-6 of it, the block's own increment).
+awk -F, 'FNR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+         $col["friction_state"] == 2 {
+           d = 0.05 / 16; expected = -((cos(d) - 1) * ($1 - 1) + 1.99 * sin(d))
+           e = $col["slip_x"] - expected; if (e < 0) e = -e
+           if (e > 1e-6 * -expected) { print "node at x = " $1 ": slip " $col["slip_x"] ", expected " expected; exit 1 }
+           ++n }
+         END { if (n < 10) { print n " slipping nodes in the profile"; exit 1 } }' \
+  results/contact_profile_0032.csv || fail "cylinder turned in place: the slip of the nodes"
 without_wall_time() { awk -F, -v OFS=, '{ $9 = ""; print }' "$1"; }
 without_wall_time results/time_series.csv > turned_in_place.csv
 turning "1; 1" "2 * sin(0.05 * max(t - 1, 0)); 2 - 2 * cos(0.05 * max(t - 1, 0)) - 0.01 * min(t, 1)" \
@@ -317,6 +330,26 @@ run_scene variant.prm 2 "cylinder turned about the contact point, 2 ranks"
 without_wall_time results/time_series.csv > turned_about_contact.csv
 numdiff -q -a 1e-12 -r 1e-9 turned_in_place.csv turned_about_contact.csv \
   || fail "the same turn about another center: other steps"
+# Rolled (the shipped scene): from t = 1.5 on both sticking and slipping
+# nodes, the slipping ones behind the sticking ones (the trailing edge,
+# as in Carter's rolling contact), and a tangential force along +x of
+# 0.2 to 0.4 mu N (observed 0.21 to 0.33: the creep of rolling on an
+# elastic block).
+set_entry "Output directory" results < "$here/../parameters/rolling_cylinder.prm" > variant.prm
+run_scene variant.prm 2 "rolling cylinder, 2 ranks"
+awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+         $col["time"] >= 1.5 {
+           N = $col["total_contact_force"]; F = $col["tangential_force_zone_1_x"]
+           if ($col["stick_nodes"] == 0 || $col["slip_nodes"] == 0 || F < 0.2 * 0.3 * N || F > 0.4 * 0.3 * N) {
+             print "at t = " $col["time"] " F = " F ", N = " N ", " $col["stick_nodes"] " sticking, " \
+                   $col["slip_nodes"] " slipping"; exit 1 } }' results/time_series.csv \
+  || fail "rolling cylinder: forces"
+awk -F, 'FNR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+         $col["friction_state"] == 2 && (last_slip == "" || $1 > last_slip) { last_slip = $1 }
+         $col["friction_state"] == 1 && (first_stick == "" || $1 < first_stick) { first_stick = $1 }
+         END { if (first_stick == "" || last_slip == "" || last_slip > first_stick) {
+                 print "slip up to x = " last_slip ", stick from x = " first_stick; exit 1 } }' \
+  results/contact_profile_0032.csv || fail "rolling cylinder: slip behind the stick zone"
 if [ -z "$quick" ]; then
   sed -e "s|^\( *set Initial gap *=\).*|\1 sqrt((x - 1)^2 + (y - 3)^2 + z^2) - 2|" \
       -e "s|^\( *set Obstacle motion *=\).*|\1 0; -0.01 * min(t, 1); 0\n  set Obstacle rotation = 0; 0; 0.05 * max(t - 1, 0)\n  set Rotation center = 1; 3; 0|" \
@@ -340,4 +373,4 @@ if [ -z "$quick" ]; then
     END { if (turned != 16) { print "3D sphere turned in place: " turned " steps of the turn"; exit 1 } }' \
     results/time_series.csv || exit 1
 fi
-echo "Sliding block: F balances the reaction, sticks below and equals the bound mu N or g W at full slip, slip 0.0025 per step (Coulomb, Tresca, 2D/3D, all cell types, both back ends, 1 and 2 ranks); the same with the support moving instead (three back ends); a dragged cylinder at F = mu N, and one turned in place (2D, 3D, about two centers); slip and rate weakening node by node; pushed obliquely, F turns toward the push by a factor of about 0.78 per step."
+echo "Sliding block: F balances the reaction, sticks below and equals the bound mu N or g W at full slip, slip 0.0025 per step (Coulomb, Tresca, 2D/3D, all cell types, both back ends, 1 and 2 ranks); the same with the support moving instead (three back ends); a dragged cylinder at F = mu N, one turned in place (2D, 3D, about two centers; each node's slip), one rolled (slipping behind its stick zone); slip and rate weakening node by node; pushed obliquely, F turns toward the push by a factor of about 0.78 per step."

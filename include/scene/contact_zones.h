@@ -24,7 +24,8 @@ namespace ViscoContact
   // vector from the body into the obstacle, or the boundary's normals),
   // its tangential law (TangentialLaw::from_parameters()), its memory
   // kernel (NormalMemory::Kernel::from_parameters()), the obstacle's gap
-  // s(x, t) along the direction and its rigid translation o(t), and
+  // s(x, t) along the direction and its rigid motion (a translation o(t),
+  // a rotation about a moving center), and
   // Tresca's slip bound as functions of x (and t) where they are given. A zone
   // whose law does nothing (no layer, no rigid limit) has no contact nodes and
   // is left out. A bad expression stops the run here, naming the zone's
@@ -75,9 +76,10 @@ namespace ViscoContact
     gaps() const;
     std::vector<const Function<dim> *>
     slip_bounds() const;
-    // Whether some zone's obstacle moves (Obstacle motion), and each
-    // zone's translation from the time start to the time end (zero where
-    // it does not move). A moving zone's gap function is that of the
+    // Whether some zone's obstacle moves (Obstacle motion, Obstacle
+    // rotation), and each zone's displacement of the obstacle's points
+    // from the time start to the time end (an affine map of the place; zero
+    // where it does not move). A moving zone's gap function is that of the
     // moved obstacle, s(x - o(t), t), or with a rotation R(t) about the
     // point c, s(c + R(t)^T (x - c - o(t)), t).
     bool

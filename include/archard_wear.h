@@ -20,45 +20,27 @@ namespace ViscoContact
   // n + 1 (exact for a constant pressure and slip rate, first order in k
   // otherwise); within a step the gap is fixed, so the step problem is that
   // of the law without wear.
-  class ArchardWear : public ContactHistory
+  class ArchardWear : public NodeValueHistory
   {
   public:
     // The wear coefficient of every zone (0: no wear) and the zone of every
-    // contact node of this rank; no node is worn at the start.
+    // contact node of this rank; no node is worn at the start. The value of
+    // a node is its worn depth.
     void
     reinit(const std::vector<double>       &zone_coefficients,
            const std::vector<unsigned int> &node_zones);
 
-    bool
-    active() const override;
-    // Per node: the worn depth.
-    unsigned int
-    n_variables() const override;
-    unsigned int
-    n_nodes() const override;
-    double
-    variable(const unsigned int i, const unsigned int v) const override;
-    void
-    set_variable(const unsigned int i,
-                 const unsigned int v,
-                 const double       x) override;
-
-    // The worn depths on the nodes (they move the gaps); the step's own
-    // length does not enter (the wear of a step is in its slip).
-    void
-    start_step(const double k, ContactNodes &nodes) override;
     // w += k_w max(p, 0) |slip| with the pressures and the slips of the
     // accepted step (ContactNodes::step_slip(), after accept_slip()).
     void
     accept_step(const ContactNodes &nodes) override;
-    void
-    apply_accepted(ContactNodes &nodes) const override;
 
   private:
-    std::vector<double>       coefficients;
-    std::vector<unsigned int> zones;
-    bool                      any_wear = false;
-    std::vector<double>       depths;
+    // The worn depths move the gaps.
+    void
+    apply(ContactNodes &nodes) const override;
+
+    std::vector<double> coefficients;
   };
 } // namespace ViscoContact
 

@@ -21,44 +21,19 @@ namespace ViscoContact
   // a plateau at the tension reached (explicit damage: a monotone law,
   // first order in k; ContactLaw::piece()). After the step,
   // m = max(m, -r); an initial gap s counts as an opening already reached.
-  class CohesiveDamage : public ContactHistory
+  class CohesiveDamage : public NodeValueHistory
   {
   public:
-    // Whether each zone has a cohesive interface, and the zone of every
-    // contact node of this rank; no node has opened at the start.
-    void
-    reinit(const std::vector<bool>         &zone_cohesion,
-           const std::vector<unsigned int> &node_zones);
-
-    bool
-    active() const override;
-    // Per node: the largest opening reached.
-    unsigned int
-    n_variables() const override;
-    unsigned int
-    n_nodes() const override;
-    double
-    variable(const unsigned int i, const unsigned int v) const override;
-    void
-    set_variable(const unsigned int i,
-                 const unsigned int v,
-                 const double       x) override;
-
-    // The reached openings on the nodes (the step's length does not enter:
-    // the damage is rate-independent).
-    void
-    start_step(const double k, ContactNodes &nodes) override;
-    // m = max(m, -r) with r of the accepted step.
+    // m = max(m, -r) at the nodes of a cohesive zone (NodeValueHistory::
+    // reinit(): whether each zone has a cohesive interface; no node has
+    // opened at the start).
     void
     accept_step(const ContactNodes &nodes) override;
-    void
-    apply_accepted(ContactNodes &nodes) const override;
 
   private:
-    std::vector<bool>         cohesion;
-    std::vector<unsigned int> zones;
-    bool                      any_cohesion = false;
-    std::vector<double>       openings;
+    // The reached openings cut the nodes' laws.
+    void
+    apply(ContactNodes &nodes) const override;
   };
 } // namespace ViscoContact
 

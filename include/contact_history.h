@@ -85,6 +85,59 @@ namespace ViscoContact
     n_nodal_fields(const unsigned int dim) const;
   };
 
+  // @sect3{A history of one variable per node}
+  //
+  // The common form of a law whose history is one number per contact node
+  // (the worn depth, the reached cohesive opening): zero at the start, in
+  // the zones that have the law. The nodes get the values of the last
+  // accepted step for every step (apply()); what the law adds after a step
+  // is its own accept_step().
+  class NodeValueHistory : public ContactHistory
+  {
+  public:
+    // Whether each zone has the law, and the zone of every contact node of
+    // this rank; every value is zero.
+    void
+    reinit(const std::vector<bool>         &zone_has_law,
+           const std::vector<unsigned int> &node_zones);
+
+    bool
+    active() const override;
+    unsigned int
+    n_variables() const override;
+    unsigned int
+    n_nodes() const override;
+    double
+    variable(const unsigned int i, const unsigned int v) const override;
+    void
+    set_variable(const unsigned int i,
+                 const unsigned int v,
+                 const double       x) override;
+
+    // The values on the nodes; the step's own length does not enter.
+    void
+    start_step(const double k, ContactNodes &nodes) override;
+    void
+    apply_accepted(ContactNodes &nodes) const override;
+
+  protected:
+    // Whether node i's zone has the law, and its zone.
+    bool
+    has_law(const unsigned int i) const;
+    unsigned int
+    zone(const unsigned int i) const;
+    // The values of the last accepted step given to the nodes.
+    virtual void
+    apply(ContactNodes &nodes) const = 0;
+
+    std::vector<double> values;
+
+  private:
+    std::vector<bool>         zone_has_law;
+    std::vector<unsigned int> zones;
+    bool                      any = false;
+  };
+
   // The nodal fields of several histories, one after the other (with their
   // ghosts: the vector is filled without reallocation, since a copy of a
   // distributed vector drops its ghost values); and the histories restored

@@ -393,6 +393,16 @@ namespace ViscoContact
     set_state_from(const VectorType &u,
                    const VectorType &pressure,
                    const bool        with_friction);
+    // With friction, for the step cycles (uniformly refined meshes, no
+    // hanging nodes): the tangential traction t_i / w_i as a vector at the
+    // dofs of each node, zero elsewhere, with the ghosts. And back: each
+    // node's tangential displacement s from u and its tangential force
+    // t = w tau_j . f from such a field f, which set_state_from() with
+    // friction then takes to stick or slip.
+    VectorType
+    tangential_traction_field(const VectorType &layout) const;
+    void
+    set_tangential_state_from(const VectorType &u, const VectorType &traction);
 
     // The nodal contact fields of the output (in the scalar layout) at the
     // contact nodes of this rank, zero elsewhere, named by

@@ -4,9 +4,98 @@
 #include "contact_history.h"
 #include "contact_set.h"
 
+#include <algorithm>
+
 namespace ViscoContact
 {
   using namespace dealii;
+
+  void
+  NodeValueHistory::reinit(const std::vector<bool>         &zone_has_law,
+                           const std::vector<unsigned int> &node_zones)
+  {
+    this->zone_has_law = zone_has_law;
+    zones              = node_zones;
+    any = std::find(zone_has_law.begin(), zone_has_law.end(), true)
+          != zone_has_law.end();
+    values.assign(zones.size(), 0.);
+  }
+
+
+
+  bool
+  NodeValueHistory::active() const
+  {
+    return any;
+  }
+
+
+
+  unsigned int
+  NodeValueHistory::n_variables() const
+  {
+    return 1;
+  }
+
+
+
+  unsigned int
+  NodeValueHistory::n_nodes() const
+  {
+    return zones.size();
+  }
+
+
+
+  double
+  NodeValueHistory::variable(const unsigned int i, const unsigned int) const
+  {
+    return values[i];
+  }
+
+
+
+  void
+  NodeValueHistory::set_variable(const unsigned int i,
+                                 const unsigned int,
+                                 const double x)
+  {
+    values[i] = x;
+  }
+
+
+
+  void
+  NodeValueHistory::start_step(const double, ContactNodes &nodes)
+  {
+    apply(nodes);
+  }
+
+
+
+  void
+  NodeValueHistory::apply_accepted(ContactNodes &nodes) const
+  {
+    apply(nodes);
+  }
+
+
+
+  bool
+  NodeValueHistory::has_law(const unsigned int i) const
+  {
+    return zone_has_law[zones[i]];
+  }
+
+
+
+  unsigned int
+  NodeValueHistory::zone(const unsigned int i) const
+  {
+    return zones[i];
+  }
+
+
 
   unsigned int
   ContactHistory::n_nodal_fields(const unsigned int dim) const

@@ -1097,7 +1097,9 @@ namespace ViscoContact
   // glue's sloped piece, -L < r <= 0, with a bonding beta > 0, whatever the
   // rounding of its force at r = 0; a node separated beyond L counts as
   // out of contact; or by a cohesive interface: on a piece of its envelope
-  // or its secant that carries a tension), 0 out of contact.
+  // or its secant that carries a tension, or with a tension from the step,
+  // which explicit damage takes from the opening reached before it while
+  // the node has opened beyond delta_f in it), 0 out of contact.
   unsigned int
   ContactNodes::status(const unsigned int i) const
   {
@@ -1105,7 +1107,8 @@ namespace ViscoContact
     if (piece.rigid)
       return 2;
     if (r[i] > 0 || z[i] > 0 || (piece.adhesive && piece.slope > 0)
-        || (piece.cohesive && (piece.slope != 0 || piece.intercept != 0)))
+        || (piece.cohesive && (piece.slope != 0 || piece.intercept != 0))
+        || (z[i] < 0 && contact_laws.zone_law(node_zones[i]).has_cohesion()))
       return 1;
     return 0;
   }

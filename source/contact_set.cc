@@ -961,6 +961,42 @@ namespace ViscoContact
 
 
 
+  template <int dim>
+  VectorType
+  ContactSet<dim>::tangential_traction_field(const VectorType &layout) const
+  {
+    VectorType field(layout);
+    field = 0;
+    for (unsigned int i = 0; i < size(); ++i)
+      {
+        const Tensor<1, dim> traction = tangential_vector(i, t[i]) / weight(i);
+        for (unsigned int c = 0; c < dim; ++c)
+          field.local_element(node(i).local_dofs[c]) = traction[c];
+      }
+    field.update_ghost_values();
+    return field;
+  }
+
+
+
+  template <int dim>
+  void
+  ContactSet<dim>::set_tangential_state_from(const VectorType &u,
+                                             const VectorType &traction)
+  {
+    s = tangential_displacements(u);
+    for (unsigned int i = 0; i < size(); ++i)
+      {
+        Tensor<1, dim> f;
+        for (unsigned int c = 0; c < dim; ++c)
+          f[c] = traction.local_element(node(i).local_dofs[c]);
+        for (unsigned int j = 0; j < geometry[i].n_tangents; ++j)
+          t[i][j] = weight(i) * (geometry[i].tangents[j] * f);
+      }
+  }
+
+
+
   // @sect4{ContactSet::fill_output_fields}
   //
   // The nodal contact fields of the graphical output, in the layout of the

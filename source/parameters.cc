@@ -12,6 +12,7 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <tuple>
 #include <regex>
 #include <sstream>
 
@@ -1364,36 +1365,26 @@ namespace ViscoContact
                     slip_bound,
                     "a finite bound g >= 0");
           }
-        if (!is_zero_vector(obstacle_motion))
-          {
-            require(!mentions(obstacle_motion, "[xyz]"),
-                    subsection,
-                    "Obstacle motion",
-                    obstacle_motion,
-                    "expressions of the time t alone (a rigid translation), "
-                    "not of the position x, y (, z)");
-            require(opposite_ids.empty(),
-                    subsection,
-                    "Obstacle motion",
-                    obstacle_motion,
-                    "0 on a contact pair (Opposite boundary ids): the other "
-                    "body moves by its own boundary conditions");
-          }
-        if (!is_zero_vector(obstacle_rotation))
-          {
-            require(!mentions(obstacle_rotation, "[xyz]"),
-                    subsection,
-                    "Obstacle rotation",
-                    obstacle_rotation,
-                    "expressions of the time t alone (a rigid rotation), "
-                    "not of the position x, y (, z)");
-            require(opposite_ids.empty(),
-                    subsection,
-                    "Obstacle rotation",
-                    obstacle_rotation,
-                    "0 on a contact pair (Opposite boundary ids): the other "
-                    "body moves by its own boundary conditions");
-          }
+        // The obstacle's rigid motion: functions of t alone, and none on a
+        // contact pair.
+        for (const auto &[entry, value, kind] :
+             {std::tuple{"Obstacle motion", &obstacle_motion, "translation"},
+              std::tuple{"Obstacle rotation", &obstacle_rotation, "rotation"}})
+          if (!is_zero_vector(*value))
+            {
+              require(!mentions(*value, "[xyz]"),
+                      subsection,
+                      entry,
+                      *value,
+                      std::string("expressions of the time t alone (a rigid ")
+                        + kind + "), not of the position x, y (, z)");
+              require(opposite_ids.empty(),
+                      subsection,
+                      entry,
+                      *value,
+                      "0 on a contact pair (Opposite boundary ids): the other "
+                      "body moves by its own boundary conditions");
+            }
         require(!mentions(rotation_center, "[xyzt]"),
                 subsection,
                 "Rotation center",
@@ -2699,8 +2690,8 @@ namespace ViscoContact
     // of the run must be theirs refined uniformly (no graded or adapted
     // mesh), and the coarse problem must be the step problem restricted to
     // them, which holds for the explicit update's fixed operator K with its
-    // history load; friction would need the slip of the last step on each
-    // coarser mesh, which they do not keep.
+    // history load (the laws' histories and the friction state are injected
+    // into them every step, StepCycles::inject_contact_state()).
     void
     AllParameters::check_step_cycles() const
     {
@@ -2758,29 +2749,6 @@ namespace ViscoContact
                     "0 with Stress update = implicit euler and a "
                     "viscoplastic material (the coarser meshes solve the "
                     "explicit update's step problem)");
-      for (const ContactZone &zone : used_contact_zones())
-        refuse_unless(zone.contact->tangential_law
-                        == TangentialLawType::frictionless,
-                      "0 with friction (Tangential law in subsection <"
-                        + zone.subsection
-                        + ">): the coarser meshes do not keep the slip of "
-                          "the last step");
-      for (const ContactZone &zone : used_contact_zones())
-        refuse_unless(zone.contact->memory_weights.empty(),
-                      "0 with a memory term (Memory weights in subsection <"
-                        + zone.subsection
-                        + ">): the coarser meshes do not keep its history");
-      for (const ContactZone &zone : used_contact_zones())
-        refuse_unless(zone.contact->adhesion_stiffness == 0,
-                      "0 with adhesion (Adhesion stiffness in subsection <"
-                        + zone.subsection
-                        + ">): the coarser meshes do not keep the bonding");
-      for (const ContactZone &zone : used_contact_zones())
-        refuse_unless(zone.contact->cohesive_strength == 0,
-                      "0 with a cohesive interface (Cohesive strength in "
-                      "subsection <"
-                        + zone.subsection
-                        + ">): the coarser meshes do not keep its damage");
     }
 
     // Profile times within the run, and schedules of a size the run can

@@ -128,7 +128,7 @@ namespace ViscoContact
                                   solution,
                                   contact_enabled ? &contact_set : nullptr);
         if (step_cycles.due(*this))
-          step_cycles.start_from_coarser_mesh(*this);
+          step_cycles.start_from_coarser_mesh(*this, start.solution);
         // The step starts with the displacement prescribed at t_n (the
         // implicit update's first Newton iterate must have it).
         if (prescribed.has_values())

@@ -1,6 +1,7 @@
 #ifndef viscoplastic_contact_step_cycles_h
 #define viscoplastic_contact_step_cycles_h
 
+#include "back_ends/linear_algebra.h"
 #include "contact_nodes.h"
 
 #include <memory>
@@ -71,9 +72,11 @@ namespace ViscoContact
     // predicted: the coarser problem is solved from the injected start, and
     // its u and contact pressure are prolongated into problem's start where
     // the coarser iteration found the start off (three iterations or more).
-    // A coarser solve that fails leaves the start as it was.
+    // A coarser solve that fails leaves the start as it was. step_start is
+    // u_{n-1}, where the slip of the step is measured from.
     void
-    start_from_coarser_mesh(ViscoplasticContact<dim> &problem);
+    start_from_coarser_mesh(ViscoplasticContact<dim> &problem,
+                            const VectorType         &step_start);
     // A new mesh (or the end of the problem): the coarser problem goes,
     // before the DoFHandlers its transfer refers to.
     void
@@ -87,6 +90,9 @@ namespace ViscoContact
     struct CoarserProblem;
     void
     set_up(ViscoplasticContact<dim> &problem);
+    void
+    inject_contact_state(const ViscoplasticContact<dim> &problem,
+                         const VectorType               &coarse_step_start);
 
     std::unique_ptr<CoarserProblem> coarser;
     ActiveSetResult                 last_result;

@@ -113,6 +113,20 @@ namespace ViscoContact
             dst.local_element(to_indices[s * dim + c]) = to.local_element(s);
         }
     }
+
+    // A nodal field of this mesh in the displacement layout injected into
+    // the coarser mesh's (that of layout), with its ghosts.
+    VectorType
+    injected(const VectorType &field, const VectorType &layout) const
+    {
+      std::vector<unsigned int> all_components(dim);
+      std::iota(all_components.begin(), all_components.end(), 0);
+      VectorType coarse_field(layout);
+      coarse_field = 0;
+      transfer_components(field, coarse_field, false, all_components, true);
+      coarse_field.update_ghost_values();
+      return coarse_field;
+    }
   };
 
 
@@ -238,10 +252,67 @@ namespace ViscoContact
 
 
 
+  // @sect4{StepCycles::inject_contact_state}
+  //
+  // The laws' state at the start of the step, injected into the coarser
+  // mesh's contact nodes (each a contact node of this mesh at the same
+  // vertex), so that the coarser problem is this step's problem there: the
+  // histories of the laws (memory, bonding, wear, damage) as the last
+  // accepted step left them, then their law for this step; with friction
+  // the slip measured from u_{n-1} (step_start) in the coarser mesh's own
+  // tangential frames, the weakening variables, the obstacle's step, and
+  // every node stuck at the start, as after set-up (so that the coarser
+  // problem keeps no state between steps). coarse_step_start is u_{n-1}
+  // injected.
+  template <int dim>
+  void
+  StepCycles<dim>::inject_contact_state(const ViscoplasticContact<dim> &problem,
+                                        const VectorType &coarse_step_start)
+  {
+    ViscoplasticContact<dim> &coarse = *coarser->problem;
+    ContactSet<dim>          &nodes  = coarse.contact_set;
+    const auto                inject = [&](const VectorType &field) {
+      return coarser->injected(field, coarse.solution);
+    };
+
+    std::vector<VectorType> histories;
+    for (const VectorType &field :
+         nodal_fields_of(problem.contact_histories.all(),
+                         problem.contact_set,
+                         problem.solution,
+                         problem.prescribed.hanging_node_constraints()))
+      histories.push_back(inject(field));
+    restore_from_nodal_fields(coarse.contact_histories.all(), nodes, histories);
+    for (ContactHistory *history : coarse.contact_histories.all())
+      if (history->active())
+        history->start_step(problem.schedule.step_length(), nodes);
+
+    if (!nodes.has_friction())
+      return;
+    for (unsigned int i = 0; i < nodes.size(); ++i)
+      if (nodes.n_tangential(i) > 0)
+        nodes.set_friction_state(i, ContactNodes::stick);
+    nodes.reset_slip(
+      nodes.tangential_displacements(coarse_step_start),
+      std::vector<ContactNodes::Tangential>(nodes.size(),
+                                            ContactNodes::Tangential{{0, 0}}));
+    if (nodes.has_slip_weakening())
+      nodes.set_weakening_from(inject(problem.contact_set.weakening_field(
+        problem.solution,
+        problem.prescribed.hanging_node_constraints())));
+    if (coarse.contact_zones.has_obstacle_motion())
+      nodes.set_obstacle_steps(
+        coarse.contact_zones.obstacle_steps(problem.schedule.current_time(),
+                                            problem.schedule.next_time()));
+  }
+
+
+
   // @sect4{StepCycles::start_from_coarser_mesh}
   template <int dim>
   void
-  StepCycles<dim>::start_from_coarser_mesh(ViscoplasticContact<dim> &problem)
+  StepCycles<dim>::start_from_coarser_mesh(ViscoplasticContact<dim> &problem,
+                                           const VectorType         &step_start)
   {
     if (!coarser)
       set_up(problem);
@@ -284,6 +355,9 @@ namespace ViscoContact
     coarse.prescribed.distribute(coarse.solution, coarse.constraints);
     coarse.solution.update_ghost_values();
     coarse_pressure.update_ghost_values();
+    const VectorType coarse_step_start
+      = transfer.injected(step_start, coarse.solution);
+    inject_contact_state(problem, coarse_step_start);
     coarse.contact_set.set_state_from(coarse.solution,
                                       coarse_pressure,
                                       /*with_friction=*/false);
@@ -292,7 +366,7 @@ namespace ViscoContact
     const unsigned int deeper_iterations
       = coarse.report.step_cycle_iterations();
     if (coarse.step_cycles.due(coarse))
-      coarse.step_cycles.start_from_coarser_mesh(coarse);
+      coarse.step_cycles.start_from_coarser_mesh(coarse, coarse_step_start);
     last_result = coarse.solve_contact_problem(coarse.system_rhs);
     problem.report.count_step_cycle_iterations(
       last_result.iterations() + coarse.report.step_cycle_iterations()
@@ -329,9 +403,25 @@ namespace ViscoContact
     problem.prescribed.distribute(problem.solution, problem.constraints);
     problem.solution.update_ghost_values();
     pressure.update_ghost_values();
+    // With friction the coarser mesh's tangential tractions too, so that
+    // the nodes the front reached start stuck or slipping as there.
+    const bool with_friction = problem.contact_set.has_friction();
+    if (with_friction)
+      {
+        VectorType traction(problem.solution);
+        traction = 0;
+        transfer.transfer_components(
+          coarse.contact_set.tangential_traction_field(coarse.solution),
+          traction,
+          true,
+          all_components);
+        traction.update_ghost_values();
+        problem.contact_set.set_tangential_state_from(problem.solution,
+                                                      traction);
+      }
     problem.contact_set.set_state_from(problem.solution,
                                        pressure,
-                                       /*with_friction=*/false);
+                                       with_friction);
   }
 
 

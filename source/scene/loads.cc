@@ -81,13 +81,14 @@ namespace ViscoContact
     const unsigned int n_parts
       = Utilities::split_string_list(expression, ';').size();
     AssertThrow(n_parts == n_components,
-                ExcMessage(
-                  "Invalid parameter <" + entry + "> in subsection <"
-                  + subsection + ">: value <" + expression
-                  + ">; accepted: " + std::to_string(n_components)
-                  + (n_components == 1 ? " expression" : " expressions")
-                  + " separated by ';' (one per displacement "
-                    "component)."));
+                ExcMessage("Invalid parameter <" + entry + "> in subsection <"
+                           + subsection + ">: value <" + expression
+                           + ">; accepted: "
+                           + (n_components == 1
+                                ? std::string("one expression, without ';'.")
+                                : std::to_string(n_components)
+                                    + " expressions separated by ';', one per "
+                                      "component.")));
     // The constants every load expression may use.
     std::map<std::string, double> constants;
     for (unsigned int d = 0; d < lengths.size(); ++d)

@@ -82,7 +82,8 @@ TEST(RunPlan, StepCyclesReasons)
                       false);
   friction.choose_step_cycles(false);
   EXPECT_EQ(friction.step_cycles(), 0u);
-  EXPECT_EQ(friction.step_cycles_reason(), "friction");
+  EXPECT_EQ(friction.step_cycles_reason(),
+            "friction: not measured with it; set Step cycles to run them");
 }
 
 // A step beyond Maximum number of steps stops the run, naming the entry.

@@ -83,7 +83,8 @@ TEST(RunPlan, StepCyclesReasons)
   friction.choose_step_cycles(false);
   EXPECT_EQ(friction.step_cycles(), 0u);
   EXPECT_EQ(friction.step_cycles_reason(),
-            "friction: not measured with it; set Step cycles to run them");
+            "friction: on the frictional cube they saved no active-set "
+            "iteration; set Step cycles to run them");
 }
 
 // A step beyond Maximum number of steps stops the run, naming the entry.

@@ -450,10 +450,8 @@ namespace ViscoContact
     // zone and its direction: the zone's or the weighted normal, without
     // the components that are constrained, normalised. A vertex whose
     // direction lies in its constrained components (a clamped corner, a
-    // hanging node) is not a contact node. Returns the message for a
-    // frictional node on an oblique plane of symmetry (else empty); not
-    // collective.
-    std::string
+    // hanging node) is not a contact node. Not collective.
+    void
     find_nodes(const std::vector<ContactZoneDescription<dim>> &zones,
                const DoFHandler<dim>                          &dof_handler,
                const DoFHandler<dim>             &scalar_dof_handler,

@@ -20,7 +20,6 @@
 
 #include "contact_pairs/contact_pairs.h"
 #include "contact_set.h"
-#include "robustness/file_output.h"
 
 #include <algorithm>
 #include <cmath>
@@ -212,13 +211,12 @@ namespace ViscoContact
       pass_on_hanging_values(*vector, hanging_constraints, layout);
 
     gaps.clear();
-    const std::string problem = find_nodes(zones,
-                                           dof_handler,
-                                           scalar_dof_handler,
-                                           constraints,
-                                           *layout.get_partitioner(),
-                                           weighted_normals);
-    FileOutput::agree_on_problem(problem, communicator);
+    find_nodes(zones,
+               dof_handler,
+               scalar_dof_handler,
+               constraints,
+               *layout.get_partitioner(),
+               weighted_normals);
 
     // Along Gamma_3: the order of the contact profiles.
     std::sort(geometry.begin(),
@@ -438,7 +436,7 @@ namespace ViscoContact
   // their own (the corner of Gamma_3 on Gamma_1; hanging nodes, which the
   // refinement toward Gamma_3 in refine_mesh() keeps off it).
   template <int dim>
-  std::string
+  void
   ContactSet<dim>::find_nodes(
     const std::vector<ContactZoneDescription<dim>> &zones,
     const DoFHandler<dim>                          &dof_handler,
@@ -448,7 +446,6 @@ namespace ViscoContact
     const VectorType                               &weighted_normals)
   {
     geometry.clear();
-    std::string                       problem;
     std::set<types::global_dof_index> seen;
     // Every vertex of every contact face of the owned and ghost cells, once
     // (the set seen remembers the x-dofs taken), zone by zone: a vertex of
@@ -501,43 +498,15 @@ namespace ViscoContact
                   node.direction = frame.direction;
                   if (node.normal.norm() == 0)
                     continue;
-                  // The tangential frame, in a frictional zone only. Its
-                  // rows must be orthonormal on the dofs (the back ends
-                  // couple a slipping node's tangential force to its normal
-                  // one along them), which an oblique plane of symmetry
-                  // breaks.
+                  // The tangential frame, in a frictional zone only. On an
+                  // oblique plane of symmetry its rows are not orthonormal
+                  // on the dofs; the back ends read the forces along them
+                  // with the dual rows.
                   if (zones[zone].friction->has_friction())
                     {
                       node.n_tangents   = frame.n_tangents;
                       node.tangent_rows = frame.tangent_rows;
                       node.tangents     = frame.tangents;
-                      double defect     = std::abs(node.normal.norm() - 1);
-                      for (unsigned int j = 0; j < node.n_tangents; ++j)
-                        {
-                          defect = std::max(
-                            {defect,
-                             std::abs(node.tangent_rows[j].norm() - 1),
-                             std::abs(node.tangent_rows[j] * node.normal)});
-                          for (unsigned int k = 0; k < j; ++k)
-                            defect = std::max(defect,
-                                              std::abs(node.tangent_rows[j]
-                                                       * node.tangent_rows[k]));
-                        }
-                      if (node.n_tangents > 0 && defect > 1e-10
-                          && problem.empty())
-                        {
-                          std::ostringstream message;
-                          message
-                            << "Invalid parameter <Tangential law> in "
-                               "subsection <"
-                            << zones[zone].subsection
-                            << ">: the contact node at (" << node.location
-                            << ") lies on an oblique plane of symmetry, "
-                               "where friction is not available; accepted: "
-                               "frictionless there, or planes of symmetry "
-                               "normal to a coordinate axis.";
-                          problem = message.str();
-                        }
                     }
                   // The same vertex's dof in the scalar dof handler of the
                   // output fields, through the same cell of the common
@@ -553,7 +522,6 @@ namespace ViscoContact
                     scalar_cell->active_fe_index());
                   geometry.push_back(node);
                 }
-    return problem;
   }
 
 

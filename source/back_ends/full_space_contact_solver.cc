@@ -83,10 +83,12 @@ namespace ViscoContact
   // factorisation M^{-1} of A built by set_operator(). Both are symmetric when
   // A is, and positive definite as long as the uniqueness condition
   // (doc/model.md, section 4) holds: CG then; GMRES for the implicit update's
-  // unsymmetric tangent. The forces along the fixed rows R of a node are read
-  // off the residual, (R R^T)^{-1} R (b - A u)_i; on an oblique plane of
-  // symmetry the rows are not unit vectors (|n_i| != 1), which R R^T accounts
-  // for (doc/model.md, section 2).
+  // unsymmetric tangent. The forces along the fixed directions of a node are
+  // read off the residual (b - A u)_i = sum_k f_k v_k with the dual rows,
+  // f_k = w_k . (b - A u)_i, W = (V V^T)^{-1} V for the rows V of all its
+  // directions: W = V where the rows are orthonormal, not on an oblique
+  // plane of symmetry, whose rows are neither unit vectors nor orthogonal
+  // (doc/model.md, section 2).
   //
   // Why this form: the sloped pieces only add a rank-one term per direction
   // and the fixed directions only remove directions per node, so neither the
@@ -158,6 +160,11 @@ namespace ViscoContact
       std::array<unsigned int, dim>            fixed_directions;
       std::array<Tensor<1, dim>, dim>          fixed_basis;
       std::array<std::array<double, dim>, dim> gram_inverse;
+      // The dual rows of all directions, w_k . v_l = delta_kl: a nodal
+      // force sum_l f_l v_l has f_k = w_k . force along direction k. On an
+      // oblique plane of symmetry the rows are not orthogonal, and w_k is
+      // not v_k.
+      std::array<Tensor<1, dim>, dim> duals;
     };
 
     // ML's smoothed aggregation of matrix with the null space (a
@@ -948,19 +955,19 @@ namespace ViscoContact
       = std::max({b_norm, node_load_norm, A_u0.l2_norm()});
     step_rhs -= A_u0;
     // A coupled direction of a node whose normal is fixed: its force is
-    // coupling times the normal force z = n.(b - A u)_i / |n|^2, so its
-    // equation becomes (A u)_d - coupling n.(A u)_i / |n|^2 = b_d - value
-    // - coupling n.b_i / |n|^2 (the other loads of the node are orthogonal
-    // to n).
+    // coupling times the normal force z = w_0.(b - A u)_i, w_0 the dual row
+    // of the normal, so its equation becomes (A u)_d - coupling
+    // w_0.(A u)_i = b_d - value - coupling w_0.b_i (w_0 removes the other
+    // loads of the node).
     for (unsigned int i = 0; i < contact.size(); ++i)
       for_each_coupled_fixed_normal(i, [&](const unsigned int k) {
-        const Tensor<1, dim> &n = terms[i].rows[0];
         contact.add_to_node(step_rhs,
                             i,
                             terms[i].rows[k],
                             -terms[i].directions.direction[k].coupling
-                              * contact.node_component(step_rhs, i, n)
-                              / n.norm_square());
+                              * contact.node_component(step_rhs,
+                                                       i,
+                                                       terms[i].duals[0]));
       });
 
     const Apply preconditioner = step_preconditioner(contact);
@@ -1001,7 +1008,8 @@ namespace ViscoContact
 
   // @sect4{FullSpaceContactSolver::collect_node_terms}
   //
-  // Per node: its directions and their rows; the fixed rows R with their
+  // Per node: its directions, their rows and dual rows; the fixed rows R with
+  // their
   // prescribed values beta give u_0 = R^T (R R^T)^{-1} beta on the node's
   // dofs (for a single unit row, beta v) and an orthonormal basis of their
   // span (Gram-Schmidt), which P removes; a free direction adds its load
@@ -1040,6 +1048,20 @@ namespace ViscoContact
                 if (load != 0)
                   contact.add_to_node(step_rhs, i, node.rows[k], -load);
               }
+          }
+        // The dual rows, (V V^T)^{-1} V for the rows V of all directions
+        // (independent: the directions are orthonormal in the span of the
+        // node's free dofs, and their rows are their images there).
+        FullMatrix<double> all_gram(node.directions.size, node.directions.size);
+        for (unsigned int a = 0; a < node.directions.size; ++a)
+          for (unsigned int c = 0; c < node.directions.size; ++c)
+            all_gram(a, c) = node.rows[a] * node.rows[c];
+        all_gram.gauss_jordan();
+        for (unsigned int a = 0; a < node.directions.size; ++a)
+          {
+            node.duals[a] = Tensor<1, dim>();
+            for (unsigned int c = 0; c < node.directions.size; ++c)
+              node.duals[a] += all_gram(a, c) * node.rows[c];
           }
         if (node.n_fixed == 0)
           continue;
@@ -1152,8 +1174,8 @@ namespace ViscoContact
     return [this, &contact](VectorType &dst, const VectorType &src) {
       apply_operator(dst, src);
       // The coupled directions (collect_node_terms(), solve_for_pieces()):
-      // -coupling n.(A src)_i / |n|^2 where the normal is fixed, coupling
-      // times the normal stiffness times n.src where it is free.
+      // -coupling w_0.(A src)_i where the normal is fixed, coupling times
+      // the normal stiffness times n.src where it is free.
       for (unsigned int i = 0; i < contact.size(); ++i)
         for (unsigned int k = 1; k < terms[i].directions.size; ++k)
           {
@@ -1164,7 +1186,7 @@ namespace ViscoContact
             const Tensor<1, dim> &n = terms[i].rows[0];
             const double          normal_force
               = (normal.fixed
-                   ? -contact.node_component(dst, i, n) / n.norm_square()
+                   ? -contact.node_component(dst, i, terms[i].duals[0])
                    : normal.stiffness * contact.node_component(src, i, n));
             contact.add_to_node(dst,
                                 i,
@@ -1217,8 +1239,8 @@ namespace ViscoContact
 
   // @sect4{FullSpaceContactSolver::read_off_contact}
   //
-  // The displacement v . u along every direction; along the fixed rows R the
-  // forces (R R^T)^{-1} R (b - A u)_i from the residual (the free
+  // The displacement v . u along every direction; along the fixed ones the
+  // forces w . (b - A u)_i from the residual, w their dual rows (the free
   // directions' forces follow from their law, ContactNodes::store_solution).
   template <int dim>
   void
@@ -1235,14 +1257,8 @@ namespace ViscoContact
           displacements[k] = contact.node_component(u, i, node.rows[k]);
         for (unsigned int a = 0; a < node.n_fixed; ++a)
           {
-            double force = 0;
-            for (unsigned int c = 0; c < node.n_fixed; ++c)
-              force += node.gram_inverse[a][c]
-                       * contact.node_component(
-                         residual,
-                         i,
-                         node.rows[node.fixed_directions[c]]);
-            forces[node.fixed_directions[a]] = force;
+            const unsigned int k = node.fixed_directions[a];
+            forces[k] = contact.node_component(residual, i, node.duals[k]);
           }
         contact.store_solution(i,
                                contact.gap(i),

@@ -30,67 +30,21 @@ Usage:
         [--output doc/performance/step42.md]
 """
 
-import argparse
-import glob
 import os
 import re
-import shutil
 import subprocess
 import sys
 import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from deal_ii_tutorial import (build_tutorial, comparison_arguments,  # noqa: E402
+                              write_page)
 from run_performance import number, run, scene, section  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(
     os.path.abspath(__file__))), "scripts"))
-from vc_scripts import (REPO_ROOT, add_executable_argument,  # noqa: E402
-                        resolve_executable)
-
-INSTALLED_EXAMPLE = "/usr/share/doc/libdeal.ii-doc/examples/step-42"
-
-
-def step42_sources(work):
-    """The directory with step-42's sources (deal.II 9.4)."""
-    if os.path.isfile(os.path.join(INSTALLED_EXAMPLE, "step-42.cc")):
-        return INSTALLED_EXAMPLE
-    source = os.path.join(work, "src")
-    if os.path.isfile(os.path.join(source, "step-42.cc")):
-        return source
-    download = os.path.join(work, "download")
-    os.makedirs(download, exist_ok=True)
-    print("Downloading Debian's libdeal.ii-doc for the step-42 sources ...",
-          flush=True)
-    subprocess.run(["apt-get", "download", "libdeal.ii-doc"], cwd=download,
-                   check=True)
-    package = glob.glob(os.path.join(download, "libdeal.ii-doc_*.deb"))[0]
-    member = "./usr/share/doc/libdeal.ii-doc/examples/step-42/"
-    tar = subprocess.Popen(["dpkg-deb", "--fsys-tarfile", package],
-                           stdout=subprocess.PIPE)
-    subprocess.run(["tar", "-x", "-C", download, member], stdin=tar.stdout,
-                   check=True)
-    tar.wait()
-    shutil.copytree(os.path.join(download, member), source)
-    shutil.rmtree(download)
-    return source
-
-
-def build_step42(work):
-    """Configures and builds step-42 in Release; returns the executable."""
-    build = os.path.join(work, "build")
-    executable = os.path.join(build, "step-42")
-    if os.path.isfile(executable):
-        return executable
-    os.makedirs(build, exist_ok=True)
-    subprocess.run(["cmake", "-DCMAKE_BUILD_TYPE=Release", step42_sources(work)],
-                   cwd=build, check=True, stdout=subprocess.DEVNULL)
-    subprocess.run(["make", "release"], cwd=build, check=True,
-                   stdout=subprocess.DEVNULL)
-    subprocess.run(["make", "step-42"], cwd=build, check=True,
-                   stdout=subprocess.DEVNULL)
-    return executable
-
+from vc_scripts import resolve_executable  # noqa: E402
 
 def run_step42(executable, refinements, work):
     """One cycle of step-42 from zero on the cube with 2^refinements cells
@@ -152,20 +106,12 @@ def run_ours(executable, refinements, method, work):
 
 
 def main():
-    parser = argparse.ArgumentParser(
-        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    add_executable_argument(parser)
-    parser.add_argument("--refinements", default="4,5",
-                        help="mesh sizes as cells per edge 2^r (default 4,5: "
-                             "15k and 108k dofs; 6 is 823k)")
-    parser.add_argument("--work-dir", default=os.path.join(REPO_ROOT,
-                                                           "build-step-42"),
-                        help="where step-42 is downloaded and built")
-    parser.add_argument("--output", default=os.path.join(
-        REPO_ROOT, "doc", "performance", "step42.md"))
-    args = parser.parse_args()
+    args = comparison_arguments(
+        __doc__, "step-42", "4,5",
+        "mesh sizes as cells per edge 2^r (default 4,5: 15k and 108k dofs; "
+        "6 is 823k)", "step42.md")
     executable = resolve_executable(args.executable)
-    step42 = build_step42(os.path.abspath(args.work_dir))
+    step42 = build_tutorial("step-42", os.path.abspath(args.work_dir))
 
     lines = [
         "# This program against step-42",
@@ -217,10 +163,7 @@ def main():
                 lines.append(cells)
                 print(cells, flush=True)
     lines.append("")
-    os.makedirs(os.path.dirname(args.output), exist_ok=True)
-    with open(args.output, "w") as f:
-        f.write("\n".join(lines))
-    print(f"wrote {args.output}")
+    write_page(args.output, lines)
 
 
 if __name__ == "__main__":

@@ -133,6 +133,7 @@ def run(executable, prm_text, work, name, threads=None, blas_threads=None):
         "solve_ms": number(r"one solve with the step operator, no contact: ([0-9.e+-]+) ms", out),
         "solve_iterations": number(r"one solve with the step operator, no contact: "
                                    r"[0-9.e+-]+ ms \((\d+) Krylov iterations\)", out),
+        "operator_ms": number(r"one operator application: ([0-9.e+-]+) ms", out),
         "stress_ms": number(r"one stress update with the history load: ([0-9.e+-]+) ms", out),
         "iterations": number(r"active-set iterations: (\d+) in", out),
         "steps": number(r"active-set iterations: \d+ in (\d+) steps", out),

@@ -143,6 +143,7 @@ namespace ViscoContact
       std::uint64_t steps;
       double        solve_time;
       unsigned int  krylov_iterations;
+      double        operator_time; // one product with the operator
       bool          holding_load;
       double        update_time;
       unsigned int  factorisation_threads;

@@ -839,6 +839,16 @@ namespace ViscoContact
     const double solve_time
       = Utilities::MPI::max(timer.wall_time() / repetitions,
                             problem.mpi_communicator);
+    // Products with the operator, as many as a solve took iterations (at
+    // least 3): with the solve they split a Krylov iteration into the
+    // operator and the preconditioner with the vector updates.
+    const unsigned int products = std::max(3u, krylov_iterations / repetitions);
+    timer.restart();
+    for (unsigned int r = 0; r < products; ++r)
+      problem.contact_solver->apply_operator(reference, load);
+    const double operator_time
+      = Utilities::MPI::max(timer.wall_time() / products,
+                            problem.mpi_communicator);
     // One stress update (for the explicit update with the history update and
     // the assembly of its load): the work every step does besides the solve.
     timer.restart();
@@ -858,6 +868,7 @@ namespace ViscoContact
     return {problem.schedule.step_number(),
             solve_time,
             krylov_iterations / repetitions,
+            operator_time,
             holding_load,
             update_time,
             factorisation_threads,

@@ -299,26 +299,26 @@ namespace ViscoContact
   {
     const double step_time = Utilities::MPI::max(compute_time, communicator)
                              / std::max<double>(1, cost.steps);
-    pcout << std::setprecision(4)
-          << "Cost measurement (wall time, maximum over the ranks):\n"
-          << "  threads per rank: " << MultithreadInfo::n_threads()
-          << " (BLAS in the sparse factorisation: "
-          << cost.factorisation_threads << ")\n"
-          << "  average time step (without output): " << step_time * 1e3
-          << " ms\n"
-          << "  one solve with the step operator, no contact: "
-          << cost.solve_time * 1e3 << " ms (" << cost.krylov_iterations
-          << " Krylov iterations)"
-          << (cost.holding_load ? " on the load K u of the final displacement"
-                                : "")
-          << "\n"
-          << "  one stress update with the history load: "
-          << cost.update_time * 1e3 << " ms\n"
-          << "  ratio step / solve: " << step_time / cost.solve_time << '\n'
-          << "  ratio step / (solve + stress update): "
-          << step_time / (cost.solve_time + cost.update_time) << '\n'
-          << "  per dof and step: " << step_time / cost.n_dofs * 1e6 << " us\n"
-          << "  time loop (without output): " << compute_time << " s\n";
+    pcout
+      << std::setprecision(4)
+      << "Cost measurement (wall time, maximum over the ranks):\n"
+      << "  threads per rank: " << MultithreadInfo::n_threads()
+      << " (BLAS in the sparse factorisation: " << cost.factorisation_threads
+      << ")\n"
+      << "  average time step (without output): " << step_time * 1e3 << " ms\n"
+      << "  one solve with the step operator, no contact: "
+      << cost.solve_time * 1e3 << " ms (" << cost.krylov_iterations
+      << " Krylov iterations)"
+      << (cost.holding_load ? " on the load K u of the final displacement" : "")
+      << "\n"
+      << "  one operator application: " << cost.operator_time * 1e3 << " ms\n"
+      << "  one stress update with the history load: " << cost.update_time * 1e3
+      << " ms\n"
+      << "  ratio step / solve: " << step_time / cost.solve_time << '\n'
+      << "  ratio step / (solve + stress update): "
+      << step_time / (cost.solve_time + cost.update_time) << '\n'
+      << "  per dof and step: " << step_time / cost.n_dofs * 1e6 << " us\n"
+      << "  time loop (without output): " << compute_time << " s\n";
   }
 
 

@@ -71,8 +71,8 @@ namespace ViscoContact
   // displacement v . u = beta is prescribed (a vertical piece of the normal
   // law, a sticking tangential direction), along a free one the force is
   // f + k v . u (a sloped piece: f = w o, k = w s; a slipping direction:
-  // f = g). With u = u_0 + y, u_0 the least-norm displacement with the
-  // prescribed values, y solves
+  // f = g). With u = u_0 + y, u_0 a displacement with the prescribed
+  // values (collect_node_terms()), y solves
   //   (P (A + sum k v v^T) P + (I - P)) y = P (b - sum f v - A u_0),
   // P the orthogonal projection that removes the fixed rows of every node
   // (a constraint among the components of a node, for any directions). The
@@ -154,12 +154,11 @@ namespace ViscoContact
     // forces along them).
     struct NodeTerms
     {
-      NodeDirections                           directions;
-      std::array<Tensor<1, dim>, dim>          rows;
-      unsigned int                             n_fixed = 0;
-      std::array<unsigned int, dim>            fixed_directions;
-      std::array<Tensor<1, dim>, dim>          fixed_basis;
-      std::array<std::array<double, dim>, dim> gram_inverse;
+      NodeDirections                  directions;
+      std::array<Tensor<1, dim>, dim> rows;
+      unsigned int                    n_fixed = 0;
+      std::array<unsigned int, dim>   fixed_directions;
+      std::array<Tensor<1, dim>, dim> fixed_basis;
       // The dual rows of all directions, w_k . v_l = delta_kl: a nodal
       // force sum_l f_l v_l has f_k = w_k . force along direction k. On an
       // oblique plane of symmetry the rows are not orthogonal, and w_k is
@@ -1008,12 +1007,12 @@ namespace ViscoContact
 
   // @sect4{FullSpaceContactSolver::collect_node_terms}
   //
-  // Per node: its directions, their rows and dual rows; the fixed rows R with
-  // their
-  // prescribed values beta give u_0 = R^T (R R^T)^{-1} beta on the node's
-  // dofs (for a single unit row, beta v) and an orthonormal basis of their
-  // span (Gram-Schmidt), which P removes; a free direction adds its load
-  // -f v to the right-hand side (its stiffness goes into step_operator()).
+  // Per node: its directions, their rows and dual rows; the fixed directions
+  // with their prescribed values beta give u_0 = sum beta_k w_k on the
+  // node's dofs (for a single unit row, beta v) and an orthonormal basis of
+  // their rows' span (Gram-Schmidt), which P removes; a free direction adds
+  // its load -f v to the right-hand side (its stiffness goes into
+  // step_operator()).
   template <int dim>
   void
   FullSpaceContactSolver<dim>::collect_node_terms(
@@ -1027,16 +1026,12 @@ namespace ViscoContact
         NodeTerms &node = terms[i];
         node.directions = contact.directions(i, contact.gap(i));
         node.n_fixed    = 0;
-        std::array<double, dim> values;
         for (unsigned int k = 0; k < node.directions.size; ++k)
           {
             const NodeDirection &direction = node.directions.direction[k];
             node.rows[k] = contact.frame_row(i, direction.frame);
             if (direction.fixed)
-              {
-                values[node.n_fixed]                  = direction.value;
-                node.fixed_directions[node.n_fixed++] = k;
-              }
+              node.fixed_directions[node.n_fixed++] = k;
             else
               {
                 // A coupled direction with a free normal: coupling times
@@ -1063,33 +1058,20 @@ namespace ViscoContact
             for (unsigned int c = 0; c < node.directions.size; ++c)
               node.duals[a] += all_gram(a, c) * node.rows[c];
           }
-        if (node.n_fixed == 0)
-          continue;
-        // (R R^T)^{-1}, and the orthonormal basis.
-        FullMatrix<double> gram(node.n_fixed, node.n_fixed);
-        for (unsigned int a = 0; a < node.n_fixed; ++a)
-          for (unsigned int c = 0; c < node.n_fixed; ++c)
-            gram(a, c) = node.rows[node.fixed_directions[a]]
-                         * node.rows[node.fixed_directions[c]];
-        gram.gauss_jordan();
+        // u_0 = sum beta_k w_k over the fixed directions: v_k . u_0 = beta_k
+        // there (and 0 along the free ones), and the orthonormal basis of the
+        // fixed rows that P removes.
         for (unsigned int a = 0; a < node.n_fixed; ++a)
           {
-            for (unsigned int c = 0; c < node.n_fixed; ++c)
-              node.gram_inverse[a][c] = gram(a, c);
-            Tensor<1, dim> q = node.rows[node.fixed_directions[a]];
+            const unsigned int k = node.fixed_directions[a];
+            contact.add_to_node(u0,
+                                i,
+                                node.duals[k],
+                                node.directions.direction[k].value);
+            Tensor<1, dim> q = node.rows[k];
             for (unsigned int c = 0; c < a; ++c)
               q -= (q * node.fixed_basis[c]) * node.fixed_basis[c];
             node.fixed_basis[a] = q / q.norm();
-          }
-        for (unsigned int a = 0; a < node.n_fixed; ++a)
-          {
-            double coefficient = 0;
-            for (unsigned int c = 0; c < node.n_fixed; ++c)
-              coefficient += node.gram_inverse[a][c] * values[c];
-            contact.add_to_node(u0,
-                                i,
-                                node.rows[node.fixed_directions[a]],
-                                coefficient);
           }
       }
   }

@@ -86,8 +86,12 @@ def run(executable, n, method, scene, folder):
     output = re.search(r"(?m)^\s*set Output directory\s*=\s*(\S+)", text).group(1)
     with open(os.path.join(output, "time_series.csv")) as f:
         steps = list(csv.DictReader(f))
-    dofs = int(re.search(r"([0-9]+) displacement dofs", result.stdout).group(1)) \
-        if re.search(r"([0-9]+) displacement dofs", result.stdout) else 0
+    # The mesh of the run: the last of the initial cycles if it takes them
+    # (its header names the coarsest).
+    found = (re.search(r"Initial cycles done: [0-9]+ cells, ([0-9]+) dofs",
+                       result.stdout)
+             or re.search(r"([0-9]+) displacement dofs", result.stdout))
+    dofs = int(found.group(1)) if found else 0
     return {"time per step": loop / len(steps), "dofs": dofs,
             "iterations": sum(int(s["active_set_iterations"])
                               for s in steps) / len(steps),

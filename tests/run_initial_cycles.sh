@@ -6,7 +6,9 @@
 # from the coarser meshes must not change it: both runs must give the same
 # time series (all columns but the active-set iterations, the wall time and
 # the Krylov iterations), the same contact profiles and the same final norms,
-# by numdiff absolute 1e-8, relative 1e-8. The cycled run must have printed
+# by numdiff absolute 1e-8, relative 1e-8 (or those of a line "# tolerance:
+# ABSOLUTE RELATIVE", for an iterative back end's solver tolerance). The
+# cycled run must have printed
 # L cycles, and its step 1 on the last mesh must take fewer active-set
 # iterations than the cold start. With Initial cycles = auto, the file names
 # the L the program must choose ("# expect cycles: L"), and the header must
@@ -16,7 +18,8 @@
 set -u
 here=$(dirname "$0")
 executable=$1 prm=$2
-absolute=1e-8 relative=1e-8
+read -r absolute relative < <(sed -n 's/^# tolerance: *//p' "$prm")
+absolute=${absolute:-1e-8} relative=${relative:-1e-8}
 cycles=$(sed -n 's/^ *set Initial cycles *= *\([0-9a-z]*\).*/\1/p' "$prm")
 # The ranks of "# ranks: N" (1 if none).
 RANKS=$(sed -n 's/^# ranks: *\([0-9]*\).*/\1/p' "$prm" | head -1)

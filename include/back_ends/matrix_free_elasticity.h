@@ -10,6 +10,7 @@
 
 #include <deal.II/lac/affine_constraints.h>
 
+#include "back_ends/constrained_smoothing.h"
 #include "back_ends/linear_algebra.h"
 
 #include <functional>
@@ -69,6 +70,19 @@ namespace ViscoContact
     // dst = M^{-1} src, one V-cycle.
     void
     precondition(VectorType &dst, const VectorType &src) const;
+
+    // Sets the projected step operator of a set of pieces
+    // (constrained_smoothing.h) that precondition_constrained() smooths on
+    // the finest level; its functions must stay valid while it is used.
+    void
+    constrain(const ConstrainedOperator &constrained);
+    // dst = M^{-1} src, one V-cycle whose finest level smooths the
+    // constrained operator instead of K (Chebyshev around its Jacobi step,
+    // with K's eigenvalue bound), and whose coarser levels are K's. A V-cycle
+    // of K alone treats the fixed directions as free: CG then needs about three
+    // times the iterations of an elastic solve (doc/performance.md).
+    void
+    precondition_constrained(VectorType &dst, const VectorType &src) const;
 
     // The number of meshes of the multigrid and their dofs, for the
     // header.

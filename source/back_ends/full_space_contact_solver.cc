@@ -25,6 +25,7 @@
 
 #include "back_ends/contact_solver.h"
 #include "back_ends/direct_solver.h"
+#include "back_ends/constrained_smoothing.h"
 #include "back_ends/elasticity_amg.h"
 #include "back_ends/matrix_free_elasticity.h"
 
@@ -229,6 +230,10 @@ namespace ViscoContact
     // terms, updated here (collective).
     Apply
     step_preconditioner(const ContactSet<dim> &contact);
+    // The projected step operator of the current terms, for the smoothing
+    // of the preconditioners; refers to contact and this.
+    ConstrainedOperator
+    constrained_operator(const ContactSet<dim> &contact);
     // The displacement along every direction, and the force along the
     // fixed ones, from the solution u and the residual b - A u.
     void
@@ -308,6 +313,13 @@ namespace ViscoContact
     // Krylov method applies once per iteration each: allocated once here
     // instead of once per application.
     VectorType operator_scratch, preconditioner_scratch;
+    // And of the projected operator that the preconditioners smooth
+    // (allocated with its first use).
+    VectorType smoother_scratch;
+    // The smoothing around the AMG of the step operator, and whether it has
+    // its eigenvalue bound for the current A.
+    ConstrainedSmoothing smoothing{2, 15.};
+    bool                 smoothing_ready = false;
 
     // With contact pairs: the basis T of the step problem, work vectors of
     // its products (without a matrix), and the rigid-body modes in the
@@ -409,6 +421,7 @@ namespace ViscoContact
     A                  = &matrix;
     operator_amg_built = false;
     contact_amg_built  = false;
+    smoothing_ready    = false;
     if (!factorization && !rigid_body_modes.modes)
       rigid_body_modes
         = compute_rigid_body_modes(mapping,
@@ -461,14 +474,19 @@ namespace ViscoContact
   // Every change touches only entries in the pattern of A: the node's
   // dim x dim blocks, and the columns of its dofs.
   //
-  // Building an AMG costs about 20 CG iterations, so it is not rebuilt for
-  // every set of pieces: only when more than 1% of the contact nodes (over
-  // all ranks) have become fixed or free along their normal since it was
-  // built (a changed slope or slip direction matters little, a fixed
-  // normal much: the slopes are small against the stiffness of the body,
-  // measured in doc/performance.md). Within a time step few nodes
-  // move, so most steps reuse the AMG of the previous one, while a cold
-  // start, where most nodes move, rebuilds it as the pieces change.
+  // Building an AMG costs about 30 CG iterations, so it is not rebuilt for
+  // every set of pieces: only when more than 10% of the contact nodes
+  // (over all ranks) have become fixed or free along their normal since it
+  // was built (a changed slope or slip direction matters little, a fixed
+  // normal much: the slopes are small against the stiffness of the body).
+  // The nodes that changed since are handled by the smoothing of the
+  // projected step operator around the AMG's cycle (step_preconditioner()),
+  // which knows every fixed direction, a sticking node's tangents too. On
+  // cube_3d.prm at 108k dofs a rebuild for 1% took 17 set-ups in 8 steps
+  // against 2 for 10%, and 1.7 times the solve time (doc/performance.md).
+  // Within a time step few nodes move, so most steps reuse the AMG of
+  // earlier ones, while a cold start, where most nodes move, rebuilds it as
+  // the pieces change.
   // contact_amg_fits() decides, then assemble_contact_matrix() and
   // project_rigid_body_modes() give the AMG its matrix and near-null space.
   template <int dim>
@@ -505,7 +523,12 @@ namespace ViscoContact
       for (unsigned int i = 0; i < contact.size(); ++i)
         changed += (amg_fixed(terms[i]) != contact_amg_fixed[i]);
     changed = Utilities::MPI::sum(changed, communicator);
-    return contact_amg_built && changed <= 0.01 * contact.n_global_nodes();
+    // An operator that fits ML's coarsest level (2000 rows, deal.II's
+    // setting) makes the AMG one sparse factorisation: a set-up then costs
+    // little, and rebuilt for every change the AMG solves each set of
+    // pieces exactly.
+    const double fraction = (A->m() <= 2000 ? 0. : 0.1);
+    return contact_amg_built && changed <= fraction * contact.n_global_nodes();
   }
 
 
@@ -1197,12 +1220,24 @@ namespace ViscoContact
   //
   // The preconditioner: the factorisation of A, or the AMG of the step
   // operator of (nearly) these terms (update_contact_amg() removes the
-  // fixed directions). Collective when it updates the AMG.
+  // fixed directions) inside a smoothing of the projected step operator of
+  // exactly these terms (a symmetric A; the implicit update's tangent gets
+  // the AMG alone), or the matrix-free V-cycle whose finest level smooths
+  // that operator. Collective when it updates the AMG.
   template <int dim>
   typename FullSpaceContactSolver<dim>::Apply
   FullSpaceContactSolver<dim>::step_preconditioner(
     const ContactSet<dim> &contact)
   {
+    // The matrix-free V-cycle smooths the projected step operator on the
+    // program's mesh (in the basis of contact pairs it stays K's).
+    if (matrix_free && !basis)
+      {
+        matrix_free->constrain(constrained_operator(contact));
+        return [this](VectorType &dst, const VectorType &src) {
+          matrix_free->precondition_constrained(dst, src);
+        };
+      }
     if (matrix_free)
       return [this](VectorType &dst, const VectorType &src) {
         precondition_matrix_free(dst, src);
@@ -1212,9 +1247,66 @@ namespace ViscoContact
         factorization->solve(dst, src);
       };
     update_contact_amg(contact);
-    return [this](VectorType &dst, const VectorType &src) {
-      contact_amg.vmult(dst, src);
+    if (!symmetric)
+      return [this](VectorType &dst, const VectorType &src) {
+        contact_amg.vmult(dst, src);
+      };
+    // Smoothing of the projected step operator around the AMG's cycle
+    // (constrained_smoothing.h), with A's eigenvalue bound, estimated once
+    // per operator.
+    if (!smoothing_ready)
+      {
+        VectorType diagonal(b);
+        for (const auto row : b.get_partitioner()->locally_owned_range())
+          diagonal(row) = A->diag_element(row);
+        smoothing.initialize(
+          [this](VectorType &dst, const VectorType &src) {
+            apply_operator(dst, src);
+          },
+          diagonal);
+        smoothing_ready = true;
+      }
+    smoothing.constrain(constrained_operator(contact));
+    return [this, &contact](VectorType &dst, const VectorType &src) {
+      smoothing.vmult(dst,
+                      src,
+                      [this, &contact](VectorType &x, const VectorType &r) {
+                        contact_amg.vmult(x, r);
+                        remove_fixed_rows(contact, x);
+                      });
     };
+  }
+
+
+
+  // @sect4{FullSpaceContactSolver::constrained_operator}
+  //
+  // The projected step operator of the current terms for the smoothing of
+  // the preconditioners (constrained_smoothing.h): its product, P, and the
+  // stiffness k v_j^2 of the free directions on the diagonal.
+  template <int dim>
+  ConstrainedOperator
+  FullSpaceContactSolver<dim>::constrained_operator(
+    const ContactSet<dim> &contact)
+  {
+    if (smoother_scratch.size() != b.size())
+      smoother_scratch.reinit(b);
+    return {
+      projected(step_operator(contact), smoother_scratch, contact),
+      [this, &contact](VectorType &v) { remove_fixed_rows(contact, v); },
+      [this, &contact](VectorType &diagonal) {
+        for (unsigned int i = 0; i < contact.size(); ++i)
+          for (unsigned int k = 0; k < terms[i].directions.size; ++k)
+            {
+              const NodeDirection &direction = terms[i].directions.direction[k];
+              if (direction.fixed || direction.stiffness == 0)
+                continue;
+              Tensor<1, dim> squares;
+              for (unsigned int c = 0; c < dim; ++c)
+                squares[c] = terms[i].rows[k][c] * terms[i].rows[k][c];
+              contact.add_to_node(diagonal, i, squares, direction.stiffness);
+            }
+      }};
   }
 
 

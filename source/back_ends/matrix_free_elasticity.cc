@@ -398,6 +398,128 @@ namespace ViscoContact
     void
     copy_constrained_rows(VectorType &dst, const VectorType &src) const;
 
+    // The finest level of a constrained V-cycle (precondition_constrained()):
+    // the constrained operator and its Jacobi step on MatrixFree's vectors,
+    // through copies into the program's, for deal.II's Chebyshev smoother.
+    void
+    apply_constrained(LevelVector &dst, const LevelVector &src) const;
+    void
+    constrained_jacobi(LevelVector &dst, const LevelVector &src) const;
+    struct FineOperator : public Subscriptor
+    {
+      explicit FineOperator(const Implementation *m)
+        : m(m)
+      {}
+      const Implementation *m;
+      void
+      vmult(LevelVector &dst, const LevelVector &src) const
+      {
+        m->apply_constrained(dst, src);
+      }
+    };
+    struct FineJacobi
+    {
+      const Implementation *m;
+      void
+      vmult(LevelVector &dst, const LevelVector &src) const
+      {
+        m->constrained_jacobi(dst, src);
+      }
+    };
+    using FineSmoother
+      = PreconditionChebyshev<FineOperator, LevelVector, FineJacobi>;
+
+    // What deal.II's Multigrid sees: K on every level, and on the finest
+    // the constrained operator while a constrained V-cycle runs.
+    class LevelMatrix : public MGMatrixBase<LevelVector>
+    {
+    public:
+      explicit LevelMatrix(const Implementation &m)
+        : m(m)
+      {}
+      void
+      vmult(const unsigned int level,
+            LevelVector       &dst,
+            const LevelVector &src) const override
+      {
+        if (m.constrained_cycle && level == m.level_operators.max_level())
+          m.apply_constrained(dst, src);
+        else
+          m.level_operators[level].vmult(dst, src);
+      }
+      void
+      vmult_add(const unsigned int level,
+                LevelVector       &dst,
+                const LevelVector &src) const override
+      {
+        LevelVector product;
+        product.reinit(dst, true);
+        vmult(level, product, src);
+        dst += product;
+      }
+      // Multigrid's V-cycle uses vmult() only; K is symmetric.
+      void
+      Tvmult(const unsigned int level,
+             LevelVector       &dst,
+             const LevelVector &src) const override
+      {
+        vmult(level, dst, src);
+      }
+      void
+      Tvmult_add(const unsigned int level,
+                 LevelVector       &dst,
+                 const LevelVector &src) const override
+      {
+        vmult_add(level, dst, src);
+      }
+      unsigned int
+      get_minlevel() const override
+      {
+        return m.level_operators.min_level();
+      }
+      unsigned int
+      get_maxlevel() const override
+      {
+        return m.level_operators.max_level();
+      }
+
+    private:
+      const Implementation &m;
+    };
+    class LevelSmoother : public MGSmootherBase<LevelVector>
+    {
+    public:
+      explicit LevelSmoother(const Implementation &m)
+        : m(m)
+      {}
+      void
+      smooth(const unsigned int level,
+             LevelVector       &u,
+             const LevelVector &rhs) const override
+      {
+        if (m.constrained_cycle && level == m.level_operators.max_level())
+          m.fine_smoother.step(u, rhs);
+        else
+          m.smoother.smooth(level, u, rhs);
+      }
+      void
+      apply(const unsigned int level,
+            LevelVector       &u,
+            const LevelVector &rhs) const override
+      {
+        if (m.constrained_cycle && level == m.level_operators.max_level())
+          m.fine_smoother.vmult(u, rhs);
+        else
+          m.smoother.apply(level, u, rhs);
+      }
+      void
+      clear() override
+      {}
+
+    private:
+      const Implementation &m;
+    };
+
     const ElasticOperatorData<dim>       data;
     const MPI_Comm                       communicator;
     std::vector<types::global_dof_index> constrained_rows; // local indices
@@ -415,8 +537,18 @@ namespace ViscoContact
     TrilinosWrappers::PreconditionAMG                      coarse_amg;
     std::unique_ptr<CoarseAMG>                             coarse_solver;
     mg::SmootherRelaxation<Smoother, LevelVector>          smoother;
-    mg::Matrix<LevelVector>                                level_matrix;
-    std::unique_ptr<Multigrid<LevelVector>>                multigrid;
+    // The constrained operator (constrain()), its inverse diagonal and
+    // work vectors in the program's layout, and the finest level's
+    // smoother for it.
+    ConstrainedOperator                     constrained;
+    ConstrainedJacobi                       constrained_jacobi_step;
+    mutable VectorType                      constrained_src, constrained_dst;
+    mutable bool                            constrained_cycle = false;
+    FineOperator                            fine_operator_of_cycle{this};
+    FineSmoother                            fine_smoother;
+    LevelMatrix                             level_matrix{*this};
+    LevelSmoother                           level_smoother{*this};
+    std::unique_ptr<Multigrid<LevelVector>> multigrid;
     std::unique_ptr<PreconditionMG<dim, LevelVector, Transfer>> preconditioner;
   };
 
@@ -459,12 +591,31 @@ namespace ViscoContact
         }
       return smoother_data;
     }());
-    level_matrix.initialize(level_operators);
+    // The finest level's smoother of the constrained operator uses K's
+    // largest eigenvalue (with the Jacobi step) instead of estimating its
+    // own for every set of pieces: removing directions and adding a
+    // stiffness that the diagonal includes do not raise it much, and the
+    // estimate carries a safety factor of 1.2.
+    {
+      LevelVector vector;
+      fine_operator().initialize_dof_vector(vector);
+      typename FineSmoother::AdditionalData fine_data;
+      fine_data.degree              = data.smoother_degree;
+      fine_data.smoothing_range     = data.smoothing_range;
+      fine_data.eig_cg_n_iterations = 0;
+      fine_data.max_eigenvalue      = smoother[smoother.max_level()]
+                                   .estimate_eigenvalues(vector)
+                                   .max_eigenvalue_estimate;
+      fine_data.preconditioner = std::make_shared<FineJacobi>(FineJacobi{this});
+      fine_smoother.initialize(fine_operator_of_cycle, fine_data);
+    }
+    for (VectorType *vector : {&constrained_src, &constrained_dst})
+      vector->reinit(layout);
     multigrid = std::make_unique<Multigrid<LevelVector>>(level_matrix,
                                                          *coarse_solver,
                                                          *transfer,
-                                                         smoother,
-                                                         smoother);
+                                                         level_smoother,
+                                                         level_smoother);
     preconditioner
       = std::make_unique<PreconditionMG<dim, LevelVector, Transfer>>(
         data.dof_handler,
@@ -598,6 +749,41 @@ namespace ViscoContact
 
 
 
+  // @sect4{The finest level of a constrained V-cycle}
+  //
+  // The constrained operator A = P (K + sum k v v^T) P + I - P decouples the
+  // fixed directions from the free ones, so a smoother started from zero
+  // with a right-hand side without fixed components keeps them zero, and
+  // the residual restricted to the coarser levels has none either: those
+  // levels see K on the span of the free directions (as truncated
+  // multigrid does). What the prolongation adds along fixed directions the
+  // outer projection removes.
+  template <int dim>
+  void
+  MatrixFreeElasticity<dim>::Implementation::apply_constrained(
+    LevelVector       &dst,
+    const LevelVector &src) const
+  {
+    constrained_src.copy_locally_owned_data_from(src);
+    constrained.apply(constrained_dst, constrained_src);
+    dst.copy_locally_owned_data_from(constrained_dst);
+  }
+
+
+
+  template <int dim>
+  void
+  MatrixFreeElasticity<dim>::Implementation::constrained_jacobi(
+    LevelVector       &dst,
+    const LevelVector &src) const
+  {
+    constrained_src.copy_locally_owned_data_from(src);
+    constrained_jacobi_step.vmult(constrained_dst, constrained_src);
+    dst.copy_locally_owned_data_from(constrained_dst);
+  }
+
+
+
   template <int dim>
   MatrixFreeElasticity<dim>::MatrixFreeElasticity(
     const ElasticOperatorData<dim> &data,
@@ -637,6 +823,39 @@ namespace ViscoContact
   {
     implementation->preconditioner->vmult(dst, src);
     implementation->copy_constrained_rows(dst, src);
+  }
+
+
+
+  // The Jacobi step needs K's diagonal in the program's layout (the owned
+  // entries are the same).
+  template <int dim>
+  void
+  MatrixFreeElasticity<dim>::constrain(const ConstrainedOperator &constrained)
+  {
+    Implementation &m = *implementation;
+    m.constrained     = constrained;
+    const VectorType &inverse_diagonal
+      = m.fine_operator().get_matrix_diagonal_inverse()->get_vector();
+    VectorType &diagonal = m.constrained_dst;
+    for (unsigned int i = 0; i < diagonal.locally_owned_size(); ++i)
+      diagonal.local_element(i) = 1. / inverse_diagonal.local_element(i);
+    m.constrained_jacobi_step.reinit(diagonal, constrained);
+  }
+
+
+
+  template <int dim>
+  void
+  MatrixFreeElasticity<dim>::precondition_constrained(
+    VectorType       &dst,
+    const VectorType &src) const
+  {
+    const Implementation &m = *implementation;
+    m.constrained_cycle     = true;
+    m.preconditioner->vmult(dst, src);
+    m.constrained_cycle = false;
+    m.copy_constrained_rows(dst, src);
   }
 
 

@@ -26,7 +26,7 @@ Cases:
 Writes <output-dir>/<name>.csv and <name>.md (--name, default
 method_choice). The tables in doc/back_ends come from two invocations:
 
-    benchmarks/run_method_choice.py --scenes none --cube-subdivisions 24
+    benchmarks/run_method_choice.py --scenes none --cube-subdivisions 24,32
     benchmarks/run_method_choice.py --static-subdivisions "" \
         --timeout 120 --name method_choice_shipped
 

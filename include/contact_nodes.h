@@ -42,6 +42,20 @@ namespace ViscoContact
     std::string  failure;              // why it did not converge
   };
 
+  // What the active-set iteration asks of one linear solve: the relative
+  // accuracy at which it may stop and, for an early solve while the pieces
+  // still change (ContactNodes::solve()), how it may go on without a
+  // restart. A Krylov method that supports this stores (r, z) of its first
+  // iterate that meets accuracy in the nodes and asks pieces_stay(); if no
+  // node would move, it goes on to settled_accuracy instead of stopping.
+  // Other back ends stop at accuracy (a direct solve is exact anyway).
+  struct LinearSolveRequest
+  {
+    double                accuracy         = 0;
+    double                settled_accuracy = 0;
+    std::function<bool()> pieces_stay; // empty: no going on
+  };
+
   // What the active-set iteration of one step problem did.
   struct ActiveSetResult
   {
@@ -248,16 +262,22 @@ namespace ViscoContact
     reset_slip(const std::vector<Tangential> &tangential_displacements,
                const std::vector<Tangential> &tangential_forces);
 
-    // The iteration: solve_for_pieces(accuracy) solves the linear problem
-    // of the current pieces to the given relative accuracy and writes r and
-    // z; repeat until no node moves on any rank of the communicator and the
-    // solve met the tolerance, or until max_iterations. Solves before the
+    // The iteration: solve_for_pieces(request) solves the linear problem
+    // of the current pieces to the requested relative accuracy and writes r
+    // and z; repeat until no node moves on any rank of the communicator and
+    // the solve met the tolerance, or until max_iterations. Solves before the
     // pieces settle are asked for sqrt(tolerance) only (contact_nodes.cc).
     ActiveSetResult
-    solve(const std::function<LinearSolveReport(double)> &solve_for_pieces,
-          const unsigned int                              max_iterations,
-          const double                                    tolerance,
-          const MPI_Comm                                  communicator);
+    solve(const std::function<LinearSolveReport(const LinearSolveRequest &)>
+                            &solve_for_pieces,
+          const unsigned int max_iterations,
+          const double       tolerance,
+          const MPI_Comm     communicator);
+    // Whether update_all_pieces() would move no node to another piece or
+    // between stick and slip, for the (r, z) the nodes hold now; changes
+    // nothing (collective).
+    bool
+    pieces_stay(const MPI_Comm communicator);
 
     // The pieces, the last (r, z) and the friction state: what a retried
     // time step restores.

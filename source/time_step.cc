@@ -224,10 +224,10 @@ namespace ViscoContact
         // iteration.
         contact_solver->set_right_hand_side(rhs, contact_set);
         result = contact_set.solve(
-          [&](const double accuracy) {
+          [&](const LinearSolveRequest &request) {
             return contact_solver->solve_for_pieces(contact_set,
                                                     solution,
-                                                    accuracy);
+                                                    request);
           },
           parameters.max_iterations,
           parameters.tolerance,

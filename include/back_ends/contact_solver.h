@@ -111,15 +111,16 @@ namespace ViscoContact
     // rank's nodes, through ContactNodes::store_solution() (without
     // friction the condensed back end writes contact.r and contact.z
     // directly), with the relative accuracy the active-set iteration asks
-    // for (a Krylov method may stop there; a direct solve is exact anyway).
-    // The report says whether the linear solve met it; if it did not, the
-    // active-set iteration stops with the report's failure. u holds the
-    // previous iterate on entry (the full space back end starts from it)
-    // and, for the full space back end, the solution on exit.
+    // for (a Krylov method may stop there, or go on as the request allows;
+    // a direct solve is exact anyway). The report says whether the linear
+    // solve met it; if it did not, the active-set iteration stops with the
+    // report's failure. u holds the previous iterate on entry (the full
+    // space back end starts from it) and, for the full space back end, the
+    // solution on exit.
     virtual LinearSolveReport
-    solve_for_pieces(ContactSet<dim> &contact,
-                     VectorType      &u,
-                     const double     accuracy)
+    solve_for_pieces(ContactSet<dim>          &contact,
+                     VectorType               &u,
+                     const LinearSolveRequest &request)
       = 0;
 
     // After the active-set iteration has converged: the displacement of the

@@ -57,9 +57,9 @@ namespace ViscoContact
     set_right_hand_side(const VectorType      &b,
                         const ContactSet<dim> &contact) override;
     LinearSolveReport
-    solve_for_pieces(ContactSet<dim> &contact,
-                     VectorType      &u,
-                     const double     accuracy) override;
+    solve_for_pieces(ContactSet<dim>          &contact,
+                     VectorType               &u,
+                     const LinearSolveRequest &request) override;
     void
     finish(const ContactSet<dim> &contact, VectorType &u) override;
     void

@@ -139,9 +139,9 @@ namespace ViscoContact
     set_right_hand_side(const VectorType      &b,
                         const ContactSet<dim> &contact) override;
     LinearSolveReport
-    solve_for_pieces(ContactSet<dim> &contact,
-                     VectorType      &u,
-                     const double     accuracy) override;
+    solve_for_pieces(ContactSet<dim>          &contact,
+                     VectorType               &u,
+                     const LinearSolveRequest &request) override;
     void
     finish(const ContactSet<dim> &contact, VectorType &u) override;
     // S x, and a solve with the factorisation.
@@ -548,7 +548,7 @@ namespace ViscoContact
   LinearSolveReport
   CondensedContactSolver<dim>::solve_for_pieces(ContactSet<dim> &contact,
                                                 VectorType &,
-                                                const double)
+                                                const LinearSolveRequest &)
   {
     if (friction)
       {

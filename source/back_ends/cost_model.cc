@@ -89,24 +89,32 @@ namespace ViscoContact
 
     // Matrix-free back end: no matrix, a multigrid of global coarsening;
     // 1.1 kB per dof beyond the libraries. Its time per active-set
-    // iteration against the full space back end's, over whole runs
-    // (benchmarks/run_method_choice.py): in 3D 1.4 to 1.6 at 47k dofs
-    // (cube_3d, 32 steps, 1 and 2 ranks: its CG took 11.5 iterations per
-    // solve against ML's 6) and 0.85 at 1.2M (run_matrix_free.py), the model
-    // interpolating in log(dofs) between; in 2D 1.13 to 1.28 from 33k to
-    // 526k dofs (the static scene on quadrilaterals).
-    constexpr double matrix_free_bytes_per_dof = 1e3;
+    // iteration against the full space back end's depends on the dofs per
+    // rank (both preconditioners smooth the projected step operator,
+    // algorithm.md). In 3D, measured over whole runs of cube_3d (32 steps;
+    // benchmarks/run_method_choice.py, run_cube_benchmark.py): 0.71 at 15k
+    // dofs per rank, 0.79 at 23k, 0.89 to 0.96 at 47k to 54k, 1.10 to 1.15
+    // at 108k and 1.14 at 353k; at 1.2M only the two steps where the
+    // contact zone forms were measured (run_matrix_free.py), 0.5, and the
+    // model takes 0.85 there. The model interpolates in log(dofs per rank)
+    // between 0.71, 1.12 (108k to 353k) and 0.85. In 2D 1.13 to 1.28 from
+    // 33k to 526k dofs (the static scene on quadrilaterals).
+    constexpr double matrix_free_bytes_per_dof         = 1e3;
+    constexpr double matrix_free_setup_seconds_per_dof = 10e-6;
     double
     matrix_free_iteration_seconds_per_dof(const SceneSize &scene)
     {
-      const double position
-        = std::clamp(std::log(scene.dofs / 5e4) / std::log(1.2e6 / 5e4),
-                     0.,
-                     1.);
-      return (scene.dim == 2 ? 1.25 : 1.5 - 0.65 * position)
-             * full_space_iteration_seconds_per_dof(scene);
+      const double dofs_per_rank = scene.dofs / scene.ranks;
+      const auto   between       = [&](const double from, const double to) {
+        return std::clamp(std::log(dofs_per_rank / from) / std::log(to / from),
+                          0.,
+                          1.);
+      };
+      const double ratio = scene.dim == 2 ? 1.25
+                                          : 0.71 + 0.41 * between(1.5e4, 1.08e5)
+                                              - 0.27 * between(3.5e5, 1.2e6);
+      return ratio * full_space_iteration_seconds_per_dof(scene);
     }
-    constexpr double matrix_free_setup_seconds_per_dof = 10e-6;
 
     // Condensed back end on one rank: the factor of K (CHOLMOD), its
     // factorisation and one forward and backward solve; 2D: 2.4 to 2.7 kB

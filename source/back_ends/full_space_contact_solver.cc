@@ -125,9 +125,9 @@ namespace ViscoContact
     // with the right-hand side b that set_right_hand_side() keeps per step
     // problem. Its solution is u itself, so finish() has nothing to do.
     LinearSolveReport
-    solve_for_pieces(ContactSet<dim> &contact,
-                     VectorType      &u,
-                     const double     accuracy) override;
+    solve_for_pieces(ContactSet<dim>          &contact,
+                     VectorType               &u,
+                     const LinearSolveRequest &request) override;
     void
     set_right_hand_side(const VectorType      &b,
                         const ContactSet<dim> &contact) override;
@@ -240,17 +240,26 @@ namespace ViscoContact
     read_off_contact(ContactSet<dim>  &contact,
                      const VectorType &u,
                      const VectorType &residual) const;
+    // How CG may go on past its accuracy (LinearSolveRequest): to
+    // settled_accuracy if pieces_stay(y) holds for its first iterate y that
+    // meets the accuracy.
+    struct Continuation
+    {
+      double                                  settled_accuracy = 0;
+      std::function<bool(const VectorType &)> pieces_stay;
+    };
     // Solves op y = rhs from the initial y with the preconditioner prec:
     // CG (symmetric_operator) or GMRES to the relative accuracy (Tolerance
     // unless the active-set iteration asks for less) times reference_norm.
     LinearSolveReport
-    krylov_solve(const Apply      &op,
-                 const Apply      &prec,
-                 VectorType       &y,
-                 const VectorType &rhs,
-                 const double      reference_norm,
-                 const double      accuracy,
-                 const bool        symmetric_operator);
+    krylov_solve(const Apply        &op,
+                 const Apply        &prec,
+                 VectorType         &y,
+                 const VectorType   &rhs,
+                 const double        reference_norm,
+                 const double        accuracy,
+                 const bool          symmetric_operator,
+                 const Continuation &continuation = {});
     // Whether a node of this rank has a direction coupled to its normal
     // force (a slipping Coulomb node), and the coupled directions k of node
     // i whose normal is fixed.
@@ -265,6 +274,16 @@ namespace ViscoContact
       for (unsigned int k = 1; k < terms[i].directions.size; ++k)
         if (!terms[i].directions.direction[k].fixed
             && terms[i].directions.direction[k].coupling != 0)
+          f(k);
+    }
+    // The free directions k of node i with a stiffness.
+    template <typename Function>
+    void
+    for_each_stiff_direction(const unsigned int i, const Function &f) const
+    {
+      for (unsigned int k = 0; k < terms[i].directions.size; ++k)
+        if (!terms[i].directions.direction[k].fixed
+            && terms[i].directions.direction[k].stiffness != 0)
           f(k);
     }
 
@@ -862,7 +881,8 @@ namespace ViscoContact
   // as with CG, and the same Tolerance means the same thing for both; it
   // restarts when its basis of about 50 vectors is full. A solve that does
   // not converge is not an error here: the report says why, and the time
-  // loop decides whether to cut the step (time_step.cc).
+  // loop decides whether to cut the step (time_step.cc). GMRES does not go
+  // on past the accuracy: its iterate is formed only when it stops.
   template <int dim>
   LinearSolveReport
   FullSpaceContactSolver<dim>::krylov_solve(const Apply      &op,
@@ -871,7 +891,8 @@ namespace ViscoContact
                                             const VectorType &rhs,
                                             const double      reference_norm,
                                             const double      accuracy,
-                                            const bool symmetric_operator)
+                                            const bool symmetric_operator,
+                                            const Continuation &continuation)
   {
     // The operators of the Krylov methods: what deal.II's solvers call.
     struct Operator
@@ -895,14 +916,34 @@ namespace ViscoContact
       }
     // At most 10000 iterations. The lower bound 1e-300 keeps the tolerance
     // and the relative residual defined when the reference norm is zero.
-    SolverControl control(10000, accuracy * std::max(reference_norm, 1e-300));
+    const double  scale = std::max(reference_norm, 1e-300);
+    SolverControl control(10000, accuracy * scale);
     try
       {
         if (symmetric_operator)
-          SolverCG<VectorType>(control).solve(Operator{op},
-                                              y,
-                                              rhs,
-                                              Operator{prec});
+          {
+            SolverCG<VectorType> cg(control);
+            // Past the control's tolerance (where it says success) this
+            // check decides: stop, or go on to the settled accuracy.
+            bool asked = false, going_on = false;
+            if (continuation.pieces_stay)
+              cg.connect([&](const unsigned int step,
+                             const double       value,
+                             const VectorType  &iterate) {
+                if (value > control.tolerance())
+                  return SolverControl::success;
+                if (!asked)
+                  {
+                    asked    = true;
+                    going_on = continuation.pieces_stay(iterate);
+                  }
+                if (!going_on || value <= continuation.settled_accuracy * scale)
+                  return SolverControl::success;
+                return step < control.max_steps() ? SolverControl::iterate
+                                                  : SolverControl::failure;
+              });
+            cg.solve(Operator{op}, y, rhs, Operator{prec});
+          }
         else
           SolverGMRES<VectorType>(
             control,
@@ -932,7 +973,7 @@ namespace ViscoContact
     // Count the solve and its iterations for the run summary, whether it
     // converged or not.
     report.inner_iterations = control.last_step();
-    report.residual = control.last_value() / std::max(reference_norm, 1e-300);
+    report.residual         = control.last_value() / scale;
     ++this->counts.solves;
     this->counts.inner_iterations += control.last_step();
     return report;
@@ -955,9 +996,10 @@ namespace ViscoContact
   // products, the preconditioner and the Krylov method's inner products.
   template <int dim>
   LinearSolveReport
-  FullSpaceContactSolver<dim>::solve_for_pieces(ContactSet<dim> &contact,
-                                                VectorType      &u,
-                                                const double     accuracy)
+  FullSpaceContactSolver<dim>::solve_for_pieces(
+    ContactSet<dim>          &contact,
+    VectorType               &u,
+    const LinearSolveRequest &request)
   {
     VectorType u0, A_u0, step_rhs(b);
     u0.reinit(b);         // zero
@@ -1002,27 +1044,40 @@ namespace ViscoContact
     // one: the operator is then unsymmetric on every rank (GMRES).
     const bool coupled
       = Utilities::MPI::max(has_coupling() ? 1 : 0, communicator) == 1;
+    // The residual b - A u equals the nodes' forces, sum over directions of
+    // force times row (a contact force acts on its node's dofs only).
+    VectorType &residual = A_u0; // its value is no longer needed
+    const auto  read_off = [&](const VectorType &u) {
+      apply_operator(residual, u);
+      residual.sadd(-1., 1., b);
+      read_off_contact(contact, u, residual);
+    };
+    // Going on past an early accuracy: the nodes are asked with (r, z) of
+    // u_0 + y.
+    Continuation continuation;
+    if (request.pieces_stay)
+      continuation = {request.settled_accuracy, [&](const VectorType &y) {
+                        VectorType trial(y);
+                        trial += u0;
+                        read_off(trial);
+                        return request.pieces_stay();
+                      }};
     const LinearSolveReport report = krylov_solve(
       projected(step_operator(contact), operator_scratch, contact),
       projected(preconditioner, preconditioner_scratch, contact),
       u,
       step_rhs,
       reference_norm,
-      accuracy,
-      symmetric && !coupled);
+      request.accuracy,
+      symmetric && !coupled,
+      continuation);
     // u = u_0 + y: now u has the prescribed values along the fixed rows.
     u += u0;
     // A failed solve leaves the nodes as they were; ContactNodes::solve()
     // stops on the report.
     if (!report.converged)
       return report;
-
-    // The residual b - A u equals the nodes' forces, sum over directions of
-    // force times row (a contact force acts on its node's dofs only).
-    VectorType &residual = A_u0; // its value is no longer needed
-    apply_operator(residual, u);
-    residual.sadd(-1., 1., b);
-    read_off_contact(contact, u, residual);
+    read_off(u);
     return report;
   }
 
@@ -1199,18 +1254,15 @@ namespace ViscoContact
                                 direction.coupling * normal_force);
           }
       for (unsigned int i = 0; i < contact.size(); ++i)
-        for (unsigned int k = 0; k < terms[i].directions.size; ++k)
-          {
-            const NodeDirection &direction = terms[i].directions.direction[k];
-            if (!direction.fixed && direction.stiffness != 0)
-              contact.add_to_node(dst,
-                                  i,
-                                  terms[i].rows[k],
-                                  direction.stiffness
-                                    * contact.node_component(src,
-                                                             i,
-                                                             terms[i].rows[k]));
-          }
+        for_each_stiff_direction(i, [&](const unsigned int k) {
+          contact.add_to_node(dst,
+                              i,
+                              terms[i].rows[k],
+                              terms[i].directions.direction[k].stiffness
+                                * contact.node_component(src,
+                                                         i,
+                                                         terms[i].rows[k]));
+        });
     };
   }
 
@@ -1291,22 +1343,21 @@ namespace ViscoContact
   {
     if (smoother_scratch.size() != b.size())
       smoother_scratch.reinit(b);
-    return {
-      projected(step_operator(contact), smoother_scratch, contact),
-      [this, &contact](VectorType &v) { remove_fixed_rows(contact, v); },
-      [this, &contact](VectorType &diagonal) {
-        for (unsigned int i = 0; i < contact.size(); ++i)
-          for (unsigned int k = 0; k < terms[i].directions.size; ++k)
-            {
-              const NodeDirection &direction = terms[i].directions.direction[k];
-              if (direction.fixed || direction.stiffness == 0)
-                continue;
-              Tensor<1, dim> squares;
-              for (unsigned int c = 0; c < dim; ++c)
-                squares[c] = terms[i].rows[k][c] * terms[i].rows[k][c];
-              contact.add_to_node(diagonal, i, squares, direction.stiffness);
-            }
-      }};
+    return {projected(step_operator(contact), smoother_scratch, contact),
+            [this, &contact](VectorType &v) { remove_fixed_rows(contact, v); },
+            [this, &contact](VectorType &diagonal) {
+              for (unsigned int i = 0; i < contact.size(); ++i)
+                for_each_stiff_direction(i, [&](const unsigned int k) {
+                  Tensor<1, dim> squares;
+                  for (unsigned int c = 0; c < dim; ++c)
+                    squares[c] = terms[i].rows[k][c] * terms[i].rows[k][c];
+                  contact.add_to_node(
+                    diagonal,
+                    i,
+                    squares,
+                    terms[i].directions.direction[k].stiffness);
+                });
+            }};
   }
 
 

@@ -25,7 +25,6 @@
 #include <deal.II/matrix_free/tools.h>
 
 #include <deal.II/multigrid/mg_base.h>
-#include <deal.II/multigrid/mg_matrix.h>
 #include <deal.II/multigrid/mg_smoother.h>
 #include <deal.II/multigrid/mg_transfer_global_coarsening.h>
 #include <deal.II/multigrid/multigrid.h>
@@ -537,9 +536,9 @@ namespace ViscoContact
     TrilinosWrappers::PreconditionAMG                      coarse_amg;
     std::unique_ptr<CoarseAMG>                             coarse_solver;
     mg::SmootherRelaxation<Smoother, LevelVector>          smoother;
-    // The constrained operator (constrain()), its inverse diagonal and
-    // work vectors in the program's layout, and the finest level's
-    // smoother for it.
+    // The constrained operator (constrain()), its Jacobi step, work
+    // vectors in the program's layout, and the finest level's smoother for
+    // it.
     ConstrainedOperator                     constrained;
     ConstrainedJacobi                       constrained_jacobi_step;
     mutable VectorType                      constrained_src, constrained_dst;

@@ -215,13 +215,13 @@ namespace ViscoContact
   // The back end solves for w from the start T^{-1} u; u = T w.
   template <int dim>
   LinearSolveReport
-  DualMortarBasis<dim>::solve_for_pieces(ContactSet<dim> &contact,
-                                         VectorType      &u,
-                                         const double     accuracy)
+  DualMortarBasis<dim>::solve_for_pieces(ContactSet<dim>          &contact,
+                                         VectorType               &u,
+                                         const LinearSolveRequest &request)
   {
     to_basis(u);
     const LinearSolveReport report
-      = back_end->solve_for_pieces(contact, w, accuracy);
+      = back_end->solve_for_pieces(contact, w, request);
     from_basis(u);
     this->counts = back_end->statistics();
     return report;

@@ -798,12 +798,12 @@ namespace ViscoContact
         // method that did not converge) fails on every rank alike, because
         // the Krylov methods decide with global norms; the iteration ends
         // with the back end's reason.
-        LinearSolveRequest request{early_tolerance, tolerance, [&] {
-                                     return pieces_stay(communicator);
-                                   }};
-        if (pieces_settled)
-          request = {tolerance, tolerance, {}};
-        LinearSolveReport report = solve_for_pieces(request);
+        LinearSolveReport report = solve_for_pieces(
+          pieces_settled
+            ? LinearSolveRequest{tolerance, tolerance, {}}
+            : LinearSolveRequest{early_tolerance, tolerance, [&] {
+                                   return pieces_stay(communicator);
+                                 }});
         if (!report.converged)
           {
             result.failure = report.failure;

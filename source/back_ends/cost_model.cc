@@ -97,8 +97,11 @@ namespace ViscoContact
     // at 108k and 1.14 at 353k; at 1.2M only the two steps where the
     // contact zone forms were measured (run_matrix_free.py), 0.5, and the
     // model takes 0.85 there. The model interpolates in log(dofs per rank)
-    // between 0.71, 1.12 (108k to 353k) and 0.85. In 2D 1.13 to 1.28 from
-    // 33k to 526k dofs (the static scene on quadrilaterals).
+    // between 0.71, 1.12 (108k to 353k) and 0.85. In 2D the model keeps
+    // 1.25, measured on the static scene on quadrilaterals (33k to 526k
+    // dofs) before both preconditioners smoothed the projected operator;
+    // the regenerated method_choice.md has 0.94 to 1.20 there (one cold
+    // step, whole processes, one noisy run each).
     constexpr double matrix_free_bytes_per_dof         = 1e3;
     constexpr double matrix_free_setup_seconds_per_dof = 10e-6;
     double

@@ -3508,6 +3508,22 @@ TEST(CostModel, MatrixFreeOnlyForHypercubesAndTheExplicitUpdate)
             Parameters::Method::matrix_free);
 }
 
+TEST(CostModel, MatrixFreeOnlyWithCoarserMeshes)
+{
+  // The Hertz sphere's graded Gmsh mesh at 108k dofs on two ranks: with
+  // coarser meshes the model takes matrix free; without, its multigrid
+  // would be one level, and auto takes another back end.
+  SceneSize scene = scene_of(3, false, 107811, 1089, 1, 2);
+  EXPECT_EQ(choose_method(Parameters::Method::automatic, scene).method,
+            Parameters::Method::matrix_free);
+  scene.coarser_meshes = false;
+  EXPECT_NE(estimate_cost(Parameters::Method::matrix_free, scene)
+              .unavailable.find("no coarser mesh"),
+            std::string::npos);
+  EXPECT_NE(choose_method(Parameters::Method::automatic, scene).method,
+            Parameters::Method::matrix_free);
+}
+
 TEST(CostModel, ChoosesTheMeasuredFastest)
 {
   const auto automatic = Parameters::Method::automatic;

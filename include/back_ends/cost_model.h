@@ -54,6 +54,12 @@ namespace ViscoContact
     // with 2^-dim of the dofs of the one above and the same back end, held
     // beside this mesh's for the whole run.
     unsigned int step_cycles = 0;
+    // Whether the mesh has coarser meshes inside it: a coarse mesh refined
+    // (a generated box with even Subdivisions, Global or Contact refinement
+    // levels, adaptive refinement). Without them the matrix-free back end's
+    // multigrid is one level, the AMG of the assembled K with smoothing
+    // around it: the full space back end's preconditioner and more.
+    bool coarser_meshes = true;
     // The bytes available to each rank: its compute node's memory divided by
     // the ranks on the node, the least over the nodes (0: unknown, every back
     // end fits).

@@ -160,6 +160,11 @@ namespace ViscoContact
       = std::max(1.,
                  fixed_step_count(parameters.end_time,
                                   std::max(parameters.time_step, 1e-300)));
+    scene.coarser_meshes = parameters.uniform_coarsenings() > 0
+                           || parameters.contact_refinements > 0
+                           || parameters.adaptive_refinement
+                           || parameters.initial_refinement
+                                == Parameters::InitialRefinement::adaptive;
     scene.memory_per_rank = memory_per_rank;
     return scene;
   }
@@ -201,10 +206,12 @@ namespace ViscoContact
     const double       dofs       = scene.dofs;
     const unsigned int n_ranks    = scene.ranks;
     double             rank_bytes = std::numeric_limits<double>::max();
+    // A method named in the parameter file counts even where auto would not
+    // take it (the matrix-free back end on a mesh without coarser meshes).
     for (const BackEndCost &cost : estimate_costs(scene))
-      if (cost.unavailable.empty()
-          && (parameters.method == Parameters::Method::automatic
-              || parameters.method == cost.method))
+      if (parameters.method == cost.method
+          || (parameters.method == Parameters::Method::automatic
+              && cost.unavailable.empty()))
         rank_bytes = std::min(rank_bytes, cost.bytes_per_rank);
     const double libraries  = library_bytes_per_rank;
     const double root_bytes = libraries + cells * 400;

@@ -56,7 +56,8 @@ namespace ViscoContact
     unsigned int step_cycles = 0;
     // Whether the mesh has coarser meshes inside it: a coarse mesh refined
     // (a generated box with even Subdivisions, Global or Contact refinement
-    // levels, adaptive refinement). Without them the matrix-free back end's
+    // levels, adaptive refinement). Without them (a Gmsh file used as it
+    // is, a box with odd Subdivisions) the matrix-free back end's
     // multigrid is one level, the AMG of the assembled K with smoothing
     // around it: the full space back end's preconditioner and more.
     bool coarser_meshes = true;

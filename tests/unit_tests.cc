@@ -3518,7 +3518,7 @@ TEST(CostModel, MatrixFreeOnlyWithCoarserMeshes)
             Parameters::Method::matrix_free);
   scene.coarser_meshes = false;
   EXPECT_NE(estimate_cost(Parameters::Method::matrix_free, scene)
-              .unavailable.find("no coarser mesh"),
+              .not_taken.find("no coarser mesh"),
             std::string::npos);
   EXPECT_NE(choose_method(Parameters::Method::automatic, scene).method,
             Parameters::Method::matrix_free);

@@ -75,6 +75,9 @@ namespace ViscoContact
     Parameters::Method method;
     // Why the back end cannot run the scene; empty if it can.
     std::string unavailable;
+    // Why Method = auto does not take a back end that can run the scene
+    // (named in the parameter file, it still runs); empty if auto may.
+    std::string not_taken;
     // Peak resident memory of one rank, the libraries included.
     double bytes_per_rank = 0;
     // The back end's set-up, and the steps left in the run.
@@ -89,6 +92,11 @@ namespace ViscoContact
     // Whether the back end fits in the part of a rank's memory it may take.
     bool
     fits(const SceneSize &scene) const;
+    bool
+    automatic_may_take() const
+    {
+      return unavailable.empty() && not_taken.empty();
+    }
   };
 
   // The three back ends' costs on a scene (method condensed, full space,
@@ -107,7 +115,7 @@ namespace ViscoContact
     std::string        reason;
   };
 
-  // Resolves Method = auto: the available back end of least estimated run
+  // Resolves Method = auto: the back end it may take of least estimated run
   // time among those that fit in a rank's memory, or the one of least
   // memory if none fits; the reason names every estimate. A method set in
   // the parameter file is returned as it is.

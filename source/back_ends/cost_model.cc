@@ -229,7 +229,7 @@ namespace ViscoContact
           else if (scene.implicit_update)
             cost.unavailable = "implicit update";
           else if (!scene.coarser_meshes)
-            cost.unavailable = "no coarser mesh for its multigrid";
+            cost.not_taken = "no coarser mesh: a one-level multigrid";
           cost.bytes_per_rank = library_bytes_per_rank
                                 + dofs_per_rank * matrix_free_bytes_per_dof;
           cost.setup_seconds
@@ -310,13 +310,13 @@ namespace ViscoContact
     const std::vector<BackEndCost> costs = estimate_costs(scene);
     const BackEndCost             *best  = nullptr;
     for (const BackEndCost &cost : costs)
-      if (cost.unavailable.empty() && cost.fits(scene)
+      if (cost.automatic_may_take() && cost.fits(scene)
           && (best == nullptr || cost.run_seconds() < best->run_seconds()))
         best = &cost;
     const bool none_fits = (best == nullptr);
     if (none_fits)
       for (const BackEndCost &cost : costs)
-        if (cost.unavailable.empty()
+        if (cost.automatic_may_take()
             && (best == nullptr || cost.bytes_per_rank < best->bytes_per_rank))
           best = &cost;
 
@@ -333,6 +333,8 @@ namespace ViscoContact
         reason << ' ' << name_of(cost.method) << ' ';
         if (!cost.unavailable.empty())
           reason << "unavailable (" << cost.unavailable << ")";
+        else if (!cost.not_taken.empty())
+          reason << "not taken (" << cost.not_taken << ")";
         else
           reason << cost.run_seconds() << " s, " << cost.bytes_per_rank / 1e9
                  << " GB";

@@ -939,6 +939,7 @@ namespace ViscoContact
                   }
                 if (!going_on || value <= continuation.settled_accuracy * scale)
                   return SolverControl::success;
+                // The control says success here even at its last step.
                 return step < control.max_steps() ? SolverControl::iterate
                                                   : SolverControl::failure;
               });

@@ -206,12 +206,11 @@ namespace ViscoContact
     const double       dofs       = scene.dofs;
     const unsigned int n_ranks    = scene.ranks;
     double             rank_bytes = std::numeric_limits<double>::max();
-    // A method named in the parameter file counts even where auto would not
-    // take it (the matrix-free back end on a mesh without coarser meshes).
+    // The named method, or the least of those auto may take.
     for (const BackEndCost &cost : estimate_costs(scene))
       if (parameters.method == cost.method
           || (parameters.method == Parameters::Method::automatic
-              && cost.unavailable.empty()))
+              && cost.automatic_may_take()))
         rank_bytes = std::min(rank_bytes, cost.bytes_per_rank);
     const double libraries  = library_bytes_per_rank;
     const double root_bytes = libraries + cells * 400;

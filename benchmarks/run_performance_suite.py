@@ -10,7 +10,7 @@ doc/.
 BUILD is a Release build directory (with `make preconditioner_comparison`
 done for the preconditioner part). --baseline is a build of an earlier
 version for the scripts that compare with one (the tables). The whole suite
-takes about five and a half hours on two cores, most of it the full space scaling up
+takes about five hours on two cores, most of it the full space scaling up
 to 1.2M dofs and the preconditioner comparison; --only runs a part. The
 parts run one after another, never side by side: their times are only
 comparable on an otherwise quiet machine.
@@ -60,7 +60,16 @@ PARTS = [
     ("method_choice_shipped", "run_method_choice.py",
      ["--executable", "{program}", "--static-subdivisions", "",
       "--timeout", "120", "--name", "method_choice_shipped"],
-     "doc/back_ends/method_choice_shipped.md", 25),
+     "doc/back_ends/method_choice_shipped.md", 40),
+    ("benchmark", "run_benchmark.py",
+     ["--executable", "{program}", "--output-dir", "{repo}/doc/benchmark"],
+     "doc/benchmark/benchmark.md", 1),
+    ("back_ends", "run_back_end_comparison.py", ["--executable", "{program}"],
+     "doc/back_ends/back_ends.md", 3),
+    ("cube_benchmark", "run_cube_benchmark.py",
+     ["--executable", "{program}", "--steps", "2",
+      "--subdivisions", "8,16,32,48,72", "--tet-subdivisions", "8,16,32,48"],
+     "doc/benchmark_3d/cube_benchmark.md", 9),
     ("largest_cube", "run_largest_cube.py",
      ["--executable", "{program}", "--subdivisions", "152", "--ranks", "2"],
      "doc/back_ends/largest_cube.md", 10),

@@ -80,6 +80,9 @@ def mesh_of_run(out):
                        r"contact nodes", out)
              or re.search(r"Mesh: \d+ \w+ cells, (\d+) displacement dofs, "
                           r"(\d+) contact nodes", out))
+    if match is None:
+        sys.exit("error: the program printed no mesh line; its output "
+                 "format has changed")
     return int(match.group(1)), int(match.group(2))
 
 

@@ -369,6 +369,8 @@ def main():
         for n in arguments.cost.split(","):
             for method in arguments.methods.split(","):
                 if method == "condensed" and int(n) > arguments.condensed_up_to:
+                    print(f"N = {n}: condensed skipped (above "
+                          f"--condensed-up-to {arguments.condensed_up_to})")
                     continue
                 results.append(cost(arguments.executable, int(n), method,
                                     arguments.ranks))

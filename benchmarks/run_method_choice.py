@@ -216,7 +216,7 @@ def main():
         "0, run only where the default run solved on coarser meshes. "
         "*auto / best*: auto's time over the fastest other setting's, "
         "measured in the same invocation (at these sizes two runs of one "
-        "method differ by up to 0.1 s). *>T*: stopped at the timeout of T s, "
+        "method differ by up to 0.35 s). *>T*: stopped at the timeout of T s, "
         "counted as T. *auto chose*: the back end of the run's mesh (a "
         "convergence study chooses per run).", "",
         f"Auto within 1.2 times the best: **{within} of {len(rows)}** rows; "

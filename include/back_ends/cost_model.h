@@ -14,7 +14,7 @@ namespace ViscoContact
   // the memory each rank needs at its peak and the time of the run (set-up
   // and steps). It serves two decisions:
   //  - Method = auto takes the back end of least estimated time among those
-  //    that can run the scene and fit in the memory of a rank
+  //    it may take (automatic_may_take()) that fit in the memory of a rank
   //    (choose_method());
   //  - before the mesh is built, a run is refused if the back end it will
   //    use, or with Method = auto every back end it could use, needs more

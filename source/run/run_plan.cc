@@ -181,7 +181,7 @@ namespace ViscoContact
   // (cost_model.h: the libraries, and the rank's share of the dofs times the
   // bytes per dof of the back end, measured on the benchmark scenes), for
   // the back end the run will use; with Method = auto for the one of least
-  // memory that can run the scene, which auto takes when the faster ones do
+  // memory that auto may take, which it takes when the faster ones do
   // not fit. A group root of a simplex mesh (mesh.cc) holds the whole
   // refined mesh during set-up, before the run's data exist: about 400 bytes
   // per cell (405 to 444 measured on tetrahedra, doc/scaling.md). The set-up

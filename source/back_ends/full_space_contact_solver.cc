@@ -183,14 +183,20 @@ namespace ViscoContact
     }
     // The AMG of the step operator of the current terms, rebuilt when
     // enough nodes have changed their fixed directions since it was last
-    // built.
+    // built, or the solves since have paid for a new one.
     void
     update_contact_amg(const ContactSet<dim> &contact);
-    // Whether the AMG built last still serves the current terms: at most 1%
-    // of the contact nodes (over all ranks) with another number of fixed
-    // directions since. Collective.
+    // Whether the AMG built last still serves the current terms: no node has
+    // changed its fixed normal since, or at most 10% of the contact nodes
+    // (over all ranks) have and the solves with it have not yet lost the
+    // iterations of a set-up. Collective.
     bool
     contact_amg_fits(const ContactSet<dim> &contact) const;
+    // What a solve with the AMG of the step operator tells about its age:
+    // its convergence factor against the one of the first solve after the
+    // set-up (from the last Krylov solve's residuals).
+    void
+    record_contact_amg_solve();
     // The matrix of the step operator of the current terms, the fixed rows
     // removed, into contact_matrix (after releasing the AMG built on the
     // previous one).
@@ -324,6 +330,15 @@ namespace ViscoContact
     std::unique_ptr<Epetra_CrsMatrix>   contact_matrix;
     std::unique_ptr<Epetra_MultiVector> contact_modes;
     std::vector<unsigned int>           contact_amg_fixed;
+    // The log of the convergence factor per iteration of the first solve
+    // with the AMG (0: none yet), and the iterations that the later ones
+    // took beyond that factor (record_contact_amg_solve()).
+    double contact_amg_first_log_factor = 0;
+    double contact_amg_lost_iterations  = 0;
+    // The iterations of the last Krylov solve, and the log of its
+    // convergence factor per iteration (0 if it took no iteration).
+    unsigned int last_iterations = 0;
+    double       last_log_factor = 0;
 
     // The terms of this rank's nodes in the current solve.
     std::vector<NodeTerms> terms;
@@ -493,19 +508,28 @@ namespace ViscoContact
   // Every change touches only entries in the pattern of A: the node's
   // dim x dim blocks, and the columns of its dofs.
   //
-  // Building an AMG costs about 30 CG iterations, so it is not rebuilt for
-  // every set of pieces: only when more than 10% of the contact nodes
-  // (over all ranks) have become fixed or free along their normal since it
-  // was built (a changed slope or slip direction matters little, a fixed
-  // normal much: the slopes are small against the stiffness of the body).
+  // When to build it again is a trade: a set-up costs about 30 CG
+  // iterations, while an AMG built for other pieces makes each solve slower.
   // The nodes that changed since are handled by the smoothing of the
   // projected step operator around the AMG's cycle (step_preconditioner()),
-  // which knows every fixed direction, a sticking node's tangents too. On
-  // cube_3d.prm at 108k dofs a rebuild for 1% took 17 set-ups in 8 steps
-  // against 2 for 10%, and 1.7 times the solve time (doc/performance.md).
-  // Within a time step few nodes move, so most steps reuse the AMG of
-  // earlier ones, while a cold start, where most nodes move, rebuilds it as
-  // the pieces change.
+  // which knows every fixed direction, a sticking node's tangents too; how
+  // much a stale AMG costs then depends on the mesh. On the uniform cube
+  // (cube_3d.prm, 108k dofs, 8 steps) rebuilt whenever a quarter of the
+  // nodes in contact had changed, the AMG took 153 CG iterations and 10
+  // set-ups against 190 and 2 for a rebuild at 10% of the contact nodes: a
+  // rebuild did not pay. On the Hertz sphere's mesh, graded toward a zone
+  // in contact of a tenth of the contact boundary, that rule built the AMG
+  // twice in the whole run, and the solves slowed down from step to step
+  // (601 CG iterations in 4 steps at 353k dofs). So the solves also measure
+  // what staleness costs (record_contact_amg_solve()): each one after the first
+  // with this AMG counts the iterations it took beyond the convergence
+  // factor of the first, and the AMG is rebuilt once these lost iterations
+  // reach the cost of a set-up (rent or buy), or once 10% of the contact
+  // nodes have changed (which keeps the cold starts and the small scenes
+  // as they were). On the Hertz sphere that took 451 iterations and 4
+  // set-ups, on the cube 190 and 3 (doc/performance.md, "The full space
+  // back end"). Iterations and residuals are the same on every rank, so
+  // all ranks decide alike.
   // contact_amg_fits() decides, then assemble_contact_matrix() and
   // project_rigid_body_modes() give the AMG its matrix and near-null space.
   template <int dim>
@@ -521,7 +545,9 @@ namespace ViscoContact
     contact_amg_fixed.resize(contact.size());
     for (unsigned int i = 0; i < contact.size(); ++i)
       contact_amg_fixed[i] = amg_fixed(terms[i]);
-    contact_amg_built = true;
+    contact_amg_built            = true;
+    contact_amg_first_log_factor = 0;
+    contact_amg_lost_iterations  = 0;
     ++this->counts.operator_setups;
   }
 
@@ -532,6 +558,9 @@ namespace ViscoContact
   // A node has changed if it has become fixed or free along its normal
   // (amg_fixed()); a changed slope or stick/slip state does not count. Every
   // rank takes part in the sum, whether an AMG has been built or not.
+  // An operator that fits ML's coarsest level (2000 rows, deal.II's setting)
+  // makes the AMG one sparse factorisation: a set-up then costs little, and
+  // rebuilt for every change the AMG solves each set of pieces exactly.
   template <int dim>
   bool
   FullSpaceContactSolver<dim>::contact_amg_fits(
@@ -542,12 +571,37 @@ namespace ViscoContact
       for (unsigned int i = 0; i < contact.size(); ++i)
         changed += (amg_fixed(terms[i]) != contact_amg_fixed[i]);
     changed = Utilities::MPI::sum(changed, communicator);
-    // An operator that fits ML's coarsest level (2000 rows, deal.II's
-    // setting) makes the AMG one sparse factorisation: a set-up then costs
-    // little, and rebuilt for every change the AMG solves each set of
-    // pieces exactly.
-    const double fraction = (A->m() <= 2000 ? 0. : 0.1);
-    return contact_amg_built && changed <= fraction * contact.n_global_nodes();
+    if (A->m() <= 2000)
+      return contact_amg_built && changed == 0;
+    // A set-up costs about 30 CG iterations (with the smoothing,
+    // cube_3d.prm at 108k dofs).
+    return contact_amg_built
+           && (changed == 0
+               || (changed <= 0.1 * contact.n_global_nodes()
+                   && contact_amg_lost_iterations < 30));
+  }
+
+
+
+  // @sect4{FullSpaceContactSolver::record_contact_amg_solve}
+  //
+  // A solve whose factor per iteration rho is worse than the first one's,
+  // rho_1, would have taken n log(rho) / log(rho_1) iterations with an AMG
+  // as good as it was then, n those it took: the difference is lost. A
+  // solve that took no iteration, or did not reduce the residual, tells
+  // nothing.
+  template <int dim>
+  void
+  FullSpaceContactSolver<dim>::record_contact_amg_solve()
+  {
+    if (last_log_factor >= 0)
+      return;
+    if (contact_amg_first_log_factor == 0)
+      contact_amg_first_log_factor = last_log_factor;
+    else if (last_log_factor > contact_amg_first_log_factor)
+      contact_amg_lost_iterations
+        += last_iterations
+           * (1. - last_log_factor / contact_amg_first_log_factor);
   }
 
 
@@ -975,6 +1029,13 @@ namespace ViscoContact
     // converged or not.
     report.inner_iterations = control.last_step();
     report.residual         = control.last_value() / scale;
+    last_iterations         = control.last_step();
+    last_log_factor
+      = (control.last_step() > 0 && control.initial_value() > 0
+         && control.last_value() > 0)
+          ? std::log(control.last_value() / control.initial_value())
+              / control.last_step()
+          : 0.;
     ++this->counts.solves;
     this->counts.inner_iterations += control.last_step();
     return report;
@@ -1072,6 +1133,8 @@ namespace ViscoContact
       request.accuracy,
       symmetric && !coupled,
       continuation);
+    if (!matrix_free && !factorization)
+      record_contact_amg_solve();
     // u = u_0 + y: now u has the prescribed values along the fixed rows.
     u += u0;
     // A failed solve leaves the nodes as they were; ContactNodes::solve()

@@ -193,10 +193,10 @@ namespace ViscoContact
     bool
     contact_amg_fits(const ContactSet<dim> &contact) const;
     // What a solve with the AMG of the step operator tells about its age:
-    // its convergence factor against the one of the first solve after the
-    // set-up (from the last Krylov solve's residuals).
+    // its convergence factor (last_log_factor) against the one of the first
+    // solve after the set-up.
     void
-    record_contact_amg_solve();
+    record_contact_amg_solve(const LinearSolveReport &report);
     // The matrix of the step operator of the current terms, the fixed rows
     // removed, into contact_matrix (after releasing the AMG built on the
     // previous one).
@@ -335,10 +335,9 @@ namespace ViscoContact
     // took beyond that factor (record_contact_amg_solve()).
     double contact_amg_first_log_factor = 0;
     double contact_amg_lost_iterations  = 0;
-    // The iterations of the last Krylov solve, and the log of its
-    // convergence factor per iteration (0 if it took no iteration).
-    unsigned int last_iterations = 0;
-    double       last_log_factor = 0;
+    // The log of the last Krylov solve's convergence factor per iteration
+    // (0 if it took no iteration).
+    double last_log_factor = 0;
 
     // The terms of this rank's nodes in the current solve.
     std::vector<NodeTerms> terms;
@@ -592,7 +591,8 @@ namespace ViscoContact
   // nothing.
   template <int dim>
   void
-  FullSpaceContactSolver<dim>::record_contact_amg_solve()
+  FullSpaceContactSolver<dim>::record_contact_amg_solve(
+    const LinearSolveReport &report)
   {
     if (last_log_factor >= 0)
       return;
@@ -600,7 +600,7 @@ namespace ViscoContact
       contact_amg_first_log_factor = last_log_factor;
     else if (last_log_factor > contact_amg_first_log_factor)
       contact_amg_lost_iterations
-        += last_iterations
+        += report.inner_iterations
            * (1. - last_log_factor / contact_amg_first_log_factor);
   }
 
@@ -1029,7 +1029,6 @@ namespace ViscoContact
     // converged or not.
     report.inner_iterations = control.last_step();
     report.residual         = control.last_value() / scale;
-    last_iterations         = control.last_step();
     last_log_factor
       = (control.last_step() > 0 && control.initial_value() > 0
          && control.last_value() > 0)
@@ -1134,7 +1133,7 @@ namespace ViscoContact
       symmetric && !coupled,
       continuation);
     if (!matrix_free && !factorization)
-      record_contact_amg_solve();
+      record_contact_amg_solve(report);
     // u = u_0 + y: now u has the prescribed values along the fixed rows.
     u += u0;
     // A failed solve leaves the nodes as they were; ContactNodes::solve()

@@ -17,10 +17,12 @@ the parameter file):
   5  the side x = L                    6  the side z = L
 
 Run from anywhere: python3 meshes/make_hertz_sphere_meshes.py
+(or with N FILE: the hexahedral block of N cells along each edge to FILE)
 """
 import itertools
 import math
 import os
+import sys
 
 from gmsh_format import gmsh_elements_text
 
@@ -135,7 +137,10 @@ def sphere_on_block(n_block, n_sphere, simplex=False, radius=2.0, top=2.5):
                               names, [(1, "block"), (2, "sphere")])
 
 
-if __name__ == "__main__":
+if __name__ == "__main__" and len(sys.argv) == 3:
+    with open(sys.argv[2], "w") as f:
+        f.write(hertz_sphere_block(int(sys.argv[1])))
+elif __name__ == "__main__":
     folder = os.path.dirname(os.path.abspath(__file__))
     # The mesh of parameters/hertz_sphere.prm; benchmarks/run_hertz_sphere.py
     # writes the others where it needs them.

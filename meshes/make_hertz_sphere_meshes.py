@@ -140,6 +140,8 @@ def sphere_on_block(n_block, n_sphere, simplex=False, radius=2.0, top=2.5):
 if __name__ == "__main__" and len(sys.argv) == 3:
     with open(sys.argv[2], "w") as f:
         f.write(hertz_sphere_block(int(sys.argv[1])))
+elif __name__ == "__main__" and len(sys.argv) != 1:
+    sys.exit("usage: make_hertz_sphere_meshes.py [N FILE]")
 elif __name__ == "__main__":
     folder = os.path.dirname(os.path.abspath(__file__))
     # The mesh of parameters/hertz_sphere.prm; benchmarks/run_hertz_sphere.py

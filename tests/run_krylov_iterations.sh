@@ -34,7 +34,7 @@ fi
 edit="s|^\( *set Output directory *=\).*|\1 results|;s|^\( *set Write vtu *=\).*|\1 false|"
 if [ -n "$hertz_mesh" ]; then
   mesh=$PWD/hertz_sphere_hexahedron_$hertz_mesh.msh
-  python3 "$here/../meshes/make_hertz_sphere_meshes.py" "$hertz_mesh" "$mesh" \
+  /usr/bin/python3 "$here/../meshes/make_hertz_sphere_meshes.py" "$hertz_mesh" "$mesh" \
     || { echo "Could not write the Hertz sphere mesh $mesh."; exit 1; }
   edit="$edit;s|^\( *set Mesh file *=\).*|\1 $mesh|"
 fi

@@ -3600,9 +3600,9 @@ TEST(CostModel, ImplicitUpdateCountsAKrylovSolvePerNewtonIteration)
 TEST(CostModel, FrictionFactorisesTheDenseProblemEveryIteration)
 {
   // dragged_punch.prm (Coulomb friction, 257 contact nodes, 514 rows of the
-  // dense problem, 32 steps): on one rank condensed (whole processes 2.0 s
-  // against 2.3 s full space), on two ranks full space (2.2 s against
-  // 3.1 s: S from 514 MUMPS solves, and an LU of the dense problem in each
+  // dense problem, 32 steps): on one rank condensed (whole processes 1.35 s
+  // against 1.86 s full space), on two ranks full space (1.64 s against
+  // 2.08 s: S from 514 MUMPS solves, and an LU of the dense problem in each
   // of the 97 active-set iterations).
   SceneSize scene     = scene_of(2, false, 3976, 257, 32);
   scene.node_unknowns = 2;

@@ -283,12 +283,14 @@ fi
 # theta = 0.05 (t - 1): its surface moves along +x over the contact, so
 # every node slips and F = -mu N (relative 1e-9), with N constant; the
 # same motion described about another center, the contact point (1, 1):
-# o(t) = (0, -d) + (I - R(theta)) (0, 2), gives the same steps (1e-9); in
+# o(t) = (0, -d) + (I - R(theta)) (0, 2), gives the same steps (1e-9),
+# both on the condensed back end (auto takes full space on two ranks); in
 # 3D a sphere (Rodrigues' formula, rotation vector along z) turned in
 # place likewise slips at every node with F = -mu N.
 turning() { # CENTER MOTION ROTATION > variant.prm
   set_entry "Rotation center" "$1" < "$here/../parameters/rolling_cylinder.prm" \
     | set_entry "Obstacle motion" "$2" | set_entry "Obstacle rotation" "$3" \
+    | sed -e 's/^\(subsection Output\)$/subsection Linear solver\n  set Method = condensed\nend\n\1/' \
     | set_entry "Output directory" results
 }
 check_turning() { # NAME

@@ -9,10 +9,10 @@ interleaved; the fastest of the repeats counts). Where the default run
 solved on coarser meshes (Initial cycles or Step cycles = auto chose some),
 the case also runs once more with the default Method and both entries set
 to 0 ("no cycles"), so that the nested iteration too is weighed against
-going without it. Per run it records the
-whole process's wall time, the peak resident memory of the largest rank,
-and the back end the program reports; per case the best setting, auto's
-choice and the ratio auto / best.
+going without it. Per run it records the whole process's wall time, the
+peak resident memory of the largest rank, and the back end the program
+reports; per case the best setting, auto's choice and the ratio auto /
+best.
 
 Cases:
   * shipped: every parameters/*.prm as shipped (VTU output off, nothing else

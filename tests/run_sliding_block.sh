@@ -147,6 +147,12 @@ for variant in "${moving_variants[@]}"; do
   rm -rf sliding
 done
 
+# The scene with its Method set (a subsection added before Output: the
+# files used here name none).
+with_method() { # METHOD < PRM
+  sed -e 's/^\(subsection Output\)$/subsection Linear solver\n  set Method = '"$1"'\nend\n\1/'
+}
+
 # A rigid cylinder pressed into a block and dragged along it
 # (parameters/dragged_punch.prm, Obstacle motion): in every step of the
 # drag every node in contact slips relative to the cylinder and the
@@ -159,8 +165,7 @@ for variant in "${punch_variants[@]}"; do
   name="dragged punch, ${1/_/ }, $2 rank(s)"
   tolerance=1e-9
   [ $1 != condensed ] && tolerance=1e-7
-  set_entry Method "${1/_/ }" < "$here/../parameters/dragged_punch.prm" \
-    | sed -e 's/^\(subsection Output\)$/subsection Linear solver\n  set Method = '"${1/_/ }"'\nend\n\1/' \
+  with_method "${1/_/ }" < "$here/../parameters/dragged_punch.prm" \
     | set_entry "Output directory" results > variant.prm
   run_scene variant.prm $2 "$name"
   awk -F, -v name="$name" -v tol="$tolerance" '
@@ -290,7 +295,7 @@ fi
 turning() { # CENTER MOTION ROTATION > variant.prm
   set_entry "Rotation center" "$1" < "$here/../parameters/rolling_cylinder.prm" \
     | set_entry "Obstacle motion" "$2" | set_entry "Obstacle rotation" "$3" \
-    | sed -e 's/^\(subsection Output\)$/subsection Linear solver\n  set Method = condensed\nend\n\1/' \
+    | with_method condensed \
     | set_entry "Output directory" results
 }
 check_turning() { # NAME

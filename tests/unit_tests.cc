@@ -41,6 +41,7 @@
 #include <deal.II/lac/lapack_full_matrix.h>
 #include <deal.II/lac/sparse_direct.h>
 #include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_tools.h>
 
 #include <deal.II/numerics/matrix_tools.h>
 #include <deal.II/numerics/vector_tools.h>
@@ -55,6 +56,7 @@
 #include "contact_nodes.h"
 #include "contact_set.h"
 #include "material.h"
+#include "mesh/coarse_cell_order.h"
 #include "mesh/mesh.h"
 #include "archard_wear.h"
 #include "bonding_field.h"
@@ -3726,6 +3728,98 @@ TEST(Mesh, CoarseCellsNumberedAsP4estTrees)
     }
   for (const unsigned int n : faces_on_side)
     EXPECT_EQ(n, 19u * 19u);
+}
+
+namespace
+{
+  // The graph of cells that share a vertex, as p4est's tree order sees it.
+  template <int dim>
+  DynamicSparsityPattern
+  vertex_connectivity(const Triangulation<dim> &mesh)
+  {
+    DynamicSparsityPattern connectivity;
+    GridTools::get_vertex_connectivity_of_cells(mesh, connectivity);
+    return connectivity;
+  }
+
+  // The cells of a mesh in a random order.
+  template <int dim>
+  void
+  shuffle_cells(Triangulation<dim> &mesh, const unsigned int seed)
+  {
+    std::vector<CellData<dim>> cells;
+    for (const auto &cell : mesh.active_cell_iterators())
+      {
+        CellData<dim> data(cell->n_vertices());
+        for (const unsigned int v : cell->vertex_indices())
+          data.vertices[v] = cell->vertex_index(v);
+        cells.push_back(data);
+      }
+    std::shuffle(cells.begin(), cells.end(), std::mt19937(seed));
+    const std::vector<Point<dim>> vertices = mesh.get_vertices();
+    mesh.clear();
+    mesh.create_triangulation(vertices, cells, SubCellData());
+  }
+} // namespace
+
+TEST(Mesh, HierarchicalOrderIsDealIIs)
+{
+  // hierarchical_order() must give the numbers deal.II's
+  // reorder_hierarchical() gives (p4est's tree order), exactly: on boxes of
+  // hexahedra and triangles in their generated and in a random order, on a
+  // mesh of two separate parts, and on random graphs, where ties between
+  // candidate pivots are common.
+  const auto expect_same = [](const DynamicSparsityPattern &graph) {
+    std::vector<types::global_dof_index> expected(graph.n_rows());
+    SparsityTools::reorder_hierarchical(graph, expected);
+    EXPECT_EQ(hierarchical_order(graph), expected);
+  };
+
+  Triangulation<3> hexahedra;
+  GridGenerator::subdivided_hyper_rectangle(hexahedra,
+                                            {7, 5, 6},
+                                            Point<3>(),
+                                            Point<3>(1, 1, 1));
+  expect_same(vertex_connectivity(hexahedra));
+  shuffle_cells(hexahedra, 1);
+  expect_same(vertex_connectivity(hexahedra));
+
+  Triangulation<2> triangles;
+  GridGenerator::subdivided_hyper_rectangle_with_simplices(triangles,
+                                                           {12, 9},
+                                                           Point<2>(),
+                                                           Point<2>(1, 1));
+  shuffle_cells(triangles, 2);
+  expect_same(vertex_connectivity(triangles));
+
+  Triangulation<2> left, right, two_parts;
+  GridGenerator::subdivided_hyper_rectangle(left,
+                                            {4, 6},
+                                            Point<2>(),
+                                            Point<2>(1, 1));
+  GridGenerator::subdivided_hyper_rectangle(right,
+                                            {5, 3},
+                                            Point<2>(2, 0),
+                                            Point<2>(3, 1));
+  GridGenerator::merge_triangulations(left, right, two_parts);
+  shuffle_cells(two_parts, 3);
+  expect_same(vertex_connectivity(two_parts));
+
+  std::mt19937 random(4);
+  for (const unsigned int rows : {1u, 2u, 50u, 400u})
+    {
+      DynamicSparsityPattern                      graph(rows, rows);
+      std::uniform_int_distribution<unsigned int> row(0, rows - 1);
+      for (unsigned int r = 0; r < rows; ++r)
+        graph.add(r, r);
+      for (unsigned int e = 0; e < 3 * rows; ++e)
+        {
+          const unsigned int i = row(random), j = row(random);
+          graph.add(i, j);
+          graph.add(j, i);
+        }
+      expect_same(graph);
+    }
 }
 
 TEST(Mesh, GmshBoundaryIdsKeptWhenCoarseCellsAreRenumbered)

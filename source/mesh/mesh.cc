@@ -21,10 +21,9 @@
 #include <deal.II/grid/tria_accessor.h>
 #include <deal.II/grid/tria_iterator.h>
 
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/sparsity_tools.h>
 
 #include "scene/loads.h"
+#include "mesh/coarse_cell_order.h"
 #include "mesh/mesh.h"
 #include "mesh/mesh_checks.h"
 #include "robustness/mpi_tools.h"
@@ -582,92 +581,6 @@ namespace ViscoContact
         MPI_Comm_free(&node_communicator);
       }
     return std::min(group_size, Utilities::MPI::n_mpi_processes(communicator));
-  }
-
-
-
-  // @sect4{number_coarse_cells_as_p4est_trees}
-  //
-  // p4est numbers its trees in its own order (deal.II's
-  // SparsityTools::reorder_hierarchical() of the coarse cells), and a cell's
-  // id names its tree; deal.II visits the cells in the order of the coarse
-  // mesh. Where the two orders differ, deal.II 9.4's transfer between the
-  // meshes of global coarsening (the matrix-free back end's multigrid) takes
-  // time quadratic in the number of cells: it adds the ids of the cells, in
-  // deal.II's order, one by one to sorted index sets. Measured: 610 s of
-  // set-up at 10.7M dofs on 19^3 coarse cells. Renumbering the coarse cells
-  // in p4est's order makes the two orders one: reorder_hierarchical() of the
-  // renumbered mesh is again a permutation, so the renumbering is repeated
-  // until it is the identity (twice for the generated boxes; a Gmsh mesh
-  // that never gets there keeps a nearly sorted order, which costs little).
-  // The cells keep their vertices in order, so their faces keep their local
-  // numbers, with their boundary and manifold ids.
-  template <int dim>
-  void
-  number_coarse_cells_as_p4est_trees(Triangulation<dim> &coarse_mesh)
-  {
-    for (unsigned int round = 0; round < 4; ++round)
-      {
-        DynamicSparsityPattern connectivity;
-        GridTools::get_vertex_connectivity_of_cells(coarse_mesh, connectivity);
-        std::vector<types::global_dof_index> tree_of_cell(
-          coarse_mesh.n_cells(0));
-        SparsityTools::reorder_hierarchical(connectivity, tree_of_cell);
-        bool identity = true;
-        for (unsigned int i = 0; i < tree_of_cell.size(); ++i)
-          identity = identity && (tree_of_cell[i] == i);
-        if (identity)
-          return;
-
-        // The cells in tree order, and what their faces (and, in 3D, edges)
-        // carry, to be given back to the rebuilt cells.
-        struct FaceIds
-        {
-          types::boundary_id boundary_id;
-          types::manifold_id manifold_id;
-        };
-        std::vector<CellData<dim>>        cells(tree_of_cell.size());
-        std::vector<std::vector<FaceIds>> face_ids(cells.size());
-        std::vector<std::vector<FaceIds>> line_ids(cells.size());
-        for (const auto &cell : coarse_mesh.cell_iterators_on_level(0))
-          {
-            const unsigned int tree = tree_of_cell[cell->index()];
-            CellData<dim>     &data = cells[tree];
-            data.vertices.resize(cell->n_vertices());
-            for (const unsigned int v : cell->vertex_indices())
-              data.vertices[v] = cell->vertex_index(v);
-            data.material_id = cell->material_id();
-            data.manifold_id = cell->manifold_id();
-            for (const unsigned int f : cell->face_indices())
-              face_ids[tree].push_back(
-                {cell->face(f)->boundary_id(), cell->face(f)->manifold_id()});
-            if (dim == 3)
-              for (const unsigned int l : cell->line_indices())
-                line_ids[tree].push_back(
-                  {cell->line(l)->boundary_id(), cell->line(l)->manifold_id()});
-          }
-        const std::vector<Point<dim>> vertices = coarse_mesh.get_vertices();
-        coarse_mesh.clear();
-        coarse_mesh.create_triangulation(vertices, cells, SubCellData());
-        for (const auto &cell : coarse_mesh.cell_iterators_on_level(0))
-          {
-            const unsigned int tree = cell->index();
-            for (const unsigned int f : cell->face_indices())
-              {
-                if (cell->face(f)->at_boundary())
-                  cell->face(f)->set_boundary_id(face_ids[tree][f].boundary_id);
-                cell->face(f)->set_manifold_id(face_ids[tree][f].manifold_id);
-              }
-            if (dim == 3)
-              for (const unsigned int l : cell->line_indices())
-                {
-                  if (cell->line(l)->at_boundary())
-                    cell->line(l)->set_boundary_id(
-                      line_ids[tree][l].boundary_id);
-                  cell->line(l)->set_manifold_id(line_ids[tree][l].manifold_id);
-                }
-          }
-      }
   }
 
 

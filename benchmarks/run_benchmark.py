@@ -70,6 +70,7 @@ def benchmark_prm(n, output_directory):
         (("Output",), "Write vtu"): "false",
         (("Output",), "Verbose"): "false",
         (("Output",), "Print timing summary"): "true",
+        (("Output",), "Measure cost ratios"): "true",
         (("Output",), "Profile times"): "",
     })
 

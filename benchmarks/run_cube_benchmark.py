@@ -124,6 +124,7 @@ def make_prm(cell_type, subdivisions, steps, method="full space"):
         (("Output",), "Write vtu"): "false",
         (("Output",), "Verbose"): "false",
         (("Output",), "Print timing summary"): "true",
+        (("Output",), "Measure cost ratios"): "true",
         (("Output",), "Profile times"): "",
         (("Linear solver",), "Method"): method,
     })

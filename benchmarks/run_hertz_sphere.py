@@ -110,7 +110,8 @@ def run(executable, n, cells, ranks, folder, method=None, report=None,
                    "simplex" if cells == "tetrahedron" else "hypercube",
                (("Output",), "Output directory"): os.path.join(folder, "output"),
                (("Output",), "Profile times"): "1",
-               (("Output",), "Write vtu"): "false"}
+               (("Output",), "Write vtu"): "false",
+               (("Output",), "Measure cost ratios"): "true"}
     if method:
         entries[(("Linear solver",), "Method")] = method
     with open(os.path.join(TOP, "parameters", "hertz_sphere.prm")) as f:

@@ -53,7 +53,8 @@ def scene(subdivisions, steps):
     text = set_prm_entries(text, {
         (("Geometry",), "Subdivisions"): str(subdivisions),
         (("Output",), "Output directory"): "results",
-        (("Output",), "Output interval"): "1"})
+        (("Output",), "Output interval"): "1",
+        (("Output",), "Measure cost ratios"): "true"})
     return text + ("\nsubsection Checkpoint\n"
                    "  set Checkpoint interval = 1\n"
                    f"  set Stop after step     = {steps}\n"

@@ -97,6 +97,7 @@ def run(executable, prm_text, work, name, threads=None, blas_threads=None):
         (("Output",), "Profile times"): "",
         (("Output",), "Verbose"): "false",
         (("Output",), "Print timing summary"): "true",
+        (("Output",), "Measure cost ratios"): "true",
     })
     prm = os.path.join(work, name + ".prm")
     with open(prm, "w") as f:

@@ -59,7 +59,8 @@ def run(executable, refinements, method, rigid, folder, ranks=1):
                (("Time",), "End time"): "1",
                (("Output",), "Output directory"): output,
                (("Output",), "Write vtu"): "false",
-               (("Output",), "Profile times"): ""}
+               (("Output",), "Profile times"): "",
+               (("Output",), "Measure cost ratios"): "true"}
     if rigid:
         entries[(("Contact",), "Opposite boundary ids")] = ""
         del entries[(("Contact",), "Search distance")]

@@ -461,6 +461,7 @@ namespace ViscoContact
       unsigned int        interval                = 1;
       std::vector<double> profile_times           = {0.015625, 0.5, 1};
       bool                print_timing_summary    = true;
+      bool                measure_cost_ratios     = false;
       bool                verbose                 = true;
       bool                print_iteration_history = false;
       bool                overwrite = false; // remove an earlier run's files

@@ -1906,14 +1906,22 @@ namespace ViscoContact
           Patterns::List(Patterns::Double(0)));
         prm.add_parameter("Print timing summary",
                           print_timing_summary,
-                          "Print the TimerOutput table and the cost ratios at "
-                          "the end of the run, and the wall time of the mesh "
-                          "and the peak memory of the ranks (the sum, the "
-                          "largest rank, group root and member) after each "
-                          "set-up phase and over the run. The cost ratios "
-                          "take two elastic solves and a stress update "
-                          "after the run (on small meshes four and three).",
+                          "Print the TimerOutput table at the end of the run, "
+                          "and the wall time of the mesh and the peak memory "
+                          "of the ranks (the sum, the largest rank, group "
+                          "root and member) after each set-up phase and over "
+                          "the run.",
                           Patterns::Bool());
+        prm.add_parameter(
+          "Measure cost ratios",
+          measure_cost_ratios,
+          "After the run, time one solve with the step operator, one "
+          "operator application and one stress update, and print the cost "
+          "of a step in these units (the Cost measurement block: ratio step "
+          "/ solve and others). The measurement takes two elastic solves "
+          "and a stress update (on small meshes four and three): on a large "
+          "or graded mesh as long as several steps.",
+          Patterns::Bool());
         prm.add_parameter("Verbose",
                           verbose,
                           "Print one line per time step.",

@@ -198,6 +198,7 @@ namespace ViscoContact
     coarse_parameters.verbose                 = false;
     coarse_parameters.print_iteration_history = false;
     coarse_parameters.print_timing_summary    = false;
+    coarse_parameters.measure_cost_ratios     = false;
     coarse_parameters.write_vtu               = false;
     coarse_parameters.resume                  = false;
     coarse_parameters.checkpoint_interval     = 0;

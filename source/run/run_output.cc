@@ -790,10 +790,9 @@ namespace ViscoContact
       problem.report.record_peak_memory("over the run");
     problem.report.print_summary(state);
     if (problem.parameters.print_timing_summary)
-      {
-        problem.report.print_timer_summary();
-        problem.report.print_cost_measurement(measure_reference_costs(problem));
-      }
+      problem.report.print_timer_summary();
+    if (problem.parameters.measure_cost_ratios)
+      problem.report.print_cost_measurement(measure_reference_costs(problem));
   }
 
 

@@ -64,6 +64,7 @@ namespace ViscoContact
     run_parameters.verbose                 = false;
     run_parameters.print_iteration_history = false;
     run_parameters.print_timing_summary    = false;
+    run_parameters.measure_cost_ratios     = false;
     run_parameters.overwrite               = false;
     run_parameters.check_uniqueness        = false;
     run_parameters.profile_times.clear();

@@ -5,6 +5,8 @@
 #    [1, 100000]); the printed file is a valid scene;
 #  - a second --print-parameters FILE refuses (exit 1, a message naming the
 #    file) and leaves the file as it was; with --force it replaces it;
+#  - the printed defaults run, print the timing table and spend no solves
+#    on the cost ratios, which Measure cost ratios = true adds;
 #  - a parameter file without a single entry runs with a warning that every
 #    value is the default.
 #   run_command_line.sh EXECUTABLE
@@ -29,6 +31,19 @@ sed -e 's/^\( *set Subdivisions *=\).*/\1 2/' \
     -e 's/^\( *set Output directory *=\).*/\1 coarse/' scene.prm > coarse.prm
 "$executable" coarse.prm > out.txt 2> err.txt \
   || fail "The printed defaults are not accepted: $(cat err.txt)"
+# By default the run prints its timing table but spends no solves on the
+# cost ratios; Measure cost ratios = true adds them.
+grep -q "Total wallclock time" out.txt \
+  || fail "The default run printed no timing table."
+grep -q "Cost measurement" out.txt \
+  && fail "The default run measured the cost ratios."
+sed -e 's/^\( *set Measure cost ratios *=\).*/\1 true/' \
+    -e 's/^\( *set Output directory *=\).*/\1 measured/' coarse.prm \
+  > measured.prm
+"$executable" measured.prm > out.txt 2> err.txt \
+  || fail "Measure cost ratios = true failed: $(cat err.txt)"
+grep -q "ratio step / solve: [0-9]" out.txt \
+  || fail "Measure cost ratios = true printed no ratio step / solve."
 
 # An existing file is not overwritten.
 echo "# my own scene" >> scene.prm

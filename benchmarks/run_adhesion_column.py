@@ -135,6 +135,7 @@ def run(executable, scene, entries, folder, method=None, vtu=False,
         text = set_entry(text, entry, value)
     text = re.sub(r"(?m)^(subsection Output)$",
                   r"\g<1>\n  set Write vtu = %s\n  set Overwrite = true"
+                  r"\n  set Measure cost ratios = true"
                   % ("true" if vtu else "false"), text)
     if method:
         text = set_entry(text, "Method", method)

@@ -65,6 +65,7 @@ def scene_prm(scene, subdivisions, method, steps, directory):
         (("Output",), "Profile times"): "",
         (("Output",), "Verbose"): "false",
         (("Output",), "Print timing summary"): "true",
+        (("Output",), "Measure cost ratios"): "true",
     })
 
 

@@ -332,7 +332,8 @@ def cost(executable, pairs):
                 for cohesive in ((True, False) if pair % 2 else (False, True)):
                     entries = {(("Linear solver",), "Method"): method,
                                (("Output",), "Profile times"): "",
-                               (("Output",), "Print timing summary"): "true"}
+                               (("Output",), "Print timing summary"): "true",
+                               (("Output",), "Measure cost ratios"): "true"}
                     if not cohesive:
                         entries.update(static_glue)
                     text = scene_text(scene, entries, refinements)

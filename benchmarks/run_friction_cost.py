@@ -73,6 +73,9 @@ def run(executable, n, method, scene, folder):
                   lambda m: m.group(1) + extra, text)
     if scene == "moving":
         text = set_entry(text, "Displacement", "0; 0; -0.01 * min(t, 1)")
+    # The time loop comes with the Cost measurement block.
+    text = text.replace("subsection Output\n",
+                        "subsection Output\n  set Measure cost ratios = true\n")
     law = scene
     prm = os.path.join(folder, "%s.prm" % law)
     with open(prm, "w") as f:

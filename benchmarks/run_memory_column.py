@@ -86,7 +86,8 @@ def run(executable, scene, entries, folder, method=None):
                              **entries).items():
         text = set_entry(text, entry, value)
     text = re.sub(r"(?m)^(subsection Output)$",
-                  r"\g<1>\n  set Write vtu = false\n  set Overwrite = true", text)
+                  r"\g<1>\n  set Write vtu = false\n  set Overwrite = true"
+                  r"\n  set Measure cost ratios = true", text)
     if method:
         text += "\nsubsection Linear solver\n  set Method = %s\nend\n" % method
     prm = os.path.join(folder, "scene.prm")

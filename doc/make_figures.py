@@ -131,6 +131,7 @@ def case_prm(case, output_directory):
         # The default case (the reference benchmark as a user runs it, VTU
         # output included) also reports its timings for doc/default_run_timing.md.
         (("Output",), "Print timing summary"): "true" if case == "default" else "false",
+        (("Output",), "Measure cost ratios"): "true" if case == "default" else "false",
     }
     overrides.update(CASES[case][1])
     return set_prm_entries(text, overrides)

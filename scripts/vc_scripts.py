@@ -83,9 +83,13 @@ def add_executable_argument(parser):
 
 def time_per_step(stdout):
     """The program's own time loop (without output) over its steps, from a
-    run's standard output."""
-    loop = float(re.search(r"time loop \(without output\): ([0-9.e+-]+) s",
-                           stdout).group(1))
+    run's standard output (its Cost measurement block: the run must set
+    Measure cost ratios = true)."""
+    found = re.search(r"time loop \(without output\): ([0-9.e+-]+) s", stdout)
+    if found is None:
+        raise RuntimeError("The run printed no time loop: set Measure cost "
+                           "ratios = true in subsection Output.")
+    loop = float(found.group(1))
     steps = [line for line in stdout.splitlines() if line.startswith("Step ")]
     return loop / int(steps[-1].split()[1])
 

@@ -102,8 +102,9 @@ namespace ViscoContact
     write_contact_profile(const ViscoplasticContact<dim> &problem,
                           const unsigned int              step,
                           const double                    time);
-    // The run summary: the final state, and with the timing summary the
-    // timers and the reference costs, measured now (collective).
+    // The run summary: the final state, with Print timing summary the
+    // timers, and with Measure cost ratios the reference costs, measured
+    // now (collective).
     void
     print_summary(ViscoplasticContact<dim> &problem);
 

@@ -136,7 +136,7 @@ namespace ViscoContact
     print_summary(const FinalState &state) const;
 
     // The reference costs a step is compared with, measured by the class
-    // after the run (with Print timing summary): one solve with the step
+    // after the run (with Measure cost ratios): one solve with the step
     // operator and no contact, one stress update with the history load.
     struct CostMeasurement
     {

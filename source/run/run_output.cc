@@ -741,7 +741,7 @@ namespace ViscoContact
   // The final state as the summary shows it (run/run_report.h): the L2 norms
   // of eps(u) and sigma with the stress quadrature (each rank sums over its
   // own stress points, and only the two sums are reduced), the contact, the
-  // norms of u, and what the back end did. With the timing summary, the
+  // norms of u, and what the back end did. With Measure cost ratios, the
   // cost of an average step relative to the work every step has without
   // contact, measured now in the same process: one solve with the step
   // operator (the back end's, no contact) and one stress update with the

@@ -86,7 +86,8 @@ namespace ViscoContact
       << run_parameters.directory
       << "\n  set Write vtu = false\n  set Verbose = false\n"
       << "  set Print iteration history = false\n"
-      << "  set Print timing summary = false\n  set Profile times =\nend\n";
+      << "  set Print timing summary = false\n"
+      << "  set Measure cost ratios = false\n  set Profile times =\nend\n";
     run_parameters.parsed_parameters += changes.str();
     return run_parameters;
   }

@@ -51,7 +51,8 @@ namespace ViscoContact
                        const bool                         node_blocks,
                        const unsigned int                 dim,
                        const bool                         symmetric,
-                       TrilinosWrappers::PreconditionAMG &amg);
+                       TrilinosWrappers::PreconditionAMG &amg,
+                       const bool fine_level_smoothing = true);
 } // namespace ViscoContact
 
 #endif

@@ -130,13 +130,17 @@ namespace ViscoContact
   //    did not hold ML would aggregate dofs.
   // Chebyshev degree 3 or 4 and symmetric Gauss-Seidel took fewer iterations
   // but not less time, a smoother as coarse solver more iterations.
+  // Without fine_level_smoothing the finest level is not smoothed (ML's
+  // "do-nothing"): for a caller that smooths it itself around the cycle
+  // (the full space back end's smoothing of the projected step operator).
   void
   build_elasticity_amg(const Epetra_CrsMatrix            &matrix,
                        const Epetra_MultiVector          &null_space,
                        const bool                         node_blocks,
                        const unsigned int                 dim,
                        const bool                         symmetric,
-                       TrilinosWrappers::PreconditionAMG &amg)
+                       TrilinosWrappers::PreconditionAMG &amg,
+                       const bool                         fine_level_smoothing)
   {
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
     data.elliptic              = symmetric;
@@ -158,6 +162,8 @@ namespace ViscoContact
     ml_parameters.set("null space: vectors",
                       null_space.MyLength() > 0 ? null_space.Values()
                                                 : &no_rows);
+    if (!fine_level_smoothing)
+      ml_parameters.set("smoother: type (level 0)", "do-nothing");
     amg.initialize(matrix, ml_parameters);
   }
 

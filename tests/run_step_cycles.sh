@@ -19,7 +19,9 @@
 # series counts the unilateral and the compliance nodes together: where a
 # cohesive law meets the unilateral constraint at u_n = 0 both pieces give
 # r = 0, and a node that sits there within the solver's tolerance goes to
-# either.
+# either. The contact profiles and the final line still name each node's
+# piece: a scene with such a node at a profile time or at the end would
+# fail.
 #   run_step_cycles.sh EXECUTABLE PRM
 set -u
 here=$(dirname "$0")

@@ -529,8 +529,10 @@ namespace ViscoContact
   // nodes have changed (which keeps the cold starts and the small scenes
   // as they were). On the Hertz sphere that took 451 iterations and 4
   // set-ups, on the cube 190 and 3 (doc/performance.md, "The full space
-  // back end"). Iterations and residuals are the same on every rank, so
-  // all ranks decide alike.
+  // back end"). These counts, and the 30 iterations a set-up is taken to
+  // cost, were measured while the AMG smoothed its finest level too, whose
+  // iterations took nine products with A instead of five. Iterations and
+  // residuals are the same on every rank, so all ranks decide alike.
   // contact_amg_fits() decides, then assemble_contact_matrix() and
   // project_rigid_body_modes() give the AMG its matrix and near-null space.
   template <int dim>

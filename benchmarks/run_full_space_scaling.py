@@ -33,7 +33,7 @@ Usage:
 
 Times are wall times on whatever machine runs it; compare ratios within
 one invocation. --concurrent runs the hexahedra and the tetrahedra side by
-side, one process and one thread each (on two cores about 18 minutes instead
+side, one process and one thread each (on two cores about 21 minutes instead
 of 30 for the sizes of doc/performance.md); the ratios measured within a
 process hold, the absolute times share the memory bandwidth.
 """

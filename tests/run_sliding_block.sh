@@ -385,4 +385,8 @@ if extended; then
     END { if (turned != 16) { print "3D sphere turned in place: " turned " steps of the turn"; exit 1 } }' \
     results/time_series.csv || exit 1
 fi
-echo "Sliding block: F balances the reaction, sticks below and equals the bound mu N or g W at full slip, slip 0.0025 per step (Coulomb, Tresca, 2D/3D, all cell types, both back ends, 1 and 2 ranks); the same with the support moving instead (three back ends); a dragged cylinder at F = mu N, one turned in place (2D, 3D, about two centers; each node's slip), one rolled (slipping behind its stick zone); slip and rate weakening node by node; pushed obliquely, F turns toward the push by a factor of about 0.78 per step."
+if extended; then
+  echo "Sliding block: F balances the reaction, sticks below and equals the bound mu N or g W at full slip, slip 0.0025 per step (Coulomb, Tresca, 2D/3D, all cell types, both back ends, 1 and 2 ranks); the same with the support moving instead (three back ends); a dragged cylinder at F = mu N, one turned in place (2D, 3D, about two centers; each node's slip), one rolled (slipping behind its stick zone); slip and rate weakening node by node; pushed obliquely, F turns toward the push by a factor of about 0.78 per step."
+else
+  echo "Sliding block (${quick:-$part} variants): F balances the reaction, sticks below and equals the bound at full slip (Coulomb, Tresca); the support moving instead; a dragged, a turned and a rolled cylinder; slip and rate weakening; pushed obliquely."
+fi

@@ -44,9 +44,10 @@ TEST(Lanczos, DiagonalOperator)
       const double lambda
         = largest_eigenvalue(apply, n_local, m, MPI_COMM_WORLD);
       // The iteration stops once the estimate changes by at most 1e-8
-      // relative, which bounds its error: observed 2.0e-9 at m = 40 (whose
-      // two largest eigenvalues are close), exact for m = 1 and 7.
-      EXPECT_NEAR(lambda, m, 1e-8 * m) << "m = " << m;
+      // relative, which bounds its error: observed 2.03e-9 at m = 40 (whose
+      // two largest eigenvalues are close), exact for m = 1 and 7. The
+      // bound is 1.5 times the observed error.
+      EXPECT_NEAR(lambda, m, 3e-9 * m) << "m = " << m;
       EXPECT_LE(products, m);
     }
 }

@@ -67,9 +67,18 @@ namespace ViscoContact
     // Full space back end (assembled K, ML's AMG): bytes per dof of a rank
     // (K, the AMG hierarchy, the vectors, the stress points), and seconds
     // per dof of one active-set iteration (the projected Krylov solve and
-    // the node terms) and of the AMG set-up. 3D: 6.9 kB and 8.7 to 9.8 us
-    // (cube_3d, 15k and 108k dofs); 2D: 4.7 to 6.3 us (static scene, 132k
-    // and 526k dofs).
+    // the node terms) and of the set-up (sparsity, K and its AMG). 3D, from
+    // whole runs of cube_3d (32 steps, 15k to 353k dofs; the steps after
+    // the first, run_cube_benchmark.py --method "full space"): 3.9 to 4.7
+    // us per iteration, 10 to 11 us of set-up; 6.9 kB. 2D: the static
+    // scene's cold step with its initial cycles took 19.6 and 22.8 us per
+    // dof (33k and 132k dofs, run_performance.py), the model's 4 iterations
+    // of 6 us. On tetrahedra a 3D step costs more: more CG iterations per
+    // solve (15 against 10 to 12) and more active-set iterations per step;
+    // a step took 1.6 to 1.8 times the hexahedra's at 108k dofs on one and
+    // two ranks (doc/benchmark_3d/cube_benchmark.md), and over whole runs
+    // at 15k dofs on two ranks 1.4 times (run_method_choice.py): the model
+    // takes 1.6.
     double
     full_space_bytes_per_dof(const SceneSize &scene)
     {
@@ -78,38 +87,49 @@ namespace ViscoContact
     double
     full_space_iteration_seconds_per_dof(const SceneSize &scene)
     {
-      return scene.dim == 2 ? 6e-6 : 9e-6;
+      return scene.dim == 2 ? 6e-6 : (scene.simplex ? 1.6 : 1.) * 4.2e-6;
     }
-    // The AMG set-up: 2.6 us per dof in 2D (132k dofs), 15 us in 3D (108k).
     double
     full_space_setup_seconds_per_dof(const SceneSize &scene)
     {
-      return scene.dim == 2 ? 3e-6 : 15e-6;
+      return scene.dim == 2 ? 3e-6 : 11e-6;
+    }
+    // While the contact zone forms the AMG is rebuilt whenever a tenth of
+    // the contact rows changed (3 to 5 times in the first two steps of
+    // cube_3d): those two steps cost 48 to 55 us per dof beyond the later
+    // steps' rate (15k to 1.2M dofs, run_matrix_free.py against the whole
+    // runs), 12 iterations' work where the model counts 4 for the matrix-
+    // free back end, whose multigrid is not rebuilt. (In 2D the iteration
+    // above was fitted to the cold step, its rebuilds included.)
+    double
+    full_space_rebuild_iterations(const SceneSize &scene)
+    {
+      return scene.dim == 2 ? 0 : 8;
     }
 
     // Matrix-free back end: no matrix, a multigrid of global coarsening;
-    // 1.1 kB per dof beyond the libraries. Its time per active-set
-    // iteration against the full space back end's depends on the dofs per
-    // rank (both preconditioners smooth the projected step operator,
-    // algorithm.md). In 3D, measured over whole runs of cube_3d (32 steps;
-    // benchmarks/run_method_choice.py, run_cube_benchmark.py): 0.71 at 15k
-    // dofs per rank, 0.79 at 23k, 0.89 to 0.96 at 47k to 54k, 1.10 to 1.15
-    // at 108k and 1.14 at 353k; at 1.2M only the two steps where the
-    // contact zone forms were measured (run_matrix_free.py), 0.5, and the
-    // model takes 0.85 there. The model interpolates in log(dofs per rank)
-    // between 0.71, 1.12 (108k to 353k) and 0.85. In 2D the model keeps
-    // 1.25, measured on the static scene on quadrilaterals (33k to 526k
-    // dofs) before both preconditioners smoothed the projected operator;
-    // the regenerated method_choice.md has 0.94 to 1.20 there (one cold
-    // step, whole processes, one noisy run each).
+    // 1.1 kB per dof beyond the libraries, and a set-up (its levels and
+    // their coarse AMG) of 10 to 11 us per dof in 3D. Its time per
+    // active-set iteration against the full space back end's grows with
+    // the dofs per rank: in 3D, over the steps after the first of whole
+    // runs of cube_3d (32 steps, run_cube_benchmark.py), 1.11 at 15k dofs,
+    // 1.56 at 108k and 1.62 at 353k; the model interpolates in log(dofs
+    // per rank) and keeps 1.6 above (at 1.2M dofs one elastic solve took
+    // 2.1 times the full space one's, run_matrix_free.py). In 2D the model
+    // keeps 1.25, measured on the static scene on quadrilaterals (33k to
+    // 526k dofs).
     // On a mesh without coarser meshes (a Gmsh file used as it is) the
     // multigrid has one level, the AMG of the assembled K with Chebyshev
     // smoothing around it, and the back end is not costed: on the graded
     // Hertz sphere (108k dofs, one rank, hertz_sphere.prm with one step)
     // it took 351 CG iterations against the full space back end's 90, and
     // 1.6 times its time.
-    constexpr double matrix_free_bytes_per_dof         = 1e3;
-    constexpr double matrix_free_setup_seconds_per_dof = 10e-6;
+    constexpr double matrix_free_bytes_per_dof = 1e3;
+    double
+    matrix_free_setup_seconds_per_dof(const SceneSize &scene)
+    {
+      return scene.dim == 2 ? 10e-6 : 11e-6;
+    }
     double
     matrix_free_iteration_seconds_per_dof(const SceneSize &scene)
     {
@@ -120,8 +140,8 @@ namespace ViscoContact
                           1.);
       };
       const double ratio = scene.dim == 2 ? 1.25
-                                          : 0.71 + 0.41 * between(1.5e4, 1.08e5)
-                                              - 0.27 * between(3.5e5, 1.2e6);
+                                          : 1.1 + 0.45 * between(1.5e4, 1.08e5)
+                                              + 0.05 * between(1.08e5, 3.5e5);
       return ratio * full_space_iteration_seconds_per_dof(scene);
     }
 
@@ -230,9 +250,9 @@ namespace ViscoContact
           cost.setup_seconds = operator_setups
                                * full_space_setup_seconds_per_dof(scene)
                                * dofs_per_rank;
-          cost.steps_seconds = iterations
-                               * full_space_iteration_seconds_per_dof(scene)
-                               * dofs_per_rank;
+          cost.steps_seconds
+            = (iterations + full_space_rebuild_iterations(scene))
+              * full_space_iteration_seconds_per_dof(scene) * dofs_per_rank;
           break;
         case Parameters::Method::matrix_free:
           if (scene.simplex)
@@ -244,7 +264,7 @@ namespace ViscoContact
           cost.bytes_per_rank = library_bytes_per_rank
                                 + dofs_per_rank * matrix_free_bytes_per_dof;
           cost.setup_seconds
-            = matrix_free_setup_seconds_per_dof * dofs_per_rank;
+            = matrix_free_setup_seconds_per_dof(scene) * dofs_per_rank;
           cost.steps_seconds = iterations
                                * matrix_free_iteration_seconds_per_dof(scene)
                                * dofs_per_rank;

@@ -896,6 +896,40 @@ TEST(Friction, TransverseStiffnessOfA3DSlip)
 
 
 
+// A turn of the slip direction keeps the active-set iteration going while
+// the force it moves, g times the change of d, exceeds the friction
+// tolerance (1e-7) times the larger of g and the force c w of the node's
+// spring over the displacement scale (the largest |r|). Tresca, g = 1,
+// c w = 50: a turn of 1e-6 counts at a scale of 1e-3 (c w scale = 0.05,
+// below g), and not at a scale of 1 (c w scale = 50: the turn must move
+// more than 5e-6 of g), where 1e-5 counts again. (A node of a small bound
+// on the frictional cube at 108k dofs turned by about 1e-6 in every
+// iteration while its displacement stood still to 1e-12, and the step ran
+// out of iterations.)
+TEST(Friction, ATurnCountsByTheForceItMoves)
+{
+  const ContactLaws signorini(ContactLaw({}, {0.}, {}, true, 0.));
+  ContactNodes      nodes;
+  nodes.reinit(signorini, {0}, {0.5});
+  nodes.set_friction({std::make_shared<TrescaFriction>()}, {2}, {1.});
+  nodes.set_parameters({100.});
+  nodes.z[0] = 10;
+  // The slip direction at the angle given, against the one before.
+  const auto turns = [&nodes](const double angle, const double scale) {
+    nodes.r[0] = scale;
+    nodes.t[0] = {{5 * std::cos(angle), 5 * std::sin(angle)}};
+    return nodes.update_all_pieces(MPI_COMM_SELF)[2];
+  };
+  turns(0., 1e-3);
+  ASSERT_EQ(nodes.friction_state(0), ContactNodes::slip);
+  EXPECT_EQ(turns(1e-6, 1e-3), 1u);
+  EXPECT_EQ(turns(2e-6, 1.), 0u);
+  EXPECT_EQ(turns(1.2e-5, 1.), 1u);
+  EXPECT_EQ(nodes.friction_state(0), ContactNodes::slip);
+}
+
+
+
 // A diagonal compliance decouples the nodes: every node has a closed-form
 // answer. Five nodes cover the four pieces.
 TEST(ActiveSetSolver, DecoupledNodesMatchClosedForm)

@@ -11,9 +11,10 @@ Three groups of runs, each a separate process, one after the other:
    "Setup: back end for K" is the sparse factorisation alone (and its
    analysis), the figure the set-up of the compliance is measured against.
    The full space back end runs the same scene up to --full-space-limit.
-   With --baseline, the condensed case at the largest N then runs --pairs
-   more times, each time this build and the baseline one after the other:
-   the spread of the ratio over the pairs is the noise of a shared machine.
+   The condensed case at the largest N then runs --pairs more times, with
+   and without the contact boundary (set-up / factorisation), and with
+   --baseline the baseline build after each: the spread of the ratios over
+   the pairs is the noise of a shared machine.
 2. The 2D benchmark (parameters/default.prm) at h = k = 1/N, no file output,
    with DEAL_II_NUM_THREADS = 1 and 2: what the threads of the stress update
    save, in one invocation.
@@ -176,8 +177,8 @@ def main():
     parser.add_argument("--cube-steps", default="8,32",
                         help="time steps of k = 1/32 per cube run")
     parser.add_argument("--pairs", type=int, default=5,
-                        help="paired runs of the largest static scene against "
-                             "the baseline (0: none)")
+                        help="paired runs of the largest static scene, with "
+                             "and without contact (and the baseline; 0: none)")
     parser.add_argument("--output", default=os.path.join(REPO_ROOT, "doc", "performance", "tables.md"))
     args = parser.parse_args()
     executable = resolve_executable(args.executable)
@@ -234,10 +235,11 @@ def main():
                             blas_threads=1)))
     lines.append("")
 
-    # 1b. Paired runs of the largest static scene, condensed, against the
-    # baseline: one pair is one sample of a shared machine's noise.
+    # 1b. Paired runs of the largest static scene, condensed, with and
+    # without contact (and the baseline): one pair is one sample of a shared
+    # machine's noise.
     static_sizes = sizes(args.static_sizes)
-    if baseline and args.pairs > 0 and static_sizes:
+    if args.pairs > 0 and static_sizes:
         n = static_sizes[-1]
         text = scene("elastic.prm", {(("Geometry",), "Subdivisions"): str(n),
                                      (("Time",), "End time"): repr(1. / 64),
@@ -245,25 +247,29 @@ def main():
         lines += [f"## 2D static scene at N = {n}: paired runs", "",
                   f"The condensed case of table 1, run {args.pairs} more times, "
                   "each time this build with and without the contact boundary "
-                  "(factorisation and set-up as in table 1) and then the "
-                  "baseline (with `OPENBLAS_NUM_THREADS=1`, as above); the "
-                  "last row is the median of each column.", "",
+                  "(factorisation and set-up as in table 1)"
+                  + (" and then the baseline (with `OPENBLAS_NUM_THREADS=1`, "
+                     "as above)" if baseline else "")
+                  + "; the last row is the median of each column.", "",
                   "| pair | whole process [s] | factorisation [s] | set-up [s] "
-                  "| set-up / factorisation | baseline whole process [s] "
-                  "| this / baseline |",
-                  "| ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+                  "| set-up / factorisation |"
+                  + (" baseline whole process [s] | this / baseline |"
+                     if baseline else ""),
+                  "| ---: | ---: | ---: | ---: | ---: |"
+                  + (" ---: | ---: |" if baseline else "")]
         samples = []
         for pair in range(1, args.pairs + 1):
             this = run(executable, text, work, f"static_{n}_pair_{pair}")
             no_contact = run(executable, set_prm_entries(text, {
                 (("Boundary",), "Contact boundary ids"): ""}), work,
                 f"static_{n}_pair_{pair}_nocontact")
-            old = run(baseline, text, work, f"static_{n}_pair_{pair}_baseline",
-                      blas_threads=1)
             samples.append((this["wall"], no_contact["back_end"],
                             this["back_end"],
-                            this["back_end"] / no_contact["back_end"],
-                            old["wall"], this["wall"] / old["wall"]))
+                            this["back_end"] / no_contact["back_end"]))
+            if baseline:
+                old = run(baseline, text, work,
+                          f"static_{n}_pair_{pair}_baseline", blas_threads=1)
+                samples[-1] += (old["wall"], this["wall"] / old["wall"])
             cells = (f"| {pair} | " + " | ".join(
                 f"{value:.3f}" if k in (3, 5) else f"{value:.2f}"
                 for k, value in enumerate(samples[-1])) + " |")

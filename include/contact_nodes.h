@@ -66,7 +66,7 @@ namespace ViscoContact
       double       linear_residual;
       unsigned int inner_iterations;
       // Slipping nodes whose slip direction turned by more than the
-      // friction tolerance (3D).
+      // friction tolerance resolves (3D, ContactNodes::update_friction()).
       unsigned int adjusted_nodes = 0;
     };
 

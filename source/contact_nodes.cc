@@ -425,10 +425,10 @@ namespace ViscoContact
   // of t = g q / |q| adds a stiffness k_e = c w gamma / (1 - gamma),
   // gamma = g / |q|, across the slip direction (zero at convergence, where
   // ds is along d), capped at 100 c w where gamma is close to 1; changes of
-  // the direction are reported as adjustments until they fall below the
-  // friction tolerance. Coulomb's bound mu z is not frozen: the step
-  // problem couples a slipping node's tangential force to its normal force
-  // of the same solve (directions()), the Newton linearisation of
+  // the direction are reported as adjustments until the change of q they
+  // stand for falls below the friction tolerance. Coulomb's bound mu z is not
+  // frozen: the step problem couples a slipping node's tangential force to its
+  // normal force of the same solve (directions()), the Newton linearisation of
   // t = mu z d, so the bound needs no fixed point.
   std::array<bool, 2>
   ContactNodes::update_friction(const unsigned int i)
@@ -482,17 +482,20 @@ namespace ViscoContact
         for (unsigned int j = 0; j < k; ++j)
           change += (slip_direction[i][j] - previous[j])
                     * (slip_direction[i][j] - previous[j]);
-        // The turn counts by the force it moves (g times the change of
-        // direction), measured against the larger of the bound and the
-        // force of the node's spring c w over the displacement scale: a node
-        // whose bound is far below that spring force barely slips, and its
-        // direction follows the rounding of its displacement magnified by
-        // c w / g (on the cube with friction at 108k dofs such a node turned
-        // by 1e-6 in every iteration while the solves stood still).
-        adjusted = old == slip
-                   && g * std::sqrt(change)
-                        > friction_tolerance
-                            * std::max(g, c[i] * w[i] * displacement_scale);
+        // The turn counts by the change of q across d it stands for,
+        // |q| |d - d_prev|, against the larger of |q| and the force c w D
+        // of the node's spring over the displacement scale D: the rounding
+        // of the node's slip shows in q times c w, so a node that barely
+        // slips (|q| near g, far below c w D) has a direction that follows
+        // that rounding magnified by c w / |q| (on the cube with friction at
+        // 108k dofs such a node turned by 1e-6 in every iteration while the
+        // solves stood still), and a node that slips far (|q| of c w D or
+        // more) is held to the relative change as before.
+        adjusted
+          = old == slip
+            && q_norm * std::sqrt(change)
+                 > friction_tolerance
+                     * std::max(q_norm, c[i] * w[i] * displacement_scale);
       }
     bounds[i]          = g;
     friction_states[i] = next;

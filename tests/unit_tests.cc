@@ -897,16 +897,16 @@ TEST(Friction, TransverseStiffnessOfA3DSlip)
 
 
 // A turn of the slip direction keeps the active-set iteration going while
-// the force it moves, g times the change of d, exceeds the friction
-// tolerance (1e-7) times the larger of g and the force c w of the node's
-// spring over the displacement scale (the largest |r|). Tresca, g = 1,
-// c w = 50: a turn of 1e-6 counts at a scale of 1e-3 (c w scale = 0.05,
-// below g), and not at a scale of 1 (c w scale = 50: the turn must move
-// more than 5e-6 of g), where 1e-5 counts again. (A node of a small bound
-// on the frictional cube at 108k dofs turned by about 1e-6 in every
-// iteration while its displacement stood still to 1e-12, and the step ran
-// out of iterations.)
-TEST(Friction, ATurnCountsByTheForceItMoves)
+// the change of q across d it stands for, |q| times the change of d,
+// exceeds the friction tolerance (1e-7) times the larger of |q| and the
+// force c w of the node's spring over the displacement scale (the largest
+// |r|). Tresca, g = 1, |q| = 5, c w = 50: at a scale of 1e-3 (c w scale =
+// 0.05, below |q|) a turn of 1e-6 counts and one of 5e-8 does not; at a
+// scale of 10 (c w scale = 500) the turn must exceed 1e-5: 1e-6 does not
+// count, 1e-4 does. (A node of a small bound on the frictional cube at
+// 108k dofs turned by about 1e-6 in every iteration while its
+// displacement stood still to 1e-12, and the step ran out of iterations.)
+TEST(Friction, ATurnCountsByTheChangeOfQItStandsFor)
 {
   const ContactLaws signorini(ContactLaw({}, {0.}, {}, true, 0.));
   ContactNodes      nodes;
@@ -923,8 +923,9 @@ TEST(Friction, ATurnCountsByTheForceItMoves)
   turns(0., 1e-3);
   ASSERT_EQ(nodes.friction_state(0), ContactNodes::slip);
   EXPECT_EQ(turns(1e-6, 1e-3), 1u);
-  EXPECT_EQ(turns(2e-6, 1.), 0u);
-  EXPECT_EQ(turns(1.2e-5, 1.), 1u);
+  EXPECT_EQ(turns(1.05e-6, 1e-3), 0u);
+  EXPECT_EQ(turns(2.05e-6, 10.), 0u);
+  EXPECT_EQ(turns(1.0205e-4, 10.), 1u);
   EXPECT_EQ(nodes.friction_state(0), ContactNodes::slip);
 }
 

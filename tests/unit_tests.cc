@@ -865,18 +865,33 @@ TEST(ActiveSetSolver, ReportsACycle)
 
 
 
+namespace
+{
+  // One node of a 3D contact zone on a rigid support (Signorini, gap 0),
+  // w = 0.5, c = 100 (c w = 50), pressed with z = 10, under Tresca's bound
+  // g = 1.
+  ContactNodes
+  pressed_tresca_node_3d()
+  {
+    const ContactLaws signorini(ContactLaw({}, {0.}, {}, true, 0.));
+    ContactNodes      nodes;
+    nodes.reinit(signorini, {0}, {0.5});
+    nodes.set_friction({std::make_shared<TrescaFriction>()}, {2}, {1.});
+    nodes.set_parameters({100.});
+    nodes.z[0] = 10;
+    return nodes;
+  }
+} // namespace
+
+
+
 // In 3D a slipping node gets the Newton stiffness across its slip
 // direction: Tresca bound g = 1, q = (3, 4), gamma = g / |q| = 0.2,
 // k = c w gamma / (1 - gamma) = 100 * 0.5 * 0.25.
 TEST(Friction, TransverseStiffnessOfA3DSlip)
 {
-  const ContactLaws signorini(ContactLaw({}, {0.}, {}, true, 0.));
-  ContactNodes      nodes;
-  nodes.reinit(signorini, {0}, {0.5});
-  nodes.set_friction({std::make_shared<TrescaFriction>()}, {2}, {1.});
-  nodes.set_parameters({100.});
-  nodes.z[0] = 10;
-  nodes.t[0] = {{3, 4}};
+  ContactNodes nodes = pressed_tresca_node_3d();
+  nodes.t[0]         = {{3, 4}};
   nodes.update_pieces();
   ASSERT_EQ(nodes.friction_state(0), ContactNodes::slip);
   const NodeDirections directions = nodes.directions(0, 0.);
@@ -908,12 +923,7 @@ TEST(Friction, TransverseStiffnessOfA3DSlip)
 // displacement stood still to 1e-12, and the step ran out of iterations.)
 TEST(Friction, ATurnCountsByTheChangeOfQItStandsFor)
 {
-  const ContactLaws signorini(ContactLaw({}, {0.}, {}, true, 0.));
-  ContactNodes      nodes;
-  nodes.reinit(signorini, {0}, {0.5});
-  nodes.set_friction({std::make_shared<TrescaFriction>()}, {2}, {1.});
-  nodes.set_parameters({100.});
-  nodes.z[0] = 10;
+  ContactNodes nodes = pressed_tresca_node_3d();
   // The slip direction at the angle given, against the one before.
   const auto turns = [&nodes](const double angle, const double scale) {
     nodes.r[0] = scale;

@@ -223,8 +223,9 @@ namespace ViscoContact
     std::array<unsigned int, 3>
     update_pieces(const bool with_friction = true);
     // update_pieces() on every rank of the communicator, the counts summed,
-    // with the rounding of q measured against the largest normal
-    // displacement of all ranks (collective).
+    // with the rounding of q measured against the largest |r| and that of
+    // the slips against the largest displacement of a frictional node, of
+    // all ranks (collective).
     std::array<unsigned int, 3>
     update_all_pieces(const MPI_Comm communicator);
 
@@ -313,7 +314,8 @@ namespace ViscoContact
     const std::vector<unsigned int> &
     pieces() const;
 
-    // r_i = u.nu and z_i, written by the back end of the current solve.
+    // r_i = u.nu - gap_i and z_i, written by the back end of the current
+    // solve.
     std::vector<double> r, z;
     // The tangential displacement s_i and force t_i of the frictional nodes
     // in their frames (the force the foundation exerts is -t_i, as it is
@@ -394,6 +396,12 @@ namespace ViscoContact
     // iteration: the scale of the rounding in q = p + c r, which
     // next_piece()'s slack absorbs.
     double displacement_scale = 0;
+    // The largest displacement |(u.nu, s)| of a frictional node over all
+    // ranks after the last solve: the scale of the rounding of the slips
+    // (update_friction()), with the obstacle gap of every node at its last
+    // solve (u.nu = r + gap).
+    double              slip_scale = 0;
+    std::vector<double> node_gaps;
     // Values per node that a law with a history gives for each step (the
     // memory pressures, the bonding, the worn depths): none until given,
     // then the fallback at every node. Whether they were given is the same

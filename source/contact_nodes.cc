@@ -133,6 +133,7 @@ namespace ViscoContact
     c.assign(w.size(), 0.);
     r.assign(w.size(), 0.);
     z.assign(w.size(), 0.);
+    node_gaps.assign(w.size(), 0.);
     node_pieces.assign(w.size(), 0);
     placed           = false;
     memory_pressures = StepValues(0.);
@@ -351,18 +352,31 @@ namespace ViscoContact
 
   // @sect4{ContactNodes::update_all_pieces}
   //
-  // The update rule on every rank, after the largest normal displacement
-  // of the solve is known on all of them: the rounding of q = p + c r is
-  // relative to it (ContactLaw::next_piece()), and a node far from the
-  // load, at r = 0 with a force of round-off, must not flip between two
-  // pieces that meet there. The counts are summed over the ranks.
+  // The update rule on every rank, after the scales of the solve are known
+  // on all of them. The rounding of q = p + c r is relative to the largest
+  // |r| (ContactLaw::next_piece()): a node far from the load, at r = 0 with
+  // a force of round-off, must not flip between two pieces that meet there.
+  // The rounding of a slip is relative to the displacements of the
+  // frictional nodes, |(u.nu, s)| = |(r + gap, s)|, not to r, which holds
+  // the gaps of the nodes out of contact (on a curved obstacle far larger
+  // than any displacement) and is zero at every node pressed onto a flat
+  // rigid obstacle, however far the nodes slip. The counts are summed over
+  // the ranks.
   std::array<unsigned int, 3>
   ContactNodes::update_all_pieces(const MPI_Comm communicator)
   {
-    double largest = 0;
-    for (const double r_i : r)
-      largest = std::max(largest, std::abs(r_i));
-    displacement_scale = Utilities::MPI::max(largest, communicator);
+    std::vector<double> largest = {0, 0};
+    for (unsigned int i = 0; i < size(); ++i)
+      {
+        largest[0] = std::max(largest[0], std::abs(r[i]));
+        if (tangential_directions[i] > 0)
+          largest[1] = std::max(largest[1],
+                                std::hypot(r[i] + node_gaps[i],
+                                           std::hypot(s[i][0], s[i][1])));
+      }
+    Utilities::MPI::max(std::vector<double>(largest), communicator, largest);
+    displacement_scale = largest[0];
+    slip_scale         = largest[1];
     return sum_over_ranks(update_pieces(), communicator);
   }
 
@@ -484,18 +498,17 @@ namespace ViscoContact
                     * (slip_direction[i][j] - previous[j]);
         // The turn counts by the change of q across d it stands for,
         // |q| |d - d_prev|, against the larger of |q| and the force c w D
-        // of the node's spring over the displacement scale D: the rounding
+        // of the node's spring over the slip scale D: the rounding
         // of the node's slip shows in q times c w, so a node that barely
         // slips (|q| near g, far below c w D) has a direction that follows
         // that rounding magnified by c w / |q| (on the cube with friction at
         // 108k dofs such a node turned by 1e-6 in every iteration while the
         // solves stood still), and a node that slips far (|q| of c w D or
         // more) is held to the relative change as before.
-        adjusted
-          = old == slip
-            && q_norm * std::sqrt(change)
-                 > friction_tolerance
-                     * std::max(q_norm, c[i] * w[i] * displacement_scale);
+        adjusted = old == slip
+                   && q_norm * std::sqrt(change)
+                        > friction_tolerance
+                            * std::max(q_norm, c[i] * w[i] * slip_scale);
       }
     bounds[i]          = g;
     friction_states[i] = next;
@@ -603,8 +616,9 @@ namespace ViscoContact
             force[e] += direction.frame[e] * f;
           }
       }
-    r[i] = y[0] - gap;
-    z[i] = force[0];
+    r[i]         = y[0] - gap;
+    node_gaps[i] = gap;
+    z[i]         = force[0];
     for (unsigned int j = 0; j < tangential_directions[i]; ++j)
       {
         s[i][j] = y[1 + j];
@@ -911,15 +925,17 @@ namespace ViscoContact
   // @sect4{ContactNodes::pieces_stay}
   //
   // A trial of the update rule: the state is restored afterwards, with the
-  // displacement scale the rule's rounding is measured against.
+  // scales the rule's rounding is measured against.
   bool
   ContactNodes::pieces_stay(const MPI_Comm communicator)
   {
-    const State  saved = state();
-    const double scale = displacement_scale;
-    const bool   stay  = (update_all_pieces(communicator)[0] == 0);
+    const State  saved      = state();
+    const double scale      = displacement_scale;
+    const double slip_range = slip_scale;
+    const bool   stay       = (update_all_pieces(communicator)[0] == 0);
     set_state(saved);
     displacement_scale = scale;
+    slip_scale         = slip_range;
     return stay;
   }
 

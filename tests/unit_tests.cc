@@ -914,13 +914,13 @@ TEST(Friction, TransverseStiffnessOfA3DSlip)
 // A turn of the slip direction keeps the active-set iteration going while
 // the change of q across d it stands for, |q| times the change of d,
 // exceeds the friction tolerance (1e-7) times the larger of |q| and the
-// force c w of the node's spring over the displacement scale (the largest
-// |r|). Tresca, g = 1, |q| = 5, c w = 50: at a scale of 1e-3 (c w scale =
-// 0.05, below |q|) a turn of 1e-6 counts and one of 5e-8 does not; at a
-// scale of 10 (c w scale = 500) the turn must exceed 1e-5: 1e-6 does not
-// count, 1e-4 does. (A node of a small bound on the frictional cube at
-// 108k dofs turned by about 1e-6 in every iteration while its
-// displacement stood still to 1e-12, and the step ran out of iterations.)
+// force c w of the node's spring over the slip scale (the largest
+// displacement |(u.nu, s)| of a frictional node). Tresca, g = 1, |q| = 5, c w =
+// 50: at a scale of 1e-3 (c w scale = 0.05, below |q|) a turn of 1e-6 counts
+// and one of 5e-8 does not; at a scale of 10 (c w scale = 500) the turn must
+// exceed 1e-5: 1e-6 does not count, 1e-4 does. (A node of a small bound on the
+// frictional cube at 108k dofs turned by about 1e-6 in every iteration while
+// its displacement stood still to 1e-12, and the step ran out of iterations.)
 TEST(Friction, ATurnCountsByTheChangeOfQItStandsFor)
 {
   ContactNodes nodes = pressed_tresca_node_3d();
@@ -937,6 +937,41 @@ TEST(Friction, ATurnCountsByTheChangeOfQItStandsFor)
   EXPECT_EQ(turns(2.05e-6, 10.), 0u);
   EXPECT_EQ(turns(1.0205e-4, 10.), 1u);
   EXPECT_EQ(nodes.friction_state(0), ContactNodes::slip);
+}
+
+
+
+// The slip scale is a displacement, not a gap: beside the node above
+// (u.nu = 1e-3), a frictional node out of contact at the gap 10 of a curved
+// obstacle (u.nu = 0, r = -10) leaves the scale at 1e-3, so a turn of 1e-6
+// still counts (measured against the largest |r|, 10, it would not).
+TEST(Friction, TheSlipScaleIgnoresTheGapsOfFreeNodes)
+{
+  const ContactLaws signorini(ContactLaw({}, {0.}, {}, true, 0.));
+  ContactNodes      nodes;
+  nodes.reinit(signorini, {0, 0}, {0.5, 0.5});
+  nodes.set_friction({std::make_shared<TrescaFriction>()}, {2, 2}, {1., 1.});
+  nodes.set_parameters({100., 100.});
+  const double gap              = 10;
+  const double displacements[3] = {0, 0, 0};
+  const double fixed_forces[3]  = {0, 0, 0};
+  nodes.store_solution(1,
+                       gap,
+                       nodes.directions(1, gap),
+                       displacements,
+                       fixed_forces);
+  ASSERT_EQ(nodes.r[1], -gap);
+  nodes.z[0]       = 10;
+  nodes.r[0]       = 1e-3;
+  const auto turns = [&nodes](const double angle) {
+    nodes.t[0] = {{5 * std::cos(angle), 5 * std::sin(angle)}};
+    return nodes.update_all_pieces(MPI_COMM_SELF)[2];
+  };
+  turns(0.);
+  ASSERT_EQ(nodes.friction_state(0), ContactNodes::slip);
+  ASSERT_NE(nodes.friction_state(1), ContactNodes::slip);
+  EXPECT_EQ(turns(1e-6), 1u);
+  EXPECT_EQ(turns(1.05e-6), 0u);
 }
 
 

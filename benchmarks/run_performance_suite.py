@@ -45,6 +45,8 @@ PARTS = [
      "doc/performance/step42.md", 6),
     ("step37", "run_step37_comparison.py", ["--executable", "{program}"],
      "doc/performance/step37.md", 3),
+    ("start_up", "run_start_up.py", ["--executable", "{program}"],
+     "doc/performance/start_up.md", 1),
     ("cold_start", "run_cold_start.py", ["--executable", "{program}"],
      "doc/performance/cold_start.md", 15),
     ("active_set_growth", "run_active_set_growth.py",

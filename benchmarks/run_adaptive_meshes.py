@@ -96,7 +96,8 @@ def run(executable, subdivisions, levels=0, adaptive=None, dimension=2):
         })
     text = set_prm_entries(text, entries)
     with run_in_temporary_directory(executable, text) as (workdir, out, wall):
-        dofs = int(out.split(" displacement dofs")[0].split()[-1])
+        dofs = int(re.search(r"^Mesh: \d+ \S+ cells, (\d+) displacement dofs",
+                             out, re.M).group(1))
         # The dofs of each step: the initial count until the first
         # adaptation, then the count after each.
         step_dofs, current = [], dofs
@@ -109,9 +110,15 @@ def run(executable, subdivisions, levels=0, adaptive=None, dimension=2):
             m = re.match(r"Initial cycles done: (\d+) cells, (\d+) dofs", line)
             if m:
                 current = int(m.group(2))
-            elif line.startswith("Step "):
+            elif re.match(r"Step +\d+ ", line):
                 step_dofs.append(current)
         cells = [re.search(r"^Mesh: (\d+) ", out, re.M).group(1)]
+        # With initial cycles the first mesh printed is their coarsest; the
+        # run's own mesh is the one they end on.
+        cycled = re.search(r"^Initial cycles done: (\d+) cells, (\d+) dofs",
+                           out, re.M)
+        if cycled:
+            cells[0], dofs = cycled.group(1), int(cycled.group(2))
         cells += re.findall(r"-> (\d+) cells", out)
         strain = float(re.search(r"\|\|eps\(u\)\|\|_L2 = ([0-9.eE+-]+)", out).group(1))
         results = os.path.join(workdir, "results")

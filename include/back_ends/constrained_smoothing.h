@@ -27,12 +27,16 @@ namespace ViscoContact
 
   // A_P of one set of pieces: apply is its product, project applies P in
   // place, add_stiffness adds the free directions' stiffness k v_j^2 to a
-  // vector holding A's diagonal.
+  // vector holding A's diagonal, and remove_stiff removes in place the free
+  // directions that are stiffer than A along them, which a coarse
+  // correction that does not know them must leave to the smoothing
+  // (FullSpaceContactSolver::collect_stiff_rows()).
   struct ConstrainedOperator
   {
     std::function<void(VectorType &, const VectorType &)> apply;
     std::function<void(VectorType &)>                     project;
     std::function<void(VectorType &)>                     add_stiffness;
+    std::function<void(VectorType &)>                     remove_stiff;
   };
 
   // The Jacobi step of A_P: P D^{-1} P + (I - P), D the diagonal of A plus
@@ -56,12 +60,12 @@ namespace ViscoContact
   };
 
   // Chebyshev smoothing of A_P around its Jacobi step, before and after a
-  // coarse correction C (P C P with the projections): one symmetric
-  // two-level cycle. deal.II's PreconditionChebyshev does the smoothing;
-  // its eigenvalue bound is that of D^{-1} A, estimated once per operator
-  // (initialize()): removing directions and adding a stiffness that D
-  // includes do not raise it much, and the estimate has a safety factor
-  // of 1.2.
+  // coarse correction C (P Q C Q P with the projections P and the removal Q
+  // of the stiff free directions): one symmetric two-level cycle. deal.II's
+  // PreconditionChebyshev does the smoothing; its eigenvalue bound is that of
+  // D^{-1} A, estimated once per operator (initialize()): removing directions
+  // and adding a stiffness that D includes do not raise it much, and the
+  // estimate has a safety factor of 1.2.
   class ConstrainedSmoothing
   {
   public:
@@ -103,6 +107,7 @@ namespace ViscoContact
     VectorType                         diagonal;
     Operator                           constrained_operator;
     std::shared_ptr<ConstrainedJacobi> jacobi;
+    std::function<void(VectorType &)>  remove_stiff;
     Smoother                           smoother;
     mutable VectorType                 residual, correction;
   };

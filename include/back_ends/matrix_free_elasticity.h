@@ -80,9 +80,14 @@ namespace ViscoContact
     // constrained operator instead of K (Chebyshev around its Jacobi step,
     // with K's eigenvalue bound), and whose coarser levels are K's. A V-cycle
     // of K alone treats the fixed directions as free: CG then needs about three
-    // times the iterations of an elastic solve (doc/performance.md).
+    // times the iterations of an elastic solve (doc/performance.md). The
+    // coarser levels neither get nor return the fixed directions and the
+    // stiff ones (ConstrainedOperator::remove_stiff).
     void
     precondition_constrained(VectorType &dst, const VectorType &src) const;
+    // The diagonal of K (locally owned entries).
+    VectorType
+    diagonal() const;
 
     // The number of meshes of the multigrid and their dofs, for the
     // header.

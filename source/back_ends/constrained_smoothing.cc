@@ -71,7 +71,7 @@ namespace ViscoContact
     correction.reinit(diagonal, true);
 
     constrained_operator.apply = apply_A;
-    jacobi->reinit(diagonal, {apply_A, {}, {}});
+    jacobi->reinit(diagonal, {apply_A, {}, {}, {}});
     typename Smoother::AdditionalData data;
     data.degree              = degree;
     data.smoothing_range     = smoothing_range;
@@ -94,6 +94,7 @@ namespace ViscoContact
   ConstrainedSmoothing::constrain(const ConstrainedOperator &constrained)
   {
     constrained_operator.apply = constrained.apply;
+    remove_stiff               = constrained.remove_stiff;
     jacobi->reinit(diagonal, constrained);
   }
 
@@ -108,7 +109,11 @@ namespace ViscoContact
     smoother.vmult(dst, src);
     constrained_operator.vmult(residual, dst);
     residual.sadd(-1., 1., src);
+    if (remove_stiff)
+      remove_stiff(residual);
     coarse(correction, residual);
+    if (remove_stiff)
+      remove_stiff(correction);
     dst += correction;
     constrained_operator.vmult(residual, dst);
     residual.sadd(-1., 1., src);

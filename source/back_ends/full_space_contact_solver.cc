@@ -42,6 +42,8 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace ViscoContact
 {
@@ -224,6 +226,18 @@ namespace ViscoContact
     // P v: v without its fixed rows at every node.
     void
     remove_fixed_rows(const ContactSet<dim> &contact, VectorType &v) const;
+    // The free directions stiffer than the body that the coarse correction
+    // does not know (into stiff_rows), and v without its components along
+    // them: what the coarse correction leaves to the smoothing
+    // (constrained_operator()).
+    void
+    collect_stiff_rows(const ContactSet<dim> &contact);
+    void
+    remove_stiff_rows(const ContactSet<dim> &contact, VectorType &v) const;
+    // A's diagonal (locally owned entries), computed at the first call after
+    // set_operator(); collective then.
+    const VectorType &
+    diagonal();
     // v -> P inner(P v) + (I - P) v, with the work vector projected_src.
     // The function refers to all arguments but inner, which it copies.
     Apply
@@ -325,13 +339,15 @@ namespace ViscoContact
     // built (update_contact_amg()), held in contact_matrix with its near-null
     // space contact_modes. contact_amg_fixed keeps the number of fixed
     // directions of this rank's nodes it was built for, to tell how many
-    // nodes have changed since.
+    // nodes have changed since, and contact_amg_stiffness the sum of k v v^T
+    // over each node's free directions that its matrix holds.
     TrilinosWrappers::PreconditionAMG   operator_amg, contact_amg;
     bool                                operator_amg_built = false;
     bool                                contact_amg_built  = false;
     std::unique_ptr<Epetra_CrsMatrix>   contact_matrix;
     std::unique_ptr<Epetra_MultiVector> contact_modes;
     std::vector<unsigned int>           contact_amg_fixed;
+    std::vector<Tensor<2, dim>>         contact_amg_stiffness;
     // The log of the convergence factor per iteration of the first solve
     // with the AMG (0: none yet), and the iterations that the later ones
     // took beyond that factor (record_contact_amg_solve()).
@@ -355,6 +371,11 @@ namespace ViscoContact
     // its eigenvalue bound for the current A.
     ConstrainedSmoothing smoothing{2, 15.};
     bool                 smoothing_ready = false;
+    // A's diagonal (diagonal(); empty until needed), and the stiff free
+    // directions of this rank's nodes as (node, unit row orthogonal to its
+    // fixed rows), collect_stiff_rows().
+    VectorType                                           diagonal_of_A;
+    std::vector<std::pair<unsigned int, Tensor<1, dim>>> stiff_rows;
 
     // With contact pairs: the basis T of the step problem, work vectors of
     // its products (without a matrix), and the rigid-body modes in the
@@ -457,6 +478,7 @@ namespace ViscoContact
     operator_amg_built = false;
     contact_amg_built  = false;
     smoothing_ready    = false;
+    diagonal_of_A.reinit(0);
     if (!factorization && !rigid_body_modes.modes)
       rigid_body_modes
         = compute_rigid_body_modes(mapping,
@@ -779,17 +801,14 @@ namespace ViscoContact
     contact_amg.clear();
     contact_matrix = std::make_unique<Epetra_CrsMatrix>(A->trilinos_matrix());
     Epetra_CrsMatrix &matrix = *contact_matrix;
+    contact_amg_stiffness.assign(contact.size(), Tensor<2, dim>());
     for (unsigned int i = 0; i < contact.size(); ++i)
-      for (unsigned int k = 0; k < terms[i].directions.size; ++k)
-        {
-          const NodeDirection &direction = terms[i].directions.direction[k];
-          if (!direction.fixed && direction.stiffness != 0)
-            add_to_block(matrix,
-                         contact,
-                         i,
-                         terms[i].rows[k],
-                         direction.stiffness);
-        }
+      for_each_stiff_direction(i, [&](const unsigned int k) {
+        const double stiffness = terms[i].directions.direction[k].stiffness;
+        add_to_block(matrix, contact, i, terms[i].rows[k], stiffness);
+        contact_amg_stiffness[i]
+          += stiffness * outer_product(terms[i].rows[k], terms[i].rows[k]);
+      });
 
     unsigned int most_fixed = 0;
     for (const NodeTerms &node : terms)
@@ -1263,6 +1282,104 @@ namespace ViscoContact
 
 
 
+  // @sect4{FullSpaceContactSolver::collect_stiff_rows}
+  //
+  // The AMG knows the stiffness of the free directions of its set-up only,
+  // and it is not rebuilt when a node changes its stick/slip state or its
+  // slope. A direction that has become stiff since is to its cycle a free
+  // one, and its correction there is off by the ratio of the stiffness to
+  // the body's, as it would be along a fixed direction: a node that starts
+  // to slip in 3D gets a transverse stiffness of up to 100 times its own
+  // (the Newton linearisation of its slip direction, ContactNodes::
+  // set_slip_direction()). So the coarse correction leaves out every free
+  // direction whose stiffness k is at least A's diagonal along it while
+  // the AMG's matrix holds less than half of k along it
+  // (contact_amg_stiffness; the coarser levels of the matrix-free V-cycle
+  // are K's and hold none), as it leaves out the fixed ones, and the
+  // smoothing, whose Jacobi step has k on its diagonal, corrects them
+  // alone; a spring stiffer than the body holds its node nearly in place,
+  // so there is little for the coarse levels to carry. The directions the
+  // AMG knows stay in its correction: the stiff cohesive interface of
+  // cohesive_peel_3d.prm, which an AMG of one level solves exactly, took
+  // 427 Krylov iterations instead of 107 without them. P Q C Q P with the
+  // projection Q is symmetric, so CG still applies. Measured with Method = full
+  // space, one rank (Krylov iterations over the run, before and after): the 3D
+  // sliding block at N = 24 264 and 194, the frictional cube 256 and 229,
+  // pad_on_base_mixed_3d.prm 712 and 520; the frictionless scenes, whose
+  // free directions are softer than the body, unchanged (doc/performance.md,
+  // "The full space back end"). Any threshold from 0.1 to 3 times the
+  // diagonal did as well.
+  template <int dim>
+  void
+  FullSpaceContactSolver<dim>::collect_stiff_rows(
+    const ContactSet<dim> &contact)
+  {
+    stiff_rows.clear();
+    // On every rank alike, whether it has stiff directions or not: the
+    // diagonal is computed at its first use, which may communicate.
+    const VectorType &diagonal_entries = diagonal();
+    for (unsigned int i = 0; i < contact.size(); ++i)
+      for_each_stiff_direction(i, [&](const unsigned int k) {
+        // The row without its part along the fixed rows and the node's
+        // stiff rows before it (on an oblique plane of symmetry the rows are
+        // not orthogonal), as a unit vector.
+        Tensor<1, dim> q = terms[i].rows[k];
+        for (unsigned int a = 0; a < terms[i].n_fixed; ++a)
+          q -= (q * terms[i].fixed_basis[a]) * terms[i].fixed_basis[a];
+        for (auto row = stiff_rows.rbegin();
+             row != stiff_rows.rend() && row->first == i;
+             ++row)
+          q -= (q * row->second) * row->second;
+        const double norm = q.norm();
+        if (norm <= 1e-8 * terms[i].rows[k].norm())
+          return;
+        q /= norm;
+        Tensor<1, dim> squares;
+        for (unsigned int c = 0; c < dim; ++c)
+          squares[c] = q[c] * q[c];
+        const double stiffness = terms[i].directions.direction[k].stiffness;
+        const double held
+          = matrix_free ? 0. : q * (contact_amg_stiffness[i] * q);
+        if (stiffness >= contact.node_component(diagonal_entries, i, squares)
+            && held < 0.5 * stiffness)
+          stiff_rows.emplace_back(i, q);
+      });
+  }
+
+
+
+  // From the matrix or the matrix-free operator.
+  template <int dim>
+  const VectorType &
+  FullSpaceContactSolver<dim>::diagonal()
+  {
+    if (diagonal_of_A.size() == 0)
+      {
+        if (matrix_free)
+          diagonal_of_A = matrix_free->diagonal();
+        else
+          {
+            diagonal_of_A.reinit(b, true);
+            for (const auto row : b.get_partitioner()->locally_owned_range())
+              diagonal_of_A(row) = A->diag_element(row);
+          }
+      }
+    return diagonal_of_A;
+  }
+
+
+
+  template <int dim>
+  void
+  FullSpaceContactSolver<dim>::remove_stiff_rows(const ContactSet<dim> &contact,
+                                                 VectorType            &v) const
+  {
+    for (const auto &[i, q] : stiff_rows)
+      contact.add_to_node(v, i, q, -contact.node_component(v, i, q));
+  }
+
+
+
   // @sect4{FullSpaceContactSolver::projected}
   //
   // v -> P inner(P v) + (I - P) v, for the operator and the preconditioner
@@ -1389,14 +1506,11 @@ namespace ViscoContact
     // iterations (86 on the Hertz sphere) but more time.
     if (!smoothing_ready)
       {
-        VectorType diagonal(b);
-        for (const auto row : b.get_partitioner()->locally_owned_range())
-          diagonal(row) = A->diag_element(row);
         smoothing.initialize(
           [this](VectorType &dst, const VectorType &src) {
             apply_operator(dst, src);
           },
-          diagonal);
+          diagonal());
         smoothing_ready = true;
       }
     smoothing.constrain(constrained_operator(contact));
@@ -1415,8 +1529,9 @@ namespace ViscoContact
   // @sect4{FullSpaceContactSolver::constrained_operator}
   //
   // The projected step operator of the current terms for the smoothing of
-  // the preconditioners (constrained_smoothing.h): its product, P, and the
-  // stiffness k v_j^2 of the free directions on the diagonal.
+  // the preconditioners (constrained_smoothing.h): its product, P, the
+  // stiffness k v_j^2 of the free directions on the diagonal, and the
+  // removal of the stiff ones that the coarse correction does not know.
   template <int dim>
   ConstrainedOperator
   FullSpaceContactSolver<dim>::constrained_operator(
@@ -1424,6 +1539,7 @@ namespace ViscoContact
   {
     if (smoother_scratch.size() != b.size())
       smoother_scratch.reinit(b);
+    collect_stiff_rows(contact);
     return {projected(step_operator(contact), smoother_scratch, contact),
             [this, &contact](VectorType &v) { remove_fixed_rows(contact, v); },
             [this, &contact](VectorType &diagonal) {
@@ -1438,7 +1554,8 @@ namespace ViscoContact
                     squares,
                     terms[i].directions.direction[k].stiffness);
                 });
-            }};
+            },
+            [this, &contact](VectorType &v) { remove_stiff_rows(contact, v); }};
   }
 
 

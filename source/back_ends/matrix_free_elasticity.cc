@@ -370,10 +370,68 @@ namespace ViscoContact
   template <int dim>
   struct MatrixFreeElasticity<dim>::Implementation
   {
-    using LevelVector   = VectorType;
-    using LevelOperator = ElasticityOperator<dim, double>;
-    using Smoother      = PreconditionChebyshev<LevelOperator, LevelVector>;
-    using Transfer      = MGTransferGlobalCoarsening<dim, LevelVector>;
+    using LevelVector      = VectorType;
+    using LevelOperator    = ElasticityOperator<dim, double>;
+    using Smoother         = PreconditionChebyshev<LevelOperator, LevelVector>;
+    using GlobalCoarsening = MGTransferGlobalCoarsening<dim, LevelVector>;
+
+    // deal.II's transfer, except that in a constrained cycle the finest
+    // level hands down and gets back nothing along the stiff free
+    // directions (ConstrainedOperator::remove_stiff): the coarser levels
+    // are K's, to which such a direction is free.
+    class Transfer : public GlobalCoarsening
+    {
+    public:
+      using GlobalCoarsening::GlobalCoarsening;
+      const Implementation *m = nullptr;
+
+      void
+      prolongate(const unsigned int to_level,
+                 LevelVector       &dst,
+                 const LevelVector &src) const override
+      {
+        dst = 0;
+        prolongate_and_add(to_level, dst, src);
+      }
+      void
+      prolongate_and_add(const unsigned int to_level,
+                         LevelVector       &dst,
+                         const LevelVector &src) const override
+      {
+        if (!m->stiff_cycle(to_level))
+          return GlobalCoarsening::prolongate_and_add(to_level, dst, src);
+        m->fine_scratch = 0;
+        GlobalCoarsening::prolongate_and_add(to_level, m->fine_scratch, src);
+        m->remove_stiff(m->fine_scratch);
+        dst += m->fine_scratch;
+      }
+      void
+      restrict_and_add(const unsigned int from_level,
+                       LevelVector       &dst,
+                       const LevelVector &src) const override
+      {
+        if (!m->stiff_cycle(from_level))
+          return GlobalCoarsening::restrict_and_add(from_level, dst, src);
+        m->fine_scratch.copy_locally_owned_data_from(src);
+        m->remove_stiff(m->fine_scratch);
+        GlobalCoarsening::restrict_and_add(from_level, dst, m->fine_scratch);
+      }
+    };
+    // Whether a transfer from or to this level leaves out the stiff
+    // directions, and the removal on a vector of the finest level.
+    bool
+    stiff_cycle(const unsigned int level) const
+    {
+      return constrained_cycle && level == level_operators.max_level()
+             && constrained.remove_stiff;
+    }
+    void
+    remove_stiff(LevelVector &vector) const
+    {
+      constrained_src.copy_locally_owned_data_from(vector);
+      constrained.remove_stiff(constrained_src);
+      vector.copy_locally_owned_data_from(constrained_src);
+    }
 
     Implementation(const ElasticOperatorData<dim> &data,
                    const VectorType               &layout);
@@ -543,6 +601,7 @@ namespace ViscoContact
     ConstrainedJacobi                       constrained_jacobi_step;
     mutable VectorType                      constrained_src, constrained_dst;
     mutable bool                            constrained_cycle = false;
+    mutable LevelVector                     fine_scratch;
     FineOperator                            fine_operator_of_cycle{this};
     FineSmoother                            fine_smoother;
     LevelMatrix                             level_matrix{*this};
@@ -683,6 +742,8 @@ namespace ViscoContact
       [this](const unsigned int level, LevelVector &vector) {
         level_operators[level].initialize_dof_vector(vector);
       });
+    transfer->m = this;
+    fine_operator().initialize_dof_vector(fine_scratch);
   }
 
 
@@ -834,12 +895,23 @@ namespace ViscoContact
   {
     Implementation &m = *implementation;
     m.constrained     = constrained;
-    const VectorType &inverse_diagonal
+    m.constrained_jacobi_step.reinit(diagonal(), constrained);
+  }
+
+
+
+  template <int dim>
+  VectorType
+  MatrixFreeElasticity<dim>::diagonal() const
+  {
+    const Implementation &m = *implementation;
+    const VectorType     &inverse_diagonal
       = m.fine_operator().get_matrix_diagonal_inverse()->get_vector();
-    VectorType &diagonal = m.constrained_dst;
+    VectorType diagonal;
+    diagonal.reinit(m.constrained_dst, true);
     for (unsigned int i = 0; i < diagonal.locally_owned_size(); ++i)
       diagonal.local_element(i) = 1. / inverse_diagonal.local_element(i);
-    m.constrained_jacobi_step.reinit(diagonal, constrained);
+    return diagonal;
   }
 
 

@@ -51,7 +51,10 @@ def set_entry(text, entry, value):
     if re.search(pattern, text):
         return re.sub(pattern, r"\g<1> %s " % value, text)
     subsection = {"Mesh group size": "Geometry", "Mesh file": "Geometry",
-                  "Profile times": "Output"}[entry]
+                  "Profile times": "Output",
+                  "Initial cycles": "Mesh adaptation"}[entry]
+    if "subsection %s\n" % subsection not in text:
+        text += "\nsubsection %s\nend\n" % subsection
     return text.replace("subsection %s\n" % subsection,
                         "subsection %s\n  set %s = %s\n"
                         % (subsection, entry, value), 1)
@@ -114,7 +117,10 @@ def run(executable, ranks, n, variant, folder):
                ("End time", 0.03125), ("Profile times", ""),
                ("Write vtu", "false"), ("Print timing summary", "true"),
                ("Output directory", os.path.join(folder, name)),
-               ("Mesh group size", 1 if variant == "every_rank" else 0)]
+               ("Mesh group size", 1 if variant == "every_rank" else 0),
+               # One mesh per run: no coarser meshes first for step 1 (a
+               # generated box would take them, a Gmsh file cannot).
+               ("Initial cycles", 0)]
     # (variant same_mesh: the generated box with groups.)
     if variant == "gmsh":
         mesh = os.path.join(folder, "cube_%d.msh" % n)

@@ -86,7 +86,7 @@ namespace ViscoContact
     void
     precondition_constrained(VectorType &dst, const VectorType &src) const;
     // The diagonal of K (locally owned entries).
-    VectorType
+    const VectorType &
     diagonal() const;
 
     // The number of meshes of the multigrid and their dofs, for the

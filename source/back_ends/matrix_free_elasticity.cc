@@ -597,9 +597,11 @@ namespace ViscoContact
     // The constrained operator (constrain()), its Jacobi step, work
     // vectors in the program's layout, and the finest level's smoother for
     // it.
-    ConstrainedOperator                     constrained;
-    ConstrainedJacobi                       constrained_jacobi_step;
-    mutable VectorType                      constrained_src, constrained_dst;
+    ConstrainedOperator constrained;
+    ConstrainedJacobi   constrained_jacobi_step;
+    mutable VectorType  constrained_src, constrained_dst;
+    // K's diagonal in the program's layout, once at set-up.
+    VectorType                              diagonal;
     mutable bool                            constrained_cycle = false;
     mutable LevelVector                     fine_scratch;
     FineOperator                            fine_operator_of_cycle{this};
@@ -669,6 +671,11 @@ namespace ViscoContact
     }
     for (VectorType *vector : {&constrained_src, &constrained_dst})
       vector->reinit(layout);
+    diagonal.reinit(layout, true);
+    const VectorType &inverse_diagonal
+      = fine_operator().get_matrix_diagonal_inverse()->get_vector();
+    for (unsigned int i = 0; i < diagonal.locally_owned_size(); ++i)
+      diagonal.local_element(i) = 1. / inverse_diagonal.local_element(i);
     multigrid = std::make_unique<Multigrid<LevelVector>>(level_matrix,
                                                          *coarse_solver,
                                                          *transfer,
@@ -901,17 +908,10 @@ namespace ViscoContact
 
 
   template <int dim>
-  VectorType
+  const VectorType &
   MatrixFreeElasticity<dim>::diagonal() const
   {
-    const Implementation &m = *implementation;
-    const VectorType     &inverse_diagonal
-      = m.fine_operator().get_matrix_diagonal_inverse()->get_vector();
-    VectorType diagonal;
-    diagonal.reinit(m.constrained_dst, true);
-    for (unsigned int i = 0; i < diagonal.locally_owned_size(); ++i)
-      diagonal.local_element(i) = 1. / inverse_diagonal.local_element(i);
-    return diagonal;
+    return implementation->diagonal;
   }
 
 

@@ -3610,6 +3610,20 @@ TEST(CostModel, MatrixFreeOnlyWithCoarserMeshes)
   EXPECT_NE(choice.reason.find("matrix free not taken"), std::string::npos);
 }
 
+TEST(CostModel, MatrixFreeNotTakenForBondedZones)
+{
+  // The same scene with a bonded contact zone: the matrix-free multigrid's
+  // coarser levels do not hold its springs, and auto takes another back end.
+  SceneSize scene        = scene_of(3, false, 107811, 1089, 1, 2);
+  scene.bonded_interface = true;
+  const BackEndCost cost
+    = estimate_cost(Parameters::Method::matrix_free, scene);
+  EXPECT_TRUE(cost.unavailable.empty());
+  EXPECT_NE(cost.not_taken.find("bonded contact zone"), std::string::npos);
+  EXPECT_NE(choose_method(Parameters::Method::automatic, scene).method,
+            Parameters::Method::matrix_free);
+}
+
 TEST(CostModel, ChoosesTheMeasuredFastest)
 {
   const auto automatic = Parameters::Method::automatic;

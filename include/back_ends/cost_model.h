@@ -61,6 +61,10 @@ namespace ViscoContact
     // multigrid is one level, the AMG of the assembled K with smoothing
     // around it: the full space back end's preconditioner and more.
     bool coarser_meshes = true;
+    // Whether a contact zone is bonded from the start (adhesion or a
+    // cohesive interface): springs on the whole zone, often stiffer than the
+    // body, which the coarser levels of the matrix-free multigrid do not hold.
+    bool bonded_interface = false;
     // The bytes available to each rank: its compute node's memory divided by
     // the ranks on the node, the least over the nodes (0: unknown, every back
     // end fits).

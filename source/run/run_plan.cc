@@ -152,9 +152,14 @@ namespace ViscoContact
     scene.simplex = parameters.cell_type != Parameters::CellType::hypercube;
     scene.implicit_update = parameters.implicit_update();
     for (const auto &zone : parameters.used_contact_zones())
-      if (zone.contact->tangential_law
-          != Parameters::TangentialLawType::frictionless)
-        scene.node_unknowns = dim;
+      {
+        if (zone.contact->tangential_law
+            != Parameters::TangentialLawType::frictionless)
+          scene.node_unknowns = dim;
+        if (zone.contact->adhesion_stiffness > 0
+            || zone.contact->cohesive_strength > 0)
+          scene.bonded_interface = true;
+      }
     scene.ranks = Utilities::MPI::n_mpi_processes(communicator);
     scene.steps
       = std::max(1.,

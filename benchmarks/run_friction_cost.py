@@ -15,7 +15,19 @@ static coefficient 0.5 against the same one weakening to 0.3 with the
 slip (static,weakening), or the sliding block against the block held on
 a support that moves under it (Coulomb,moving).
 
+--scene hertz_sphere: the Hertz sphere's ramp instead (parameters/
+hertz_sphere.prm, the rigid sphere pressed into the quarter block by
+0.01 t in 4 steps, hexahedra graded toward the contact point, N cells per
+edge, meshes/make_hertz_sphere_meshes.py), frictionless against Coulomb
+friction mu = 0.3 (frictionless,Coulomb only). Unlike the sliding block,
+whose frictionless steps repeat the last one (its extrapolated start is
+the solution), both ramps grow their contact zone in every step, and with
+friction the surface under the sphere, which moves inward on the
+frictionless block (nu = 0.3), sticks at the centre and slips in a ring
+at the edge of the zone.
+
     benchmarks/run_friction_cost.py [--executable build/viscoplastic_contact]
+        [--scene sliding_block | hertz_sphere]
         [--meshes 8,16,24] [--pairs 3] [--methods "full space,condensed"]
         [--compare frictionless,Coulomb | static,weakening | Coulomb,moving]
 """
@@ -31,6 +43,10 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.join(HERE, "..")
+sys.path.insert(0, os.path.join(TOP, "scripts"))
+sys.path.insert(0, os.path.join(TOP, "meshes"))
+from vc_scripts import set_prm_entries  # noqa: E402
+from make_hertz_sphere_meshes import hertz_sphere_block  # noqa: E402
 
 
 def set_entry(text, entry, value):
@@ -58,7 +74,30 @@ SCENES = {"frictionless": ("frictionless", 0, ""),
                      "\n  set Obstacle motion = -0.02 * max(t - 1, 0); 0; 0")}
 
 
-def run(executable, n, method, scene, folder):
+def hertz_sphere_prm(n, method, scene, folder):
+    """The Hertz sphere's ramp on N graded hexahedra per edge, frictionless
+    or with Coulomb friction (mu = 0.3)."""
+    law, coefficient, _ = SCENES[scene]
+    mesh = os.path.join(folder, "hertz_sphere_%d.msh" % n)
+    if not os.path.exists(mesh):
+        with open(mesh, "w") as f:
+            f.write(hertz_sphere_block(n, False, 1.0, False))
+    entries = {(("Geometry",), "Mesh file"): mesh,
+               (("Linear solver",), "Method"): method,
+               (("Contact",), "Tangential law"): law,
+               (("Output",), "Output directory"): os.path.join(
+                   folder, "%s_%d" % (scene, len(os.listdir(folder)))),
+               (("Output",), "Profile times"): "",
+               (("Output",), "Write vtu"): "false",
+               (("Output",), "Measure cost ratios"): "true"}
+    if coefficient:
+        entries[(("Contact",), "Friction coefficient")] = coefficient
+    with open(os.path.join(TOP, "parameters", "hertz_sphere.prm")) as f:
+        return set_prm_entries(f.read(), entries)
+
+
+def sliding_block_prm(n, method, scene, folder):
+    """The sliding block on N hexahedra per edge of its height."""
     law, coefficient, extra = SCENES[scene]
     with open(os.path.join(TOP, "parameters", "sliding_block_3d.prm")) as f:
         text = f.read()
@@ -74,8 +113,13 @@ def run(executable, n, method, scene, folder):
     if scene == "moving":
         text = set_entry(text, "Displacement", "0; 0; -0.01 * min(t, 1)")
     # The time loop comes with the Cost measurement block.
-    text = text.replace("subsection Output\n",
+    return text.replace("subsection Output\n",
                         "subsection Output\n  set Measure cost ratios = true\n")
+
+
+def run(executable, n, method, scene, folder, geometry):
+    text = (hertz_sphere_prm if geometry == "hertz_sphere"
+            else sliding_block_prm)(n, method, scene, folder)
     law = scene
     prm = os.path.join(folder, "%s.prm" % law)
     with open(prm, "w") as f:
@@ -106,6 +150,8 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--executable", default=os.path.join(
         TOP, "build", "viscoplastic_contact"))
+    parser.add_argument("--scene", default="sliding_block",
+                        choices=("sliding_block", "hertz_sphere"))
     parser.add_argument("--meshes", default="8,16,24")
     parser.add_argument("--pairs", type=int, default=3)
     parser.add_argument("--methods", default="full space,condensed")
@@ -113,6 +159,9 @@ def main():
                         help="baseline,candidate among " + ", ".join(SCENES))
     arguments = parser.parse_args()
     baseline, candidate = arguments.compare.split(",")
+    if (arguments.scene == "hertz_sphere"
+            and (baseline, candidate) != ("frictionless", "Coulomb")):
+        parser.error("--scene hertz_sphere compares frictionless,Coulomb only")
     print("| back end | N | dofs | time per step: %s, %s | "
           "active-set iterations per step | Krylov iterations per step | "
           "ratio %s / %s (median of %d pairs) |"
@@ -124,9 +173,9 @@ def main():
             with tempfile.TemporaryDirectory() as folder:
                 for _ in range(arguments.pairs):
                     plain = run(arguments.executable, n, method, baseline,
-                                folder)
+                                folder, arguments.scene)
                     coulomb = run(arguments.executable, n, method, candidate,
-                                  folder)
+                                  folder, arguments.scene)
                     ratios.append(coulomb["time per step"]
                                   / plain["time per step"])
                     pairs.append((plain, coulomb))

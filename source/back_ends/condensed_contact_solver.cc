@@ -720,9 +720,16 @@ namespace ViscoContact
 
     // y = d - S f, and every own node's displacements along its directions
     // and forces along the fixed ones.
-    Vector<double> y(d), Sf(m);
-    S.vmult(Sf, f);
-    y -= Sf;
+    // Only the columns of the rows kept carry forces: S f reads those (a
+    // product with all of S read 85 MB per iteration at 3267 rows).
+    Vector<double> y(d);
+    for (unsigned int row = 0; row < m; ++row)
+      {
+        double sum = 0;
+        for (unsigned int j = 0; j < n_kept; ++j)
+          sum += S(row, kept[j]) * f_kept[j];
+        y[row] -= sum;
+      }
     const unsigned int first_node = contact.first_global_index();
     for (unsigned int i = 0; i < contact.size(); ++i)
       {

@@ -695,25 +695,26 @@ namespace ViscoContact
               }
           }
       }
+    // No node in contact or bonded: every force is zero, and the solve is
+    // exact. Otherwise the backward error of the dense solve, which
+    // ContactNodes::solve() compares with the Tolerance (the rows left out
+    // hold exactly).
     Vector<double> f_kept(h);
+    double         error = 0;
     if (n_kept > 0)
       {
         LAPACKFullMatrix<double> lu(n_kept, n_kept);
         lu = M;
         lu.compute_lu_factorization();
         lu.solve(f_kept);
+        Vector<double> defect(n_kept);
+        M.vmult(defect, f_kept);
+        defect -= h;
+        error
+          = defect.linfty_norm()
+            / std::max(M.linfty_norm() * f_kept.linfty_norm() + h.linfty_norm(),
+                       1e-300);
       }
-    // The backward error of the dense solve, which ContactNodes::solve()
-    // compares with the Tolerance (the rows left out hold exactly).
-    Vector<double> defect(n_kept);
-    M.vmult(defect, f_kept);
-    defect -= h;
-    const double   error = n_kept == 0
-                             ? 0.
-                             : defect.linfty_norm()
-                               / std::max(M.linfty_norm() * f_kept.linfty_norm()
-                                            + h.linfty_norm(),
-                                          1e-300);
     Vector<double> f(m);
     for (unsigned int j = 0; j < n_kept; ++j)
       f[kept[j]] = f_kept[j];

@@ -44,7 +44,12 @@ namespace ViscoContact
     // Unknowns per contact node in the dense problem of the condensed back
     // end: 1 without friction, dim with it.
     unsigned int node_unknowns = 1;
-    unsigned int ranks         = 1;
+    // The share of the contact nodes expected in contact at one time
+    // (ContactZones::expected_contact_fraction()): with friction the dense
+    // problem the condensed back end factorises in every active-set
+    // iteration holds the rows of those nodes only.
+    double       contact_fraction = 1;
+    unsigned int ranks            = 1;
     // The steps left in the run (at least one).
     double steps = 1;
     // Whether the first step runs initial cycles (nested iteration), so

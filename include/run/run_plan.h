@@ -68,13 +68,15 @@ namespace ViscoContact
     // @sect4{On each mesh}
     //
     // Method = auto from the mesh's dofs and contact nodes (collective sums
-    // of the caller), the steps left in the run (0: the run's from the
+    // of the caller), the share of those expected in contact at one time,
+    // the steps left in the run (0: the run's from the
     // parameter file), and whether the mesh is a coarser mesh of the
     // initial cycles (which solves the first step only) and how many of
     // them have been solved.
     void
     choose_back_end(const double       dofs,
                     const double       contact_nodes,
+                    const double       contact_fraction,
                     const double       steps_left,
                     const bool         cycle_mesh,
                     const unsigned int initial_cycles_done);

@@ -4,6 +4,8 @@
 #include <deal.II/base/function.h>
 #include <deal.II/base/function_parser.h>
 
+#include <deal.II/dofs/dof_handler.h>
+
 #include "bonding_field.h"
 #include "contact_set.h"
 #include "normal_memory.h"
@@ -92,6 +94,19 @@ namespace ViscoContact
     bool
     gap_depends_on_time() const;
 
+    // The share of the contact vertices that are expected to touch their
+    // obstacle at one time, the most over the given times: in a zone whose
+    // obstacle drives the contact (it moves, or its gap depends on t), the
+    // vertices of the undeformed body that the obstacle overlaps (s <= 0);
+    // every vertex of the other zones (a body pushed by its loads, a
+    // contact pair, a bonded zone). An estimate for the cost model
+    // (SceneSize::contact_fraction): on an elastic body a Hertzian zone is
+    // about half the overlap. Collective.
+    double
+    expected_contact_fraction(const DoFHandler<dim>     &dof_handler,
+                              const std::vector<double> &times,
+                              const MPI_Comm             communicator) const;
+
   private:
     std::vector<ContactZoneDescription<dim>>          zones;
     std::vector<NormalMemory::Kernel>                 kernels;
@@ -104,9 +119,12 @@ namespace ViscoContact
     std::vector<std::unique_ptr<FunctionParser<dim>>> rotation_functions;
     std::vector<Point<dim>>                           rotation_centers;
     std::vector<std::unique_ptr<Function<dim>>>       moved_gap_functions;
-    bool                                              any_gap    = false;
-    bool                                              any_motion = false;
-    bool time_dependent_gap                                      = false;
+    // Per zone: whether its obstacle drives the contact
+    // (expected_contact_fraction()).
+    std::vector<bool> obstacle_driven;
+    bool              any_gap            = false;
+    bool              any_motion         = false;
+    bool              time_dependent_gap = false;
   };
 } // namespace ViscoContact
 

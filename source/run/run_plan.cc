@@ -519,13 +519,15 @@ namespace ViscoContact
   void
   RunPlan<dim>::choose_back_end(const double       dofs,
                                 const double       contact_nodes,
+                                const double       contact_fraction,
                                 const double       steps_left,
                                 const bool         cycle_mesh,
                                 const unsigned int initial_cycles_done)
   {
-    SceneSize scene     = scene_of_run();
-    scene.dofs          = dofs;
-    scene.contact_nodes = contact_nodes;
+    SceneSize scene        = scene_of_run();
+    scene.dofs             = dofs;
+    scene.contact_nodes    = contact_nodes;
+    scene.contact_fraction = contact_fraction;
     if (steps_left > 0)
       scene.steps = steps_left;
     if (cycle_mesh)

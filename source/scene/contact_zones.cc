@@ -2,12 +2,14 @@
 // parameters.
 
 #include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/tensor.h>
 
 #include "scene/contact_zones.h"
 #include "scene/loads.h"
 #include "robustness/file_output.h"
 
+#include <set>
 #include <sstream>
 
 namespace ViscoContact
@@ -243,6 +245,10 @@ namespace ViscoContact
                             entries.initial_bonding,
                             parameters.lengths);
           }
+        obstacle_driven.push_back(
+          (moved_gap || mentions_time(entries.initial_gap))
+          && description.opposite_ids.empty() && entries.adhesion_stiffness == 0
+          && entries.cohesive_strength == 0);
         zones.push_back(std::move(description));
         kernels.push_back(NormalMemory::Kernel::from_parameters(entries));
         adhesion.push_back(BondingField::Law::from_parameters(entries));
@@ -462,6 +468,74 @@ namespace ViscoContact
   ContactZones<dim>::gap_depends_on_time() const
   {
     return time_dependent_gap;
+  }
+
+
+
+  // Each vertex of a contact face is counted by the rank that owns its
+  // first dof. The gap functions are the contact set's: their time is put
+  // back afterwards.
+  template <int dim>
+  double
+  ContactZones<dim>::expected_contact_fraction(
+    const DoFHandler<dim>     &dof_handler,
+    const std::vector<double> &times,
+    const MPI_Comm             communicator) const
+  {
+    const auto zone_of = [&](const types::boundary_id id) -> int {
+      for (unsigned int zone = 0; zone < zones.size(); ++zone)
+        for (const types::boundary_id zone_id : zones[zone].boundary_ids)
+          if (zone_id == id)
+            return zone;
+      return -1;
+    };
+    const std::vector<Function<dim> *> gap = gaps();
+    std::vector<double>                saved_time;
+    for (Function<dim> *function : gap)
+      saved_time.push_back(function ? function->get_time() : 0.);
+
+    const IndexSet                   &owned = dof_handler.locally_owned_dofs();
+    std::set<types::global_dof_index> seen;
+    // counts[0]: contact vertices; counts[1 + k]: those touching at times[k].
+    std::vector<double> counts(1 + times.size(), 0.);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary())
+            {
+              const int zone = zone_of(face->boundary_id());
+              if (zone < 0)
+                continue;
+              for (const unsigned int v : face->vertex_indices())
+                {
+                  const types::global_dof_index dof
+                    = face->vertex_dof_index(v, 0);
+                  if (!owned.is_element(dof) || !seen.insert(dof).second)
+                    continue;
+                  counts[0] += 1;
+                  for (unsigned int k = 0; k < times.size(); ++k)
+                    {
+                      bool touches = true;
+                      if (obstacle_driven[zone] && gap[zone] != nullptr)
+                        {
+                          gap[zone]->set_time(times[k]);
+                          touches = gap[zone]->value(face->vertex(v)) <= 0;
+                        }
+                      counts[1 + k] += touches;
+                    }
+                }
+            }
+    for (unsigned int zone = 0; zone < gap.size(); ++zone)
+      if (gap[zone] != nullptr)
+        gap[zone]->set_time(saved_time[zone]);
+
+    Utilities::MPI::sum(counts, communicator, counts);
+    if (counts[0] == 0)
+      return 1;
+    double touching = times.empty() ? counts[0] : 0;
+    for (unsigned int k = 0; k < times.size(); ++k)
+      touching = std::max(touching, counts[1 + k]);
+    return touching / counts[0];
   }
 
 

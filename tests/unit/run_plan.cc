@@ -42,7 +42,7 @@ TEST(RunPlan, ChoicesSetByHand)
   EXPECT_EQ(plan.step_cycles(), 1u);
   EXPECT_EQ(plan.initial_cycles_reason(), "");
   EXPECT_EQ(plan.step_cycles_reason(), "");
-  plan.choose_back_end(578, 17, 64, false, 0);
+  plan.choose_back_end(578, 17, 1, 64, false, 0);
   EXPECT_EQ(plan.back_end().method, Parameters::Method::full_space);
   EXPECT_FALSE(plan.step_cycles_dropped());
 }
@@ -63,7 +63,7 @@ TEST(RunPlan, AutoOnASmallMesh)
     << plan.initial_cycles_reason();
   EXPECT_NE(plan.step_cycles_reason().find("on simplices"), std::string::npos)
     << plan.step_cycles_reason();
-  plan.choose_back_end(2178, 33, 64, false, 0);
+  plan.choose_back_end(2178, 33, 1, 64, false, 0);
   EXPECT_EQ(plan.back_end().method, Parameters::Method::condensed);
   EXPECT_FALSE(plan.back_end().reason.empty());
 }

@@ -8,6 +8,15 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <deal.II/distributed/tria.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+
+#include <deal.II/grid/grid_generator.h>
+
 #include <deal.II/lac/vector.h>
 
 #include <gtest/gtest.h>
@@ -243,4 +252,55 @@ TEST(ContactZones, VoidLawHasNoZone)
   const ContactZones<2> zones(parameters);
   EXPECT_TRUE(zones.empty());
   EXPECT_FALSE(zones.has_gap());
+}
+
+
+
+// ContactZones::expected_contact_fraction(): the vertices of the top of the
+// box [0, 4] x [0, 1] (32 x 8 cells, 33 vertices on the top, spacing 1/8)
+// that a parabolic obstacle overlaps, s = (x - c)^2 / 4 - d <= 0, i.e.
+// |x - c| <= 2 sqrt(d).
+TEST(ContactZones, ExpectedContactFractionIsTheObstaclesOverlap)
+{
+  parallel::distributed::Triangulation<2> mesh(MPI_COMM_WORLD);
+  GridGenerator::subdivided_hyper_rectangle(mesh,
+                                            {32, 8},
+                                            Point<2>(0, 0),
+                                            Point<2>(4, 1),
+                                            /*colorize=*/true);
+  DoFHandler<2> dof_handler(mesh);
+  dof_handler.distribute_dofs(FESystem<2>(FE_Q<2>(1), 2));
+  const auto fraction
+    = [&](const std::string &obstacle, const std::vector<double> &times) {
+        const Parameters::AllParameters parameters
+          = parse_parameters("subsection Boundary\n"
+                             "  set Contact boundary ids = 3\n"
+                             "  set Loaded boundary ids =\n"
+                             "end\n"
+                             "subsection Contact\n"
+                             "  set Normal compliance = false\n"
+                             "  set Gap direction = 0, 1\n"
+                             "  set Tangential law = Coulomb\n"
+                             "  set Friction coefficient = 0.5\n"
+                             + obstacle + "end\n");
+        return ContactZones<2>(parameters)
+          .expected_contact_fraction(dof_handler, times, MPI_COMM_WORLD);
+      };
+  // Pressed in by d = 0.01 t: at t = 0.5 and 1 the vertices at
+  // |x - 1| <= 0.14 and 0.2, x = 0.875, 1 and 1.125 at both.
+  EXPECT_DOUBLE_EQ(fraction("  set Initial gap = (x - 1)^2 / 4 - 0.01 * t\n",
+                            {0.5, 1.}),
+                   3. / 33);
+  // Dragged by o(t) = (t, 0) to c = 1 + t: the most at one time, not the
+  // union of the track (at t = 1.0625 the four vertices 1.875 to 2.25, the
+  // outer two by a margin of 0.0125; at t = 0.5 and 2 three).
+  EXPECT_DOUBLE_EQ(fraction("  set Initial gap = (x - 1)^2 / 4 - 0.01\n"
+                            "  set Obstacle motion = t; 0\n",
+                            {0.5, 1.0625, 2.}),
+                   4. / 33);
+  // The same obstacle at rest: the body is pushed by its loads, and any
+  // vertex may come into contact.
+  EXPECT_DOUBLE_EQ(fraction("  set Initial gap = (x - 1)^2 / 4 - 0.01\n",
+                            {0.5, 1.}),
+                   1.);
 }

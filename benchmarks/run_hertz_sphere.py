@@ -30,8 +30,9 @@ times its observed 0.73%, and 2-rank runs on N = 8 (full space back end)
 equal to the 1-rank ones (condensed) to 1e-6.
 
 --cost N,M,... --methods "full space,condensed" --ranks 1
---condensed-up-to 48 (the largest N for the condensed back end): the cost of the
-moving obstacle on hexahedra at N cells per edge (N = 68: 985k dofs), from
+--condensed-up-to 48 (the largest N for the condensed back end) --cells
+hexahedron,tetrahedron: the cost of the
+moving obstacle at N cells per edge (N = 68: 985k dofs), from
 the program's own cost report: active-set iterations and Krylov iterations
 per step, the time of a step against one elastic solve with the operator
 of the step (no contact, the same preconditioner, from a zero start), how
@@ -42,7 +43,7 @@ table (doc/benchmarks.md, "Cost of a moving-obstacle step").
         [--meshes 8,16,24,32] [--cells hexahedron,tetrahedron]
         [--figure doc/figures/hertz_sphere.png] [--check]
         [--cost 68 [--methods "full space,condensed"] [--ranks 1]
-         [--condensed-up-to 48]]
+         [--condensed-up-to 48] [--cells hexahedron,tetrahedron]]
         [--recovery 16,24,32,48]
 
 --recovery N,M,...: the nodal pressure along the symmetry axes as the
@@ -176,12 +177,13 @@ def profile_measures(rows, force, e_star, radius):
             "p0 error": abs(p0 - p0_hertz) / p0_hertz}
 
 
-def cost(executable, n, method, ranks):
-    """The cost of the moving-obstacle steps on hexahedra, N cells per edge,
-    from the program's report (see the top of the file)."""
+def cost(executable, n, method, ranks, cells="hexahedron"):
+    """The cost of the moving-obstacle steps on N cells per edge (cells:
+    hexahedron or tetrahedron), from the program's report (see the top of
+    the file)."""
     report = {}
     with tempfile.TemporaryDirectory() as folder:
-        output, wall = run(executable, n, "hexahedron", ranks, folder, method,
+        output, wall = run(executable, n, cells, ranks, folder, method,
                            report)
         with open(os.path.join(output, "time_series.csv")) as f:
             series = list(csv.DictReader(f))
@@ -191,12 +193,14 @@ def cost(executable, n, method, ranks):
     def find(pattern):
         match = re.search(pattern, text)
         if not match:
-            sys.exit("No '%s' in the report of N = %d, %s." % (pattern, n, method))
+            sys.exit("No '%s' in the report of N = %d, %s, %s."
+                     % (pattern, n, cells, method))
         return match.group(1)
     steps = len(series)
     return {
         "N": n, "method": method, "ranks": ranks, "wall": wall,
-        "dofs": int(find(r"Hex cells, (\d+) displacement dofs")),
+        "cells": cells,
+        "dofs": int(find(r"(?:Hex|Tet) cells, (\d+) displacement dofs")),
         "contact nodes": int(find(r"dofs, (\d+) contact nodes")),
         "in contact": result["nodes"], "F error": result["F error"],
         "iterations": [int(r["active_set_iterations"]) for r in series],
@@ -212,15 +216,15 @@ def cost(executable, n, method, ranks):
 
 
 def print_cost(results):
-    print("| back end | ranks | N | dofs | contact nodes (in contact) | active-set "
-          "iterations per step | Krylov iterations per step (one elastic "
-          "solve) | step [s] | elastic solve [s] | step / solve | operator "
-          "set-ups in the run | peak memory [GB] | run [s] |")
-    print("| --- " * 13 + "|")
+    print("| cells | back end | ranks | N | dofs | contact nodes (in contact) "
+          "| active-set iterations per step | Krylov iterations per step (one "
+          "elastic solve) | step [s] | elastic solve [s] | step / solve | "
+          "operator set-ups in the run | peak memory [GB] | run [s] |")
+    print("| --- " * 14 + "|")
     for r in results:
-        print("| %s | %d | %d | %d | %d (%d) | %s | %s (%d) | %.2f | %.2f | %.2f "
-              "| %d | %.1f | %.0f |" % (
-                  r["method"], r["ranks"], r["N"], r["dofs"],
+        print("| %s | %s | %d | %d | %d | %d (%d) | %s | %s (%d) | %.2f | %.2f "
+              "| %.2f | %d | %.1f | %.0f |" % (
+                  r["cells"], r["method"], r["ranks"], r["N"], r["dofs"],
                   r["contact nodes"], r["in contact"],
                   ", ".join(str(i) for i in r["iterations"]),
                   ", ".join(str(i) for i in r["krylov"]), r["solve krylov"],
@@ -367,15 +371,17 @@ def main():
         return
     if arguments.cost:
         results = []
-        for n in arguments.cost.split(","):
-            for method in arguments.methods.split(","):
-                if method == "condensed" and int(n) > arguments.condensed_up_to:
-                    print(f"N = {n}: condensed skipped (above "
-                          f"--condensed-up-to {arguments.condensed_up_to})")
-                    continue
-                results.append(cost(arguments.executable, int(n), method,
-                                    arguments.ranks))
-                print_cost(results[-1:])
+        for cells in arguments.cells.split(","):
+            for n in arguments.cost.split(","):
+                for method in arguments.methods.split(","):
+                    if (method == "condensed"
+                            and int(n) > arguments.condensed_up_to):
+                        print(f"N = {n}: condensed skipped (above "
+                              f"--condensed-up-to {arguments.condensed_up_to})")
+                        continue
+                    results.append(cost(arguments.executable, int(n), method,
+                                        arguments.ranks, cells))
+                    print_cost(results[-1:])
         print()
         print_cost(results)
         return

@@ -25,6 +25,7 @@
 #include "robustness/file_output.h"
 #include "viscoplastic_contact.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -401,7 +402,8 @@ namespace ViscoContact
                                  == Parameters::InitialRefinement::global;
     // With friction the condensed back end's dense problem holds the nodes
     // in contact: from the obstacles' overlap at up to 64 times of the steps
-    // this mesh solves.
+    // this mesh solves (before the schedule is set, on the first mesh or a
+    // resumed run, of the whole run from t = 0: an estimate of the cost).
     double contact_fraction = 1;
     if (!contact_zones.frictional_numbers().empty())
       {

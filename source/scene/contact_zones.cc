@@ -9,6 +9,7 @@
 #include "scene/loads.h"
 #include "robustness/file_output.h"
 
+#include <algorithm>
 #include <set>
 #include <sstream>
 
@@ -472,9 +473,10 @@ namespace ViscoContact
 
 
 
-  // Each vertex of a contact face is counted by the rank that owns its
-  // first dof. The gap functions are the contact set's: their time is put
-  // back afterwards.
+  // Each vertex of a contact face is counted once, by the rank that owns
+  // its first dof; ghost cells are looked at too, since that rank need not
+  // own a contact face through the vertex. The gap functions are the
+  // contact set's: their time is put back afterwards.
   template <int dim>
   double
   ContactZones<dim>::expected_contact_fraction(
@@ -482,6 +484,13 @@ namespace ViscoContact
     const std::vector<double> &times,
     const MPI_Comm             communicator) const
   {
+    const std::vector<Function<dim> *> gap                 = gaps();
+    bool                               any_moving_obstacle = false;
+    for (unsigned int zone = 0; zone < zones.size(); ++zone)
+      any_moving_obstacle |= obstacle_driven[zone] && gap[zone] != nullptr;
+    if (!any_moving_obstacle || times.empty())
+      return 1;
+
     const auto zone_of = [&](const types::boundary_id id) -> int {
       for (unsigned int zone = 0; zone < zones.size(); ++zone)
         for (const types::boundary_id zone_id : zones[zone].boundary_ids)
@@ -489,17 +498,11 @@ namespace ViscoContact
             return zone;
       return -1;
     };
-    const std::vector<Function<dim> *> gap = gaps();
-    std::vector<double>                saved_time;
-    for (Function<dim> *function : gap)
-      saved_time.push_back(function ? function->get_time() : 0.);
-
     const IndexSet                   &owned = dof_handler.locally_owned_dofs();
     std::set<types::global_dof_index> seen;
-    // counts[0]: contact vertices; counts[1 + k]: those touching at times[k].
-    std::vector<double> counts(1 + times.size(), 0.);
+    std::vector<std::pair<Point<dim>, unsigned int>> vertices;
     for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
+      if (!cell->is_artificial())
         for (const auto &face : cell->face_iterators())
           if (face->at_boundary())
             {
@@ -509,33 +512,40 @@ namespace ViscoContact
               for (const unsigned int v : face->vertex_indices())
                 {
                   const types::global_dof_index dof
-                    = face->vertex_dof_index(v, 0);
-                  if (!owned.is_element(dof) || !seen.insert(dof).second)
-                    continue;
-                  counts[0] += 1;
-                  for (unsigned int k = 0; k < times.size(); ++k)
-                    {
-                      bool touches = true;
-                      if (obstacle_driven[zone] && gap[zone] != nullptr)
-                        {
-                          gap[zone]->set_time(times[k]);
-                          touches = gap[zone]->value(face->vertex(v)) <= 0;
-                        }
-                      counts[1 + k] += touches;
-                    }
+                    = face->vertex_dof_index(v, 0, cell->active_fe_index());
+                  if (owned.is_element(dof) && seen.insert(dof).second)
+                    vertices.emplace_back(face->vertex(v), zone);
                 }
             }
-    for (unsigned int zone = 0; zone < gap.size(); ++zone)
-      if (gap[zone] != nullptr)
-        gap[zone]->set_time(saved_time[zone]);
+
+    // counts[0]: contact vertices; counts[1 + k]: those touching at times[k].
+    std::vector<double> counts(1 + times.size(), 0.);
+    counts[0] = vertices.size();
+    for (unsigned int zone = 0; zone < zones.size(); ++zone)
+      {
+        const bool   moving     = obstacle_driven[zone] && gap[zone] != nullptr;
+        const double saved_time = moving ? gap[zone]->get_time() : 0.;
+        for (unsigned int k = 0; k < times.size(); ++k)
+          {
+            if (moving)
+              gap[zone]->set_time(times[k]);
+            for (const auto &[point, vertex_zone] : vertices)
+              if (vertex_zone == zone)
+                counts[1 + k] += moving ? (gap[zone]->value(point) <= 0) : 1;
+          }
+        if (moving)
+          gap[zone]->set_time(saved_time);
+      }
 
     Utilities::MPI::sum(counts, communicator, counts);
     if (counts[0] == 0)
       return 1;
-    double touching = times.empty() ? counts[0] : 0;
+    // At least one node: a step before the obstacle arrives still
+    // factorises once.
+    double touching = 1;
     for (unsigned int k = 0; k < times.size(); ++k)
       touching = std::max(touching, counts[1 + k]);
-    return touching / counts[0];
+    return std::min(1., touching / counts[0]);
   }
 
 

@@ -498,9 +498,10 @@ namespace ViscoContact
             return zone;
       return -1;
     };
+    // The owned contact vertices of each zone.
     const IndexSet                   &owned = dof_handler.locally_owned_dofs();
     std::set<types::global_dof_index> seen;
-    std::vector<std::pair<Point<dim>, unsigned int>> vertices;
+    std::vector<std::vector<Point<dim>>> vertices(zones.size());
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (!cell->is_artificial())
         for (const auto &face : cell->face_iterators())
@@ -514,38 +515,40 @@ namespace ViscoContact
                   const types::global_dof_index dof
                     = face->vertex_dof_index(v, 0, cell->active_fe_index());
                   if (owned.is_element(dof) && seen.insert(dof).second)
-                    vertices.emplace_back(face->vertex(v), zone);
+                    vertices[zone].push_back(face->vertex(v));
                 }
             }
 
     // counts[0]: contact vertices; counts[1 + k]: those touching at times[k].
     std::vector<double> counts(1 + times.size(), 0.);
-    counts[0] = vertices.size();
     for (unsigned int zone = 0; zone < zones.size(); ++zone)
       {
-        const bool   moving     = obstacle_driven[zone] && gap[zone] != nullptr;
-        const double saved_time = moving ? gap[zone]->get_time() : 0.;
+        counts[0] += vertices[zone].size();
+        if (!obstacle_driven[zone] || gap[zone] == nullptr)
+          {
+            for (unsigned int k = 0; k < times.size(); ++k)
+              counts[1 + k] += vertices[zone].size();
+            continue;
+          }
+        const double saved_time = gap[zone]->get_time();
         for (unsigned int k = 0; k < times.size(); ++k)
           {
-            if (moving)
-              gap[zone]->set_time(times[k]);
-            for (const auto &[point, vertex_zone] : vertices)
-              if (vertex_zone == zone)
-                counts[1 + k] += moving ? (gap[zone]->value(point) <= 0) : 1;
+            gap[zone]->set_time(times[k]);
+            for (const Point<dim> &point : vertices[zone])
+              counts[1 + k] += (gap[zone]->value(point) <= 0);
           }
-        if (moving)
-          gap[zone]->set_time(saved_time);
+        gap[zone]->set_time(saved_time);
       }
 
     Utilities::MPI::sum(counts, communicator, counts);
     if (counts[0] == 0)
       return 1;
-    // At least one node: a step before the obstacle arrives still
-    // factorises once.
+    // At least one node, so that the dense problem is never priced at
+    // nothing.
     double touching = 1;
     for (unsigned int k = 0; k < times.size(); ++k)
       touching = std::max(touching, counts[1 + k]);
-    return std::min(1., touching / counts[0]);
+    return touching / counts[0];
   }
 
 

@@ -15,6 +15,8 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
 
+#include <deal.II/hp/fe_collection.h>
+
 #include <deal.II/grid/grid_generator.h>
 
 #include <deal.II/lac/vector.h>
@@ -270,37 +272,55 @@ TEST(ContactZones, ExpectedContactFractionIsTheObstaclesOverlap)
                                             /*colorize=*/true);
   DoFHandler<2> dof_handler(mesh);
   dof_handler.distribute_dofs(FESystem<2>(FE_Q<2>(1), 2));
-  const auto fraction
-    = [&](const std::string &obstacle, const std::vector<double> &times) {
-        const Parameters::AllParameters parameters
-          = parse_parameters("subsection Boundary\n"
-                             "  set Contact boundary ids = 3\n"
-                             "  set Loaded boundary ids =\n"
-                             "end\n"
-                             "subsection Contact\n"
-                             "  set Normal compliance = false\n"
-                             "  set Gap direction = 0, 1\n"
-                             "  set Tangential law = Coulomb\n"
-                             "  set Friction coefficient = 0.5\n"
-                             + obstacle + "end\n");
-        return ContactZones<2>(parameters)
-          .expected_contact_fraction(dof_handler, times, MPI_COMM_WORLD);
-      };
+  const auto fraction = [&](const std::string         &obstacle,
+                            const std::vector<double> &times,
+                            const DoFHandler<2>       &dofs) {
+    const Parameters::AllParameters parameters
+      = parse_parameters("subsection Boundary\n"
+                         "  set Contact boundary ids = 3\n"
+                         "  set Loaded boundary ids =\n"
+                         "end\n"
+                         "subsection Contact\n"
+                         "  set Normal compliance = false\n"
+                         "  set Gap direction = 0, 1\n"
+                         "  set Tangential law = Coulomb\n"
+                         "  set Friction coefficient = 0.5\n"
+                         + obstacle + "end\n");
+    return ContactZones<2>(parameters)
+      .expected_contact_fraction(dofs, times, MPI_COMM_WORLD);
+  };
   // Pressed in by d = 0.01 t: at t = 0.5 and 1 the vertices at
   // |x - 1| <= 0.14 and 0.2, x = 0.875, 1 and 1.125 at both.
   EXPECT_DOUBLE_EQ(fraction("  set Initial gap = (x - 1)^2 / 4 - 0.01 * t\n",
-                            {0.5, 1.}),
+                            {0.5, 1.},
+                            dof_handler),
                    3. / 33);
   // Dragged by o(t) = (t, 0) to c = 1 + t: the most at one time, not the
   // union of the track (at t = 1.0625 the four vertices 1.875 to 2.25, the
   // outer two by a margin of 0.0125; at t = 0.5 and 2 three).
   EXPECT_DOUBLE_EQ(fraction("  set Initial gap = (x - 1)^2 / 4 - 0.01\n"
                             "  set Obstacle motion = t; 0\n",
-                            {0.5, 1.0625, 2.}),
+                            {0.5, 1.0625, 2.},
+                            dof_handler),
                    4. / 33);
   // The same obstacle at rest: the body is pushed by its loads, and any
   // vertex may come into contact.
   EXPECT_DOUBLE_EQ(fraction("  set Initial gap = (x - 1)^2 / 4 - 0.01\n",
-                            {0.5, 1.}),
+                            {0.5, 1.},
+                            dof_handler),
                    1.);
+  // The same count with two elements (as Cell type = mixed has), the
+  // cells right of x = 1 on the second: the vertex dofs are those of each
+  // cell's element.
+  DoFHandler<2> hp_dof_handler(mesh);
+  for (const auto &cell : hp_dof_handler.active_cell_iterators())
+    if (cell->is_locally_owned())
+      cell->set_active_fe_index(cell->center()[0] > 1);
+  hp_dof_handler.distribute_dofs(
+    hp::FECollection<2>(FESystem<2>(FE_Q<2>(1), 2),
+                        FESystem<2>(FE_Q<2>(1), 2)));
+  EXPECT_DOUBLE_EQ(fraction("  set Initial gap = (x - 1)^2 / 4 - 0.01 * t\n",
+                            {0.5, 1.},
+                            hp_dof_handler),
+                   3. / 33);
 }

@@ -190,6 +190,13 @@ namespace ViscoContact
     // beta_i^2 and its reached opening.
     NodeLawState
     law_state(const unsigned int i) const;
+    // Whether every node's law, with its history, holds with no force at
+    // r_i = -gaps[i], as it does for a body at rest (u = 0) before its
+    // obstacles: the point (r_i, 0) lies on node i's graph, which its
+    // memory pressure moves up. On every rank (collective).
+    bool
+    rests_at_gaps(const std::vector<double> &gaps,
+                  const MPI_Comm             communicator) const;
     // The damage of node i's cohesive interface at its reached opening
     // (ContactLaw::damage(); 0 elsewhere).
     double

@@ -288,6 +288,42 @@ namespace ViscoContact
 
 
 
+  // @sect4{ContactNodes::rests_at_gaps}
+  //
+  // q = p + c r increases strictly along a graph, so q = c r_i - m_i names
+  // the one point of node i's graph that (r_i, 0) can be (on the law's
+  // graph, where the memory pressure is taken off, p = -m_i); the node
+  // rests if that point is at r_i, up to rounding relative to the largest
+  // gap of all ranks.
+  bool
+  ContactNodes::rests_at_gaps(const std::vector<double> &gaps,
+                              const MPI_Comm             communicator) const
+  {
+    AssertDimension(gaps.size(), size());
+    Assert(c.size() == size(), ExcMessage("The parameters c are not set."));
+    double largest_gap = 0;
+    for (const double gap : gaps)
+      largest_gap = std::max(largest_gap, std::abs(gap));
+    largest_gap = Utilities::MPI::max(largest_gap, communicator);
+    bool rests  = true;
+    for (unsigned int i = 0; i < size() && rests; ++i)
+      {
+        const double          r     = -gaps[i];
+        const double          q     = c[i] * r - history_pressure(i);
+        const ContactLawPiece piece = contact_laws.piece(
+          contact_laws.find_piece(node_zones[i], q, c[i], law_state(i)),
+          law_state(i));
+        const double r_on_graph
+          = piece.vertical ? piece.r_lower
+                           : (q - piece.intercept) / (piece.slope + c[i]);
+        rests = std::abs(r_on_graph - r)
+                <= 1e-12 * std::max({largest_gap, std::abs(r_on_graph)});
+      }
+    return Utilities::MPI::min(rests ? 1 : 0, communicator) == 1;
+  }
+
+
+
   double
   ContactNodes::damage(const unsigned int i) const
   {

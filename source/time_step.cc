@@ -39,6 +39,22 @@ namespace ViscoContact
     // Adaptive and cut steps are not counted before the run: their number
     // is bounded here (fixed schedules were checked with the parameters).
     plan.check_step_count(n, schedule.current_time());
+    // A run that starts at rest is on a smooth path from u_0 = 0 on
+    // (PredictedStart::starts_at_rest()). The implicit update has the
+    // prescribed displacements in its iterate, not in the right-hand side,
+    // so there they are taken as a jump.
+    bool starts_at_rest = false;
+    if (n == 1 && parameters.predicted_start
+        && !(parameters.implicit_update() && prescribed.has_values()))
+      {
+        assemble_right_hand_side(schedule.current_time());
+        starts_at_rest
+          = PredictedStart<dim>::starts_at_rest(solution,
+                                                system_rhs,
+                                                contact_enabled ? &contact_set
+                                                                : nullptr,
+                                                mpi_communicator);
+      }
     if (n == 1 && plan.initial_cycles() > 0)
       InitialCycles<dim>::solve(*this);
 
@@ -55,12 +71,19 @@ namespace ViscoContact
       && !StepControl<dim>::accept_adaptive_step(*this, start, proposed_step));
 
     // u_{n-1} and z_{n-1}, the state the step started from, are what the
-    // next step's prediction extrapolates from. Not the initial state u_0 =
-    // 0: a load already present at t = 0 makes the first step a jump, not a
-    // piece of a smooth path to extrapolate.
+    // next step's prediction extrapolates from. The initial state u_0 = 0
+    // only if the run starts at rest: a load already present at t = 0 makes
+    // the first step a jump, not a piece of a smooth path to extrapolate.
+    // (Initial cycles have changed start.solution from u_0.)
     if (parameters.predicted_start && n > 1)
       predicted_start.remember(std::move(start.solution),
                                std::move(start.contact.z));
+    else if (starts_at_rest)
+      {
+        start.solution = 0;
+        predicted_start.remember(std::move(start.solution),
+                                 std::vector<double>(start.contact.z.size()));
+      }
     // Friction: the next step's slip is measured from here.
     if (contact_enabled && contact_set.has_friction())
       contact_set.accept_slip(contact_set.tangential_displacements(solution),

@@ -40,11 +40,24 @@ namespace ViscoContact
     // A new mesh or a new run: nothing to extrapolate from.
     void
     forget();
-    // After an accepted step (not the first: a load already present at t =
-    // 0 makes it a jump, not a piece of a smooth path): the state it started
-    // from, u with its ghosts and z of this rank's contact nodes.
+    // After an accepted step: the state it started from, u with its ghosts
+    // and z of this rank's contact nodes. Not after the first step, unless
+    // the run starts at rest: a load already present at t = 0 makes the
+    // first step a jump, not a piece of a smooth path.
     void
     remember(VectorType &&displacement, std::vector<double> &&contact_forces);
+    // Whether the run starts at rest: u_0 = 0 solves the problem at t_0,
+    // because u_0 is 0, the right-hand side at t_0 (loads, the lifting of
+    // the prescribed displacements, the history) is 0, and every contact
+    // node's law holds with no force at u = 0 (ContactNodes::
+    // rests_at_gaps(), at the gaps set for t_0). The first step then is a
+    // piece of a smooth path from u_0 = 0, z_0 = 0, which the second step
+    // may extrapolate. Collective.
+    static bool
+    starts_at_rest(const VectorType      &initial_displacement,
+                   const VectorType      &right_hand_side,
+                   const ContactSet<dim> *contact,
+                   const MPI_Comm         communicator);
     bool
     has_start() const;
     const VectorType &

@@ -30,6 +30,26 @@ namespace ViscoContact
 
   template <int dim>
   bool
+  PredictedStart<dim>::starts_at_rest(const VectorType &initial_displacement,
+                                      const VectorType &right_hand_side,
+                                      const ContactSet<dim> *contact,
+                                      const MPI_Comm         communicator)
+  {
+    if (initial_displacement.linfty_norm() != 0
+        || right_hand_side.linfty_norm() != 0)
+      return false;
+    if (contact == nullptr)
+      return true;
+    std::vector<double> gaps(contact->size());
+    for (unsigned int i = 0; i < gaps.size(); ++i)
+      gaps[i] = contact->gap(i);
+    return contact->rests_at_gaps(gaps, communicator);
+  }
+
+
+
+  template <int dim>
+  bool
   PredictedStart<dim>::has_start() const
   {
     return start.has_value();

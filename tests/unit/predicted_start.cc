@@ -1,7 +1,10 @@
 // Unit tests of PredictedStart: on a path linear in time the extrapolated
 // start of a step is exact (the displacement, and the contact nodes' forces
 // and r = n.u - s), and nothing moves without a start to extrapolate from;
-// where the pieces may not be predicted, only u is extrapolated.
+// where the pieces may not be predicted, only u is extrapolated; a run
+// starts at rest only where nothing acts at t_0.
+
+#include <deal.II/base/function.h>
 
 #include <gtest/gtest.h>
 
@@ -106,4 +109,71 @@ TEST(PredictedStart, ExactOnALinearPath)
 TEST(PredictedStart, OnlyTheDisplacementWherePiecesMustBeKept)
 {
   check_prediction(false);
+}
+
+namespace
+{
+  // Whether a Scene with the given contact entries and obstacle gap s
+  // starts at rest with u_0 = 0 and a zero right-hand side.
+  bool
+  starts_at_rest(const Parameters::Contact &entries, const double gap)
+  {
+    TestScenes::SquareWithContactZone scene(entries);
+    scene.contact.set_parameters(std::vector<double>(
+      scene.contact.size(),
+      10. * (1. + scene.contact.laws().steepest_softening())));
+    Functions::ConstantFunction<2> obstacle_gap(gap);
+    EXPECT_EQ(scene.contact.set_gaps({&obstacle_gap}, 0.), "");
+    const VectorType zero(scene.layout);
+    return PredictedStart<2>::starts_at_rest(zero,
+                                             zero,
+                                             &scene.contact,
+                                             MPI_COMM_WORLD);
+  }
+} // namespace
+
+// u_0 = 0 solves the problem at t_0 only without a displacement, a load or
+// a contact force there: the paper's layer law (p = 0 for r <= 0) rests
+// where the obstacle touches (s = 0) or is away (s > 0), not where it
+// overlaps the body (s < 0: r = -s > 0 inside the layer pushes); an
+// adhesive branch pulls at r < 0, so there only s = 0 rests.
+TEST(PredictedStart, StartsAtRestOnlyWhereNothingActs)
+{
+  const Parameters::Contact layer;
+  EXPECT_TRUE(starts_at_rest(layer, 0.));
+  EXPECT_TRUE(starts_at_rest(layer, 1e-3));
+  EXPECT_FALSE(starts_at_rest(layer, -1e-3));
+  EXPECT_FALSE(starts_at_rest(layer, -0.1)); // beyond the rigid limit g
+
+  Parameters::Contact adhesive;
+  adhesive.adhesion_stiffness = 100;
+  adhesive.adhesion_length    = 0.01;
+  EXPECT_TRUE(starts_at_rest(adhesive, 0.));
+  EXPECT_FALSE(starts_at_rest(adhesive, 1e-3));
+
+  // A displacement, a load, or a memory pressure that moves the graph up.
+  TestScenes::SquareWithContactZone scene(layer);
+  scene.contact.set_parameters(
+    std::vector<double>(scene.contact.size(),
+                        10.
+                          * (1. + scene.contact.laws().steepest_softening())));
+  VectorType zero(scene.layout), nonzero(scene.layout);
+  if (nonzero.locally_owned_size() > 0)
+    nonzero.local_element(0) = 1e-12;
+  EXPECT_FALSE(PredictedStart<2>::starts_at_rest(nonzero,
+                                                 zero,
+                                                 &scene.contact,
+                                                 MPI_COMM_WORLD));
+  EXPECT_FALSE(PredictedStart<2>::starts_at_rest(zero,
+                                                 nonzero,
+                                                 &scene.contact,
+                                                 MPI_COMM_WORLD));
+  EXPECT_TRUE(
+    PredictedStart<2>::starts_at_rest(zero, zero, nullptr, MPI_COMM_WORLD));
+  scene.contact.set_history_pressure(
+    std::vector<double>(scene.contact.size(), 1.));
+  EXPECT_FALSE(PredictedStart<2>::starts_at_rest(zero,
+                                                 zero,
+                                                 &scene.contact,
+                                                 MPI_COMM_WORLD));
 }

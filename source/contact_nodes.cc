@@ -300,7 +300,7 @@ namespace ViscoContact
                               const MPI_Comm             communicator) const
   {
     AssertDimension(gaps.size(), size());
-    Assert(c.size() == size(), ExcMessage("The parameters c are not set."));
+    Assert(placed, ExcMessage("The parameters c are not set."));
     double largest_gap = 0;
     for (const double gap : gaps)
       largest_gap = std::max(largest_gap, std::abs(gap));

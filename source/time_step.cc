@@ -39,24 +39,27 @@ namespace ViscoContact
     // Adaptive and cut steps are not counted before the run: their number
     // is bounded here (fixed schedules were checked with the parameters).
     plan.check_step_count(n, schedule.current_time());
+    if (n == 1 && plan.initial_cycles() > 0)
+      InitialCycles<dim>::solve(*this);
     // A run that starts at rest is on a smooth path from u_0 = 0 on
-    // (PredictedStart::starts_at_rest()). The implicit update has the
-    // prescribed displacements in its iterate, not in the right-hand side,
-    // so there they are taken as a jump.
+    // (PredictedStart::starts_at_rest()): checked with the values at t_0 on
+    // the mesh of the run (the initial cycles' meshes have fewer contact
+    // nodes), whose step 1 solve_step_with_recovery() assembles afresh.
     bool starts_at_rest = false;
-    if (n == 1 && parameters.predicted_start
-        && !(parameters.implicit_update() && prescribed.has_values()))
+    if (n == 1 && parameters.predicted_start)
       {
         assemble_right_hand_side(schedule.current_time());
+        VectorType prescribed_start(solution);
+        prescribed_start = 0;
+        if (prescribed.has_values())
+          prescribed.distribute(prescribed_start, constraints);
         starts_at_rest
-          = PredictedStart<dim>::starts_at_rest(solution,
+          = PredictedStart<dim>::starts_at_rest(prescribed_start,
                                                 system_rhs,
                                                 contact_enabled ? &contact_set
                                                                 : nullptr,
                                                 mpi_communicator);
       }
-    if (n == 1 && plan.initial_cycles() > 0)
-      InitialCycles<dim>::solve(*this);
 
     StepStart<dim>  start         = StepControl<dim>::save_start(*this);
     double          proposed_step = 0;

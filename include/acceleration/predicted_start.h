@@ -47,14 +47,15 @@ namespace ViscoContact
     void
     remember(VectorType &&displacement, std::vector<double> &&contact_forces);
     // Whether the run starts at rest: u_0 = 0 solves the problem at t_0,
-    // because u_0 is 0, the right-hand side at t_0 (loads, the lifting of
-    // the prescribed displacements, the history) is 0, and every contact
-    // node's law holds with no force at u = 0 (ContactNodes::
+    // because the displacements prescribed at t_0 are 0 (prescribed_start:
+    // 0 with them distributed), the right-hand side at t_0 (the loads, the
+    // lifting of the prescribed displacements, the history) is 0, and every
+    // contact node's law holds with no force at u = 0 (ContactNodes::
     // rests_at_gaps(), at the gaps set for t_0). The first step then is a
     // piece of a smooth path from u_0 = 0, z_0 = 0, which the second step
     // may extrapolate. Collective.
     static bool
-    starts_at_rest(const VectorType      &initial_displacement,
+    starts_at_rest(const VectorType      &prescribed_start,
                    const VectorType      &right_hand_side,
                    const ContactSet<dim> *contact,
                    const MPI_Comm         communicator);

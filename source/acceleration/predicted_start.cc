@@ -30,12 +30,12 @@ namespace ViscoContact
 
   template <int dim>
   bool
-  PredictedStart<dim>::starts_at_rest(const VectorType &initial_displacement,
-                                      const VectorType &right_hand_side,
+  PredictedStart<dim>::starts_at_rest(const VectorType      &prescribed_start,
+                                      const VectorType      &right_hand_side,
                                       const ContactSet<dim> *contact,
                                       const MPI_Comm         communicator)
   {
-    if (initial_displacement.linfty_norm() != 0
+    if (prescribed_start.linfty_norm() != 0
         || right_hand_side.linfty_norm() != 0)
       return false;
     if (contact == nullptr)

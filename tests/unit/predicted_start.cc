@@ -136,7 +136,8 @@ namespace
 // a contact force there: the paper's layer law (p = 0 for r <= 0) rests
 // where the obstacle touches (s = 0) or is away (s > 0), not where it
 // overlaps the body (s < 0: r = -s > 0 inside the layer pushes); an
-// adhesive branch pulls at r < 0, so there only s = 0 rests.
+// adhesive branch pulls at r < 0, so there only s = 0 rests; a memory
+// pressure moves the graph.
 TEST(PredictedStart, StartsAtRestOnlyWhereNothingActs)
 {
   const Parameters::Contact layer;
@@ -151,7 +152,36 @@ TEST(PredictedStart, StartsAtRestOnlyWhereNothingActs)
   EXPECT_TRUE(starts_at_rest(adhesive, 0.));
   EXPECT_FALSE(starts_at_rest(adhesive, 1e-3));
 
-  // A displacement, a load, or a memory pressure that moves the graph up.
+  // A law with a jump at r = 0 (p in [0, 1] there): at s = 0 a force of 0
+  // lies on its vertical piece, and it still does with a memory pressure
+  // m = -1/2 (the graph moved down: p - m = 1/2 in [0, 1]), not with
+  // m = 1/2.
+  Parameters::Contact jump;
+  jump.unilateral_constraint = false;
+  jump.law_type              = Parameters::ContactLawType::piecewise_linear;
+  jump.breakpoints           = {0.};
+  jump.slopes                = {0., 100.};
+  jump.jumps                 = {1.};
+  EXPECT_TRUE(starts_at_rest(jump, 0.));
+  EXPECT_FALSE(starts_at_rest(jump, -1e-3));
+  for (const double m : {-0.5, 0.5})
+    {
+      TestScenes::SquareWithContactZone scene(jump);
+      scene.contact.set_parameters(
+        std::vector<double>(scene.contact.size(), 10.));
+      scene.contact.set_history_pressure(
+        std::vector<double>(scene.contact.size(), m));
+      const VectorType zero(scene.layout);
+      EXPECT_EQ(PredictedStart<2>::starts_at_rest(zero,
+                                                  zero,
+                                                  &scene.contact,
+                                                  MPI_COMM_WORLD),
+                m < 0)
+        << "memory pressure " << m;
+    }
+
+  // A prescribed displacement, a load, or a memory pressure that moves the
+  // graph up.
   TestScenes::SquareWithContactZone scene(layer);
   scene.contact.set_parameters(
     std::vector<double>(scene.contact.size(),

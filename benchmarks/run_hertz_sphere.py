@@ -30,8 +30,11 @@ times its observed 0.73%, and 2-rank runs on N = 8 (full space back end)
 equal to the 1-rank ones (condensed) to 1e-6.
 
 --cost N,M,... --methods "full space,condensed" --ranks 1
---condensed-up-to 48 (the largest N for the condensed back end) --cells
-hexahedron,tetrahedron: the cost of the
+--condensed-up-to 48 (the largest N for the condensed back end, counted
+after refinement) --cells hexahedron,tetrahedron [--global-refinements
+R,S,...: the graded mesh of N cells per edge refined globally R times,
+where the matrix-free back end and the initial cycles find coarser
+meshes]: the cost of the
 moving obstacle at N cells per edge (N = 68: 985k dofs), from
 the program's own cost report: active-set iterations and Krylov iterations
 per step, the time of a step against one elastic solve with the operator
@@ -98,10 +101,11 @@ def hertz_force(d):
 
 
 def run(executable, n, cells, ranks, folder, method=None, report=None,
-        length=1.0, mirrored=False):
+        length=1.0, mirrored=False, refinements=0):
     """Runs the scene on N (a block of edge length; tetrahedra split around
-    the other diagonal if mirrored), returns the output folder and the wall
-    time; report (a dict) receives the program's standard output."""
+    the other diagonal if mirrored; refined globally refinements times),
+    returns the output folder and the wall time; report (a dict) receives
+    the program's standard output."""
     mesh = os.path.join(folder, "hertz_sphere.msh")
     with open(mesh, "w") as f:
         f.write(hertz_sphere_block(n, cells == "tetrahedron", length,
@@ -115,6 +119,8 @@ def run(executable, n, cells, ranks, folder, method=None, report=None,
                (("Output",), "Measure cost ratios"): "true"}
     if method:
         entries[(("Linear solver",), "Method")] = method
+    if refinements:
+        entries[(("Geometry",), "Global refinements")] = str(refinements)
     with open(os.path.join(TOP, "parameters", "hertz_sphere.prm")) as f:
         text = set_prm_entries(f.read(), entries)
     prm = os.path.join(folder, "hertz.prm")
@@ -177,14 +183,14 @@ def profile_measures(rows, force, e_star, radius):
             "p0 error": abs(p0 - p0_hertz) / p0_hertz}
 
 
-def cost(executable, n, method, ranks, cells="hexahedron"):
+def cost(executable, n, method, ranks, cells="hexahedron", refinements=0):
     """The cost of the moving-obstacle steps on N cells per edge (cells:
-    hexahedron or tetrahedron), from the program's report (see the top of
-    the file)."""
+    hexahedron or tetrahedron; the graded mesh refined globally refinements
+    times), from the program's report (see the top of the file)."""
     report = {}
     with tempfile.TemporaryDirectory() as folder:
         output, wall = run(executable, n, cells, ranks, folder, method,
-                           report)
+                           report, refinements=refinements)
         with open(os.path.join(output, "time_series.csv")) as f:
             series = list(csv.DictReader(f))
         result = analyse(output)
@@ -197,11 +203,16 @@ def cost(executable, n, method, ranks, cells="hexahedron"):
                      % (pattern, n, cells, method))
         return match.group(1)
     steps = len(series)
+    # The run's mesh: after Initial cycles that of the last cycle.
+    mesh = (re.search(r"^Initial cycles done: \d+ cells, (\d+) dofs, (\d+) "
+                      r"contact nodes", text, re.M)
+            or re.search(r"(?:Hex|Tet) cells, (\d+) displacement dofs, (\d+) "
+                         r"contact nodes", text))
     return {
-        "N": n, "method": method, "ranks": ranks, "wall": wall,
+        "N": n, "refinements": refinements, "method": method,
+        "ranks": ranks, "wall": wall,
         "cells": cells,
-        "dofs": int(find(r"(?:Hex|Tet) cells, (\d+) displacement dofs")),
-        "contact nodes": int(find(r"dofs, (\d+) contact nodes")),
+        "dofs": int(mesh.group(1)), "contact nodes": int(mesh.group(2)),
         "in contact": result["nodes"], "F error": result["F error"],
         "iterations": [int(r["active_set_iterations"]) for r in series],
         "krylov": [int(r["krylov_iterations"]) for r in series],
@@ -222,9 +233,11 @@ def print_cost(results):
           "operator set-ups in the run | peak memory [GB] | run [s] |")
     print("| --- " * 14 + "|")
     for r in results:
-        print("| %s | %s | %d | %d | %d | %d (%d) | %s | %s (%d) | %.2f | %.2f "
+        n = str(r["N"]) + (" refined %d times" % r["refinements"]
+                           if r["refinements"] else "")
+        print("| %s | %s | %d | %s | %d | %d (%d) | %s | %s (%d) | %.2f | %.2f "
               "| %.2f | %d | %.1f | %.0f |" % (
-                  r["cells"], r["method"], r["ranks"], r["N"], r["dofs"],
+                  r["cells"], r["method"], r["ranks"], n, r["dofs"],
                   r["contact nodes"], r["in contact"],
                   ", ".join(str(i) for i in r["iterations"]),
                   ", ".join(str(i) for i in r["krylov"]), r["solve krylov"],
@@ -363,6 +376,10 @@ def main():
     # The condensed factor at N = 68 needs more than this machine's 24 GB.
     parser.add_argument("--condensed-up-to", type=int, default=48)
     parser.add_argument("--ranks", type=int, default=1)
+    # With --cost: the graded mesh of N cells per edge refined globally
+    # this many times (a list: each in turn), where the matrix-free back
+    # end and the cycles of Initial and Step cycles find coarser meshes.
+    parser.add_argument("--global-refinements", default="0")
     parser.add_argument("--recovery")
     arguments = parser.parse_args()
     if arguments.recovery:
@@ -373,15 +390,18 @@ def main():
         results = []
         for cells in arguments.cells.split(","):
             for n in arguments.cost.split(","):
-                for method in arguments.methods.split(","):
-                    if (method == "condensed"
-                            and int(n) > arguments.condensed_up_to):
-                        print(f"N = {n}: condensed skipped (above "
-                              f"--condensed-up-to {arguments.condensed_up_to})")
-                        continue
-                    results.append(cost(arguments.executable, int(n), method,
-                                        arguments.ranks, cells))
-                    print_cost(results[-1:])
+                for refinements in arguments.global_refinements.split(","):
+                    for method in arguments.methods.split(","):
+                        if (method == "condensed" and int(n) * 2 ** int(
+                                refinements) > arguments.condensed_up_to):
+                            print(f"N = {n}: condensed skipped (above "
+                                  f"--condensed-up-to "
+                                  f"{arguments.condensed_up_to})")
+                            continue
+                        results.append(cost(arguments.executable, int(n),
+                                            method, arguments.ranks, cells,
+                                            int(refinements)))
+                        print_cost(results[-1:])
         print()
         print_cost(results)
         return

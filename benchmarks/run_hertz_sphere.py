@@ -208,6 +208,9 @@ def cost(executable, n, method, ranks, cells="hexahedron", refinements=0):
                       r"contact nodes", text, re.M)
             or re.search(r"(?:Hex|Tet) cells, (\d+) displacement dofs, (\d+) "
                          r"contact nodes", text))
+    if not mesh:
+        sys.exit("No mesh line in the report of N = %d, %s, %s."
+                 % (n, cells, method))
     return {
         "N": n, "refinements": refinements, "method": method,
         "ranks": ranks, "wall": wall,

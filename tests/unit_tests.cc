@@ -3639,9 +3639,9 @@ TEST(CostModel, ChoosesTheMeasuredFastest)
         Parameters::Method::full_space);
     }
   // cube_3d.prm (32 steps) at 15k and 108k dofs: condensed on one rank; at
-  // 15k on two ranks matrix free on hexahedra (whole processes: 3.7 s
-  // against 4.2 s full space and 6.3 s condensed), condensed on tetrahedra
-  // (4.0 s against 5.9 s full space: MUMPS's solves in 3D cost about what
+  // 15k on two ranks matrix free on hexahedra (whole processes: 2.6 s
+  // against 4.3 s full space and 4.8 s condensed), condensed on tetrahedra
+  // (4.8 s against 6.8 s full space: MUMPS's solves in 3D cost about what
   // CHOLMOD's do, and the full space steps cost more than on hexahedra).
   EXPECT_EQ(choose_method(automatic, scene_of(3, false, 14739, 289, 32)).method,
             Parameters::Method::condensed);
@@ -3654,25 +3654,25 @@ TEST(CostModel, ChoosesTheMeasuredFastest)
   EXPECT_EQ(
     choose_method(automatic, scene_of(3, false, 107811, 1089, 32)).method,
     Parameters::Method::condensed);
-  // On two ranks at 47k and 108k dofs: full space (9.6 s and 22.8 s against
-  // 10.0 s and 27.1 s matrix free; the condensed one's MUMPS solves take
-  // 43 s and 243 s).
+  // On two ranks at 47k and 108k dofs: matrix free (6.0 s and 18.3 s
+  // against 8.7 s and 19.5 s full space; the condensed one's MUMPS solves
+  // take 31 s and 169 s).
   for (const auto &[dofs, nodes] :
        std::vector<std::pair<double, double>>{{46875, 600}, {107811, 1056}})
     EXPECT_EQ(
       choose_method(automatic, scene_of(3, false, dofs, nodes, 32, 2)).method,
-      Parameters::Method::full_space);
-  // At 1.2M dofs the factor does not fit: full space on hexahedra too (over
-  // whole runs at 353k dofs its steps took 145 s against 201 s matrix
-  // free), ...
+      Parameters::Method::matrix_free);
+  // At 1.2M dofs the factor does not fit: matrix free on hexahedra (over
+  // whole runs at 353k dofs its steps took 4.0 s against 4.6 s full space),
+  // full space on tetrahedra, ...
   EXPECT_EQ(
     choose_method(automatic, scene_of(3, false, 1.2e6, 5329, 32)).method,
-    Parameters::Method::full_space);
+    Parameters::Method::matrix_free);
   EXPECT_EQ(choose_method(automatic, scene_of(3, true, 1.2e6, 5329, 32)).method,
             Parameters::Method::full_space);
-  // ... but matrix free for the two steps where the contact zone forms,
-  // where the full space back end rebuilds its AMG (37.4 s per step
-  // against 47.1 s).
+  // ... and matrix free for the two steps where the contact zone forms,
+  // where the full space back end rebuilds its AMG (19.7 s per step
+  // against 51.6 s).
   SceneSize forming        = scene_of(3, false, 1.167e6, 5256, 2);
   forming.nested_iteration = true;
   EXPECT_EQ(choose_method(automatic, forming).method,

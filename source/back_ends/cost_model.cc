@@ -117,9 +117,8 @@ namespace ViscoContact
     // back end's rebuilds below is 0.6, 0.95 and 1.0 times its time per
     // iteration; the model interpolates in log(dofs per rank) and keeps
     // 1.0 above (at 1.2M dofs one elastic solve took 0.61 times the full
-    // space one's, run_matrix_free.py). In 2D the model
-    // keeps 1.25, measured on the static scene on quadrilaterals (33k to
-    // 526k dofs).
+    // space one's, run_matrix_free.py). In 2D the model keeps 1.25,
+    // measured on the static scene on quadrilaterals (33k to 526k dofs).
     // On a mesh without coarser meshes (a Gmsh file used as it is) the
     // multigrid has one level, the AMG of the assembled K with Chebyshev
     // smoothing around it, and the back end is not costed: on the graded

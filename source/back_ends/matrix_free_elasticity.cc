@@ -54,10 +54,10 @@ namespace ViscoContact
     // refined mesh). Debian builds for the x86-64 baseline (SSE2, two
     // doubles at a time); GCC's target_clones adds AVX2 and AVX-512 copies,
     // of which the loader picks the widest the processor has. Every copy
-    // runs each sum in the same order, without fused multiply-adds, so the
-    // results do not depend on the machine. (hertz_sphere.prm refined
-    // twice, 108k dofs, a whole run on the matrix-free back end: 0.48 times
-    // as long as summed row by row, 0.90 times as long as with SSE2 only;
+    // runs each sum in the same order, without fused multiply-adds, so on
+    // x86-64 the results do not depend on the processor. (hertz_sphere.prm
+    // refined twice, 108k dofs, a whole run on the matrix-free back end: 0.48
+    // times as long as summed row by row, 0.90 times as long as with SSE2 only;
     // benchmarks/run_paired_timing.py, 3 pairs.)
     template <int n>
     inline void

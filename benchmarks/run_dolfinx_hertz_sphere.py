@@ -57,12 +57,26 @@ sys.path.insert(0, os.path.join(HERE, "..", "scripts"))
 sys.path.insert(0, os.path.join(HERE, "..", "meshes"))
 from vc_scripts import (REPO_ROOT, add_executable_argument,  # noqa: E402
                         resolve_executable, set_prm_entries)
-from make_hertz_sphere_meshes import hertz_sphere_block  # noqa: E402
 from run_dolfinx_comparison import (checked_run, fastest,  # noqa: E402
                                     provenance)
 from run_hertz_sphere import E_STAR, R, profile_measures  # noqa: E402
 
 DOLFINX_SCRIPT = os.path.join(HERE, "dolfinx_hertz_sphere.py")
+
+
+def graded_box(n):
+    """The entries that make the program generate the mesh of
+    hertz_sphere_block(n): the unit box of n cubes per edge moved by the
+    grading (x, y, z) -> (x^2, 1 - (1 - y)^2, z^2), with the colorized
+    box's boundary ids (0, 2, 4 at x, y, z = 0; 3 at y = 1)."""
+    return {(("Geometry",), "Mesh file"): "",
+            (("Geometry",), "Lengths"): "1, 1, 1",
+            (("Geometry",), "Subdivisions"): str(n),
+            (("Geometry",), "Box map"): "x^2; 1 - (1 - y)^2; z^2",
+            (("Geometry",), "Box map inverse"):
+                "sqrt(x); 1 - sqrt(1 - y); sqrt(z)",
+            (("Boundary",), "Contact boundary ids"): "3",
+            (("Boundary",), "Symmetry boundary ids"): "0, 4, 2"}
 
 
 def read_rows(path):
@@ -72,11 +86,9 @@ def read_rows(path):
 
 def run_program(executable, n, ranks, timeout):
     with tempfile.TemporaryDirectory() as workdir:
-        with open(os.path.join(workdir, "block.msh"), "w") as f:
-            f.write(hertz_sphere_block(n))
         with open(os.path.join(REPO_ROOT, "parameters", "hertz_sphere.prm")) as f:
             prm = set_prm_entries(f.read(), {
-                (("Geometry",), "Mesh file"): "block.msh",
+                **graded_box(n),
                 (("Time",), "Time step"): "1",
                 (("Output",), "Write vtu"): "false",
                 (("Output",), "Profile times"): "1",

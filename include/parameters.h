@@ -142,6 +142,10 @@ namespace ViscoContact
       CellType            cell_type    = CellType::simplex;
       SimplexPattern      simplex_pattern = SimplexPattern::slash;
       std::string         mesh_file; // Gmsh .msh; empty: the generated box
+      // The generated box's points moved by a map and its inverse (empty:
+      // the box as generated); refinement follows the map (mesh.cc).
+      std::string box_map;
+      std::string box_map_inverse;
       // The material id of each cell of the coarse mesh as a function of
       // its centre (empty: the mesh's own ids).
       std::string  material_id_function;

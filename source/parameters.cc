@@ -383,6 +383,28 @@ namespace ViscoContact
           "box of Lengths and Subdivisions.",
           Patterns::Anything());
         prm.add_parameter(
+          "Box map",
+          box_map,
+          "The generated box moved point by point: muparser expressions "
+          "x'; y'(; z') of the box point (x, y[, z]) and the constants L1, "
+          "L2(, L3), pi, e.g. a mesh graded toward the corner (0, L2, 0): "
+          "\"x^2/L1; L2 - (L2-y)^2/L2; z^2/L3\". Refinement places every "
+          "new vertex where the map takes the point between its parents in "
+          "the box (a deal.II FunctionManifold), so Subdivisions = 2n and n "
+          "refined once give the same mesh, and the coarser meshes of "
+          "multigrid and of the initial cycles are the box's coarser meshes "
+          "moved by the map. The map must keep every cell's orientation. "
+          "Empty: the box as generated. Not with a Mesh file.",
+          Patterns::Anything());
+        prm.add_parameter(
+          "Box map inverse",
+          box_map_inverse,
+          "The inverse of Box map: the box point x; y(; z) of a moved point "
+          "(x, y[, z]), e.g. \"sqrt(L1*x); L2 - sqrt(L2*(L2-y)); "
+          "sqrt(L3*z)\" for the example there. Required with Box map and "
+          "checked at every vertex of the box; empty without it.",
+          Patterns::Anything());
+        prm.add_parameter(
           "Material id function",
           material_id_function,
           "The material id of each cell as a muparser expression of x, y[, "
@@ -456,6 +478,21 @@ namespace ViscoContact
                 "0 for Cell type = simplex or mixed (deal.II 9.4 has no "
                 "hanging-node constraints on simplices); any number up to 20 "
                 "for hypercube meshes");
+        // The map moves the generated box only, and refinement needs its
+        // inverse.
+        if (!box_map.empty())
+          require(mesh_file.empty(),
+                  "Geometry",
+                  "Box map",
+                  box_map,
+                  "empty with a Mesh file (the map moves the generated box)");
+        require(box_map.empty() == box_map_inverse.empty(),
+                "Geometry",
+                "Box map inverse",
+                box_map_inverse,
+                box_map.empty()
+                  ? "empty without a Box map"
+                  : "the inverse of Box map, which refinement needs");
         // A mixed mesh comes from a file.
         if (cell_type == CellType::mixed)
           require(!mesh_file.empty(),

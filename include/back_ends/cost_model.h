@@ -66,6 +66,11 @@ namespace ViscoContact
     // multigrid is one level, the AMG of the assembled K with smoothing
     // around it: the full space back end's preconditioner and more.
     bool coarser_meshes = true;
+    // Whether the cells differ in shape (a Box map moves every vertex): the
+    // matrix-free operator then evaluates every cell by sum factorisation,
+    // where the cells of a box or of a refined Gmsh mesh share the dense
+    // matrices of a few shapes.
+    bool distinct_cells = false;
     // Whether a contact zone is bonded from the start (adhesion or a
     // cohesive interface): springs on the whole zone, often stiffer than the
     // body, which the coarser levels of the matrix-free multigrid do not hold.

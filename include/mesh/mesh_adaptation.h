@@ -50,25 +50,30 @@ namespace ViscoContact
     mark_cells(ViscoplasticContact<dim> &problem);
     // The marked p4est mesh refined and coarsened, the problem set up on it
     // and u and the contact pressure carried over, and the stress-point data
-    // if asked to. The loads are left to the caller.
+    // if asked to. state_time: the time of the state carried over, whose
+    // gaps name the contact nodes' pieces. The loads are left to the caller.
     static void
     refine_and_transfer(ViscoplasticContact<dim> &problem,
-                        const bool                transfer_stress_points);
+                        const bool                transfer_stress_points,
+                        const double              state_time);
     // The next simplex mesh, the parameter file's coarsened coarsenings
     // times, built anew, the problem set up on it, and u and the contact
     // pressure interpolated to it from the current mesh.
     static void
     rebuild_and_transfer(ViscoplasticContact<dim> &problem,
-                         const unsigned int        coarsenings);
+                         const unsigned int        coarsenings,
+                         const double              state_time);
 
   private:
     static Vector<float>
     refinement_indicators(const ViscoplasticContact<dim> &problem);
-    // After a transfer: each contact node's (r, z) from u and the pressure
-    // field, the piece they name, friction from stick.
+    // After a transfer: each contact node's (r, z) from u, the gaps at
+    // state_time and the pressure field, the piece they name, friction from
+    // stick.
     static void
     set_contact_state_from(ViscoplasticContact<dim> &problem,
-                           const VectorType         &pressure);
+                           const VectorType         &pressure,
+                           const double              state_time);
     // Debug builds: the transferred stress points reproduce E eps(u) on the
     // children of refined_parents (implicit update).
     static void

@@ -53,6 +53,9 @@ namespace ViscoContact
           = problem.report.step_counts();
         const ActiveSetResult result = problem.solve_step_with_recovery(
           StepControl<dim>::save_start(problem));
+        // The time the solution is at (a cut step ends before t_1), whose
+        // gaps give the next mesh's contact nodes their pieces.
+        const double state_time = problem.schedule.next_time();
         problem.report.count_initial_cycle(result.iterations());
         problem.report.restore_step_counts(counts_before);
         if (problem.parameters.verbose
@@ -79,7 +82,8 @@ namespace ViscoContact
             problem.schedule = run_schedule;
             MeshAdaptation<dim>::rebuild_and_transfer(
               problem,
-              problem.plan.initial_cycles() - cycle - 1);
+              problem.plan.initial_cycles() - cycle - 1,
+              state_time);
             problem.assemble_external_load(problem.schedule.next_time());
             continue;
           }
@@ -101,7 +105,8 @@ namespace ViscoContact
           break;
         MeshAdaptation<dim>::refine_and_transfer(
           problem,
-          /*transfer_stress_points=*/false);
+          /*transfer_stress_points=*/false,
+          state_time);
         // The external load of step 1 on the new mesh (the history load of the
         // initial state is zero, as setup_on_mesh() left it).
         problem.assemble_external_load(problem.schedule.next_time());

@@ -21,6 +21,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/manifold.h>
 #include <deal.II/grid/tria_accessor.h>
 #include <deal.II/grid/tria_iterator.h>
 
@@ -28,6 +29,8 @@
 
 #include <algorithm>
 #include <limits>
+#include <map>
+#include <memory>
 #include <numeric>
 #include <set>
 #include <tuple>
@@ -317,8 +320,15 @@ namespace ViscoContact
             line_ids[tree].push_back(
               {cell->line(l)->boundary_id(), cell->line(l)->manifold_id()});
       }
+    // clear() drops the manifolds too: they are put back.
+    std::map<types::manifold_id, std::unique_ptr<Manifold<dim>>> manifolds;
+    for (const types::manifold_id id : coarse_mesh.get_manifold_ids())
+      if (id != numbers::flat_manifold_id)
+        manifolds[id] = coarse_mesh.get_manifold(id).clone();
     const std::vector<Point<dim>> vertices = coarse_mesh.get_vertices();
     coarse_mesh.clear();
+    for (const auto &[id, manifold] : manifolds)
+      coarse_mesh.set_manifold(id, *manifold);
     coarse_mesh.create_triangulation(vertices, cells, SubCellData());
     for (const auto &cell : coarse_mesh.cell_iterators_on_level(0))
       {

@@ -9,6 +9,7 @@
 // benchmark needs one particular diagonal.
 
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/function_parser.h>
 #include <deal.II/base/mpi.h>
 
 #include <deal.II/distributed/fully_distributed_tria.h>
@@ -17,6 +18,7 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/manifold_lib.h>
 #include <deal.II/grid/tria_description.h>
 #include <deal.II/grid/tria_accessor.h>
 #include <deal.II/grid/tria_iterator.h>
@@ -360,10 +362,224 @@ namespace ViscoContact
 
 
 
+  namespace
+  {
+    // @sect4{attach_box_map}
+    //
+    // The constants the Box map's expressions may use: L1, L2(, L3) and pi.
+    std::map<std::string, double>
+    box_map_constants(const Parameters::AllParameters &parameters)
+    {
+      std::map<std::string, double> constants;
+      for (unsigned int d = 0; d < parameters.lengths.size(); ++d)
+        constants["L" + std::to_string(d + 1)] = parameters.lengths[d];
+      constants["pi"] = numbers::PI;
+      return constants;
+    }
+
+    // The Box map's manifold, id 0, on a mesh whose objects carry that id
+    // (map_box() sets it; a fully distributed mesh gets it with its
+    // description, and must have the manifold before it builds its levels by
+    // refinement). Nothing without a Box map.
+    template <int dim>
+    void
+    attach_box_map(const Parameters::AllParameters &parameters,
+                   Triangulation<dim>              &triangulation)
+    {
+      if (parameters.box_map.empty())
+        return;
+      triangulation.set_manifold(
+        0,
+        FunctionManifold<dim>(parameters.box_map,
+                              parameters.box_map_inverse,
+                              Tensor<1, dim>(),
+                              box_map_constants(parameters)));
+    }
+
+
+
+    // @sect4{check_box_map_orientation}
+    //
+    // Every locally owned cell of a mesh moved by the Box map keeps its
+    // orientation: the Jacobian of the cell's linear (simplex) or
+    // multilinear (hypercube) map has a positive determinant at each vertex.
+    // Checked on the coarse box and again on the refined mesh, since a map
+    // can fold inside a coarse cell.
+    template <int dim>
+    void
+    check_box_map_orientation(const Parameters::AllParameters &parameters,
+                              const Triangulation<dim>        &triangulation)
+    {
+      for (const auto &cell : triangulation.active_cell_iterators())
+        {
+          if (!cell->is_locally_owned())
+            continue;
+          const unsigned int n       = cell->n_vertices();
+          const bool         simplex = (n == dim + 1);
+          for (unsigned int v = 0; v < (simplex ? 1 : n); ++v)
+            {
+              // The edges from the vertex: to the vertices after it in a
+              // simplex, along each axis of the reference cell in a
+              // hypercube (its vertices are numbered lexicographically).
+              Tensor<2, dim> jacobian;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  const unsigned int other = simplex ? d + 1 : v ^ (1u << d);
+                  const double sign = (!simplex && (v & (1u << d))) ? -1. : 1.;
+                  const Tensor<1, dim> edge
+                    = sign * (cell->vertex(other) - cell->vertex(v));
+                  for (unsigned int c = 0; c < dim; ++c)
+                    jacobian[c][d] = edge[c];
+                }
+              if (!(determinant(jacobian) > 0))
+                {
+                  std::ostringstream where;
+                  where << "(" << cell->center() << ")";
+                  AssertThrow(false,
+                              ExcMessage(
+                                "Invalid parameter <Box map> in subsection "
+                                "<Geometry>: value <"
+                                + parameters.box_map
+                                + ">; it turns the cell at " + where.str()
+                                + " inside out; accepted: a map that keeps "
+                                  "the orientation of every cell."));
+                }
+            }
+        }
+    }
+
+
+
+    // @sect4{map_box}
+    //
+    // Box map: every vertex p of the box moves to map(p), and every object
+    // of the mesh gets a FunctionManifold of the map, so that refinement
+    // puts a new vertex at map(the point between its parents in the box).
+    // The manifold is built from the expressions (not from the parsed
+    // functions) because the meshes that copy it clone it, and a clone of a
+    // manifold of expressions parses them anew instead of pointing into this
+    // one. The checks give errors that name the entries: the map is finite
+    // and its inverse takes the point back at the vertices of the box and at
+    // the points refinement adds first (the centres of the edges, faces and
+    // cells; the vertices alone would not see a wrong inverse on a box of
+    // one cell), and every cell keeps its orientation.
+    template <int dim>
+    void
+    map_box(const Parameters::AllParameters &parameters,
+            Triangulation<dim>              &triangulation)
+    {
+      const std::map<std::string, double> constants
+        = box_map_constants(parameters);
+      const std::string variables
+        = FunctionParser<dim>::default_variable_names();
+      const auto parse = [&](FunctionParser<dim> &function,
+                             const std::string   &entry,
+                             const std::string   &expression) {
+        std::string message;
+        try
+          {
+            function.initialize(variables, expression, constants);
+            Vector<double> values(dim);
+            function.vector_value(Point<dim>(), values);
+          }
+        catch (const ExceptionBase &exc)
+          {
+            std::ostringstream info;
+            exc.print_info(info);
+            message = info.str();
+          }
+        catch (const std::exception &exc)
+          {
+            message = exc.what();
+          }
+        AssertThrow(message.empty(),
+                    ExcMessage("Invalid parameter <" + entry
+                               + "> in subsection <Geometry>: value <"
+                               + expression
+                               + ">; accepted: " + std::to_string(dim)
+                               + " muparser expressions in " + variables
+                               + " separated by ';', with the constants pi, "
+                                 "L1, L2 (, L3). "
+                               + message));
+      };
+      FunctionParser<dim> forward(dim), inverse(dim);
+      parse(forward, "Box map", parameters.box_map);
+      parse(inverse, "Box map inverse", parameters.box_map_inverse);
+      const auto evaluate
+        = [](const FunctionParser<dim> &function, const Point<dim> &p) {
+            Vector<double> values(dim);
+            function.vector_value(p, values);
+            Point<dim> result;
+            for (unsigned int d = 0; d < dim; ++d)
+              result[d] = values[d];
+            return result;
+          };
+      const auto where = [](const Point<dim> &p) {
+        std::ostringstream text;
+        text << "(" << p << ")";
+        return text.str();
+      };
+      const double size = *std::max_element(parameters.lengths.begin(),
+                                            parameters.lengths.end());
+      // The points to check, in the box: its vertices and the centres of
+      // its edges, faces and cells.
+      std::vector<Point<dim>> points = triangulation.get_vertices();
+      for (const auto &cell : triangulation.active_cell_iterators())
+        {
+          points.push_back(cell->center());
+          for (const auto &face : cell->face_iterators())
+            points.push_back(face->center());
+          if (dim == 3)
+            for (unsigned int l = 0; l < cell->n_lines(); ++l)
+              points.push_back(cell->line(l)->center());
+        }
+      std::vector<Point<dim>> moved(points.size());
+      for (unsigned int i = 0; i < points.size(); ++i)
+        {
+          moved[i]    = evaluate(forward, points[i]);
+          bool finite = true;
+          for (unsigned int d = 0; d < dim; ++d)
+            finite = finite && std::isfinite(moved[i][d]);
+          AssertThrow(finite,
+                      ExcMessage("Invalid parameter <Box map> in subsection "
+                                 "<Geometry>: value <"
+                                 + parameters.box_map + ">; it is "
+                                 + where(moved[i]) + " at the box point "
+                                 + where(points[i])
+                                 + "; accepted: a map that is finite on the "
+                                   "box."));
+        }
+      GridTools::transform(
+        [&](const Point<dim> &p) { return evaluate(forward, p); },
+        triangulation);
+      check_box_map_orientation(parameters, triangulation);
+      for (unsigned int i = 0; i < points.size(); ++i)
+        {
+          const Point<dim> back   = evaluate(inverse, moved[i]);
+          bool             finite = true;
+          for (unsigned int d = 0; d < dim; ++d)
+            finite = finite && std::isfinite(back[d]);
+          AssertThrow(finite && back.distance(points[i]) <= 1e-8 * size,
+                      ExcMessage("Invalid parameter <Box map inverse> in "
+                                 "subsection <Geometry>: value <"
+                                 + parameters.box_map_inverse
+                                 + ">; Box map takes the box point "
+                                 + where(points[i]) + " to " + where(moved[i])
+                                 + ", which the inverse takes to " + where(back)
+                                 + "; accepted: the inverse of Box map, "
+                                   "finite on the moved box."));
+        }
+      triangulation.set_all_manifold_ids(0);
+      attach_box_map(parameters, triangulation);
+    }
+  } // namespace
+
+
+
   // @sect4{create_box}
   //
   // The box (0,L1)x(0,L2)(x(0,L3)) of Subdivisions squares (cubes) along each
-  // edge, its faces colorized.
+  // edge, its faces colorized, moved by the Box map if there is one.
   template <int dim>
   void
   create_box(const Parameters::AllParameters &parameters,
@@ -390,6 +606,8 @@ namespace ViscoContact
                                                 Point<dim>(),
                                                 corner,
                                                 /*colorize=*/true);
+    if (!parameters.box_map.empty())
+      map_box(parameters, triangulation);
   }
 
 
@@ -659,6 +877,7 @@ namespace ViscoContact
         auto distributed_mesh
           = std::make_unique<parallel::fullydistributed::Triangulation<dim>>(
             communicator);
+        attach_box_map(parameters, *distributed_mesh);
         distributed_mesh->create_triangulation(description);
         mesh = std::move(distributed_mesh);
       }
@@ -692,6 +911,13 @@ namespace ViscoContact
         refine_mesh(parameters, *distributed_mesh);
         mesh = std::move(distributed_mesh);
       }
+    // A Box map must not fold the cells refinement made inside the box's
+    // cells either.
+    if (!parameters.box_map.empty())
+      MPITools::agree_on_failure(MPITools::failure_of([&]() {
+                                   check_box_map_orientation(parameters, *mesh);
+                                 }),
+                                 communicator);
     // Last, the boundary parts and materials the parameter file names must
     // exist, and every material id of the mesh must have its material.
     check_boundary_ids(parameters, *mesh, communicator);

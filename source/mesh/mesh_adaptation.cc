@@ -370,7 +370,9 @@ namespace ViscoContact
     const auto dofs_before  = problem.dof_handler.n_dofs();
     if (!mark_cells(problem))
       return;
-    refine_and_transfer(problem, /*transfer_stress_points=*/true);
+    refine_and_transfer(problem,
+                        /*transfer_stress_points=*/true,
+                        problem.schedule.current_time());
 
     // The loads of the next step on the new mesh: the external load (the time
     // loop assembles it only once if it does not depend on t) and the history
@@ -487,7 +489,8 @@ namespace ViscoContact
   template <int dim>
   void
   MeshAdaptation<dim>::refine_and_transfer(ViscoplasticContact<dim> &problem,
-                                           const bool transfer_stress_points)
+                                           const bool   transfer_stress_points,
+                                           const double state_time)
   {
     auto &mesh = dynamic_cast<parallel::distributed::Triangulation<dim> &>(
       *problem.triangulation);
@@ -582,7 +585,7 @@ namespace ViscoContact
                                     stress_point_transfer->refined_parents());
       }
 
-    set_contact_state_from(problem, new_pressure);
+    set_contact_state_from(problem, new_pressure, state_time);
   }
 
 
@@ -590,14 +593,19 @@ namespace ViscoContact
   // @sect4{MeshAdaptation::set_contact_state_from}
   //
   // The contact set after a transfer: (r, z) from u and the pressure, and the
-  // piece they name.
+  // piece they name. r = u.nu - s with the gap s at the time of the state:
+  // setup_on_mesh() left the gaps of the schedule's current time, which the
+  // initial cycles' state (solved for the end of step 1) is not at; with a
+  // moving obstacle those gaps would put every node out of contact.
   template <int dim>
   void
   MeshAdaptation<dim>::set_contact_state_from(ViscoplasticContact<dim> &problem,
-                                              const VectorType &pressure)
+                                              const VectorType &pressure,
+                                              const double      state_time)
   {
     if (!problem.contact_enabled)
       return;
+    problem.set_gaps(state_time);
     problem.contact_set.set_state_from(problem.solution,
                                        pressure,
                                        /*with_friction=*/true);
@@ -631,7 +639,8 @@ namespace ViscoContact
   template <int dim>
   void
   MeshAdaptation<dim>::rebuild_and_transfer(ViscoplasticContact<dim> &problem,
-                                            const unsigned int coarsenings)
+                                            const unsigned int coarsenings,
+                                            const double       state_time)
   {
     std::optional<TimerOutput::Scope> part;
     part.emplace(problem.report.timer(), "Mesh adaptation: transfer");
@@ -734,7 +743,7 @@ namespace ViscoContact
     problem.prescribed.distribute(problem.solution, problem.constraints);
     problem.solution.update_ghost_values();
     new_pressure.update_ghost_values();
-    set_contact_state_from(problem, new_pressure);
+    set_contact_state_from(problem, new_pressure, state_time);
   }
 
 

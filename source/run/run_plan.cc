@@ -170,6 +170,7 @@ namespace ViscoContact
                            || parameters.adaptive_refinement
                            || parameters.initial_refinement
                                 == Parameters::InitialRefinement::adaptive;
+    scene.distinct_cells  = !parameters.box_map.empty();
     scene.memory_per_rank = memory_per_rank;
     return scene;
   }

@@ -3624,7 +3624,7 @@ TEST(CostModel, MatrixFreeNotTakenForBondedZones)
             Parameters::Method::matrix_free);
 }
 
-TEST(CostModel, MatrixFreeCostsMoreWhereEveryCellDiffers)
+TEST(CostModel, MatrixFreeNotTakenWhereEveryCellDiffers)
 {
   // The Hertz sphere's graded box (Box map) at 353k dofs on one rank, one
   // step with its initial cycles: every cell is evaluated by sum
@@ -3636,6 +3636,10 @@ TEST(CostModel, MatrixFreeCostsMoreWhereEveryCellDiffers)
   EXPECT_EQ(choose_method(Parameters::Method::automatic, scene).method,
             Parameters::Method::matrix_free);
   scene.distinct_cells = true;
+  const BackEndCost cost
+    = estimate_cost(Parameters::Method::matrix_free, scene);
+  EXPECT_TRUE(cost.unavailable.empty());
+  EXPECT_NE(cost.not_taken.find("own shape"), std::string::npos);
   EXPECT_EQ(choose_method(Parameters::Method::automatic, scene).method,
             Parameters::Method::full_space);
 }

@@ -7,6 +7,7 @@
 #include <deal.II/grid/tria_description.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ViscoContact
@@ -35,6 +36,16 @@ namespace ViscoContact
   check_mesh_cells(const std::vector<Point<dim>>    &vertices,
                    const std::vector<CellData<dim>> &cells,
                    const std::string                &file);
+  // The corners of a cell, in deal.II's order.
+  template <int dim>
+  std::vector<Point<dim>>
+  corners_of(const typename Triangulation<dim>::cell_iterator &cell);
+  // The Jacobian determinant of a cell (its corners) at its vertex v, and
+  // the product of the lengths of the edges it is made of: negative for an
+  // inverted corner, 0 for a degenerate one.
+  template <int dim>
+  std::pair<double, double>
+  corner_jacobian(const std::vector<Point<dim>> &corners, const unsigned int v);
   template <int dim>
   void
   check_mesh_conformity(const Triangulation<dim>              &triangulation,

@@ -41,17 +41,24 @@ namespace ViscoContact
   bool
   is_zero_expression(const std::string &expression);
 
+  // The constants every expression of a parameter file may use: the box's
+  // edge lengths L1, L2 (, L3) and pi.
+  std::map<std::string, double>
+  expression_constants(const std::vector<double> &lengths);
+
   // Parse an expression (of subsection Loads, or of a prescribed
   // displacement) with as many components as function has, in x, y (, z),
-  // t and the constants L1, L2 (, L3); a bad expression gives a message
-  // that names the subsection and the entry.
+  // t (unless time_dependent is false) and the expression_constants(); a
+  // bad expression gives a message that names the subsection and the
+  // entry.
   template <int dim>
   void
   initialize_load(FunctionParser<dim>       &function,
                   const std::string         &subsection,
                   const std::string         &entry,
                   const std::string         &expression,
-                  const std::vector<double> &lengths);
+                  const std::vector<double> &lengths,
+                  const bool                 time_dependent = true);
 
   // @sect3{The loads of a scene}
   //

@@ -366,17 +366,6 @@ namespace ViscoContact
   {
     // @sect4{attach_box_map}
     //
-    // The constants the Box map's expressions may use: L1, L2(, L3) and pi.
-    std::map<std::string, double>
-    box_map_constants(const Parameters::AllParameters &parameters)
-    {
-      std::map<std::string, double> constants;
-      for (unsigned int d = 0; d < parameters.lengths.size(); ++d)
-        constants["L" + std::to_string(d + 1)] = parameters.lengths[d];
-      constants["pi"] = numbers::PI;
-      return constants;
-    }
-
     // The Box map's manifold, id 0, on a mesh whose objects carry that id
     // (map_box() sets it; a fully distributed mesh gets it with its
     // description, and must have the manifold before it builds its levels by
@@ -393,7 +382,7 @@ namespace ViscoContact
         FunctionManifold<dim>(parameters.box_map,
                               parameters.box_map_inverse,
                               Tensor<1, dim>(),
-                              box_map_constants(parameters)));
+                              expression_constants(parameters.lengths)));
     }
 
 
@@ -414,24 +403,10 @@ namespace ViscoContact
         {
           if (!cell->is_locally_owned())
             continue;
-          const unsigned int n       = cell->n_vertices();
-          const bool         simplex = (n == dim + 1);
-          for (unsigned int v = 0; v < (simplex ? 1 : n); ++v)
+          const std::vector<Point<dim>> corners = corners_of<dim>(cell);
+          for (unsigned int v = 0; v < corners.size(); ++v)
             {
-              // The edges from the vertex: to the vertices after it in a
-              // simplex, along each axis of the reference cell in a
-              // hypercube (its vertices are numbered lexicographically).
-              Tensor<2, dim> jacobian;
-              for (unsigned int d = 0; d < dim; ++d)
-                {
-                  const unsigned int other = simplex ? d + 1 : v ^ (1u << d);
-                  const double sign = (!simplex && (v & (1u << d))) ? -1. : 1.;
-                  const Tensor<1, dim> edge
-                    = sign * (cell->vertex(other) - cell->vertex(v));
-                  for (unsigned int c = 0; c < dim; ++c)
-                    jacobian[c][d] = edge[c];
-                }
-              if (!(determinant(jacobian) > 0))
+              if (!(corner_jacobian<dim>(corners, v).first > 0))
                 {
                   std::ostringstream where;
                   where << "(" << cell->center() << ")";
@@ -468,43 +443,19 @@ namespace ViscoContact
     map_box(const Parameters::AllParameters &parameters,
             Triangulation<dim>              &triangulation)
     {
-      const std::map<std::string, double> constants
-        = box_map_constants(parameters);
-      const std::string variables
-        = FunctionParser<dim>::default_variable_names();
-      const auto parse = [&](FunctionParser<dim> &function,
-                             const std::string   &entry,
-                             const std::string   &expression) {
-        std::string message;
-        try
-          {
-            function.initialize(variables, expression, constants);
-            Vector<double> values(dim);
-            function.vector_value(Point<dim>(), values);
-          }
-        catch (const ExceptionBase &exc)
-          {
-            std::ostringstream info;
-            exc.print_info(info);
-            message = info.str();
-          }
-        catch (const std::exception &exc)
-          {
-            message = exc.what();
-          }
-        AssertThrow(message.empty(),
-                    ExcMessage("Invalid parameter <" + entry
-                               + "> in subsection <Geometry>: value <"
-                               + expression
-                               + ">; accepted: " + std::to_string(dim)
-                               + " muparser expressions in " + variables
-                               + " separated by ';', with the constants pi, "
-                                 "L1, L2 (, L3). "
-                               + message));
-      };
       FunctionParser<dim> forward(dim), inverse(dim);
-      parse(forward, "Box map", parameters.box_map);
-      parse(inverse, "Box map inverse", parameters.box_map_inverse);
+      initialize_load(forward,
+                      "Geometry",
+                      "Box map",
+                      parameters.box_map,
+                      parameters.lengths,
+                      /*time_dependent=*/false);
+      initialize_load(inverse,
+                      "Geometry",
+                      "Box map inverse",
+                      parameters.box_map_inverse,
+                      parameters.lengths,
+                      /*time_dependent=*/false);
       const auto evaluate
         = [](const FunctionParser<dim> &function, const Point<dim> &p) {
             Vector<double> values(dim);
@@ -523,15 +474,24 @@ namespace ViscoContact
                                             parameters.lengths.end());
       // The points to check, in the box: its vertices and the centres of
       // its edges, faces and cells.
+      // Each object once: the box of a simplex mesh is the whole mesh.
       std::vector<Point<dim>> points = triangulation.get_vertices();
       for (const auto &cell : triangulation.active_cell_iterators())
+        points.push_back(cell->center());
+      for (const auto &face : triangulation.active_face_iterators())
+        points.push_back(face->center());
+      if (dim == 3)
         {
-          points.push_back(cell->center());
-          for (const auto &face : cell->face_iterators())
-            points.push_back(face->center());
-          if (dim == 3)
+          // Each edge once, marked by its user flag.
+          triangulation.clear_user_flags_line();
+          for (const auto &cell : triangulation.active_cell_iterators())
             for (unsigned int l = 0; l < cell->n_lines(); ++l)
-              points.push_back(cell->line(l)->center());
+              if (!cell->line(l)->user_flag_set())
+                {
+                  cell->line(l)->set_user_flag();
+                  points.push_back(cell->line(l)->center());
+                }
+          triangulation.clear_user_flags_line();
         }
       std::vector<Point<dim>> moved(points.size());
       for (unsigned int i = 0; i < points.size(); ++i)

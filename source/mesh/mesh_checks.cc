@@ -70,46 +70,6 @@ namespace ViscoContact
       return text.str();
     }
 
-    template <int dim>
-    std::vector<Point<dim>>
-    corners_of(const typename Triangulation<dim>::cell_iterator &cell)
-    {
-      std::vector<Point<dim>> corners;
-      for (const unsigned int v : cell->vertex_indices())
-        corners.push_back(cell->vertex(v));
-      return corners;
-    }
-
-    // The Jacobian determinant of a cell at its vertex v, from the edges to
-    // its neighbours along each reference direction (for a simplex, dim + 1
-    // corners, the same at every vertex), and the product of those edges'
-    // lengths: their ratio is the sine of the corner's angle (in 3D, of the
-    // solid corner), 0 for a degenerate corner, negative for an inverted one.
-    template <int dim>
-    std::pair<double, double>
-    corner_jacobian(const std::vector<Point<dim>> &corners,
-                    const unsigned int             v)
-    {
-      Tensor<2, dim> J;
-      double         lengths = 1;
-      const bool     simplex = (corners.size() == dim + 1);
-      for (unsigned int d = 0; d < dim; ++d)
-        {
-          // Simplex: the edges from vertex 0. Hypercube: the neighbour of v
-          // across direction d (lexicographic numbering), with the sign of
-          // the direction.
-          const unsigned int from = simplex ? 0 : v;
-          const unsigned int to   = simplex ? d + 1 : (v ^ (1u << d));
-          Tensor<1, dim>     edge = corners[to] - corners[from];
-          if (!simplex && (v & (1u << d)))
-            edge = -edge;
-          for (unsigned int c = 0; c < dim; ++c)
-            J[c][d] = edge[c];
-          lengths *= edge.norm();
-        }
-      return {determinant(J), lengths};
-    }
-
     // The largest distance between two nodes along a coordinate direction.
     template <int dim>
     double
@@ -143,6 +103,47 @@ namespace ViscoContact
       return version;
     }
   } // namespace
+
+
+
+  template <int dim>
+  std::vector<Point<dim>>
+  corners_of(const typename Triangulation<dim>::cell_iterator &cell)
+  {
+    std::vector<Point<dim>> corners;
+    for (const unsigned int v : cell->vertex_indices())
+      corners.push_back(cell->vertex(v));
+    return corners;
+  }
+
+  // The Jacobian determinant of a cell at its vertex v, from the edges to
+  // its neighbours along each reference direction (for a simplex, dim + 1
+  // corners, the same at every vertex), and the product of those edges'
+  // lengths: their ratio is the sine of the corner's angle (in 3D, of the
+  // solid corner), 0 for a degenerate corner, negative for an inverted one.
+  template <int dim>
+  std::pair<double, double>
+  corner_jacobian(const std::vector<Point<dim>> &corners, const unsigned int v)
+  {
+    Tensor<2, dim> J;
+    double         lengths = 1;
+    const bool     simplex = (corners.size() == dim + 1);
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        // Simplex: the edges from vertex 0. Hypercube: the neighbour of v
+        // across direction d (lexicographic numbering), with the sign of
+        // the direction.
+        const unsigned int from = simplex ? 0 : v;
+        const unsigned int to   = simplex ? d + 1 : (v ^ (1u << d));
+        Tensor<1, dim>     edge = corners[to] - corners[from];
+        if (!simplex && (v & (1u << d)))
+          edge = -edge;
+        for (unsigned int c = 0; c < dim; ++c)
+          J[c][d] = edge[c];
+        lengths *= edge.norm();
+      }
+    return {determinant(J), lengths};
+  }
 
 
 
@@ -701,4 +702,12 @@ namespace ViscoContact
   check_mesh_conformity(const Triangulation<3> &,
                         const std::string &,
                         const std::vector<types::boundary_id> &);
+  template std::vector<Point<2>>
+  corners_of<2>(const Triangulation<2>::cell_iterator &);
+  template std::vector<Point<3>>
+  corners_of<3>(const Triangulation<3>::cell_iterator &);
+  template std::pair<double, double>
+  corner_jacobian<2>(const std::vector<Point<2>> &, const unsigned int);
+  template std::pair<double, double>
+  corner_jacobian<3>(const std::vector<Point<3>> &, const unsigned int);
 } // namespace ViscoContact

@@ -65,6 +65,16 @@ namespace ViscoContact
     return true;
   }
 
+  std::map<std::string, double>
+  expression_constants(const std::vector<double> &lengths)
+  {
+    std::map<std::string, double> constants;
+    for (unsigned int d = 0; d < lengths.size(); ++d)
+      constants["L" + std::to_string(d + 1)] = lengths[d];
+    constants["pi"] = numbers::PI;
+    return constants;
+  }
+
   // Parse an expression with as many components as the function has; turn
   // muparser's messages into one that names the parameter. The expression
   // may use the box's edge lengths L1, L2 (, L3) and pi as constants.
@@ -74,8 +84,12 @@ namespace ViscoContact
                   const std::string         &subsection,
                   const std::string         &entry,
                   const std::string         &expression,
-                  const std::vector<double> &lengths)
+                  const std::vector<double> &lengths,
+                  const bool                 time_dependent)
   {
+    const std::string variables
+      = time_dependent ? load_variables<dim>()
+                       : FunctionParser<dim>::default_variable_names();
     // One expression per component, separated by ';'.
     const unsigned int n_components = function.n_components;
     const unsigned int n_parts
@@ -89,19 +103,14 @@ namespace ViscoContact
                                 : std::to_string(n_components)
                                     + " expressions separated by ';', one per "
                                       "component.")));
-    // The constants every load expression may use.
-    std::map<std::string, double> constants;
-    for (unsigned int d = 0; d < lengths.size(); ++d)
-      constants["L" + std::to_string(d + 1)] = lengths[d];
-    constants["pi"] = numbers::PI;
     std::string parser_message;
     // Whatever the parser throws, its message becomes part of ours.
     try
       {
-        function.initialize(load_variables<dim>(),
+        function.initialize(variables,
                             expression,
-                            constants,
-                            /*time_dependent=*/true);
+                            expression_constants(lengths),
+                            time_dependent);
         // muparser reports unknown variables only when evaluating.
         Vector<double> values(n_components);
         function.vector_value(Point<dim>(), values);
@@ -119,8 +128,7 @@ namespace ViscoContact
     AssertThrow(parser_message.empty(),
                 ExcMessage("Invalid parameter <" + entry + "> in subsection <"
                            + subsection + ">: value <" + expression
-                           + ">; accepted: muparser expressions in "
-                           + load_variables<dim>()
+                           + ">; accepted: muparser expressions in " + variables
                            + " and the constants pi, L1, L2 (, L3). "
                            + parser_message));
   }
@@ -500,11 +508,13 @@ namespace ViscoContact
                   const std::string &,
                   const std::string &,
                   const std::string &,
-                  const std::vector<double> &);
+                  const std::vector<double> &,
+                  const bool);
   template void
   initialize_load(FunctionParser<3> &,
                   const std::string &,
                   const std::string &,
                   const std::string &,
-                  const std::vector<double> &);
+                  const std::vector<double> &,
+                  const bool);
 } // namespace ViscoContact
